@@ -1,0 +1,95 @@
+"""Slope curves from any curvature function k(s), integrated numerically.
+
+The three quadratures of MATH.md section 1 (Int k ds, Int cos psi ds, Int sin psi ds)
+are done with adaptive piecewise Chebyshev series (:mod:`.chebyshev`) over the span,
+reaching ~1e-14 relative accuracy: the tests compare this path with every closed-form
+family. Integration starts at the span's start with psi(s0) = ``psi0_deg`` and
+c(s0) = ``origin``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Callable, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import ParameterError
+from ..validation import finite_number
+from .chebyshev import PiecewiseChebyshev
+from .expression import compile_expression
+from .slope_curve import FloatArray, SlopeCurve
+
+
+class CustomCurvature(SlopeCurve):
+    """A slope curve whose curvature is any smooth ``k``: a vectorised callable or a string
+    expression in ``s`` (parsed safely, see :mod:`.expression`)."""
+
+    family = "custom"
+
+    def __init__(
+        self,
+        k: Callable[[np.ndarray], np.ndarray] | str,
+        beta_deg: float,
+        span: tuple[float, float],
+        *,
+        psi0_deg: float = 0.0,
+        origin: Sequence[float] = (0.0, 0.0, 0.0),
+    ) -> None:
+        super().__init__(beta_deg, span)
+        self.expression = k if isinstance(k, str) else None
+        func = compile_expression(k, "k") if isinstance(k, str) else k
+        if not callable(func):
+            raise ParameterError(f"k must be a callable k(s) or an expression string, got {k!r}")
+        self._k = func
+        self.psi0_deg = finite_number("psi0_deg", psi0_deg)
+        if len(origin) != 3:
+            raise ParameterError(f"origin must be three coordinates, got {origin!r}")
+        self.origin = tuple(finite_number(f"origin[{i}]", v) for i, v in enumerate(origin))
+
+        s0, s1 = self.span
+        k_series = PiecewiseChebyshev.fit(self._k_values, s0, s1, name="k(s)")
+        self._dk = k_series.derivative()
+        psi0 = math.radians(self.psi0_deg)
+        self._turning = k_series.antiderivative(psi0 * self._cos_b)
+        x0, y0 = self.origin[0] / self._cos_b, self.origin[1] / self._cos_b
+        self._x = PiecewiseChebyshev.fit(lambda s: np.cos(self.psi(s)), s0, s1, name="cos psi").antiderivative(x0)
+        self._y = PiecewiseChebyshev.fit(lambda s: np.sin(self.psi(s)), s0, s1, name="sin psi").antiderivative(y0)
+        self._z_offset = self.origin[2] - s0 * self._sin_b
+
+    def _k_values(self, s: np.ndarray) -> np.ndarray:
+        return np.asarray(self._k(s), dtype=float) * np.ones_like(s)
+
+    def _inside(self, s: ArrayLike) -> FloatArray:
+        s = np.asarray(s, dtype=float)
+        s0, s1 = self.span
+        slack = 1e-9 * (s1 - s0)
+        if s.size and (s.min() < s0 - slack or s.max() > s1 + slack):
+            raise ParameterError(
+                f"s must lie in the span [{s0:g}, {s1:g}] of a custom curve, got [{s.min():g}, {s.max():g}]"
+            )
+        return s
+
+    def curvature(self, s: ArrayLike) -> FloatArray:
+        s = self._inside(s)
+        with np.errstate(all="ignore"):
+            return self._k_values(s)
+
+    def curvature_derivative(self, s: ArrayLike) -> FloatArray:
+        return self._dk(self._inside(s))
+
+    def turning(self, s: ArrayLike) -> FloatArray:
+        return self._turning(self._inside(s))
+
+    def plan_integrals(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        s = self._inside(s)
+        return self._x(s), self._y(s)
+
+    def position(self, s: ArrayLike) -> FloatArray:
+        p = super().position(s)
+        p[..., 2] += self._z_offset
+        return p
+
+    def parameters(self) -> dict[str, Any]:
+        return {"k": self.expression if self.expression is not None else repr(self._k)}

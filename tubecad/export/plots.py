@@ -1,0 +1,99 @@
+"""Pictures of a tube with its curvature-line net: frontal and horizontal projections,
+like the paper's Fig. 2 (a: frontal, onto XZ seen from -Y; b: horizontal, onto XY seen
+from +Z). Each net cell is a shaded polygon, drawn far to near (painter's algorithm), with
+its borders, the ring frames (s = const) and stringers (u = const), drawn over it.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+
+from ..surface import CurvatureLineTube  # noqa: E402
+from .atomic import atomic_path  # noqa: E402
+
+#: (title, horizontal axis, vertical axis, viewing direction)
+VIEWS = {
+    "frontal": ("a - frontal projection (XZ)", 0, 2, np.array([0.0, 1.0, 0.0])),
+    "horizontal": ("b - horizontal projection (XY)", 0, 1, np.array([0.0, 0.0, -1.0])),
+}
+LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
+
+
+def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int = 24, subdivisions: int = 6):
+    """A matplotlib Figure with the frontal and horizontal projections side by side."""
+    nu, ns = stringers * subdivisions, (rings - 1) * subdivisions
+    u = np.linspace(0.0, 2.0 * math.pi, nu + 1)
+    s = np.linspace(*tube.span, ns + 1)
+    pts = tube.grid(u, s)
+    normals = tube.normal(u[:, None], s[None, :])
+    cells = _cell_outlines(pts, stringers, rings - 1, subdivisions)
+    centres = _cell_centres(normals, stringers, rings - 1, subdivisions)
+    cell_normals = centres / np.linalg.norm(centres, axis=-1, keepdims=True)
+    cell_points = cells.mean(axis=1)
+
+    fig, axes = plt.subplots(1, 2, figsize=(14, 7))
+    axis_line = tube.axis.position(s)
+    for ax, (title, i, j, view) in zip(axes, VIEWS.values()):
+        order = np.argsort(cell_points @ view)[::-1]  # far first
+        shade = 0.35 + 0.6 * np.abs(cell_normals @ LIGHT)
+        facing = (cell_normals @ view) < 0
+        colours = np.where(facing[:, None], [[0.55, 0.72, 0.95]], [[0.75, 0.78, 0.85]]) * shade[:, None]
+        polys = PolyCollection(cells[order][:, :, [i, j]], facecolors=np.clip(colours[order], 0, 1),
+                               edgecolors="#1d2a44", linewidths=0.35)  # fmt: skip
+        ax.add_collection(polys)
+        ax.plot(axis_line[:, i], axis_line[:, j], "-.", color="#b03030", linewidth=0.7, label="axis")
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        ax.set_title(title)
+        ax.set_xlabel("XYZ"[i])
+        ax.set_ylabel("XYZ"[j])
+        ax.legend(loc="upper left", fontsize=8)
+    a = tube.axis
+    fig.suptitle(
+        f"Tube referred to lines of curvature: {a.family} {a.parameters()}, beta = {a.beta_deg:g} deg, "
+        f"rho = {tube.radius:g}, s in [{a.span[0]:g}, {a.span[1]:g}]\n"
+        f"{rings} ring frames (s = const) x {stringers} stringers (u = const)",
+        fontsize=10,
+    )
+    fig.tight_layout()
+    return fig
+
+
+def write_projections(tube: CurvatureLineTube, folder: str | Path, stem: str = "projections", **kwargs) -> list[Path]:
+    """Write ``stem``.png and ``stem``.svg into ``folder`` (atomically); return their paths."""
+    fig = projection_figure(tube, **kwargs)
+    paths = []
+    try:
+        for ext in ("png", "svg"):
+            target = Path(folder) / f"{stem}.{ext}"
+            with atomic_path(target) as tmp:
+                fig.savefig(tmp, format=ext, dpi=150)
+            paths.append(target)
+    finally:
+        plt.close(fig)
+    return paths
+
+
+def _cell_outlines(pts: np.ndarray, nu_cells: int, ns_cells: int, sub: int) -> np.ndarray:
+    """Closed outlines (4 * sub points) of every net cell, following the curved borders."""
+    outlines = []
+    for i in range(nu_cells):
+        for j in range(ns_cells):
+            u0, u1, s0, s1 = i * sub, (i + 1) * sub, j * sub, (j + 1) * sub
+            outlines.append(np.concatenate([
+                pts[u0:u1, s0], pts[u1, s0:s1], pts[u1:u0:-1, s1], pts[u0, s1:s0:-1],
+            ]))  # fmt: skip
+    return np.array(outlines)
+
+
+def _cell_centres(values: np.ndarray, nu_cells: int, ns_cells: int, sub: int) -> np.ndarray:
+    mid = sub // 2
+    return values[mid : nu_cells * sub : sub, mid : ns_cells * sub : sub].reshape(-1, 3)

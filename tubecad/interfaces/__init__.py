@@ -1,0 +1,1 @@
+"""How users reach tubecad: spec files, the command line, reports."""

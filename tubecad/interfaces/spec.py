@@ -1,0 +1,193 @@
+"""Spec files: a tube described in TOML (see README, "Spec files").
+
+    [axis]
+    curve = "log_spiral"      # log_spiral | helix | clothoid | involute | custom
+    a = 10.0                  # the family's parameters (custom: k = "<expression in s>")
+    beta_deg = 10.0
+    s = [200.0, 1200.0]
+
+    [tube]
+    radius = 15.0
+
+Every key is checked: unknown or missing keys, wrong types and out-of-range values raise
+:class:`SpecError` naming the section, the key and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable
+
+from ..curves import FAMILIES, SlopeCurve
+from ..errors import ParameterError, RegularityError, SpecError
+from ..surface import CurvatureLineTube
+from ..validation import span_pair
+
+MAX_SPEC_BYTES = 1_000_000
+
+
+@dataclass(frozen=True)
+class Key:
+    """One allowed key: its TOML type(s), whether it is required, and what it means."""
+
+    kind: str  # "number", "string", "bool", "pair", "triple"
+    required: bool = True
+    help: str = ""
+
+
+#: family -> its own [axis] keys (besides curve, beta_deg, s)
+FAMILY_KEYS: dict[str, dict[str, Key]] = {
+    "log_spiral": {"a": Key("number", help="k = a / s, a > 0")},
+    "helix": {"k": Key("number", help="constant curvature k (0 gives a straight axis)")},
+    "clothoid": {"A": Key("number", help="k = s / A^2, A > 0")},
+    "involute": {"a": Key("number", help="k = 1 / sqrt(2 a s): involute of a circle of radius a > 0")},
+    "custom": {
+        "k": Key("string", help="curvature as an arithmetic expression in s"),
+        "psi0_deg": Key("number", required=False, help="direction of the plan at s0, degrees"),
+        "origin": Key("triple", required=False, help="axis point at s0, [x, y, z]"),
+    },
+}
+AXIS_COMMON = {
+    "curve": Key("string", help=" | ".join(FAMILY_KEYS)),
+    "beta_deg": Key("number", help="elevation angle, -90 < beta_deg < 90"),
+    "s": Key("pair", help="arc-length span [start, end]"),
+}
+TUBE_KEYS = {
+    "radius": Key("number", help="radius rho > 0 of the generating circle"),
+    "allow_irregular": Key("bool", required=False, help="build even if rho*k >= 1 or the axis comes back within 2 rho"),
+}
+
+#: further sections other modules accept (added as the pipeline grows)
+EXTRA_SECTIONS: dict[str, dict[str, Key]] = {}
+
+
+@dataclass(frozen=True)
+class TubeSpec:
+    """A checked spec: the tube it describes and the raw sections, for later stages."""
+
+    tube: CurvatureLineTube
+    sections: dict[str, dict[str, Any]]
+    source: str
+
+    @property
+    def axis(self) -> SlopeCurve:
+        return self.tube.axis
+
+
+def load_spec(path: str | Path) -> TubeSpec:
+    """Read and check a TOML spec file."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise SpecError(f"cannot read spec file {str(path)!r}: {exc.strerror}") from None
+    if len(raw) > MAX_SPEC_BYTES:
+        raise SpecError(f"{path}: spec file is {len(raw)} bytes; at most {MAX_SPEC_BYTES} are allowed")
+    try:
+        data = tomllib.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError:
+        raise SpecError(f"{path}: spec file is not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SpecError(f"{path}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise SpecError(f"{path}: not valid TOML: nested too deeply") from None
+    return parse_spec(data, str(path))
+
+
+def parse_spec(data: dict[str, Any], source: str = "<spec>") -> TubeSpec:
+    """Check a parsed spec (a dict as tomllib gives) and build its tube."""
+    def fail(msg: str) -> SpecError:
+        return SpecError(f"{source}: {msg}")
+
+    allowed_sections = {"axis": None, "tube": TUBE_KEYS, **EXTRA_SECTIONS}
+    for name, value in data.items():
+        if name not in allowed_sections:
+            raise fail(f"unknown section [{name}]; allowed sections are {', '.join(f'[{s}]' for s in allowed_sections)}")
+        if not isinstance(value, dict):
+            raise fail(f"[{name}] must be a table (a [{name}] section), got {_toml_type(value)}")
+    for name in ("axis", "tube"):
+        if name not in data:
+            raise fail(f"missing section [{name}]")
+
+    axis_data = data["axis"]
+    curve = axis_data.get("curve")
+    if not isinstance(curve, str) or curve not in FAMILY_KEYS:
+        if "curve" not in axis_data:
+            raise fail(f"[axis] curve is missing; allowed: {AXIS_COMMON['curve'].help}")
+        raise fail(f"[axis] curve must be one of {AXIS_COMMON['curve'].help}, got {curve!r}")
+    axis_keys = {**AXIS_COMMON, **FAMILY_KEYS[curve]}
+    sections = {"axis": _check_keys("axis", axis_data, axis_keys, fail)}
+    for name, keys in allowed_sections.items():
+        if name != "axis" and name in data:
+            sections[name] = _check_keys(name, data[name], keys, fail)  # type: ignore[arg-type]
+
+    axis = _with_section("axis", fail, lambda: _build_axis(curve, sections["axis"]))
+    tube_data = sections["tube"]
+    try:
+        tube = CurvatureLineTube(axis, tube_data["radius"], allow_irregular=tube_data.get("allow_irregular", False))
+    except ParameterError as exc:
+        raise fail(f"[tube] {exc}") from None
+    except RegularityError as exc:
+        raise fail(f"{exc} (or set [tube] allow_irregular = true)") from None
+    return TubeSpec(tube, sections, source)
+
+
+def _build_axis(curve: str, values: dict[str, Any]) -> SlopeCurve:
+    cls = FAMILIES[curve]
+    span = span_pair("s", values["s"], cls.s_lower_bound)
+    params = {k: v for k, v in values.items() if k not in AXIS_COMMON}
+    return cls(beta_deg=values["beta_deg"], span=span, **params)  # type: ignore[call-arg]
+
+
+def _with_section(name: str, fail: Callable[[str], SpecError], build: Callable[[], Any]) -> Any:
+    try:
+        return build()
+    except ParameterError as exc:
+        raise fail(f"[{name}] {exc}") from None
+
+
+def _check_keys(section: str, values: dict[str, Any], keys: dict[str, Key], fail: Callable[[str], SpecError]) -> dict[str, Any]:
+    for key in values:
+        if key not in keys:
+            raise fail(f"unknown key [{section}] {key}; allowed keys are {', '.join(keys)}")
+    out: dict[str, Any] = {}
+    for key, spec in keys.items():
+        if key not in values:
+            if spec.required:
+                raise fail(f"[{section}] {key} is missing ({spec.help})")
+            continue
+        out[key] = _check_type(section, key, values[key], spec, fail)
+    return out
+
+
+def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[str], SpecError]) -> Any:
+    where = f"[{section}] {key}"
+
+    def number(v: Any) -> bool:
+        return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+    ok = {
+        "number": number(value),
+        "string": isinstance(value, str),
+        "bool": isinstance(value, bool),
+        "pair": isinstance(value, list) and len(value) == 2 and all(number(v) for v in value),
+        "triple": isinstance(value, list) and len(value) == 3 and all(number(v) for v in value),
+        "numbers": isinstance(value, list) and len(value) > 0 and all(number(v) for v in value),
+        "integer": isinstance(value, int) and not isinstance(value, bool),
+    }[spec.kind]
+    if not ok:
+        wanted = {"number": "a number", "string": "a string", "bool": "true or false", "integer": "a whole number",
+                  "pair": "a list of two numbers", "triple": "a list of three numbers",
+                  "numbers": "a non-empty list of numbers"}[spec.kind]  # fmt: skip
+        raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}")
+    if spec.kind == "number" and not math.isfinite(value):
+        raise fail(f"{where} must be finite ({spec.help}), got {value}")
+    return value
+
+
+def _toml_type(value: Any) -> str:
+    return {bool: "a boolean", int: "an integer", float: "a float", str: "a string", list: "an array",
+            dict: "a table"}.get(type(value), type(value).__name__)  # fmt: skip

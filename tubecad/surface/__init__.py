@@ -1,0 +1,7 @@
+"""The curvature-line tube S(u, s), its fundamental forms and regularity (MATH.md sections 2-5)."""
+
+from .forms import FundamentalForms, SurfaceDerivatives
+from .regularity import RegularityReport, check_regularity
+from .tube import CurvatureLineTube
+
+__all__ = ["CurvatureLineTube", "FundamentalForms", "SurfaceDerivatives", "RegularityReport", "check_regularity"]

@@ -1,0 +1,67 @@
+"""Small checks shared by every constructor: finite numbers in a named allowed range."""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+from .errors import ParameterError
+
+
+def finite_number(name: str, value: object) -> float:
+    """Return ``value`` as a float, or raise naming ``name`` if it is not a finite real."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        try:
+            import numpy as np
+
+            if isinstance(value, np.generic) and np.isreal(value):
+                value = float(value)
+            else:
+                raise TypeError
+        except TypeError:
+            raise ParameterError(f"{name} must be a real number, got {value!r}") from None
+    value = float(value)
+    if not math.isfinite(value):
+        raise ParameterError(f"{name} must be finite, got {value}")
+    return value
+
+
+def number_in_range(
+    name: str,
+    value: object,
+    low: float = -math.inf,
+    high: float = math.inf,
+    *,
+    low_open: bool = True,
+    high_open: bool = True,
+) -> float:
+    """Return ``value`` as a float checked against the interval (low, high)."""
+    x = finite_number(name, value)
+    below = x <= low if low_open else x < low
+    above = x >= high if high_open else x > high
+    if below or above:
+        raise ParameterError(f"{name} must be in {_interval(low, high, low_open, high_open)}, got {x:g}")
+    return x
+
+
+def span_pair(name: str, value: Sequence[object], low: float = -math.inf) -> tuple[float, float]:
+    """Return an increasing pair (s0, s1) with both ends finite and s0 > ``low``."""
+    try:
+        s0, s1 = value  # type: ignore[misc]
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a pair [start, end], got {value!r}") from None
+    s0 = finite_number(f"{name} start", s0)
+    s1 = finite_number(f"{name} end", s1)
+    if not s1 > s0:
+        raise ParameterError(f"{name} must be increasing (start < end), got [{s0:g}, {s1:g}]")
+    if not s0 > low:
+        raise ParameterError(f"{name} must lie in s > {low:g} for this curve, got start {s0:g}")
+    return s0, s1
+
+
+def _interval(low: float, high: float, low_open: bool, high_open: bool) -> str:
+    left = "(" if low_open else "["
+    right = ")" if high_open else "]"
+    lo = "-inf" if low == -math.inf else f"{low:g}"
+    hi = "inf" if high == math.inf else f"{high:g}"
+    return f"{left}{lo}, {hi}{right}"
