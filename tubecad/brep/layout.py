@@ -1,0 +1,66 @@
+"""Which curvature lines become B-rep edges: ring frames s_i and stringers at angles theta_j."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..surface import CurvatureLineTube
+
+DEFAULT_RINGS = 11
+DEFAULT_STRINGERS = 8
+
+
+@dataclass(frozen=True)
+class NetLayout:
+    """Ring frames at arc lengths ``s_rings`` (both span ends included, increasing) and
+    stringers at angles ``stringers_deg`` around the tube (from the RMF normal r1)."""
+
+    s_rings: tuple[float, ...]
+    stringers_deg: tuple[float, ...]
+
+    @classmethod
+    def equal(cls, tube: CurvatureLineTube, rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS) -> "NetLayout":
+        """``rings`` frames equally spaced in s (ends included), ``stringers`` at 360 j / M deg."""
+        _whole("rings", rings, 2)
+        _whole("stringers", stringers, 1)
+        return cls.explicit(tube, np.linspace(*tube.span, rings), 360.0 * np.arange(stringers) / stringers)
+
+    @classmethod
+    def explicit(cls, tube: CurvatureLineTube, s_rings: Sequence[float], stringers_deg: Sequence[float]) -> "NetLayout":
+        """Given lists; the span ends are added to the rings if missing."""
+        s0, s1 = tube.span
+        rings = np.asarray(list(s_rings), dtype=float)
+        angles = np.asarray(list(stringers_deg), dtype=float)
+        if rings.size == 0 or not np.all(np.isfinite(rings)):
+            raise ParameterError(f"s_rings must be finite arc lengths in [{s0:g}, {s1:g}], got {list(rings)}")
+        if rings.min() < s0 - 1e-9 * (s1 - s0) or rings.max() > s1 + 1e-9 * (s1 - s0):
+            raise ParameterError(f"s_rings must lie in the span [{s0:g}, {s1:g}], got [{rings.min():g}, {rings.max():g}]")
+        rings = np.unique(np.clip(np.concatenate([[s0, s1], rings]), s0, s1))
+        if np.min(np.diff(rings)) < 1e-6 * (s1 - s0):
+            raise ParameterError("s_rings must be distinct (at least 1e-6 of the span apart)")
+        if angles.size == 0 or not np.all(np.isfinite(angles)):
+            raise ParameterError(f"u_stringers_deg must be a non-empty list of finite angles, got {list(angles)}")
+        angles = np.unique(np.round(np.mod(angles, 360.0), 12))
+        if len(angles) > 1 and np.min(np.diff(np.concatenate([angles, [angles[0] + 360.0]]))) < 1e-6:
+            raise ParameterError("u_stringers_deg must be distinct angles (mod 360)")
+        return cls(tuple(map(float, rings)), tuple(map(float, angles)))
+
+    @property
+    def faces_per_tube(self) -> int:
+        return (len(self.s_rings) - 1) * len(self.stringers_deg)
+
+
+def _whole(name: str, value: object, least: int) -> None:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
+        raise ParameterError(f"{name} must be a whole number >= {least}, got {value!r}")
+
+
+def stringer_parameters(stringers_deg: Sequence[float], u_at) -> list[float]:
+    """OCCT u cuts [u_0 = 0, u_1, ..., 2 pi] for a surface whose u = 0 is the first stringer."""
+    cuts = [0.0] + [float(u_at(a)) for a in stringers_deg[1:]] + [2 * math.pi]
+    return cuts

@@ -1,0 +1,173 @@
+"""Shells and solids of curvature-line tubes (issue 3): the tube solid and the wall solid.
+
+- tube shell: patch faces between ring frames and stringers (edges = those curvature lines);
+- tube solid: the shell plus planar end discs in the normal planes at both ends;
+- wall solid: outer and inner tubes (exact normal offsets rho +- d on one frame fit, so
+  every inner edge has its outer twin) and annular end caps.
+
+Each returns a :class:`TubeBuild` whose ``shape`` is a build123d Shell or Solid.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import build123d as bd
+import numpy as np
+from OCP.BRep import BRep_Builder
+from OCP.BRepLib import BRepLib
+from OCP.Geom import Geom_Plane
+from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
+from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
+from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid, TopoDS_Wire
+
+from ..errors import ParameterError
+from ..fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
+from ..surface import CurvatureLineTube
+from ..validation import number_in_range
+from .faces import TOLERANCE, PatchFaces, patch_faces
+from .layout import NetLayout, stringer_parameters
+
+DEFAULT_TOLERANCE = 1e-8
+DEFAULT_ORTHOGONALITY = 1e-9
+WALL_SIDES = ("centered", "inside", "outside")
+
+
+@dataclass
+class TubeBuild:
+    """A built shape and what it was built from."""
+
+    shape: bd.Shape
+    surfaces: list[TubeSurface]  # outer first
+    patches: list[PatchFaces]
+    layout: NetLayout
+    frame: FrameSpline
+    tolerance: float
+    radii: list[float] = field(default_factory=list)
+
+
+def wall_radii(radius: float, thickness: float, side: str) -> tuple[float, float]:
+    """(r_in, r_out) of a wall of ``thickness`` placed ``side`` of the tube of ``radius``."""
+    thickness = number_in_range("thickness", thickness, 0.0)
+    if side not in WALL_SIDES:
+        raise ParameterError(f"side must be one of {', '.join(WALL_SIDES)}, got {side!r}")
+    r_in, r_out = {"centered": (radius - thickness / 2, radius + thickness / 2),
+                   "inside": (radius - thickness, radius), "outside": (radius, radius + thickness)}[side]  # fmt: skip
+    if r_in <= 0:
+        limit = {"centered": 2 * radius, "inside": radius}[side]
+        raise ParameterError(f"thickness must be < {limit:g} for side = {side!r} (radius {radius:g}), got {thickness:g}")
+    return r_in, r_out
+
+
+def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
+                     tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
+    """The tube's open shell: faces between rings and stringers."""
+    layout = layout or NetLayout.equal(tube)
+    frame = fit_frame(tube.axis, tube.radius, tolerance, min(DEFAULT_ORTHOGONALITY, tolerance))
+    surface, patches = _tube_faces(tube, frame, layout)
+    shell = _shell(patches.all_faces(), closed=False)
+    return TubeBuild(bd.Shell(shell), [surface], [patches], layout, frame, tolerance, [tube.radius])
+
+
+def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
+                     tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
+    """The tube closed by planar discs in the normal planes at both ends."""
+    layout = layout or NetLayout.equal(tube)
+    frame = fit_frame(tube.axis, tube.radius, tolerance, min(DEFAULT_ORTHOGONALITY, tolerance))
+    surface, patches = _tube_faces(tube, frame, layout)
+    caps = [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
+            _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True)]  # fmt: skip
+    solid = _solid(patches.all_faces() + caps)
+    return TubeBuild(bd.Solid(solid), [surface], [patches], layout, frame, tolerance, [tube.radius])
+
+
+def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered",
+                     layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
+    """The wall between the tubes of radii r_in < r_out on ``tube``'s axis, with annular caps."""
+    r_in, r_out = wall_radii(tube.radius, thickness, side)
+    outer_tube, inner_tube = CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)
+    layout = layout or NetLayout.equal(tube)
+    frame = fit_frame(tube.axis, r_out, tolerance, min(DEFAULT_ORTHOGONALITY, tolerance))
+    outer, outer_patches = _tube_faces(outer_tube, frame, layout)
+    inner, inner_patches = _tube_faces(inner_tube, frame, layout, reverse=True)
+    caps = [
+        _cap(tube, layout.s_rings[0], [outer_patches.rings[0], inner_patches.rings[0]], outward=False),
+        _cap(tube, layout.s_rings[-1], [outer_patches.rings[-1], inner_patches.rings[-1]], outward=True),
+    ]
+    solid = _solid(outer_patches.all_faces() + inner_patches.all_faces() + caps)
+    return TubeBuild(bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, frame, tolerance,
+                     [r_out, r_in])  # fmt: skip
+
+
+def tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE) -> bd.Shell:
+    """build123d Shell of the tube (see :func:`build_tube_shell`)."""
+    return build_tube_shell(tube, layout, tolerance).shape
+
+
+def tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE) -> bd.Solid:
+    """build123d Solid of the capped tube (see :func:`build_tube_solid`)."""
+    return build_tube_solid(tube, layout, tolerance).shape
+
+
+def wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered", layout: NetLayout | None = None,
+               tolerance: float = DEFAULT_TOLERANCE) -> bd.Solid:  # fmt: skip
+    """build123d Solid of the wall (see :func:`build_wall_solid`)."""
+    return build_wall_solid(tube, thickness, side, layout, tolerance).shape
+
+
+# --- construction ------------------------------------------------------------------------
+def _tube_faces(tube: CurvatureLineTube, frame: FrameSpline, layout: NetLayout,
+                reverse: bool = False) -> tuple[TubeSurface, PatchFaces]:  # fmt: skip
+    surface = exact_section_surface(tube, frame, origin_deg=layout.stringers_deg[0])
+    u_cuts = stringer_parameters(layout.stringers_deg, surface.u_at)
+    return surface, patch_faces(surface.surface, list(layout.s_rings), u_cuts, reverse=reverse)
+
+
+def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outward: bool) -> TopoDS_Face:
+    """Planar face in the normal plane at ``s`` bounded by ``rings`` (outer first, then the hole);
+    its normal is +t at the end of the tube (``outward``) and -t at the start."""
+    builder = BRep_Builder()
+    a = tube.axis.evaluate(np.array([s]))
+    centre, t, n = a.position[0], a.t[0], a.n[0]
+    normal = t if outward else -t
+    plane = Geom_Plane(gp_Ax3(gp_Pnt(*centre), gp_Dir(*normal), gp_Dir(*n)))
+    face = TopoDS_Face()
+    builder.MakeFace(face, plane, TOLERANCE)
+    for k, edges in enumerate(rings):
+        # Ring edges run along +u, counter-clockwise about +t. The outer wire must run
+        # counter-clockwise about the face normal and a hole clockwise.
+        forward = outward == (k == 0)
+        wire = TopoDS_Wire()
+        builder.MakeWire(wire)
+        for edge in edges if forward else edges[::-1]:
+            builder.Add(wire, edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
+            BRepLib.BuildPCurveForEdgeOnPlane_s(edge, face)
+        wire.Closed(True)
+        builder.Add(face, wire)
+    return face
+
+
+def _shell(faces: list[TopoDS_Face], closed: bool) -> TopoDS_Shell:
+    builder = BRep_Builder()
+    shell = TopoDS_Shell()
+    builder.MakeShell(shell)
+    for face in faces:
+        builder.Add(shell, face)
+    shell.Closed(closed)
+    return shell
+
+
+def _solid(faces: list[TopoDS_Face]) -> TopoDS_Solid:
+    builder = BRep_Builder()
+    solid = TopoDS_Solid()
+    builder.MakeSolid(solid)
+    builder.Add(solid, _shell(faces, closed=True))
+    BRepLib.OrientClosedSolid_s(solid)
+    return solid
+
+
+def exact_volume(build: TubeBuild, tube: CurvatureLineTube) -> float:
+    """pi (r_out^2 - r_in^2) L for a wall, pi rho^2 L for a tube solid (MATH.md section 4)."""
+    radii = build.radii
+    return math.pi * (radii[0] ** 2 - (radii[1] ** 2 if len(radii) > 1 else 0.0)) * tube.length
