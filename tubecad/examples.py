@@ -7,13 +7,30 @@ axis never comes back within 2 rho = 30 of itself: its closest return is about 3
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from .curves import LogSpiral
 from .surface import CurvatureLineTube
+
+if TYPE_CHECKING:
+    from .brep import NetLayout
 
 PAPER_A = 10.0
 PAPER_BETA_DEG = 10.0
 PAPER_RADIUS = 15.0
 PAPER_SPAN = (200.0, 1200.0)
+#: the wall `tubecad paper` writes: 2 thick, centred (radii 14 and 16). The axis comes back
+#: within 32.8 of itself near s = 200, so an outer radius above about 16.4 self-intersects.
+PAPER_WALL_THICKNESS = 2.0
+PAPER_RINGS = 11
+PAPER_STRINGERS = 8
+
+
+def PAPER_LAYOUT(tube: CurvatureLineTube) -> "NetLayout":  # noqa: N802 - reads as a constant
+    """11 ring frames every 100 along the axis (ends included) and 8 stringers 45 deg apart."""
+    from .brep import NetLayout  # OCCT is loaded only when B-rep is asked for
+
+    return NetLayout.equal(tube, PAPER_RINGS, PAPER_STRINGERS)
 
 
 def paper_tube(span: tuple[float, float] = PAPER_SPAN) -> CurvatureLineTube:

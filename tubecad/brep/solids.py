@@ -30,7 +30,12 @@ from .faces import TOLERANCE, PatchFaces, patch_faces
 from .layout import NetLayout, stringer_parameters
 
 DEFAULT_TOLERANCE = 1e-8
-DEFAULT_ORTHOGONALITY = 1e-9
+
+
+def orthogonality_for(tolerance: float) -> float:
+    """The |cos| the isolines are fitted to: tolerance / 10, and never worse than 1e-6
+    (1e-9 at the default tolerance 1e-8)."""
+    return min(1e-6, tolerance / 10) if isinstance(tolerance, (int, float)) and tolerance > 0 else tolerance
 WALL_SIDES = ("centered", "inside", "outside")
 
 
@@ -64,7 +69,7 @@ def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
     """The tube's open shell: faces between rings and stringers."""
     layout = layout or NetLayout.equal(tube)
-    frame = fit_frame(tube.axis, tube.radius, tolerance, min(DEFAULT_ORTHOGONALITY, tolerance))
+    frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance))
     surface, patches = _tube_faces(tube, frame, layout)
     shell = _shell(patches.all_faces(), closed=False)
     return TubeBuild(bd.Shell(shell), [surface], [patches], layout, frame, tolerance, [tube.radius])
@@ -74,7 +79,7 @@ def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
     """The tube closed by planar discs in the normal planes at both ends."""
     layout = layout or NetLayout.equal(tube)
-    frame = fit_frame(tube.axis, tube.radius, tolerance, min(DEFAULT_ORTHOGONALITY, tolerance))
+    frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance))
     surface, patches = _tube_faces(tube, frame, layout)
     caps = [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
             _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True)]  # fmt: skip
@@ -88,7 +93,7 @@ def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "cen
     r_in, r_out = wall_radii(tube.radius, thickness, side)
     outer_tube, inner_tube = CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)
     layout = layout or NetLayout.equal(tube)
-    frame = fit_frame(tube.axis, r_out, tolerance, min(DEFAULT_ORTHOGONALITY, tolerance))
+    frame = fit_frame(tube.axis, r_out, tolerance, orthogonality_for(tolerance))
     outer, outer_patches = _tube_faces(outer_tube, frame, layout)
     inner, inner_patches = _tube_faces(inner_tube, frame, layout, reverse=True)
     caps = [

@@ -1,7 +1,8 @@
 """The ``tubecad`` command line.
 
-    tubecad paper [-o DIR]        the paper's example: pictures and report.json in DIR
-    tubecad report SPEC.toml      print the report (JSON) of any spec
+    tubecad paper [-o DIR]                    the paper's example: pictures, STEP, IGES, report.json
+    tubecad report SPEC.toml                  print the report (JSON) of any spec
+    tubecad build SPEC.toml -o OUT.step ...   build the spec's solid, write STEP/IGES/BREP
 
 Bad input exits with code 2 and a one-line message naming the key or option.
 """
@@ -13,11 +14,15 @@ from pathlib import Path
 
 import click
 
+from ..brep import build_wall_solid
 from ..errors import TubecadError
-from ..examples import paper_tube
+from ..examples import PAPER_LAYOUT, PAPER_WALL_THICKNESS, paper_tube
 from ..export.atomic import write_text
+from ..export.cad import cad_format, export_shape
 from ..export.plots import write_projections
-from .report import DEFAULT_NS, DEFAULT_NU, to_json, tube_report
+from .build import build_from_spec
+from .readback import readback_report
+from .report import DEFAULT_NS, DEFAULT_NU, build_report, to_json, tube_report
 from .spec import load_spec
 
 
@@ -54,8 +59,10 @@ def cli() -> None:
 def paper(output: Path, nu: int, ns: int) -> None:
     """Build the paper's example (k = 10/s, beta = 10 deg, rho = 15, s in [200, 1200]).
 
-    Writes projections.png/.svg (frontal and horizontal projections with the
-    curvature-line net) and report.json into OUTPUT.
+    Writes into OUTPUT: projections.png/.svg (frontal and horizontal projections with
+    the curvature-line net); paper.step and paper.iges, the wall solid (thickness 2,
+    centred: radii 14 and 16) with 11 ring frames and 8 stringers as its edges;
+    paper_step.png, a picture rendered from the STEP file read back; report.json.
     """
     try:
         output.mkdir(parents=True, exist_ok=True)
@@ -64,11 +71,28 @@ def paper(output: Path, nu: int, ns: int) -> None:
     try:
         tube = paper_tube()
         written = write_projections(tube, output)
-        written.append(write_text(output / "report.json", to_json(tube_report(tube, nu, ns))))
+        build = build_wall_solid(tube, PAPER_WALL_THICKNESS, "centered", PAPER_LAYOUT(tube))
+        report = tube_report(tube, nu, ns)
+        report["brep"] = build_report(build, tube)
+        exports = {}
+        for name in ("paper.step", "paper.iges"):
+            written.append(export_shape(build.shape, output / name))
+            exports[name] = readback_report(output / name, build.shape)
+        report["exports"] = exports
+        written.append(render_step_picture(output / "paper.step", output / "paper_step.png"))
+        written.append(write_text(output / "report.json", to_json(report)))
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     for path in written:
         click.echo(str(path))
+
+
+def render_step_picture(step: Path, png: Path) -> Path:
+    """Render the STEP file as read back (tessellated faces, B-rep edges on top)."""
+    from ..export.cad import import_shape
+    from ..export.render import render_shape_png
+
+    return render_shape_png(import_shape(step), png, title=f"{step.name} as read back: faces and B-rep edges")
 
 
 @cli.command()
@@ -81,6 +105,42 @@ def report(spec: Path, nu: int, ns: int) -> None:
         click.echo(to_json(tube_report(tube, nu, ns)), nl=False)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output", "outputs", multiple=True, required=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="Output file, repeatable; the format follows the extension: .step/.stp, .iges/.igs, .brep.")
+@click.option("--step-schema", type=click.Choice(["AP214", "AP242"]), default="AP214", show_default=True)
+@click.option("--report", "report_path", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="Also write the measured report (JSON) here.")
+def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: Path | None) -> None:
+    """Build the solid of SPEC (the wall if it has [wall], else the capped tube) and write it.
+
+    Each file is read back and checked; a summary is printed.
+    """
+    try:
+        for path in outputs:
+            cad_format(path)
+        checked = load_spec(spec)
+        result = build_from_spec(checked)
+        report = tube_report(checked.tube, 64, 501)
+        report["brep"] = build_report(result, checked.tube)
+        report["exports"] = {}
+        for path in outputs:
+            export_shape(result.shape, path, step_schema)
+            report["exports"][str(path)] = readback_report(path, result.shape)
+        if report_path is not None:
+            write_text(report_path, to_json(report))
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    brep = report["brep"]
+    click.echo(
+        f"{brep['kind']}: {brep['faces']} faces, {brep['edges']} edges, valid={brep['valid']}, "
+        f"fit deviation {brep['fit']['max_deviation']:.2e}, orthogonality {brep['fit']['max_orthogonality_error']:.2e}"
+    )
+    for path, info in report["exports"].items():
+        click.echo(f"{path}: {info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}")
 
 
 def main() -> None:

@@ -60,3 +60,54 @@ def _version() -> str:
         return version("tubecad")
     except PackageNotFoundError:
         return "unknown"
+
+
+def build_report(build, tube: CurvatureLineTube, nu: int = 48, ns: int = 1500) -> dict[str, Any]:
+    """What was measured on a built B-rep shape (issue 3): per surface the fit's deviation
+    and orthogonality by dense sampling of the OCCT surface, poles; topology and validity;
+    volume and areas against the exact values (MATH.md section 4)."""
+    import math
+
+    from ..brep import properties as props
+    from ..brep.solids import exact_volume
+    from ..fitting import measure_surface
+
+    surfaces = []
+    for surface, patches, radius in zip(build.surfaces, build.patches, build.radii):
+        m = measure_surface(surface, nu, ns)
+        area = props.faces_area(patches.all_faces())
+        exact = 2 * math.pi * radius * tube.length
+        surfaces.append({
+            "radius": radius,
+            "poles": list(surface.pole_count),
+            "pole_count": surface.pole_count[0] * surface.pole_count[1],
+            "degree": [2, build.frame.degree],
+            "max_deviation": m.max_deviation,
+            "max_orthogonality_error": m.max_orthogonality_error,
+            "samples": m.samples,
+            "area": area,
+            "area_exact": exact,
+            "area_relative_error": abs(area / exact - 1.0),
+        })  # fmt: skip
+    shape = build.shape
+    is_solid = props.count(shape, "solid") > 0
+    out: dict[str, Any] = {
+        "kind": "wall" if len(build.radii) == 2 else ("tube_solid" if is_solid else "tube_shell"),
+        "fit": {
+            "method": "exact-section NURBS (rational circles in u, degree-%d B-spline in s)" % build.frame.degree,
+            "tolerance": build.tolerance,
+            "max_deviation": max(s["max_deviation"] for s in surfaces),
+            "max_orthogonality_error": max(s["max_orthogonality_error"] for s in surfaces),
+        },
+        "surfaces": surfaces,
+        "layout": {"s_rings": list(build.layout.s_rings), "u_stringers_deg": list(build.layout.stringers_deg)},
+        "faces": props.count(shape, "face"),
+        "edges": props.count(shape, "edge"),
+        "vertices": props.count(shape, "vertex"),
+        "free_edges": props.free_edges(shape),
+        "valid": props.is_valid(shape),
+    }
+    if is_solid:
+        volume, exact = props.volume(shape), exact_volume(build, tube)
+        out.update({"volume": volume, "volume_exact": exact, "volume_relative_error": abs(volume / exact - 1.0)})
+    return out

@@ -60,8 +60,22 @@ TUBE_KEYS = {
     "allow_irregular": Key("bool", required=False, help="build even if rho*k >= 1 or the axis comes back within 2 rho"),
 }
 
-#: further sections other modules accept (added as the pipeline grows)
-EXTRA_SECTIONS: dict[str, dict[str, Key]] = {}
+LAYOUT_KEYS = {
+    "rings": Key("integer", required=False, help="ring frames equally spaced in s, ends included, >= 2"),
+    "stringers": Key("integer", required=False, help="stringers at u = 360 j / M degrees, >= 1"),
+    "s_rings": Key("numbers", required=False, help="explicit ring arc lengths (span ends are added)"),
+    "u_stringers_deg": Key("numbers", required=False, help="explicit stringer angles, degrees"),
+}
+WALL_KEYS = {
+    "thickness": Key("number", help="wall thickness > 0"),
+    "side": Key("string", required=False, help="centered | inside | outside (default centered)"),
+}
+FIT_KEYS = {
+    "tolerance": Key("number", required=False, help="max deviation from the exact tube, model units, in (0, 1)"),
+}
+
+#: sections beyond [axis] and [tube]
+EXTRA_SECTIONS: dict[str, dict[str, Key]] = {"layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS}
 
 
 @dataclass(frozen=True)
@@ -132,6 +146,10 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>") -> TubeSpec:
         raise fail(f"[tube] {exc}") from None
     except RegularityError as exc:
         raise fail(f"{exc} (or set [tube] allow_irregular = true)") from None
+    layout = sections.get("layout", {})
+    for count, listed in (("rings", "s_rings"), ("stringers", "u_stringers_deg")):
+        if count in layout and listed in layout:
+            raise fail(f"[layout] give either {count} or {listed}, not both")
     return TubeSpec(tube, sections, source)
 
 

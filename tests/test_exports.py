@@ -1,0 +1,149 @@
+"""STEP, IGES and BREP files written atomically and read back (issue 3)."""
+
+import json
+import math
+import os
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from tubecad import paper_tube
+from tubecad.brep import NetLayout, build_wall_solid
+from tubecad.brep import properties as props
+from tubecad.export.cad import export_shape, import_shape
+from tubecad.interfaces.cli import cli
+
+SAMPLES = Path(__file__).parent.parent / "samples"
+
+
+@pytest.fixture(scope="module")
+def wall():
+    tube = paper_tube()
+    return build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 6, 4)).shape
+
+
+@pytest.mark.parametrize("name, volume_rel", [("w.step", 1e-9), ("w242.step", 1e-9), ("w.iges", 1e-9), ("w.brep", 1e-12)])
+def test_round_trip_keeps_a_valid_identical_solid(tmp_path, wall, name, volume_rel):
+    path = export_shape(wall, tmp_path / name, "AP242" if "242" in name else "AP214")
+    back = import_shape(path)
+    assert props.is_valid(back) and props.count(back, "solid") == 1 and props.free_edges(back) == 0
+    for kind in ("face", "edge", "vertex"):
+        assert props.count(back, kind) == props.count(wall, kind)
+    assert props.volume(back) == pytest.approx(props.volume(wall), rel=volume_rel)
+    assert props.area(back) == pytest.approx(props.area(wall), rel=volume_rel)
+    assert props.volume(back) == pytest.approx(math.pi * (16**2 - 14**2) * 1000.0, rel=1e-6)
+    if name.endswith(".step"):
+        text = path.read_text(errors="replace")
+        assert ("AUTOMOTIVE_DESIGN" in text) == ("242" not in name) and "SI_UNIT(.MILLI.,.METRE.)" in text
+    assert [p.name for p in tmp_path.iterdir()] == [name]  # no temporary file left behind
+
+
+def test_unknown_extension_and_missing_folder(tmp_path, wall):
+    from tubecad import ParameterError
+
+    with pytest.raises(ParameterError, match="unknown extension"):
+        export_shape(wall, tmp_path / "w.stl")
+    with pytest.raises(ParameterError, match="does not exist"):
+        export_shape(wall, tmp_path / "nope" / "w.step")
+
+
+def test_failed_write_leaves_no_file(tmp_path, wall, monkeypatch):
+    import tubecad.export.cad as cad
+
+    def boom(*args):
+        raise KeyboardInterrupt  # an interrupted build
+
+    monkeypatch.setattr(cad, "_write_step", boom)
+    target = tmp_path / "w.step"
+    target.write_text("previous good file")
+    with pytest.raises(KeyboardInterrupt):
+        export_shape(wall, target)
+    assert target.read_text() == "previous good file" and len(list(tmp_path.iterdir())) == 1
+
+
+def test_paper_command_writes_a_valid_wall_step_and_iges(tmp_path):
+    result = CliRunner().invoke(cli, ["paper", "-o", str(tmp_path), "--nu", "32", "--ns", "201"])
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "report.json").read_text())
+    brep = report["brep"]
+    assert brep["kind"] == "wall" and brep["valid"] and brep["free_edges"] == 0
+    assert brep["faces"] == 2 * 10 * 8 + 2 and brep["volume_relative_error"] < 1e-6
+    assert brep["fit"]["max_deviation"] < 1e-8 and brep["fit"]["max_orthogonality_error"] < 1e-9
+    assert all(s["pole_count"] <= 2000 and s["area_relative_error"] < 1e-6 for s in brep["surfaces"])
+    step = import_shape(tmp_path / "paper.step")
+    assert props.is_valid(step) and props.count(step, "face") == brep["faces"]
+    assert props.volume(step) == pytest.approx(math.pi * (16**2 - 14**2) * 1000, rel=1e-6)
+    iges = import_shape(tmp_path / "paper.iges")
+    assert props.count(iges, "face") == brep["faces"] and props.is_valid(iges)
+    for name in ("paper.step", "paper.iges"):
+        assert report["exports"][name]["valid"] and report["exports"][name]["volume_relative_error"] < 1e-6
+    png = (tmp_path / "paper_step.png").read_bytes()
+    assert png.startswith(b"\x89PNG") and len(png) > 50_000
+
+
+WALL_SECTIONS = """
+[layout]
+rings = 4
+stringers = 3
+
+[wall]
+thickness = {thickness}
+side = "centered"
+
+[fit]
+tolerance = 1e-8
+"""
+
+
+@pytest.mark.parametrize("spec", sorted(SAMPLES.glob("*.toml")), ids=lambda p: p.stem)
+def test_build_command_for_every_family(tmp_path, spec):
+    text = spec.read_text()
+    if "[wall]" not in text:
+        import tomllib
+
+        radius = tomllib.loads(text)["tube"]["radius"]
+        text += WALL_SECTIONS.format(thickness=0.1 * radius)
+    path = tmp_path / "spec.toml"
+    path.write_text(text)
+    result = CliRunner().invoke(cli, ["build", str(path), "-o", str(tmp_path / "a.step"), "-o", str(tmp_path / "a.iges"),
+                                      "--report", str(tmp_path / "r.json")])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert report["brep"]["valid"] and report["brep"]["volume_relative_error"] < 1e-6
+    assert report["brep"]["fit"]["max_deviation"] < 1e-8
+    assert report["brep"]["fit"]["max_orthogonality_error"] < 1e-9
+    for name in ("a.step", "a.iges"):
+        back = report["exports"][str(tmp_path / name)]
+        assert back["valid"] and back["faces"] == report["brep"]["faces"] and back["volume_relative_error"] < 1e-6
+
+
+@pytest.mark.parametrize(
+    "extra, says",
+    [
+        ("[layout]\nrings = 3\ns_rings = [300.0]\n", "[layout] give either rings or s_rings"),
+        ("[layout]\nrings = 1\n", "[layout] rings must be a whole number >= 2"),
+        ("[layout]\nrings = 2.5\n", "[layout] rings must be a whole number"),
+        ("[layout]\nu_stringers_deg = []\n", "[layout] u_stringers_deg must be a non-empty list"),
+        ("[wall]\nthickness = 2.0\nside = \"middle\"\n", "[wall] side must be one of"),
+        ("[wall]\nthickness = 40.0\n", "[wall] thickness must be < 30"),
+        ("[wall]\nthickness = 3.0\n", "[wall] the wall's outer surface is not regular"),
+        ("[wall]\nside = \"inside\"\n", "[wall] thickness is missing"),
+        ("[fit]\ntolerance = 2.0\n", "[fit] fit tolerance must be in (0, 1)"),
+        ("[fit]\ntolerance = 1e-17\n", "[fit] fit tolerance"),
+    ],
+)
+def test_build_spec_errors_exit_2_and_write_nothing(tmp_path, extra, says):
+    path = tmp_path / "spec.toml"
+    path.write_text((SAMPLES / "paper_log_spiral.toml").read_text() + "\n" + extra)
+    out = tmp_path / "x.step"
+    result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    assert says in result.output and "Traceback" not in result.output
+    assert not out.exists()
+
+
+def test_build_refuses_unknown_extension_before_building(tmp_path):
+    result = CliRunner().invoke(cli, ["build", str(SAMPLES / "paper_log_spiral.toml"), "-o", str(tmp_path / "x.obj")])
+    assert result.exit_code == 2 and "unknown extension" in result.output
+    assert os.listdir(tmp_path) == []

@@ -1,0 +1,37 @@
+"""CadQuery Workplane plugin: curvature-line tubes and walls on the Workplane stack.
+
+    import cadquery as cq
+    import tubecad.interfaces.cadquery_plugin  # registers the methods
+    wall = cq.Workplane().curvatureLineWall(tube, thickness=2.0, rings=11, stringers=8)
+
+The solids are in the tube's own (global) coordinates, as built; they are cq.Solid objects
+whose faces are bounded by the chosen ring frames and stringers.
+"""
+
+from __future__ import annotations
+
+import cadquery as cq
+
+from ..brep import NetLayout, build_tube_solid, build_wall_solid
+from ..brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
+from ..brep.solids import DEFAULT_TOLERANCE
+from ..surface import CurvatureLineTube
+
+
+def curvature_line_tube(self: cq.Workplane, tube: CurvatureLineTube, rings: int = DEFAULT_RINGS,
+                        stringers: int = DEFAULT_STRINGERS, tolerance: float = DEFAULT_TOLERANCE) -> cq.Workplane:  # fmt: skip
+    """Push the capped tube solid of ``tube`` onto the stack."""
+    build = build_tube_solid(tube, NetLayout.equal(tube, rings, stringers), tolerance)
+    return self.newObject([cq.Solid(build.shape.wrapped)])
+
+
+def curvature_line_wall(self: cq.Workplane, tube: CurvatureLineTube, thickness: float, side: str = "centered",
+                        rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS,
+                        tolerance: float = DEFAULT_TOLERANCE) -> cq.Workplane:  # fmt: skip
+    """Push the wall solid (inner and outer curvature-line tubes, annular caps) onto the stack."""
+    build = build_wall_solid(tube, thickness, side, NetLayout.equal(tube, rings, stringers), tolerance)
+    return self.newObject([cq.Solid(build.shape.wrapped)])
+
+
+cq.Workplane.curvatureLineTube = curvature_line_tube
+cq.Workplane.curvatureLineWall = curvature_line_wall
