@@ -181,3 +181,40 @@ def test_solids_work_in_build123d_and_cadquery():
     # (cq's Volume() uses OCCT's fixed Gauss rule, ~1e-4 off on faces wider than a quarter
     # turn; the adaptive integration is exact: see README, "Measuring mass properties")
     assert props.volume(tube_wp.val()) == pytest.approx(math.pi * 15**2 * 200.0, rel=1e-9)
+
+
+def test_generic_grid_fit_is_measured_and_the_exact_section_beats_it():
+    """Comparison path (issue 3, 1b): OCCT's grid fitter on the exact grid, measured by true
+    distance. The exact-section surface is orders of magnitude closer with fewer poles."""
+    from tubecad.fitting.generic import grid_surface, measure_by_projection
+
+    tube = paper_tube()
+    generic = grid_surface(tube, 33, 201, 1e-3)
+    dist, cos = measure_by_projection(generic.surface, tube, 4, 40)
+    assert 1e-6 < dist < 5e-3 and cos > 1e-6  # a real, measured, approximate fit
+    exact = build_tube_solid(tube, NetLayout.equal(tube, 2, 1)).surfaces[0]
+    d2, c2 = measure_by_projection(exact.surface, tube, 4, 40)
+    assert d2 < 1e-8 and c2 < 1e-9 and d2 < dist / 1000
+    # at a requested 1e-6 (still 100x looser than the exact-section's 1e-8) it needs more poles
+    tighter = grid_surface(tube, 33, 401, 1e-6)
+    assert exact.pole_count[0] * exact.pole_count[1] < tighter.pole_count[0] * tighter.pole_count[1]
+
+
+def test_rings_stringers_and_faces_as_build123d_objects():
+    """Ring wires are closed circles of length 2 pi r; a stringer's length is Int sqrt(G) ds
+    along its u (integrated here from the exact forms), so the edges are those lines."""
+    tube = paper_tube()
+    build = build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 3, 4))
+    rings, stringers, faces = build.ring_wires(0), build.stringer_wires(1), build.face_grid(0)
+    assert len(rings) == 3 and all(isinstance(w, bd.Wire) and w.is_closed for w in rings)
+    assert all(w.length == pytest.approx(2 * math.pi * 16.0, rel=1e-9) for w in rings)
+    assert len(stringers) == 4 and len(faces) == 2 and len(faces[0]) == 4 and isinstance(faces[0][0], bd.Face)
+    inner = CurvatureLineTube(tube.axis, 14.0)
+    x, w = np.polynomial.legendre.leggauss(64)
+    for theta, wire in zip((0.0, 90.0, 180.0, 270.0), stringers):
+        edges = np.linspace(200.0, 1200.0, 41)
+        s = (0.5 * (edges[1:] + edges[:-1])[:, None] + 0.5 * np.diff(edges)[:, None] * x).ravel()
+        g = inner.fundamental_forms(math.radians(theta), s).G
+        exact = float((np.sqrt(g) * np.tile(w, 40)).sum() * 0.5 * (edges[1] - edges[0]))
+        assert wire.length == pytest.approx(exact, rel=1e-9)
+    assert sum(f.area for row in faces for f in row) == pytest.approx(2 * math.pi * 16.0 * 1000.0, rel=1e-6)

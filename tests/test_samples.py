@@ -1,5 +1,6 @@
 """The sample scripts run as users would run them, and do what they say."""
 
+import math
 import re
 import subprocess
 import sys
@@ -24,3 +25,22 @@ def test_build123d_sample_writes_the_curvature_net_to_step(tmp_path):
     assert len(edges) == 5 + 4
     circles = [e for e in edges if e.geom_type == bd.GeomType.CIRCLE]
     assert len(circles) == 5 and all(e.radius == pytest.approx(15.0, rel=1e-9) for e in circles)
+
+
+@pytest.mark.parametrize("script, faces", [("build123d_wall.py", None), ("cadquery_wall.py", 2 * 12 * 6 + 2)])
+def test_wall_samples_write_valid_step(tmp_path, script, faces):
+    from tubecad.brep import properties as props
+    from tubecad.export.cad import import_shape
+
+    out = tmp_path / "wall.step"
+    done = subprocess.run([sys.executable, str(SAMPLES / script), str(out)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "valid=True" in done.stdout
+    shape = import_shape(out)
+    assert props.is_valid(shape) and props.count(shape, "solid") == 1
+    if faces is not None:
+        assert props.count(shape, "face") == faces
+    else:  # the hand hole added faces to the 162 of the wall, and removed ~pi 4^2 2 of volume
+        assert props.count(shape, "face") > 162
+        removed = math.pi * (16**2 - 14**2) * 1000.0 - props.volume(shape)
+        assert removed == pytest.approx(math.pi * 4**2 * 2.0, rel=0.05)

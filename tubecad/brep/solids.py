@@ -51,6 +51,18 @@ class TubeBuild:
     tolerance: float
     radii: list[float] = field(default_factory=list)
 
+    def ring_wires(self, surface: int = 0) -> list[bd.Wire]:
+        """The ring frames (s = const) on surface ``surface`` (0 outer, 1 inner): closed wires."""
+        return [bd.Wire([bd.Edge(e) for e in ring]) for ring in self.patches[surface].rings]
+
+    def stringer_wires(self, surface: int = 0) -> list[bd.Wire]:
+        """The stringers (u = const) on surface ``surface``, from the first ring to the last."""
+        return [bd.Wire([bd.Edge(e) for e in col]) for col in self.patches[surface].stringers]
+
+    def face_grid(self, surface: int = 0) -> list[list[bd.Face]]:
+        """Faces [between rings i, i+1][between stringers j, j+1] of surface ``surface``."""
+        return [[bd.Face(f) for f in row] for row in self.patches[surface].faces]
+
 
 def wall_radii(radius: float, thickness: float, side: str) -> tuple[float, float]:
     """(r_in, r_out) of a wall of ``thickness`` placed ``side`` of the tube of ``radius``."""

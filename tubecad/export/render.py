@@ -4,6 +4,9 @@ What is drawn: the faces, tessellated by ``BRepMesh_IncrementalMesh``, as flat-s
 triangles (Lambert, light blue-grey; triangles seen from their back side a little darker),
 and every unique B-rep edge on top as a thin dark polyline. Edge parts hidden behind faces
 are found with a coarse numpy z-buffer of the triangles and drawn faint and thin.
+Triangles are painted far to near (painter's algorithm); for a closed shape (every face in a
+closed shell) back faces are culled, and long triangles are first halved across their longest
+edge (to SPLIT_LENGTH x the bounding-box diagonal), so that the sort by centroid depth holds.
 
 Conventions: orthographic projection. ``view_dir`` points from the shape TOWARDS THE
 VIEWER: the camera sits on the +view_dir side and looks along -view_dir, so the default
@@ -53,7 +56,7 @@ def render_shape_png(shape: Any, path: str | Path, *, title: str = "",
                      view_dir: Sequence[float] = (1.0, -1.2, 0.8), size_px: tuple[int, int] = (1600, 1200),
                      edge_color: str = "#10203a", deflection: float | None = None) -> Path:  # fmt: skip
     """Render ``shape`` (TopoDS_Shape or an object with ``.wrapped``) to the PNG ``path``; return it."""
-    shape: TopoDS_Shape = getattr(shape, "wrapped", shape)
+    shape = getattr(shape, "wrapped", shape)
     box = Bnd_Box()
     BRepBndLib.Add_s(shape, box)
     diag = float(np.sqrt(box.SquareExtent())) if not box.IsVoid() else 1.0
