@@ -16,6 +16,19 @@ FAMILY_CASES = {
 }
 
 
+#: the paper's tube as a minimal spec ([axis] and [tube] only)
+PAPER_SPEC = """
+[axis]
+curve = "log_spiral"
+a = 10.0
+beta_deg = 10.0
+s = [200.0, 1200.0]
+
+[tube]
+radius = 15.0
+"""
+
+
 @pytest.fixture(params=sorted(FAMILY_CASES))
 def family_tube(request) -> CurvatureLineTube:
     make_axis, radius = FAMILY_CASES[request.param]

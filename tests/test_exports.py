@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from conftest import PAPER_SPEC
 from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
@@ -82,17 +83,6 @@ def test_paper_command_writes_a_valid_wall_step_and_iges(tmp_path):
     assert png.startswith(b"\x89PNG") and len(png) > 50_000
 
 
-PAPER_AXIS_AND_TUBE = """
-[axis]
-curve = "log_spiral"
-a = 10.0
-beta_deg = 10.0
-s = [200.0, 1200.0]
-
-[tube]
-radius = 15.0
-"""
-
 WALL_SECTIONS = """
 [layout]
 rings = 4
@@ -146,7 +136,7 @@ def test_build_command_for_every_family(tmp_path, spec):
 )
 def test_build_spec_errors_exit_2_and_write_nothing(tmp_path, extra, says):
     path = tmp_path / "spec.toml"
-    path.write_text(PAPER_AXIS_AND_TUBE + "\n" + extra)
+    path.write_text(PAPER_SPEC + "\n" + extra)
     out = tmp_path / "x.step"
     result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out)])
     assert result.exit_code == 2, result.output

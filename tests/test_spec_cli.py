@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from conftest import PAPER_SPEC
 from tubecad import SpecError
 from tubecad.interfaces.cli import cli
 from tubecad.interfaces.spec import load_spec
@@ -17,16 +18,7 @@ from tubecad.interfaces.spec import load_spec
 SAMPLES = Path(__file__).parent.parent / "samples"
 SAMPLE_SPECS = sorted(SAMPLES.glob("*.toml"))
 
-GOOD = """
-[axis]
-curve = "log_spiral"
-a = 10.0
-beta_deg = 10.0
-s = [200.0, 1200.0]
-
-[tube]
-radius = 15.0
-"""
+GOOD = PAPER_SPEC
 
 
 def run(*args):

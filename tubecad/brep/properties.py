@@ -6,12 +6,13 @@ long multi-span B-spline faces; the adaptive overloads with a relative ``eps`` a
 
 from __future__ import annotations
 
+from OCP.BRep import BRep_Builder
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.GProp import GProp_GProps
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHAPE, TopAbs_SOLID, TopAbs_VERTEX
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SOLID, TopAbs_VERTEX
 from OCP.TopExp import TopExp
-from OCP.TopoDS import TopoDS_Shape
+from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
 from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape, TopTools_IndexedMapOfShape
 
 EPS = 1e-10
@@ -55,14 +56,9 @@ def area(shape, eps: float = EPS) -> float:
 
 def faces_area(faces, eps: float = EPS) -> float:
     """Total area of a list of faces."""
-    from OCP.BRep import BRep_Builder
-    from OCP.TopoDS import TopoDS_Compound
-
     builder, compound = BRep_Builder(), TopoDS_Compound()
     builder.MakeCompound(compound)
     for face in faces:
         builder.Add(compound, topods(face))
     return area(compound, eps)
 
-
-__all__ = ["topods", "is_valid", "count", "free_edges", "volume", "area", "faces_area", "TopAbs_SHAPE"]

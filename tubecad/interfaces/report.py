@@ -68,6 +68,7 @@ def build_report(build, tube: CurvatureLineTube, nu: int = 48, ns: int = 1500) -
     volume and areas against the exact values (MATH.md section 4)."""
     import math
 
+    # imported here so that `tubecad report` (maths only) never loads OCCT
     from ..brep import properties as props
     from ..brep.solids import exact_volume
     from ..fitting import measure_surface
