@@ -18,6 +18,7 @@ frame (t, n, bn) above stays continuous through k = 0.
 
 from __future__ import annotations
 
+import copy
 import math
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
@@ -26,6 +27,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..errors import ParameterError
 from ..validation import number_in_range, span_pair
 
 FloatArray = NDArray[np.float64]
@@ -129,6 +131,17 @@ class SlopeCurve(ABC):
         t, n, bn = self._frame_from_psi(psi)
         k = self.curvature(s)
         return AxisSample(s, self.position(s), t, n, bn, psi, k, k * math.tan(self.beta))
+
+    def restricted(self, span: tuple[float, float]) -> "SlopeCurve":
+        """The same curve over a sub-span of its span (e.g. one ring frame's width)."""
+        s0, s1 = span_pair("span", span, self.s_lower_bound)
+        lo, hi = self.span
+        slack = 1e-9 * (hi - lo)
+        if s0 < lo - slack or s1 > hi + slack:
+            raise ParameterError(f"span must lie within [{lo:g}, {hi:g}], got [{s0:g}, {s1:g}]")
+        curve = copy.copy(self)
+        curve.span = (max(s0, lo), min(s1, hi))
+        return curve
 
     def describe(self) -> dict[str, Any]:
         """Spec-style description: ``curve``, the family's parameters, ``beta_deg``, ``s``."""

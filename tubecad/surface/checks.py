@@ -51,22 +51,35 @@ def area_by_quadrature(tube: CurvatureLineTube, nu: int = 64, panels: int = 64, 
     return float((jac * ws).sum() * (2.0 * math.pi / nu))
 
 
-def axis_distance_errors(tube: CurvatureLineTube, u: np.ndarray, s: np.ndarray, iters: int = 8) -> tuple[float, float]:
-    """For points S(u, s): max |distance to the closest axis point - rho| and
-    max |s* - s|, s* the closest axis point's arc length.
+def distance_to_axis(
+    axis, points: np.ndarray, s_guess: np.ndarray | None = None, iters: int = 12
+) -> tuple[np.ndarray, np.ndarray]:
+    """(distance, s*) from each point to its closest axis point, near ``s_guess`` or, if it is
+    None, near the closest of 4001 axis samples.
 
-    Newton on f(x) = (P - c(x)).t(x), f' = -1 + k (P - c(x)).n(x), started away from s
-    (at s + rho/2) so that converging back to s is a real finding.
+    Newton on f(x) = (P - c(x)).t(x), f' = -1 + k (P - c(x)).n(x), kept inside the span.
     """
-    u, s = np.broadcast_arrays(np.asarray(u, float), np.asarray(s, float))
-    p = tube.points(u, s)
-    lo, hi = tube.span
-    x = np.clip(s + 0.5 * tube.radius, lo, hi)
+    p = np.asarray(points, dtype=float)
+    lo, hi = axis.span
+    if s_guess is None:
+        from scipy.spatial import cKDTree
+
+        samples = np.linspace(lo, hi, 4001)
+        s_guess = samples[cKDTree(axis.position(samples)).query(p)[1]]
+    x = np.clip(np.asarray(s_guess, dtype=float), lo, hi)
     for _ in range(iters):
-        a = tube.axis.evaluate(x)
+        a = axis.evaluate(x)
         r = p - a.position
         f = np.einsum("...i,...i", r, a.t)
         fp = -1.0 + a.k * np.einsum("...i,...i", r, a.n)
         x = np.clip(x - f / fp, lo, hi)
-    dist = np.linalg.norm(p - tube.axis.position(x), axis=-1)
+    return np.linalg.norm(p - axis.position(x), axis=-1), x
+
+
+def axis_distance_errors(tube: CurvatureLineTube, u: np.ndarray, s: np.ndarray) -> tuple[float, float]:
+    """For points S(u, s): max |distance to the closest axis point - rho| and max |s* - s|,
+    s* the closest axis point's arc length, found from s + rho/2 (so converging back to s
+    is a real finding)."""
+    u, s = np.broadcast_arrays(np.asarray(u, float), np.asarray(s, float))
+    dist, x = distance_to_axis(tube.axis, tube.points(u, s), s + 0.5 * tube.radius)
     return float(np.abs(dist - tube.radius).max()), float(np.abs(x - s).max())

@@ -1,0 +1,112 @@
+"""Curvature lines as CAD edges and as polylines for CNC, FEA and robots (issue 4).
+
+A ring frame (s = const) is the exact rational circle VIso(s) of the fitted surface; a
+stringer (angle theta = const) is its isoline UIso(u(theta)), an orthogonal trajectory of
+the circles. Both lie on the fitted surface by construction and within the fit tolerance
+of the exact tube. Polylines carry exact values from the tube's own formulas: position
+S(theta, s), unit tangent (-sin th r1 + cos th r2 along a ring, t along a stringer,
+MATH.md section 3) and the outward unit surface normal.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import build123d as bd
+import numpy as np
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+
+from ..brep.layout import NetLayout
+from ..export.atomic import write_text
+from ..fitting import TubeSurface
+
+
+@dataclass(frozen=True)
+class CurvatureLine:
+    """One ring frame or stringer on one tube surface."""
+
+    name: str  # ring_03, stringer_05 (inner surface: ..._inner)
+    kind: str  # "ring" | "stringer"
+    index: int
+    value: float  # s of a ring, angle in degrees of a stringer
+    surface: TubeSurface
+
+    @property
+    def radius(self) -> float:
+        return self.surface.tube.radius
+
+    def edge(self) -> bd.Edge:
+        """The line as a build123d Edge on the fitted OCCT surface."""
+        surf = self.surface.surface
+        if self.kind == "ring":
+            maker = BRepBuilderAPI_MakeEdge(surf.VIso(self.value))
+        else:
+            s0, s1 = self.surface.tube.span
+            maker = BRepBuilderAPI_MakeEdge(surf.UIso(float(self.surface.u_at(self.value))), s0, s1)
+        return bd.Edge(maker.Edge())
+
+    def polyline(self, points: int = 200) -> dict[str, np.ndarray]:
+        """Exact positions, unit tangents and unit outward normals at ``points`` samples
+        (a ring is sampled over [0, 360) deg from the stringer origin, closing implied)."""
+        tube = self.surface.tube
+        if self.kind == "ring":
+            theta = math.radians(self.surface.origin_deg) + np.linspace(0.0, 2 * math.pi, points, endpoint=False)
+            s = np.full_like(theta, self.value)
+            _, r1, r2 = tube.axis.rotation_minimising_frame(s)
+            tangent = -np.sin(theta)[:, None] * r1 + np.cos(theta)[:, None] * r2
+        else:
+            s = np.linspace(*tube.span, points)
+            theta = np.full_like(s, math.radians(self.value))
+            tangent = tube.axis.frame(s)[0]  # S_s = (1 - rho k cos phi) t, and 1 - rho k cos phi > 0
+        return {"s": s, "theta_deg": np.degrees(theta), "position": tube.points(theta, s),
+                "tangent": tangent, "normal": tube.normal(theta, s)}  # fmt: skip
+
+
+def net_lines(surface: TubeSurface, layout: NetLayout, suffix: str = "") -> list[CurvatureLine]:
+    """The layout's rings and stringers on ``surface``, named ring_00.., stringer_00.."""
+    rings = [CurvatureLine(f"ring_{i:02d}{suffix}", "ring", i, s, surface) for i, s in enumerate(layout.s_rings)]
+    stringers = [CurvatureLine(f"stringer_{j:02d}{suffix}", "stringer", j, a, surface)
+                 for j, a in enumerate(layout.stringers_deg)]  # fmt: skip
+    return rings + stringers
+
+
+def lines_compound(lines: list[CurvatureLine]) -> bd.Compound:
+    """All lines as one build123d Compound of labelled edges (for STEP/IGES curves)."""
+    edges = []
+    for line in lines:
+        edge = line.edge()
+        edge.label = line.name
+        edges.append(edge)
+    return bd.Compound(children=edges)
+
+
+COLUMNS = ["line", "kind", "index", "surface_radius", "s", "theta_deg", "x", "y", "z", "tx", "ty", "tz", "nx", "ny", "nz"]
+
+
+def polylines_csv(lines: list[CurvatureLine], path: str | Path, points: int = 200) -> Path:
+    """One row per point: line, kind, index, surface radius, s, theta, position, tangent, normal."""
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(COLUMNS)
+    for line in lines:
+        p = line.polyline(points)
+        for i in range(points):
+            writer.writerow([line.name, line.kind, line.index, repr(line.radius), repr(float(p["s"][i])),
+                             repr(float(p["theta_deg"][i])), *map(repr, map(float, p["position"][i])),
+                             *map(repr, map(float, p["tangent"][i])), *map(repr, map(float, p["normal"][i]))])  # fmt: skip
+    return write_text(path, out.getvalue())
+
+
+def polylines_json(lines: list[CurvatureLine], path: str | Path, points: int = 200) -> Path:
+    """{"lines": [{name, kind, index, surface_radius, closed, s, theta_deg, position, tangent, normal}]}."""
+    data = []
+    for line in lines:
+        p = line.polyline(points)
+        data.append({"name": line.name, "kind": line.kind, "index": line.index, "surface_radius": line.radius,
+                     "closed": line.kind == "ring", **{k: v.tolist() for k, v in p.items()}})  # fmt: skip
+    return write_text(path, json.dumps({"units": "mm", "lines": data}) + "\n")
