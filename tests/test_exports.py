@@ -81,6 +81,20 @@ def test_paper_command_writes_a_valid_wall_step_and_iges(tmp_path):
         assert report["exports"][name]["valid"] and report["exports"][name]["volume_relative_error"] < 1e-6
     png = (tmp_path / "paper_step.png").read_bytes()
     assert png.startswith(b"\x89PNG") and len(png) > 50_000
+    # issue 4: the named assembly, the polylines and the stiffener list
+    import build123d as bd
+
+    names = [c.label for c in bd.import_step(tmp_path / "paper_stiffened.step").children]
+    assert names == ["wall"] + [f"ring_{i:02d}" for i in range(1, 10)] + \
+        [f"stringer_{j:02d}" for j in (0, 2, 4, 6)] + ["curvature_lines"]
+    stiff = report["stiffeners"]
+    assert len(stiff["stiffeners"]) == 13 and all(s["valid"] for s in stiff["stiffeners"])
+    ring = stiff["stiffeners"][0]
+    assert ring["volume"] == pytest.approx(math.pi * (14**2 - 11**2) * 1.0, rel=1e-6)
+    assert ring["mass_kg"] == pytest.approx(ring["volume"] * 7.85e-6)
+    assert len(stiff["lines"]) == 2 * (11 + 8)
+    assert (tmp_path / "paper_lines.csv").read_text().startswith("line,kind,index,surface_radius,s,theta_deg,x,y,z")
+    assert (tmp_path / "paper_stiffened.png").read_bytes().startswith(b"\x89PNG")
 
 
 WALL_SECTIONS = """

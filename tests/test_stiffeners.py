@@ -151,3 +151,24 @@ def test_stiffener_input_errors():
         stringer_stiffener(tube, 0.0, Profile("flat", 20.0, 1.0), "inside")
     with pytest.raises(ParameterError, match="span must lie within"):
         stringer_stiffener(tube, 0.0, Profile(), span=(100.0, 300.0))
+
+
+def test_named_step_assembly_keeps_names_colours_and_solids(tmp_path):
+    from tubecad.stiffeners import net_lines
+    from tubecad.stiffeners.assembly import build_stiffeners, export_named_step, named_assembly
+
+    tube = paper_tube()
+    build = build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 4, 4))
+    stiffeners = build_stiffeners(build, [1, 2], [0, 2], Profile("flat", 3.0, 1.0), side="inside")
+    lines = net_lines(build.surfaces[1], build.layout, "_inner")
+    path = export_named_step(named_assembly(build, stiffeners, lines), tmp_path / "asm.step")
+    back = bd.import_step(path)
+    names = [c.label for c in back.children]
+    assert names == ["wall", "ring_01", "ring_02", "stringer_00", "stringer_02", "curvature_lines"]
+    wall, ring = back.children[0], back.children[1]
+    assert props.is_valid(wall) and props.volume(wall) == pytest.approx(math.pi * (16**2 - 14**2) * 1000, rel=1e-6)
+    assert props.volume(ring) == pytest.approx(math.pi * (14**2 - 11**2) * 1.0, rel=1e-6)
+    assert ring.color is not None and tuple(round(c, 2) for c in tuple(ring.color)[:3]) == (0.85, 0.45, 0.2)
+    assert [c.label for c in back.children[-1].children][:2] == ["ring_00_inner", "ring_01_inner"]
+    with pytest.raises(ParameterError, match=r"stiffener rings must be indices in \[0, 3\], got \[7\]"):
+        build_stiffeners(build, [7], [], Profile())

@@ -36,3 +36,14 @@ def PAPER_LAYOUT(tube: CurvatureLineTube) -> "NetLayout":  # noqa: N802 - reads 
 def paper_tube(span: tuple[float, float] = PAPER_SPAN) -> CurvatureLineTube:
     """The paper's tube over ``span`` (default s in [200, 1200])."""
     return CurvatureLineTube(LogSpiral(PAPER_A, PAPER_BETA_DEG, span), PAPER_RADIUS)
+
+
+#: the stiffeners `tubecad paper` adds, inside the wall (outside, the next coil is only
+#: 32.8 - 32 = 0.8 away near s = 200): flat-bar ring frames 3 high, 1 thick at the 9
+#: interior rings, and flat-bar stringers 2 high, 1 thick at 0, 90, 180 and 270 deg. They
+#: are separate solids that overlap where stringers cross rings (fuse merges them).
+PAPER_STIFFENER_RINGS = list(range(1, PAPER_RINGS - 1))
+PAPER_STIFFENER_STRINGERS = [0, 2, 4, 6]
+PAPER_RING_PROFILE = ("flat", 3.0, 1.0)
+PAPER_STRINGER_PROFILE = ("flat", 2.0, 1.0)
+STEEL_DENSITY = 7.85e-6  # kg / mm^3

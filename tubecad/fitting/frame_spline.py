@@ -108,6 +108,7 @@ def _interpolate(axis: SlopeCurve, breaks: np.ndarray, p: int) -> BSpline:
     knots = np.concatenate([[breaks[0]] * p, breaks, [breaks[-1]] * p])
     n = len(knots) - p - 1
     greville = np.array([knots[i + 1 : i + p + 1].mean() for i in range(n)])
+    greville = np.clip(greville, breaks[0], breaks[-1])  # a mean of equal knots can round past them
     F, _ = exact_frame(axis, greville)
     return make_interp_spline(greville, F, k=p, t=knots)
 

@@ -16,13 +16,16 @@ import click
 
 from ..brep import build_wall_solid
 from ..errors import TubecadError
-from ..examples import PAPER_LAYOUT, PAPER_WALL_THICKNESS, paper_tube
+from ..examples import (
+    PAPER_LAYOUT, PAPER_RING_PROFILE, PAPER_STIFFENER_RINGS, PAPER_STIFFENER_STRINGERS, PAPER_STRINGER_PROFILE,
+    PAPER_WALL_THICKNESS, STEEL_DENSITY, paper_tube,
+)  # fmt: skip
 from ..export.atomic import write_text
 from ..export.cad import cad_format, export_shape
 from ..export.plots import write_projections
 from .build import build_from_spec
 from .readback import readback_report
-from .report import DEFAULT_NS, DEFAULT_NU, build_report, to_json, tube_report
+from .report import DEFAULT_NS, DEFAULT_NU, build_report, stiffener_report, to_json, tube_report
 from .spec import load_spec
 
 
@@ -62,7 +65,11 @@ def paper(output: Path, nu: int, ns: int) -> None:
     Writes into OUTPUT: projections.png/.svg (frontal and horizontal projections with
     the curvature-line net); paper.step and paper.iges, the wall solid (thickness 2,
     centred: radii 14 and 16) with 11 ring frames and 8 stringers as its edges;
-    paper_step.png, a picture rendered from the STEP file read back; report.json.
+    paper_step.png, a picture rendered from the STEP file read back; paper_stiffened.step,
+    a named assembly (wall, ring_01..ring_09 and stringer_00..stringer_06 flat-bar
+    stiffeners inside the wall, curvature_lines) and its picture paper_stiffened.png;
+    paper_lines.csv/.json, the curvature lines as polylines with tangents and normals;
+    report.json.
     """
     try:
         output.mkdir(parents=True, exist_ok=True)
@@ -80,11 +87,33 @@ def paper(output: Path, nu: int, ns: int) -> None:
             exports[name] = readback_report(output / name, build.shape)
         report["exports"] = exports
         written.append(render_step_picture(output / "paper.step", output / "paper_step.png"))
+        written += write_paper_stiffeners(build, output, report)
         written.append(write_text(output / "report.json", to_json(report)))
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     for path in written:
         click.echo(str(path))
+
+
+def write_paper_stiffeners(build, output: Path, report: dict) -> list[Path]:
+    """The paper's default stiffeners, named assembly, polylines and picture (issue 4)."""
+    import build123d as bd
+
+    from ..export.render import render_shape_png
+    from ..stiffeners import net_lines, polylines_csv, polylines_json
+    from ..stiffeners.assembly import build_stiffeners, export_named_step, named_assembly
+    from ..stiffeners.profiles import Profile
+
+    stiffeners = build_stiffeners(build, PAPER_STIFFENER_RINGS, [], Profile(*PAPER_RING_PROFILE), "inside")
+    stiffeners += build_stiffeners(build, [], PAPER_STIFFENER_STRINGERS, Profile(*PAPER_STRINGER_PROFILE), "inside")
+    lines = net_lines(build.surfaces[0], build.layout) + net_lines(build.surfaces[1], build.layout, "_inner")
+    step = export_named_step(named_assembly(build, stiffeners, lines), output / "paper_stiffened.step")
+    report["stiffeners"] = stiffener_report(stiffeners, lines, STEEL_DENSITY)
+    frame = [c for c in bd.import_step(step).children if c.label.startswith(("ring_", "stringer_"))]
+    picture = render_shape_png(bd.Compound(children=frame), output / "paper_stiffened.png",
+                               title="paper_stiffened.step as read back: the stiffeners inside the wall (wall hidden)")  # fmt: skip
+    return [step, polylines_csv(lines, output / "paper_lines.csv"), polylines_json(lines, output / "paper_lines.json"),
+            picture]  # fmt: skip
 
 
 def render_step_picture(step: Path, png: Path) -> Path:

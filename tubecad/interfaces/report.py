@@ -112,3 +112,25 @@ def build_report(build, tube: CurvatureLineTube, nu: int = 48, ns: int = 1500) -
         volume, exact = props.volume(shape), exact_volume(build, tube)
         out.update({"volume": volume, "volume_exact": exact, "volume_relative_error": abs(volume / exact - 1.0)})
     return out
+
+
+def stiffener_report(stiffeners, lines, density: float) -> dict[str, Any]:
+    """Every curvature line (length) and stiffener (position, profile, length along its base
+    line, volume, mass at ``density`` kg/mm^3), issue 4."""
+    from ..brep import properties as props
+
+    out_lines = [{"name": ln.name, "kind": ln.kind, "surface_radius": ln.radius,
+                  ("s" if ln.kind == "ring" else "angle_deg"): ln.value, "length": ln.edge().length}
+                 for ln in lines]  # fmt: skip
+    out_stiffeners = []
+    for st in stiffeners:
+        volume = props.volume(st.solid)
+        out_stiffeners.append({
+            "name": st.name, "kind": st.kind, ("s" if st.kind == "ring" else "angle_deg"): st.value,
+            "side": st.side, "profile": st.profile.kind, "height": st.profile.height,
+            "thickness": st.profile.thickness, "base_radius": st.base_radius,
+            "length": st.length(),
+            "volume": volume, "mass_kg": volume * density, "valid": props.is_valid(st.solid),
+        })  # fmt: skip
+    return {"density_kg_per_mm3": density, "lines": out_lines, "stiffeners": out_stiffeners,
+            "total_stiffener_mass_kg": sum(s["mass_kg"] for s in out_stiffeners)}  # fmt: skip

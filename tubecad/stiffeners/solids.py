@@ -52,7 +52,22 @@ class Stiffener:
     solid: bd.Solid
     profile: Profile
     side: str
-    base_radius: float
+    base: CurvatureLineTube  # the wall surface it stands on, over its own span
+
+    @property
+    def base_radius(self) -> float:
+        return self.base.radius
+
+    def length(self) -> float:
+        """Length of its line on the wall: 2 pi R for a ring; Int sqrt(G) ds along u = angle
+        for a stringer (Gauss-Legendre on the exact G = (1 - R k cos phi)^2)."""
+        if self.kind == "ring":
+            return 2 * math.pi * self.base.radius
+        x, w = np.polynomial.legendre.leggauss(32)
+        edges = np.linspace(*self.base.span, 33)
+        s = (0.5 * (edges[1:] + edges[:-1])[:, None] + 0.5 * np.diff(edges)[:, None] * x).ravel()
+        g = self.base.fundamental_forms(math.radians(self.value), s).G
+        return float((np.sqrt(g) * np.tile(w, 32) * np.repeat(0.5 * np.diff(edges), 32)).sum())
 
 
 def ring_stiffener(tube: CurvatureLineTube, s: float, profile: Profile, side: str = "outside",
@@ -70,7 +85,7 @@ def ring_stiffener(tube: CurvatureLineTube, s: float, profile: Profile, side: st
         web = web.fuse(flange).clean()
         if not isinstance(web, bd.Solid):
             web = web.solids()[0]
-    return Stiffener(name, "ring", float(s), web, profile, side, R)
+    return Stiffener(name, "ring", float(s), web, profile, side, CurvatureLineTube(tube.axis, R, allow_irregular=True))
 
 
 def _slice(tube: CurvatureLineTube, span: tuple[float, float], height: float, side: str, tolerance: float,
@@ -133,7 +148,7 @@ def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profi
         raise TubecadError(f"stiffener {name}: its faces did not sew into a shell")
     solid = BRepBuilderAPI_MakeSolid(TopoDS.Shell_s(explorer.Current())).Solid()
     BRepLib.OrientClosedSolid_s(solid)
-    return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, R)
+    return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, base_tube)
 
 
 def _cap(F: np.ndarray, theta: float, corners: list[tuple[float, float]], base, s: float, u1: float):

@@ -1,0 +1,72 @@
+"""Stiffener sets on a wall and the named STEP assembly handed downstream (issue 4).
+
+The assembly is a build123d Compound: ``wall``, one solid per stiffener (``ring_03``,
+``stringer_05``), and ``curvature_lines`` with one labelled edge per line; written with
+build123d's XCAF STEP writer, so names and colours show in a downstream CAD tree.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Sequence
+
+import build123d as bd
+
+from ..brep import TubeBuild
+from ..errors import ParameterError
+from ..export.atomic import atomic_path
+from ..surface import CurvatureLineTube
+from .lines import CurvatureLine, lines_compound
+from .profiles import Profile
+from .solids import Stiffener, ring_stiffener, stringer_stiffener
+
+WALL_COLOUR = bd.Color(0.62, 0.68, 0.78)
+RING_COLOUR = bd.Color(0.85, 0.45, 0.20)
+STRINGER_COLOUR = bd.Color(0.25, 0.55, 0.35)
+
+
+def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence[int], profile: Profile,
+                     side: str = "outside", tolerance: float = 1e-8) -> list[Stiffener]:  # fmt: skip
+    """Stiffeners on the wall of ``build`` at the layout's ring indices ``rings`` and stringer
+    indices ``stringers``, standing on its outer (``outside``) or inner (``inside``) surface."""
+    layout = build.layout
+    radius = build.radii[0] if side == "outside" else build.radii[-1]
+    base = CurvatureLineTube(build.surfaces[0].tube.axis, radius, allow_irregular=True)
+    for name, chosen, count in (("rings", rings, len(layout.s_rings)), ("stringers", stringers, len(layout.stringers_deg))):
+        bad = [i for i in chosen if not (isinstance(i, int) and 0 <= i < count)]
+        if bad:
+            raise ParameterError(f"stiffener {name} must be indices in [0, {count - 1}], got {bad}")
+    out = [ring_stiffener(base, layout.s_rings[i], profile, side, tolerance, f"ring_{i:02d}") for i in rings]
+    out += [stringer_stiffener(base, layout.stringers_deg[j], profile, side, tolerance=tolerance,
+                               name=f"stringer_{j:02d}") for j in stringers]  # fmt: skip
+    return out
+
+
+def named_assembly(build: TubeBuild, stiffeners: Sequence[Stiffener], lines: Sequence[CurvatureLine] = (),
+                   fuse: bool = False) -> bd.Compound:  # fmt: skip
+    """``wall`` and the stiffeners as labelled, coloured solids (or, with ``fuse``, one solid
+    ``wall`` with the stiffeners merged in), plus the ``curvature_lines``."""
+    wall = build.shape
+    children: list[bd.Shape] = []
+    if fuse and stiffeners:
+        wall = wall.fuse(*[st.solid for st in stiffeners]).clean()
+    else:
+        for st in stiffeners:
+            solid = bd.Solid(st.solid.wrapped)
+            solid.label, solid.color = st.name, RING_COLOUR if st.kind == "ring" else STRINGER_COLOUR
+            children.append(solid)
+    wall.label, wall.color = "wall", WALL_COLOUR
+    children.insert(0, wall)
+    if lines:
+        curves = lines_compound(list(lines))
+        curves.label = "curvature_lines"
+        children.append(curves)
+    return bd.Compound(label="tubecad", children=children)
+
+
+def export_named_step(assembly: bd.Compound, path: str | Path) -> Path:
+    """Write the assembly to STEP (AP214, mm) with its names and colours, atomically."""
+    with atomic_path(path) as tmp:
+        if not bd.export_step(assembly, str(tmp)):
+            raise ParameterError(f"could not write STEP to {str(path)!r}")
+    return Path(path)
