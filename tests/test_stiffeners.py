@@ -172,3 +172,45 @@ def test_named_step_assembly_keeps_names_colours_and_solids(tmp_path):
     assert [c.label for c in back.children[-1].children][:2] == ["ring_00_inner", "ring_01_inner"]
     with pytest.raises(ParameterError, match=r"stiffener rings must be indices in \[0, 3\], got \[7\]"):
         build_stiffeners(build, [7], [], Profile())
+
+
+@pytest.mark.parametrize("side, theta", [("outside", 30.0), ("inside", 200.0)])
+def test_stringer_flat_pattern_matches_the_3d_web(side, theta):
+    """Flat pattern vs the 3D web measured by OCCT: area and both edge lengths to 1e-6; and
+    the developed outline itself (shoelace, polyline lengths) against the exact values."""
+    from tubecad.stiffeners.flat import polygon_area, stringer_flat_pattern
+    from tubecad.stiffeners.solids import web_face
+
+    base = CurvatureLineTube(paper_tube().axis.restricted((250.0, 900.0)), 16.0 if side == "outside" else 14.0)
+    height = 3.0
+    pattern = stringer_flat_pattern(base, theta, height, side, samples=20001)
+    web = web_face(base, theta, height, side)
+    assert props.area(web) == pytest.approx(pattern.area, rel=1e-6)
+    lengths = sorted(bd.Edge(e).length for e in unique_edges(web) if bd.Edge(e).length > 10 * height)
+    assert lengths == pytest.approx(sorted([pattern.base_length, pattern.top_length]), rel=1e-6)
+    n = len(pattern.outline) // 2
+    assert polygon_area(pattern.outline) == pytest.approx(pattern.area, rel=1e-6)
+    polyline = lambda p: float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())  # noqa: E731
+    assert polyline(pattern.outline[:n]) == pytest.approx(pattern.base_length, rel=1e-6)
+    assert polyline(pattern.outline[n:]) == pytest.approx(pattern.top_length, rel=1e-6)
+
+
+def test_ring_flat_pattern_is_the_annulus_of_the_ring_web(tmp_path):
+    import ezdxf
+
+    from tubecad.stiffeners.flat import ring_flat_pattern, stringer_flat_pattern, write_dxf, write_picture
+
+    ring = ring_flat_pattern(14.0, 3.0, "inside", "ring_01")
+    assert ring.area == pytest.approx(math.pi * (14**2 - 11**2)) and ring.base_length == pytest.approx(2 * math.pi * 14)
+    stringer = stringer_flat_pattern(CurvatureLineTube(paper_tube().axis, 14.0), 90.0, 2.0, "inside", "stringer_02")
+    doc = ezdxf.readfile(write_dxf([ring, stringer], tmp_path / "webs.dxf"))
+    entities = list(doc.modelspace())
+    assert sorted(e.dxftype() for e in entities) == ["CIRCLE", "CIRCLE", "LWPOLYLINE"]
+    assert sorted(e.dxf.radius for e in entities if e.dxftype() == "CIRCLE") == pytest.approx([11.0, 14.0])
+    poly = next(e for e in entities if e.dxftype() == "LWPOLYLINE")
+    pts = np.array([p[:2] for p in poly.get_points()])
+    from tubecad.stiffeners.flat import polygon_area
+
+    assert poly.closed and polygon_area(pts) == pytest.approx(stringer.area, rel=1e-5)
+    paths = write_picture(stringer, tmp_path)
+    assert [p.suffix for p in paths] == [".svg", ".png"] and paths[1].read_bytes().startswith(b"\x89PNG")

@@ -167,6 +167,23 @@ def _cap(F: np.ndarray, theta: float, corners: list[tuple[float, float]], base, 
     return BRepBuilderAPI_MakeFace(wire.Wire(), True).Face()
 
 
+def web_face(base: CurvatureLineTube, theta_deg: float, height: float, side: str = "outside",
+             tolerance: float = 1e-8) -> bd.Face:  # fmt: skip
+    """The web's mid-surface along the stringer at ``theta_deg``: the strip of surface normals
+    from the wall (radius R) to R +- height, a ruled B-spline face on the frame fit."""
+    _check_side(side)
+    R, sign = base.radius, (1.0 if side == "outside" else -1.0)
+    frame = fit_frame(base.axis, R + height, tolerance, orthogonality_for(tolerance))
+    theta = math.radians(theta_deg)
+    F = frame.spline.c
+    N = math.cos(theta) * F[:, 3:6] + math.sin(theta) * F[:, 6:]
+    poles = np.stack([F[:, :3] + R * N, F[:, :3] + (R + sign * height) * N])
+    s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
+    surface = Geom_BSplineSurface(points_2d(poles), reals([0.0, 1.0]), reals(s_knots), integers([2, 2]),
+                                  integers(s_mults), 1, frame.degree)  # fmt: skip
+    return bd.Face(BRepBuilderAPI_MakeFace(surface, 0.0, 1.0, *base.span, 1e-7).Face())
+
+
 def _check_side(side: str) -> None:
     if side not in SIDES:
         raise ParameterError(f"side must be one of {', '.join(SIDES)}, got {side!r}")
