@@ -214,3 +214,80 @@ def test_ring_flat_pattern_is_the_annulus_of_the_ring_web(tmp_path):
     assert poly.closed and polygon_area(pts) == pytest.approx(stringer.area, rel=1e-5)
     paths = write_picture(stringer, tmp_path)
     assert [p.suffix for p in paths] == [".svg", ".png"] and paths[1].read_bytes().startswith(b"\x89PNG")
+
+
+STIFFENED = """
+[layout]
+rings = 4
+stringers = 4
+
+[wall]
+thickness = 2.0
+
+[stiffeners]
+rings = [1, 2]
+stringers = [0, 2]
+profile = "flat"
+height = 3.0
+thickness = 1.0
+side = "inside"
+"""
+
+
+def test_build_and_flat_commands_with_stiffeners(tmp_path):
+    from click.testing import CliRunner
+
+    from conftest import PAPER_SPEC
+    from tubecad.interfaces.cli import cli
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(PAPER_SPEC + STIFFENED)
+    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "a.step"), "--report", str(tmp_path / "r.json")])
+    assert result.exit_code == 0, result.output
+    names = [c.label for c in bd.import_step(tmp_path / "a.step").children]
+    assert names == ["wall", "ring_01", "ring_02", "stringer_00", "stringer_02", "curvature_lines"]
+    report = json.loads((tmp_path / "r.json").read_text())["stiffeners"]
+    assert [s["name"] for s in report["stiffeners"]] == names[1:5] and report["total_stiffener_mass_kg"] > 0
+    result = CliRunner().invoke(cli, ["flat", str(spec), "-o", str(tmp_path / "flat")])
+    assert result.exit_code == 0, result.output
+    webs = json.loads((tmp_path / "flat" / "flat.json").read_text())["webs"]
+    assert [w["name"] for w in webs] == ["ring_01", "ring_02", "stringer_00", "stringer_02"]
+    assert webs[0]["area"] == pytest.approx(math.pi * (14**2 - 11**2))
+    assert (tmp_path / "flat" / "webs.dxf").exists() and (tmp_path / "flat" / "stringer_02.svg").exists()
+
+
+@pytest.mark.parametrize(
+    "edit, says",
+    [
+        (lambda t: t.replace("rings = [1, 2]", "rings = [1, 9]"), "[stiffeners] rings must be indices in [0, 3], got [9]"),
+        (lambda t: t.replace("rings = [1, 2]", 'rings = "some"'), '[stiffeners] rings must be a list of whole-number indices or "all"'),
+        (lambda t: t.replace('profile = "flat"', 'profile = "I"'), "[stiffeners] profile must be one of flat, T, L"),
+        (lambda t: t.replace('side = "inside"', 'side = "under"'), "[stiffeners] side must be one of outside, inside"),
+        (lambda t: t.replace("height = 3.0\n", ""), "[stiffeners] height is missing"),
+        (lambda t: t.replace('profile = "flat"', 'profile = "T"'), "[stiffeners] flange_thickness must be in (0, 3), got 0"),
+        (lambda t: t.replace("height = 3.0", "height = 30.0"), "[stiffeners] height must be < R"),
+    ],
+)
+def test_stiffener_spec_errors(tmp_path, edit, says):
+    from click.testing import CliRunner
+
+    from conftest import PAPER_SPEC
+    from tubecad.interfaces.cli import cli
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(PAPER_SPEC + edit(STIFFENED))
+    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "a.step")])
+    assert result.exit_code == 2 and says in result.output, result.output
+    assert not (tmp_path / "a.step").exists()
+
+
+def test_flat_needs_a_stiffeners_section(tmp_path):
+    from click.testing import CliRunner
+
+    from conftest import PAPER_SPEC
+    from tubecad.interfaces.cli import cli
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(PAPER_SPEC)
+    result = CliRunner().invoke(cli, ["flat", str(spec), "-o", str(tmp_path / "f")])
+    assert result.exit_code == 2 and "has no [stiffeners] section" in result.output

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 from ..brep import NetLayout, TubeBuild, build_tube_solid, build_wall_solid
@@ -9,6 +10,7 @@ from ..brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
 from ..brep.solids import DEFAULT_TOLERANCE
 from ..errors import ParameterError, RegularityError, SpecError
 from ..fitting import FitError
+from ..stiffeners.profiles import Profile
 from ..surface import CurvatureLineTube
 from .spec import TubeSpec
 
@@ -52,3 +54,66 @@ def build_from_spec(spec: TubeSpec) -> TubeBuild:
     except ParameterError as exc:
         section = "[fit]" if "tolerance" in str(exc) else "[wall]"
         raise SpecError(f"{spec.source}: {section} {exc}") from None
+
+
+@dataclass(frozen=True)
+class StiffenerSelection:
+    """What a [stiffeners] section asks for, checked against the built layout."""
+
+    rings: list[int]
+    stringers: list[int]
+    profile: Profile
+    side: str
+    fuse: bool
+    density: float
+
+    def base(self, build: TubeBuild) -> CurvatureLineTube:
+        """The wall surface the stiffeners stand on: outer (outside) or inner (inside)."""
+        radius = build.radii[0] if self.side == "outside" else build.radii[-1]
+        return CurvatureLineTube(build.surfaces[0].tube.axis, radius, allow_irregular=True)
+
+
+def stiffener_selection(spec: TubeSpec, build: TubeBuild) -> StiffenerSelection | None:
+    """The checked [stiffeners] section, or None if the spec has none."""
+    from ..examples import STEEL_DENSITY
+    from ..stiffeners.profiles import SIDES
+
+    section = spec.sections.get("stiffeners")
+    if section is None:
+        return None
+
+    def chosen(key: str, count: int) -> list[int]:
+        value = section.get(key, [])
+        indices = list(range(count)) if value == "all" else value
+        bad = [i for i in indices if not 0 <= i < count]
+        if bad:
+            raise SpecError(f"{spec.source}: [stiffeners] {key} must be indices in [0, {count - 1}], got {bad}")
+        return indices
+
+    try:
+        profile = Profile(section.get("profile", "flat"), section["height"], section["thickness"],
+                          section.get("flange_width", 0.0), section.get("flange_thickness", 0.0))  # fmt: skip
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: [stiffeners] {exc}") from None
+    side = section.get("side", "outside")
+    if side not in SIDES:
+        raise SpecError(f"{spec.source}: [stiffeners] side must be one of {', '.join(SIDES)}, got {side!r}")
+    density = section.get("density", STEEL_DENSITY)
+    if not density > 0:
+        raise SpecError(f"{spec.source}: [stiffeners] density must be > 0, got {density}")
+    return StiffenerSelection(chosen("rings", len(build.layout.s_rings)), chosen("stringers", len(build.layout.stringers_deg)),
+                              profile, side, section.get("fuse", False), density)  # fmt: skip
+
+
+def stiffeners_from_spec(spec: TubeSpec, build: TubeBuild) -> tuple[list, StiffenerSelection | None]:
+    """The [stiffeners] section's stiffener solids on ``build``'s wall ([] without the section)."""
+    from ..stiffeners.assembly import build_stiffeners
+
+    selection = stiffener_selection(spec, build)
+    if selection is None:
+        return [], None
+    try:
+        return build_stiffeners(build, selection.rings, selection.stringers, selection.profile, selection.side,
+                                build.tolerance), selection  # fmt: skip
+    except (ParameterError, RegularityError) as exc:
+        raise SpecError(f"{spec.source}: [stiffeners] {exc}") from None

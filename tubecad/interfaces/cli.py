@@ -3,6 +3,7 @@
     tubecad paper [-o DIR]                    the paper's example: pictures, STEP, IGES, report.json
     tubecad report SPEC.toml                  print the report (JSON) of any spec
     tubecad build SPEC.toml -o OUT.step ...   build the spec's solid, write STEP/IGES/BREP
+    tubecad flat SPEC.toml -o DIR             flat patterns of the spec's stiffener webs
 
 Bad input exits with code 2 and a one-line message naming the key or option.
 """
@@ -23,7 +24,7 @@ from ..examples import (
 from ..export.atomic import write_text
 from ..export.cad import cad_format, export_shape
 from ..export.plots import write_projections
-from .build import build_from_spec
+from .build import build_from_spec, stiffener_selection, stiffeners_from_spec
 from .readback import readback_report
 from .report import DEFAULT_NS, DEFAULT_NU, build_report, stiffener_report, to_json, tube_report
 from .spec import load_spec
@@ -155,10 +156,22 @@ def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: 
         result = build_from_spec(checked)
         report = tube_report(checked.tube, 64, 501)
         report["brep"] = build_report(result, checked.tube)
+        stiffeners, selection = stiffeners_from_spec(checked, result)
+        shape = result.shape
+        if stiffeners:
+            from ..stiffeners import net_lines
+            from ..stiffeners.assembly import export_named_step, named_assembly
+
+            lines = net_lines(result.surfaces[0], result.layout)
+            shape = named_assembly(result, stiffeners, lines, fuse=selection.fuse)
+            report["stiffeners"] = stiffener_report(stiffeners, lines, selection.density)
         report["exports"] = {}
         for path in outputs:
-            export_shape(result.shape, path, step_schema)
-            report["exports"][str(path)] = readback_report(path, result.shape)
+            if stiffeners and cad_format(path) == "step":
+                export_named_step(shape, path)  # names and colours: wall, ring_03, stringer_05, ...
+            else:
+                export_shape(shape, path, step_schema)
+            report["exports"][str(path)] = readback_report(path, shape)
         if report_path is not None:
             write_text(report_path, to_json(report))
     except TubecadError as exc:
@@ -170,6 +183,42 @@ def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: 
     )
     for path, info in report["exports"].items():
         click.echo(f"{path}: {info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}")
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output", "output", required=True, type=click.Path(file_okay=False, path_type=Path),
+              help="Folder for webs.dxf, one SVG and PNG per web, and flat.json (created if needed).")
+def flat(spec: Path, output: Path) -> None:
+    """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, mm), NAME.svg/.png
+    each, and flat.json with every web's area and edge lengths."""
+    from ..stiffeners.flat import ring_flat_pattern, stringer_flat_pattern, write_dxf, write_picture
+
+    try:
+        checked = load_spec(spec)
+        if "stiffeners" not in checked.sections:
+            raise UserError(f"{spec}: has no [stiffeners] section, so there are no webs to flatten")
+        result = build_from_spec(checked)
+        chosen = stiffener_selection(checked, result)
+        base, height, side = chosen.base(result), chosen.profile.height, chosen.side
+        layout = result.layout
+        try:
+            output.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UserError(f"cannot create output folder {str(output)!r}: {exc.strerror}") from None
+        patterns = [ring_flat_pattern(base.radius, height, side, f"ring_{i:02d}") for i in chosen.rings]
+        patterns += [stringer_flat_pattern(base, layout.stringers_deg[j], height, side, f"stringer_{j:02d}")
+                     for j in chosen.stringers]  # fmt: skip
+        written = [write_dxf(patterns, output / "webs.dxf")]
+        for pattern in patterns:
+            written += write_picture(pattern, output)
+        summary = {"webs": [{"name": p.name, "kind": p.kind, "area": p.area, "base_length": p.base_length,
+                             "top_length": p.top_length} for p in patterns]}  # fmt: skip
+        written.append(write_text(output / "flat.json", to_json(summary)))
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    for path in written:
+        click.echo(str(path))
 
 
 def main() -> None:

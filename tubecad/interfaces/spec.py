@@ -74,8 +74,23 @@ FIT_KEYS = {
     "tolerance": Key("number", required=False, help="max deviation from the exact tube, model units, in (0, 1)"),
 }
 
+STIFFENER_KEYS = {
+    "rings": Key("selection", required=False, help='ring indices into the layout, or "all" (default none)'),
+    "stringers": Key("selection", required=False, help='stringer indices into the layout, or "all" (default none)'),
+    "profile": Key("string", required=False, help="flat | T | L (default flat)"),
+    "height": Key("number", help="web height from the wall > 0"),
+    "thickness": Key("number", help="web thickness > 0"),
+    "flange_width": Key("number", required=False, help="T and L: total flange width > thickness"),
+    "flange_thickness": Key("number", required=False, help="T and L: flange thickness in (0, height)"),
+    "side": Key("string", required=False, help="outside | inside (default outside)"),
+    "fuse": Key("bool", required=False, help="merge the stiffeners into the wall (default false)"),
+    "density": Key("number", required=False, help="kg/mm^3 for the reported masses (default steel, 7.85e-6)"),
+}
+
 #: sections beyond [axis] and [tube]
-EXTRA_SECTIONS: dict[str, dict[str, Key]] = {"layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS}
+EXTRA_SECTIONS: dict[str, dict[str, Key]] = {
+    "layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS, "stiffeners": STIFFENER_KEYS,
+}  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -195,11 +210,14 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[s
         "triple": isinstance(value, list) and len(value) == 3 and all(number(v) for v in value),
         "numbers": isinstance(value, list) and len(value) > 0 and all(number(v) for v in value),
         "integer": isinstance(value, int) and not isinstance(value, bool),
+        "selection": value == "all" or (isinstance(value, list) and all(isinstance(v, int) and not isinstance(v, bool)
+                                                                         for v in value)),
     }[spec.kind]
     if not ok:
         wanted = {"number": "a number", "string": "a string", "bool": "true or false", "integer": "a whole number",
                   "pair": "a list of two numbers", "triple": "a list of three numbers",
-                  "numbers": "a non-empty list of numbers"}[spec.kind]  # fmt: skip
+                  "numbers": "a non-empty list of numbers",
+                  "selection": 'a list of whole-number indices or "all"'}[spec.kind]  # fmt: skip
         raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}")
     if spec.kind == "number" and not math.isfinite(value):
         raise fail(f"{where} must be finite ({spec.help}), got {value}")

@@ -75,6 +75,8 @@ def ring_stiffener(tube: CurvatureLineTube, s: float, profile: Profile, side: st
     """The ring frame at ``s`` on the tube of radius R = tube.radius (the wall's face it stands on)."""
     _check_side(side)
     R = tube.radius
+    if side == "inside" and not profile.height < R:
+        raise ParameterError(f"height must be < R = {R:g} for an inside stiffener, got {profile.height:g}")
     webtop = profile.height - (profile.flange_thickness if profile.kind != "flat" else 0.0)
     tw = profile.thickness
     web = _slice(tube, (s - tw / 2, s + tw / 2), webtop, side, tolerance)
