@@ -291,3 +291,50 @@ def test_flat_needs_a_stiffeners_section(tmp_path):
     spec.write_text(PAPER_SPEC)
     result = CliRunner().invoke(cli, ["flat", str(spec), "-o", str(tmp_path / "f")])
     assert result.exit_code == 2 and "has no [stiffeners] section" in result.output
+
+
+def test_stiffeners_fuse_into_the_wall():
+    from tubecad.stiffeners.assembly import build_stiffeners, named_assembly
+
+    tube = CurvatureLineTube(paper_tube().axis.restricted((400.0, 600.0)), 15.0)
+    build = build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 3, 4))
+    stiffeners = build_stiffeners(build, [1], [1], Profile("flat", 3.0, 1.0), side="outside")
+    fused = named_assembly(build, stiffeners, fuse=True).children[0]
+    assert fused.label == "wall" and props.is_valid(fused) and props.count(fused, "solid") == 1
+    separate = props.volume(build.shape) + sum(props.volume(s.solid) for s in stiffeners)
+    ring, stringer = stiffeners
+    overlap = sum(props.volume(p) for p in ring.solid.intersect(stringer.solid))  # where the stringer crosses the ring
+    assert props.volume(fused) == pytest.approx(separate - overlap, rel=1e-6)
+
+
+def test_panels_fit_together_into_the_wall_with_exact_areas(tmp_path):
+    from click.testing import CliRunner
+
+    from conftest import PAPER_SPEC
+    from tubecad.interfaces.cli import cli
+    from tubecad.stiffeners.panels import split_into_panels
+
+    tube = paper_tube()
+    build = build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 5, 8))
+    panels = split_into_panels(build, [5, 0, 3], [0, 2, 4])
+    assert [p.name for p in panels] == [f"panel_r{i}_s{j}" for i in range(2) for j in range(3)]
+    assert all(props.is_valid(p.solid) and props.free_edges(p.solid) == 0 for p in panels)
+    assert sum(props.volume(p.solid) for p in panels) == pytest.approx(props.volume(build.shape), rel=1e-9)
+    x, w = np.polynomial.legendre.leggauss(24)
+    for p in panels:  # outer area = r Int Int (1 - r k cos(theta - Int sigma)) ds dtheta
+        (s0, s1), (a, b) = p.s_range, np.radians(p.angles_deg)
+        s = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * x[:, None]
+        th = 0.5 * (a + b) + 0.5 * (b - a) * x[None, :]
+        g = 1 - 16.0 * tube.axis.curvature(s) * np.cos(th - tube.axis.twist(s))
+        exact = 16.0 * float((g * w[:, None] * w[None, :]).sum()) * 0.25 * (s1 - s0) * (b - a)
+        assert p.outer_area == pytest.approx(exact, rel=1e-6)
+        assert p.mass(7.85e-6) == pytest.approx(props.volume(p.solid) * 7.85e-6)
+    spec = tmp_path / "p.toml"
+    spec.write_text(PAPER_SPEC + "\n[layout]\nrings = 3\nstringers = 4\n\n[wall]\nthickness = 2.0\n\n[panels]\nseams = [0, 2]\n")
+    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "p.step"), "--report", str(tmp_path / "r.json")])
+    assert result.exit_code == 0, result.output
+    wall = bd.import_step(tmp_path / "p.step").children[0]
+    assert wall.label == "wall" and [c.label for c in wall.children] == ["panel_r0_s0", "panel_r0_s1", "panel_r1_s0", "panel_r1_s1"]
+    assert len(json.loads((tmp_path / "r.json").read_text())["panels"]) == 4
+    with pytest.raises(ParameterError, match="seams must be one or more stringer indices"):
+        split_into_panels(build, [8])

@@ -117,3 +117,19 @@ def stiffeners_from_spec(spec: TubeSpec, build: TubeBuild) -> tuple[list, Stiffe
                                 build.tolerance), selection  # fmt: skip
     except (ParameterError, RegularityError) as exc:
         raise SpecError(f"{spec.source}: [stiffeners] {exc}") from None
+
+
+def panels_from_spec(spec: TubeSpec, build: TubeBuild) -> list:
+    """The [panels] section's panels of the wall ([] without the section)."""
+    from ..stiffeners.panels import split_into_panels
+
+    section = spec.sections.get("panels")
+    if section is None:
+        return []
+    n_s, n_r = len(build.layout.stringers_deg), len(build.layout.s_rings)
+    seams = list(range(n_s)) if section["seams"] == "all" else section["seams"]
+    rings = section.get("rings", "all")
+    try:
+        return split_into_panels(build, seams, None if rings == "all" else rings)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: [panels] {exc} (the layout has {n_s} stringers and {n_r} rings)") from None

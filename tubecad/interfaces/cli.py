@@ -24,7 +24,7 @@ from ..examples import (
 from ..export.atomic import write_text
 from ..export.cad import cad_format, export_shape
 from ..export.plots import write_projections
-from .build import build_from_spec, stiffener_selection, stiffeners_from_spec
+from .build import build_from_spec, panels_from_spec, stiffener_selection, stiffeners_from_spec
 from .readback import readback_report
 from .report import DEFAULT_NS, DEFAULT_NU, build_report, stiffener_report, to_json, tube_report
 from .spec import load_spec
@@ -96,6 +96,12 @@ def paper(output: Path, nu: int, ns: int) -> None:
         click.echo(str(path))
 
 
+def props_volume(shape) -> float:
+    from ..brep.properties import volume
+
+    return volume(shape)
+
+
 def write_paper_stiffeners(build, output: Path, report: dict) -> list[Path]:
     """The paper's default stiffeners, named assembly, polylines and picture (issue 4)."""
     import build123d as bd
@@ -110,11 +116,36 @@ def write_paper_stiffeners(build, output: Path, report: dict) -> list[Path]:
     lines = net_lines(build.surfaces[0], build.layout) + net_lines(build.surfaces[1], build.layout, "_inner")
     step = export_named_step(named_assembly(build, stiffeners, lines), output / "paper_stiffened.step")
     report["stiffeners"] = stiffener_report(stiffeners, lines, STEEL_DENSITY)
+    written = write_flat_patterns(stiffeners, output / "flat")
     frame = [c for c in bd.import_step(step).children if c.label.startswith(("ring_", "stringer_"))]
     picture = render_shape_png(bd.Compound(children=frame), output / "paper_stiffened.png",
                                title="paper_stiffened.step as read back: the stiffeners inside the wall (wall hidden)")  # fmt: skip
     return [step, polylines_csv(lines, output / "paper_lines.csv"), polylines_json(lines, output / "paper_lines.json"),
-            picture]  # fmt: skip
+            picture, *written]  # fmt: skip
+
+
+def write_flat_patterns(stiffeners, folder: Path) -> list[Path]:
+    """webs.dxf, NAME.svg/.png per web and flat.json into ``folder`` (issue 4)."""
+    from ..stiffeners.flat import ring_flat_pattern, stringer_flat_pattern
+
+    folder.mkdir(parents=True, exist_ok=True)
+    patterns = [ring_flat_pattern(st.base_radius, st.profile.height, st.side, st.name) if st.kind == "ring"
+                else stringer_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
+                for st in stiffeners]  # fmt: skip
+    return write_patterns(patterns, folder)
+
+
+def write_patterns(patterns, folder: Path) -> list[Path]:
+    """webs.dxf (all), NAME.svg and NAME.png per web, flat.json with the measures."""
+    from ..stiffeners.flat import write_dxf, write_picture
+
+    written = [write_dxf(patterns, folder / "webs.dxf")]
+    for pattern in patterns:
+        written += write_picture(pattern, folder)
+    summary = {"webs": [{"name": p.name, "kind": p.kind, "area": p.area, "base_length": p.base_length,
+                         "top_length": p.top_length} for p in patterns]}  # fmt: skip
+    written.append(write_text(folder / "flat.json", to_json(summary)))
+    return written
 
 
 def render_step_picture(step: Path, png: Path) -> Path:
@@ -157,17 +188,24 @@ def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: 
         report = tube_report(checked.tube, 64, 501)
         report["brep"] = build_report(result, checked.tube)
         stiffeners, selection = stiffeners_from_spec(checked, result)
+        panels = panels_from_spec(checked, result)
         shape = result.shape
-        if stiffeners:
+        named = bool(stiffeners or panels)
+        if named:
+            from ..examples import STEEL_DENSITY
             from ..stiffeners import net_lines
             from ..stiffeners.assembly import export_named_step, named_assembly
 
             lines = net_lines(result.surfaces[0], result.layout)
-            shape = named_assembly(result, stiffeners, lines, fuse=selection.fuse)
-            report["stiffeners"] = stiffener_report(stiffeners, lines, selection.density)
+            shape = named_assembly(result, stiffeners, lines, fuse=bool(selection and selection.fuse), panels=panels)
+            density = selection.density if selection else STEEL_DENSITY
+            report["stiffeners"] = stiffener_report(stiffeners, lines, density)
+            report["panels"] = [{"name": p.name, "s": list(p.s_range), "angles_deg": list(p.angles_deg),
+                                 "outer_area": p.outer_area, "volume": props_volume(p.solid),
+                                 "mass_kg": p.mass(density)} for p in panels]  # fmt: skip
         report["exports"] = {}
         for path in outputs:
-            if stiffeners and cad_format(path) == "step":
+            if named and cad_format(path) == "step":
                 export_named_step(shape, path)  # names and colours: wall, ring_03, stringer_05, ...
             else:
                 export_shape(shape, path, step_schema)
@@ -192,7 +230,7 @@ def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: 
 def flat(spec: Path, output: Path) -> None:
     """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, mm), NAME.svg/.png
     each, and flat.json with every web's area and edge lengths."""
-    from ..stiffeners.flat import ring_flat_pattern, stringer_flat_pattern, write_dxf, write_picture
+    from ..stiffeners.flat import ring_flat_pattern, stringer_flat_pattern
 
     try:
         checked = load_spec(spec)
@@ -209,12 +247,7 @@ def flat(spec: Path, output: Path) -> None:
         patterns = [ring_flat_pattern(base.radius, height, side, f"ring_{i:02d}") for i in chosen.rings]
         patterns += [stringer_flat_pattern(base, layout.stringers_deg[j], height, side, f"stringer_{j:02d}")
                      for j in chosen.stringers]  # fmt: skip
-        written = [write_dxf(patterns, output / "webs.dxf")]
-        for pattern in patterns:
-            written += write_picture(pattern, output)
-        summary = {"webs": [{"name": p.name, "kind": p.kind, "area": p.area, "base_length": p.base_length,
-                             "top_length": p.top_length} for p in patterns]}  # fmt: skip
-        written.append(write_text(output / "flat.json", to_json(summary)))
+        written = write_patterns(patterns, output)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     for path in written:

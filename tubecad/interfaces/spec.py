@@ -87,9 +87,14 @@ STIFFENER_KEYS = {
     "density": Key("number", required=False, help="kg/mm^3 for the reported masses (default steel, 7.85e-6)"),
 }
 
+PANEL_KEYS = {
+    "seams": Key("selection", help='seam stringers: indices into the layout\'s stringers, or "all"'),
+    "rings": Key("selection", required=False, help='ring indices bounding the panels, or "all" (default all)'),
+}
+
 #: sections beyond [axis] and [tube]
 EXTRA_SECTIONS: dict[str, dict[str, Key]] = {
-    "layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS, "stiffeners": STIFFENER_KEYS,
+    "layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS, "stiffeners": STIFFENER_KEYS, "panels": PANEL_KEYS,
 }  # fmt: skip
 
 

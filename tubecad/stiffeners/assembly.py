@@ -43,11 +43,20 @@ def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence
 
 
 def named_assembly(build: TubeBuild, stiffeners: Sequence[Stiffener], lines: Sequence[CurvatureLine] = (),
-                   fuse: bool = False) -> bd.Compound:  # fmt: skip
+                   fuse: bool = False, panels: Sequence = ()) -> bd.Compound:  # fmt: skip
     """``wall`` and the stiffeners as labelled, coloured solids (or, with ``fuse``, one solid
-    ``wall`` with the stiffeners merged in), plus the ``curvature_lines``."""
+    ``wall`` with the stiffeners merged in), plus the ``curvature_lines``. With ``panels``
+    the wall is an assembly ``wall`` of the panels ``panel_r0_s0``, ... (not fused)."""
     wall = build.shape
     children: list[bd.Shape] = []
+    if panels:
+        parts = []
+        for p in panels:
+            solid = bd.Solid(p.solid.wrapped)
+            solid.label, solid.color = p.name, WALL_COLOUR
+            parts.append(solid)
+        wall = bd.Compound(children=parts)
+        fuse = False
     if fuse and stiffeners:
         wall = wall.fuse(*[st.solid for st in stiffeners]).clean()
     else:

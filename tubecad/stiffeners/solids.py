@@ -119,38 +119,47 @@ def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profi
     frame = fit_frame(axis, R + profile.height, tolerance, orthogonality_for(tolerance))
     theta = math.radians(theta_deg)
     delta = math.asin(tw / (2 * R))
-    F = frame.spline.c
-    C, R1, R2 = F[:, :3], F[:, 3:6], F[:, 6:]
-    N = math.cos(theta) * R1 + math.sin(theta) * R2
-    E = -math.sin(theta) * R1 + math.cos(theta) * R2
 
     def radial(h: float) -> float:  # distance from the axis along N of an outline corner
         return R * math.cos(delta) if h == 0.0 else R + sign * h
 
     corners = [(w, radial(h)) for w, h in profile.outline()]
-    s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
-
-    def ruled(p: tuple[float, float], q: tuple[float, float]) -> Geom_BSplineSurface:
-        poles = np.stack([C + p[1] * N + p[0] * E, C + q[1] * N + q[0] * E])
-        return Geom_BSplineSurface(points_2d(poles), reals([0.0, 1.0]), reals(s_knots), integers([2, 2]),
-                                   integers(s_mults), 1, frame.degree)  # fmt: skip
-
-    sewing = BRepBuilderAPI_Sewing(SEWING_TOLERANCE)
-    for p, q in zip(corners[:-1], corners[1:]):
-        sewing.Add(BRepBuilderAPI_MakeFace(ruled(p, q), 0.0, 1.0, s0, s1, 1e-7).Face())
+    faces = [BRepBuilderAPI_MakeFace(ruled_surface(frame, theta, p, q), 0.0, 1.0, s0, s1, 1e-7).Face()
+             for p, q in zip(corners[:-1], corners[1:])]  # fmt: skip
     base_tube = CurvatureLineTube(axis, R, allow_irregular=True)
     base = exact_section_surface(base_tube, frame, origin_deg=math.degrees(theta - delta))
     u1 = float(base.u_at(math.degrees(theta + delta)))
-    sewing.Add(BRepBuilderAPI_MakeFace(base.surface, 0.0, u1, s0, s1, 1e-7).Face())
-    for s in (s0, s1):
-        sewing.Add(_cap(frame.spline(s), theta, corners, base, s, u1))
+    faces.append(BRepBuilderAPI_MakeFace(base.surface, 0.0, u1, s0, s1, 1e-7).Face())
+    faces += [_cap(frame.spline(s), theta, corners, base, s, u1) for s in (s0, s1)]
+    return Stiffener(name, "stringer", float(theta_deg), sew_solid(faces, name), profile, side, base_tube)
+
+
+def ruled_surface(frame, theta: float, p: tuple[float, float], q: tuple[float, float]) -> Geom_BSplineSurface:
+    """The ruled face from corner p = (w, v) to q in the cross-section plane, swept along s:
+    poles C_j + v N_j + w E_j (degree 1 across, the frame spline's knots along s), with
+    N = cos th R1 + sin th R2 and E = -sin th R1 + cos th R2."""
+    F = frame.spline.c
+    C, R1, R2 = F[:, :3], F[:, 3:6], F[:, 6:]
+    N = math.cos(theta) * R1 + math.sin(theta) * R2
+    E = -math.sin(theta) * R1 + math.cos(theta) * R2
+    poles = np.stack([C + p[1] * N + p[0] * E, C + q[1] * N + q[0] * E])
+    s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
+    return Geom_BSplineSurface(points_2d(poles), reals([0.0, 1.0]), reals(s_knots), integers([2, 2]),
+                               integers(s_mults), 1, frame.degree)  # fmt: skip
+
+
+def sew_solid(faces, name: str) -> bd.Solid:
+    """Sew faces that meet along common edges (within 1e-6) into one closed solid."""
+    sewing = BRepBuilderAPI_Sewing(SEWING_TOLERANCE)
+    for face in faces:
+        sewing.Add(face)
     sewing.Perform()
     explorer = TopExp_Explorer(sewing.SewedShape(), TopAbs_SHELL)
     if not explorer.More():
-        raise TubecadError(f"stiffener {name}: its faces did not sew into a shell")
+        raise TubecadError(f"{name}: its faces did not sew into a shell")
     solid = BRepBuilderAPI_MakeSolid(TopoDS.Shell_s(explorer.Current())).Solid()
     BRepLib.OrientClosedSolid_s(solid)
-    return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, base_tube)
+    return bd.Solid(solid)
 
 
 def _cap(F: np.ndarray, theta: float, corners: list[tuple[float, float]], base, s: float, u1: float):
@@ -176,13 +185,7 @@ def web_face(base: CurvatureLineTube, theta_deg: float, height: float, side: str
     _check_side(side)
     R, sign = base.radius, (1.0 if side == "outside" else -1.0)
     frame = fit_frame(base.axis, R + height, tolerance, orthogonality_for(tolerance))
-    theta = math.radians(theta_deg)
-    F = frame.spline.c
-    N = math.cos(theta) * F[:, 3:6] + math.sin(theta) * F[:, 6:]
-    poles = np.stack([F[:, :3] + R * N, F[:, :3] + (R + sign * height) * N])
-    s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
-    surface = Geom_BSplineSurface(points_2d(poles), reals([0.0, 1.0]), reals(s_knots), integers([2, 2]),
-                                  integers(s_mults), 1, frame.degree)  # fmt: skip
+    surface = ruled_surface(frame, math.radians(theta_deg), (0.0, R), (0.0, R + sign * height))
     return bd.Face(BRepBuilderAPI_MakeFace(surface, 0.0, 1.0, *base.span, 1e-7).Face())
 
 
