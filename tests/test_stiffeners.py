@@ -338,3 +338,20 @@ def test_panels_fit_together_into_the_wall_with_exact_areas(tmp_path):
     assert len(json.loads((tmp_path / "r.json").read_text())["panels"]) == 4
     with pytest.raises(ParameterError, match="seams must be one or more stringer indices"):
         split_into_panels(build, [8])
+
+
+def test_build_writes_polylines_by_extension(tmp_path):
+    from click.testing import CliRunner
+
+    from conftest import PAPER_SPEC
+    from tubecad.interfaces.cli import cli
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(PAPER_SPEC + "\n[layout]\nrings = 3\nstringers = 2\n\n[wall]\nthickness = 2.0\n")
+    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "n.csv"), "-o", str(tmp_path / "n.json")])
+    assert result.exit_code == 0, result.output
+    data = json.loads((tmp_path / "n.json").read_text())
+    assert [ln["name"] for ln in data["lines"]][:5] == ["ring_00", "ring_01", "ring_02", "stringer_00", "stringer_01"]
+    assert {ln["surface_radius"] for ln in data["lines"]} == {16.0, 14.0}
+    rows = (tmp_path / "n.csv").read_text().splitlines()
+    assert rows[0].startswith("line,kind,index") and len(rows) == 1 + 200 * 10

@@ -47,3 +47,20 @@ def write_text(target: str | Path, text: str) -> Path:
     with atomic_path(target) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return Path(target)
+
+
+def save_figure(fig, folder: str | Path, stem: str, formats: tuple[str, ...] = ("png", "svg"), dpi: int = 150) -> list[Path]:
+    """Save a matplotlib figure as ``stem``.<format> in ``folder`` for each format, atomically,
+    then close it; return the paths."""
+    import matplotlib.pyplot as plt
+
+    paths = []
+    try:
+        for ext in formats:
+            target = Path(folder) / f"{stem}.{ext}"
+            with atomic_path(target) as tmp:
+                fig.savefig(tmp, format=ext, dpi=dpi)
+            paths.append(target)
+    finally:
+        plt.close(fig)
+    return paths

@@ -17,7 +17,7 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
 from ..surface import CurvatureLineTube  # noqa: E402
-from .atomic import atomic_path  # noqa: E402
+from .atomic import save_figure  # noqa: E402
 
 #: (title, horizontal axis, vertical axis, viewing direction)
 VIEWS = {
@@ -69,17 +69,7 @@ def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int =
 
 def write_projections(tube: CurvatureLineTube, folder: str | Path, stem: str = "projections", **kwargs) -> list[Path]:
     """Write ``stem``.png and ``stem``.svg into ``folder`` (atomically); return their paths."""
-    fig = projection_figure(tube, **kwargs)
-    paths = []
-    try:
-        for ext in ("png", "svg"):
-            target = Path(folder) / f"{stem}.{ext}"
-            with atomic_path(target) as tmp:
-                fig.savefig(tmp, format=ext, dpi=150)
-            paths.append(target)
-    finally:
-        plt.close(fig)
-    return paths
+    return save_figure(projection_figure(tube, **kwargs), folder, stem)
 
 
 def _cell_outlines(pts: np.ndarray, nu_cells: int, ns_cells: int, sub: int) -> np.ndarray:

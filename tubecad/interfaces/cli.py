@@ -171,7 +171,8 @@ def report(spec: Path, nu: int, ns: int) -> None:
 @cli.command()
 @click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
 @click.option("-o", "--output", "outputs", multiple=True, required=True, type=click.Path(dir_okay=False, path_type=Path),
-              help="Output file, repeatable; the format follows the extension: .step/.stp, .iges/.igs, .brep.")
+              help="Output file, repeatable; the format follows the extension: .step/.stp, .iges/.igs, .brep, "
+                   "or .csv/.json for the curvature lines as polylines (position, tangent, normal).")
 @click.option("--step-schema", type=click.Choice(["AP214", "AP242"]), default="AP214", show_default=True)
 @click.option("--report", "report_path", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Also write the measured report (JSON) here.")
@@ -181,6 +182,8 @@ def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: 
     Each file is read back and checked; a summary is printed.
     """
     try:
+        polyline_outputs = [p for p in outputs if p.suffix.lower() in (".csv", ".json")]
+        outputs = tuple(p for p in outputs if p not in polyline_outputs)
         for path in outputs:
             cad_format(path)
         checked = load_spec(spec)
@@ -210,6 +213,15 @@ def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: 
             else:
                 export_shape(shape, path, step_schema)
             report["exports"][str(path)] = readback_report(path, shape)
+        if polyline_outputs:
+            from ..stiffeners import net_lines, polylines_csv, polylines_json
+
+            lines = net_lines(result.surfaces[0], result.layout)
+            if len(result.surfaces) > 1:
+                lines += net_lines(result.surfaces[1], result.layout, "_inner")
+            for path in polyline_outputs:
+                (polylines_csv if path.suffix.lower() == ".csv" else polylines_json)(lines, path)
+                report["exports"][str(path)] = {"bytes": path.stat().st_size, "lines": len(lines)}
         if report_path is not None:
             write_text(report_path, to_json(report))
     except TubecadError as exc:
@@ -220,7 +232,10 @@ def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: 
         f"fit deviation {brep['fit']['max_deviation']:.2e}, orthogonality {brep['fit']['max_orthogonality_error']:.2e}"
     )
     for path, info in report["exports"].items():
-        click.echo(f"{path}: {info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}")
+        if "lines" in info:
+            click.echo(f"{path}: {info['bytes']} bytes, {info['lines']} curvature lines as polylines")
+        else:
+            click.echo(f"{path}: {info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}")
 
 
 @cli.command()

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..curves.chebyshev import PiecewiseChebyshev
-from ..export.atomic import atomic_path
+from ..export.atomic import atomic_path, save_figure
 from ..surface import CurvatureLineTube
 
 
@@ -125,13 +125,4 @@ def write_picture(pattern: FlatPattern, folder: str | Path) -> list[Path]:
     ax.autoscale_view()
     ax.set_title(f"{pattern.name}: flat pattern of the web, area {pattern.area:.6g}, edges "
                  f"{pattern.base_length:.6g} (on the wall) and {pattern.top_length:.6g}", fontsize=9)  # fmt: skip
-    paths = []
-    try:
-        for ext in ("svg", "png"):
-            target = Path(folder) / f"{pattern.name}.{ext}"
-            with atomic_path(target) as tmp:
-                fig.savefig(tmp, format=ext, dpi=150)
-            paths.append(target)
-    finally:
-        plt.close(fig)
-    return paths
+    return save_figure(fig, folder, pattern.name, ("svg", "png"))
