@@ -65,10 +65,14 @@ def patch_faces(surface: Geom_BSplineSurface, s_rings: list[float], u_cuts: list
     faces = []
     for i in range(n_rings - 1):
         row = []
+        s0, s1 = s_rings[i], s_rings[i + 1]
+        band = surface.Copy()  # cut the band between two rings once, then each patch from it:
+        band.Segment(u_cuts[0], u_cuts[-1], s0, s1)  # far fewer poles to copy per patch
         for j in range(n_stringers):
-            u0, u1, s0, s1 = u_cuts[j], u_cuts[j + 1], s_rings[i], s_rings[i + 1]
-            piece = surface.Copy()
-            piece.Segment(u0, u1, s0, s1)
+            u0, u1 = u_cuts[j], u_cuts[j + 1]
+            piece = band if seam else band.Copy()
+            if not seam:
+                piece.Segment(u0, u1, s0, s1)
             face = TopoDS_Face()
             builder.MakeFace(face, piece, TOLERANCE)
             bottom, top = rings[i][j], rings[i + 1][j]

@@ -18,7 +18,9 @@ import numpy as np
 from OCP.BRep import BRep_Builder
 from OCP.BRepLib import BRepLib
 from OCP.Geom import Geom_Plane
-from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
+from OCP.BRepGProp import BRepGProp_Face
+from OCP.BRepTools import BRepTools
+from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid, TopoDS_Wire
 
@@ -95,7 +97,7 @@ def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
     surface, patches = _tube_faces(tube, frame, layout)
     caps = [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
             _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True)]  # fmt: skip
-    solid = _solid(patches.all_faces() + caps)
+    solid = _solid(patches.all_faces() + caps, tube)
     return TubeBuild(bd.Solid(solid), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
 
@@ -112,7 +114,7 @@ def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "cen
         _cap(tube, layout.s_rings[0], [outer_patches.rings[0], inner_patches.rings[0]], outward=False),
         _cap(tube, layout.s_rings[-1], [outer_patches.rings[-1], inner_patches.rings[-1]], outward=True),
     ]
-    solid = _solid(outer_patches.all_faces() + inner_patches.all_faces() + caps)
+    solid = _solid(outer_patches.all_faces() + inner_patches.all_faces() + caps, tube)
     return TubeBuild(bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, frame, tolerance,
                      [r_out, r_in])  # fmt: skip
 
@@ -175,13 +177,30 @@ def _shell(faces: list[TopoDS_Face], closed: bool) -> TopoDS_Shell:
     return shell
 
 
-def _solid(faces: list[TopoDS_Face]) -> TopoDS_Solid:
+def _solid(faces: list[TopoDS_Face], tube: CurvatureLineTube) -> TopoDS_Solid:
+    """The closed shell of ``faces`` (the first an outer tube face) as a solid.
+
+    The faces are oriented by construction (outer normal S_u x S_s points away from the
+    axis); one normal is checked. OCCT's general OrientClosedSolid classifies a point by
+    ray casting through every face (over half the build time of a 10,000-face wall), so
+    it is only the fallback.
+    """
     builder = BRep_Builder()
     solid = TopoDS_Solid()
     builder.MakeSolid(solid)
     builder.Add(solid, _shell(faces, closed=True))
-    BRepLib.OrientClosedSolid_s(solid)
+    if not _points_away_from_axis(faces[0], tube):
+        BRepLib.OrientClosedSolid_s(solid)
     return solid
+
+
+def _points_away_from_axis(face: TopoDS_Face, tube: CurvatureLineTube) -> bool:
+    """Does the face's normal (as oriented in the face) point away from the axis at its middle?"""
+    u0, u1, s0, s1 = BRepTools.UVBounds_s(face)
+    point, normal = gp_Pnt(), gp_Vec()
+    BRepGProp_Face(face).Normal(0.5 * (u0 + u1), 0.5 * (s0 + s1), point, normal)
+    centre = tube.axis.position(np.array([0.5 * (s0 + s1)]))[0]
+    return normal.Dot(gp_Vec(*(np.array([point.X(), point.Y(), point.Z()]) - centre))) > 0
 
 
 def exact_volume(build: TubeBuild, tube: CurvatureLineTube) -> float:
