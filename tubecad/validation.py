@@ -7,6 +7,15 @@ from typing import Sequence
 
 from .errors import ParameterError
 
+#: the largest length accepted (radius, arc length, a length parameter, a coordinate), model
+#: units: beyond it double precision cannot place the geometry to the fit tolerances, and
+#: the squares of lengths that the checks compute would overflow
+MAX_LENGTH = 1e9
+
+#: the shortest span relative to its arc lengths' magnitude: below it double precision
+#: cannot tell the span's points apart well enough to integrate or fit the axis
+MIN_SPAN_RESOLUTION = 1e-9
+
 
 def finite_number(name: str, value: object) -> float:
     """Return ``value`` as a float, or raise naming ``name`` if it is not a finite real."""
@@ -44,16 +53,37 @@ def number_in_range(
     return x
 
 
+def flag(name: str, value: object) -> bool:
+    """Return ``value`` if it is a bool (numpy's too), else raise naming ``name``: a string
+    like "no" must not silently count as true."""
+    import numpy as np
+
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ParameterError(f"{name} must be True or False, got {value!r:.80}")
+
+
+def bounded_length(name: str, value: object, low: float = -math.inf, *, low_open: bool = True) -> float:
+    """Return ``value`` as a float in the allowed range with |value| <= MAX_LENGTH."""
+    x = number_in_range(name, value, low, low_open=low_open)
+    if abs(x) > MAX_LENGTH:
+        raise ParameterError(f"{name} must be at most {MAX_LENGTH:g} model units in magnitude, got {x:g}")
+    return x
+
+
 def span_pair(name: str, value: Sequence[object], low: float = -math.inf) -> tuple[float, float]:
     """Return an increasing pair (s0, s1) with both ends finite and s0 > ``low``."""
     try:
         s0, s1 = value  # type: ignore[misc]
     except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a pair [start, end], got {value!r}") from None
-    s0 = finite_number(f"{name} start", s0)
-    s1 = finite_number(f"{name} end", s1)
+        raise ParameterError(f"{name} must be a pair [start, end], got {value!r:.80}") from None
+    s0 = bounded_length(f"{name} start", s0)
+    s1 = bounded_length(f"{name} end", s1)
     if not s1 > s0:
         raise ParameterError(f"{name} must be increasing (start < end), got [{s0:g}, {s1:g}]")
+    if s1 - s0 < MIN_SPAN_RESOLUTION * max(abs(s0), abs(s1)):
+        raise ParameterError(f"{name} [{s0:.17g}, {s1:.17g}] is too short for its distance from s = 0: the length "
+                             f"end - start must be at least {MIN_SPAN_RESOLUTION:g} x max(|start|, |end|)")  # fmt: skip
     if not s0 > low:
         raise ParameterError(f"{name} must lie in s > {low:g} for this curve, got start {s0:g}")
     return s0, s1

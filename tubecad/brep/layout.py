@@ -13,6 +13,10 @@ from ..surface import CurvatureLineTube
 
 DEFAULT_RINGS = 11
 DEFAULT_STRINGERS = 8
+#: upper bounds that keep a B-rep buildable (and a typo like rings = 100000000 from exhausting memory)
+MAX_RINGS = 10_000
+MAX_STRINGERS = 1_000
+MAX_FACES = 100_000
 
 
 @dataclass(frozen=True)
@@ -26,28 +30,30 @@ class NetLayout:
     @classmethod
     def equal(cls, tube: CurvatureLineTube, rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS) -> "NetLayout":
         """``rings`` frames equally spaced in s (ends included), ``stringers`` at 360 j / M deg."""
-        _whole("rings", rings, 2)
-        _whole("stringers", stringers, 1)
+        _whole("rings", rings, 2, MAX_RINGS)
+        _whole("stringers", stringers, 1, MAX_STRINGERS)
+        _face_count(rings, stringers)
         return cls.explicit(tube, np.linspace(*tube.span, rings), 360.0 * np.arange(stringers) / stringers)
 
     @classmethod
     def explicit(cls, tube: CurvatureLineTube, s_rings: Sequence[float], stringers_deg: Sequence[float]) -> "NetLayout":
         """Given lists; the span ends are added to the rings if missing."""
         s0, s1 = tube.span
-        rings = np.asarray(list(s_rings), dtype=float)
-        angles = np.asarray(list(stringers_deg), dtype=float)
+        rings = _numbers("s_rings", s_rings, f"a non-empty list of finite arc lengths in [{s0:g}, {s1:g}]", MAX_RINGS)
+        angles = _numbers("u_stringers_deg", stringers_deg, "a non-empty list of finite angles", MAX_STRINGERS)
         if rings.size == 0 or not np.all(np.isfinite(rings)):
-            raise ParameterError(f"s_rings must be finite arc lengths in [{s0:g}, {s1:g}], got {list(rings)}")
+            raise ParameterError(f"s_rings must be finite arc lengths in [{s0:g}, {s1:g}], got {_shown(rings)}")
         if rings.min() < s0 - 1e-9 * (s1 - s0) or rings.max() > s1 + 1e-9 * (s1 - s0):
             raise ParameterError(f"s_rings must lie in the span [{s0:g}, {s1:g}], got [{rings.min():g}, {rings.max():g}]")
         rings = np.unique(np.clip(np.concatenate([[s0, s1], rings]), s0, s1))
         if np.min(np.diff(rings)) < 1e-6 * (s1 - s0):
             raise ParameterError("s_rings must be distinct (at least 1e-6 of the span apart)")
         if angles.size == 0 or not np.all(np.isfinite(angles)):
-            raise ParameterError(f"u_stringers_deg must be a non-empty list of finite angles, got {list(angles)}")
+            raise ParameterError(f"u_stringers_deg must be a non-empty list of finite angles, got {_shown(angles)}")
         angles = np.unique(np.round(np.mod(angles, 360.0), 12))
         if len(angles) > 1 and np.min(np.diff(np.concatenate([angles, [angles[0] + 360.0]]))) < 1e-6:
             raise ParameterError("u_stringers_deg must be distinct angles (mod 360)")
+        _face_count(len(rings), len(angles))
         return cls(tuple(map(float, rings)), tuple(map(float, angles)))
 
     @property
@@ -55,9 +61,40 @@ class NetLayout:
         return (len(self.s_rings) - 1) * len(self.stringers_deg)
 
 
-def _whole(name: str, value: object, least: int) -> None:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least:
-        raise ParameterError(f"{name} must be a whole number >= {least}, got {value!r}")
+def _whole(name: str, value: object, least: int, most: int) -> None:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or not least <= value <= most:
+        raise ParameterError(f"{name} must be a whole number >= {least} and <= {most}, got {value!r:.80}")
+
+
+def _face_count(rings: int, stringers: int) -> None:
+    faces = (int(rings) - 1) * int(stringers)
+    if faces > MAX_FACES:
+        raise ParameterError(f"the layout has (rings - 1) x stringers = {rings - 1} x {stringers} = {faces} faces; "
+                             f"at most {MAX_FACES} are allowed")  # fmt: skip
+
+
+def _numbers(name: str, values: object, wanted: str, most: int) -> np.ndarray:
+    """A list of reals as a float array, or a ParameterError naming ``name``."""
+    try:
+        items = list(values)  # type: ignore[call-overload]
+    except TypeError:
+        items = None
+    if items is None or isinstance(values, (str, bytes)) or any(isinstance(v, (bool, np.bool_)) for v in items):
+        raise ParameterError(f"{name} must be {wanted}, got {values!r:.80}")
+    if len(items) > most:
+        raise ParameterError(f"{name} has {len(items)} entries; at most {most} are allowed")
+    try:
+        array = np.asarray(items, dtype=float) if items else np.zeros(0)
+    except (TypeError, ValueError):
+        array = None
+    if array is None or array.ndim != 1:
+        raise ParameterError(f"{name} must be {wanted}, got {values!r:.80}")
+    return array
+
+
+def _shown(values: np.ndarray) -> str:
+    text = "[" + ", ".join(f"{v:g}" for v in values[:8]) + (", ..." if len(values) > 8 else "") + "]"
+    return text
 
 
 def stringer_parameters(stringers_deg: Sequence[float], u_at) -> list[float]:

@@ -24,10 +24,10 @@ from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid, TopoDS_Wire
 
-from ..errors import ParameterError
+from ..errors import ParameterError, RegularityError
 from ..fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
 from ..surface import CurvatureLineTube
-from ..validation import number_in_range
+from ..validation import bounded_length
 from .faces import TOLERANCE, PatchFaces, patch_faces
 from .layout import NetLayout, stringer_parameters
 
@@ -66,23 +66,55 @@ class TubeBuild:
         return [[bd.Face(f) for f in row] for row in self.patches[surface].faces]
 
 
+#: the smallest radius and wall thickness a B-rep is built with: 100 x the edge tolerance
+#: (OCCT's Precision::Confusion, 1e-7); below it edges and faces collapse within tolerance
+MIN_SIZE = 100 * TOLERANCE
+
+
 def wall_radii(radius: float, thickness: float, side: str) -> tuple[float, float]:
     """(r_in, r_out) of a wall of ``thickness`` placed ``side`` of the tube of ``radius``."""
-    thickness = number_in_range("thickness", thickness, 0.0)
-    if side not in WALL_SIDES:
-        raise ParameterError(f"side must be one of {', '.join(WALL_SIDES)}, got {side!r}")
+    thickness = bounded_length("thickness", thickness, 0.0)
+    if not isinstance(side, str) or side not in WALL_SIDES:
+        raise ParameterError(f"side must be one of {', '.join(WALL_SIDES)}, got {side!r:.80}")
+    if thickness < MIN_SIZE:
+        raise ParameterError(f"thickness must be >= {MIN_SIZE:g} model units (100 x OCCT's edge precision 1e-7), "
+                             f"got {thickness:g}")  # fmt: skip
     r_in, r_out = {"centered": (radius - thickness / 2, radius + thickness / 2),
                    "inside": (radius - thickness, radius), "outside": (radius, radius + thickness)}[side]  # fmt: skip
-    if r_in <= 0:
+    if r_in < MIN_SIZE:
+        if side == "outside":
+            raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep, got {radius:g}")
         limit = {"centered": 2 * radius, "inside": radius}[side]
-        raise ParameterError(f"thickness must be < {limit:g} for side = {side!r} (radius {radius:g}), got {thickness:g}")
+        raise ParameterError(f"thickness must be < {limit:g} for side = {side!r} (radius {radius:g}; the inner "
+                             f"radius must stay >= {MIN_SIZE:g}), got {thickness:g}")  # fmt: skip
     return r_in, r_out
+
+
+def _checked(tube: object, layout: object) -> NetLayout:
+    """The arguments every builder shares: a tube, a layout (default equal), a buildable radius."""
+    if not isinstance(tube, CurvatureLineTube):
+        raise ParameterError(f"tube must be a CurvatureLineTube, got {type(tube).__name__}")
+    if layout is None:
+        layout = NetLayout.equal(tube)
+    elif not isinstance(layout, NetLayout):
+        raise ParameterError(f"layout must be a NetLayout (NetLayout.equal or NetLayout.explicit), got {type(layout).__name__}")
+    s0, s1 = tube.span
+    if not (math.isclose(layout.s_rings[0], s0, abs_tol=1e-9 * (s1 - s0))
+            and math.isclose(layout.s_rings[-1], s1, abs_tol=1e-9 * (s1 - s0))):  # fmt: skip
+        raise ParameterError(f"layout rings must run from the tube's span start {s0:g} to its end {s1:g}, got "
+                             f"[{layout.s_rings[0]:g}, {layout.s_rings[-1]:g}] (a layout made for another tube?)")  # fmt: skip
+    if tube.length < MIN_SIZE:
+        raise ParameterError(f"the span must be at least {MIN_SIZE:g} model units long for a B-rep, got {tube.length:g}")
+    if tube.radius < MIN_SIZE:
+        raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
+                             f"got {tube.radius:g}")  # fmt: skip
+    return layout
 
 
 def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
     """The tube's open shell: faces between rings and stringers."""
-    layout = layout or NetLayout.equal(tube)
+    layout = _checked(tube, layout)
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance))
     surface, patches = _tube_faces(tube, frame, layout)
     shell = _shell(patches.all_faces(), closed=False)
@@ -92,7 +124,7 @@ def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
 def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
     """The tube closed by planar discs in the normal planes at both ends."""
-    layout = layout or NetLayout.equal(tube)
+    layout = _checked(tube, layout)
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance))
     surface, patches = _tube_faces(tube, frame, layout)
     caps = [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
@@ -104,9 +136,13 @@ def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
 def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered",
                      layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
     """The wall between the tubes of radii r_in < r_out on ``tube``'s axis, with annular caps."""
+    layout = _checked(tube, layout)
     r_in, r_out = wall_radii(tube.radius, thickness, side)
-    outer_tube, inner_tube = CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)
-    layout = layout or NetLayout.equal(tube)
+    try:
+        outer_tube, inner_tube = CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)
+    except RegularityError as exc:
+        raise RegularityError(f"thickness {float(thickness):g} (side = {side!r}) gives a wall between radii {r_in:g} "
+                              f"and {r_out:g}: {exc}") from None  # fmt: skip
     frame = fit_frame(tube.axis, r_out, tolerance, orthogonality_for(tolerance))
     outer, outer_patches = _tube_faces(outer_tube, frame, layout)
     inner, inner_patches = _tube_faces(inner_tube, frame, layout, reverse=True)

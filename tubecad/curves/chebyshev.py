@@ -64,9 +64,11 @@ class PiecewiseChebyshev:
                     m = 0.5 * (l + h)
                     next_todo += [(l, m), (m, h)]
             if len(done) + len(next_todo) > max_panels:
+                lo_w, hi_w = min(next_todo, key=lambda p: p[1] - p[0])  # where the halving went deepest
                 raise ParameterError(
                     f"{name} could not be resolved to {tol:g} with {max_panels} panels on "
-                    f"[{a:g}, {b:g}]: is it smooth there?"
+                    f"[{a:g}, {b:g}]: it must be smooth and finite there, and it is not near "
+                    f"s = {0.5 * (lo_w + hi_w):.6g} (a pole, a jump or a kink?)"
                 )
             todo = next_todo
         done.sort(key=lambda p: p[0])

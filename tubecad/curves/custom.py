@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import ParameterError
-from ..validation import finite_number
+from ..validation import bounded_length, finite_number
 from .chebyshev import PiecewiseChebyshev
 from .expression import compile_expression
 from .slope_curve import FloatArray, SlopeCurve
@@ -44,9 +44,13 @@ class CustomCurvature(SlopeCurve):
             raise ParameterError(f"k must be a callable k(s) or an expression string, got {k!r}")
         self._k = func
         self.psi0_deg = finite_number("psi0_deg", psi0_deg)
-        if len(origin) != 3:
-            raise ParameterError(f"origin must be three coordinates, got {origin!r}")
-        self.origin = tuple(finite_number(f"origin[{i}]", v) for i, v in enumerate(origin))
+        try:
+            coordinates = list(origin)
+        except TypeError:
+            coordinates = None
+        if coordinates is None or isinstance(origin, (str, bytes)) or len(coordinates) != 3:
+            raise ParameterError(f"origin must be three coordinates [x, y, z], got {origin!r:.80}")
+        self.origin = tuple(bounded_length(f"origin[{i}]", v) for i, v in enumerate(coordinates))
 
         s0, s1 = self.span
         k_series = PiecewiseChebyshev.fit(self._k_values, s0, s1, name="k(s)")
@@ -54,12 +58,36 @@ class CustomCurvature(SlopeCurve):
         psi0 = math.radians(self.psi0_deg)
         self._turning = k_series.antiderivative(psi0 * self._cos_b)
         x0, y0 = self.origin[0] / self._cos_b, self.origin[1] / self._cos_b
-        self._x = PiecewiseChebyshev.fit(lambda s: np.cos(self.psi(s)), s0, s1, name="cos psi").antiderivative(x0)
-        self._y = PiecewiseChebyshev.fit(lambda s: np.sin(self.psi(s)), s0, s1, name="sin psi").antiderivative(y0)
+        psi = self.psi(np.linspace(s0, s1, 20001))
+        # cos and sin of psi are only known to ~eps |psi|: asking for more would halve panels
+        # on round-off noise without end once the plan has turned a few dozen times
+        tol = max(1e-15, 8.0 * np.finfo(float).eps * float(np.abs(psi).max()))
+        try:
+            self._x = PiecewiseChebyshev.fit(lambda s: np.cos(self.psi(s)), s0, s1, name="cos psi", tol=tol).antiderivative(x0)
+            self._y = PiecewiseChebyshev.fit(lambda s: np.sin(self.psi(s)), s0, s1, name="sin psi", tol=tol).antiderivative(y0)
+        except ParameterError:  # k itself was resolved: the plan turns too often
+            turns = float(np.abs(np.diff(psi)).sum()) / (2.0 * math.pi)
+            raise ParameterError(
+                f"the plan of the axis turns {turns:.4g} times over the span (psi = Int k ds / cos(beta_deg)): "
+                "too often to integrate to round-off; lower |beta_deg|, the curvature k or the span"
+            ) from None
         self._z_offset = self.origin[2] - s0 * self._sin_b
 
     def _k_values(self, s: np.ndarray) -> np.ndarray:
-        return np.asarray(self._k(s), dtype=float) * np.ones_like(s)
+        if self.expression is not None:
+            return np.asarray(self._k(s), dtype=float) * np.ones_like(s)
+        try:  # a user's callable: whatever goes wrong in it is a ParameterError naming k
+            value = np.asarray(self._k(s))
+        except Exception as exc:  # noqa: BLE001
+            raise ParameterError(f"k(s) raised {type(exc).__name__}: {exc}"[:300]) from exc
+        if value.dtype.kind not in "iuf":
+            raise ParameterError(f"k(s) must return real numbers (an array shaped like s, or a scalar), "
+                                 f"got {value.dtype} values {value.ravel()[:3]!r:.80}")  # fmt: skip
+        try:
+            return value.astype(float) * np.ones_like(s)
+        except ValueError:
+            raise ParameterError(f"k(s) must return an array shaped like s {np.shape(s)} or a scalar, "
+                                 f"got shape {value.shape}") from None  # fmt: skip
 
     def _inside(self, s: ArrayLike) -> FloatArray:
         s = np.asarray(s, dtype=float)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import ast
 import math
 import operator
+import sys
 from typing import Callable
 
 import numpy as np
@@ -55,6 +56,7 @@ def compile_expression(text: str, name: str = "k", variable: str = "s") -> Compi
     nodes = sum(1 for _ in ast.walk(tree))
     if nodes > MAX_NODES:
         raise ExpressionError(f"{name} has {nodes} syntax nodes; at most {MAX_NODES} are allowed")
+    _check_numbers(tree, text.strip(), name)
     try:
         return _compile(tree.body, name, variable)
     except RecursionError:
@@ -67,7 +69,7 @@ def _compile(node: ast.AST, name: str, variable: str) -> Compiled:
         value = node.value
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ExpressionError(f"{where}only numbers are allowed as constants, got {value!r}")
-        const = float(value)
+        const = float(value)  # finite: checked by _check_numbers
         return lambda s: np.full(np.shape(s), const)
     if isinstance(node, ast.Name):
         if node.id == variable:
@@ -104,6 +106,21 @@ def _compile(node: ast.AST, name: str, variable: str) -> Compiled:
     if isinstance(node, ast.Attribute):
         raise ExpressionError(f"{where}attribute access ({ast.unparse(node)}) is not allowed")
     raise ExpressionError(f"{where}{type(node).__name__} ({ast.unparse(node)}) is not allowed in an expression")
+
+
+def _check_numbers(tree: ast.AST, text: str, name: str) -> None:
+    """Refuse numbers a double cannot hold (``1e999``, integers with hundreds of digits)."""
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
+            try:
+                finite = math.isfinite(float(node.value))
+            except OverflowError:
+                finite = False
+            if not finite:
+                shown = ast.get_source_segment(text, node) or "?"
+                shown = shown if len(shown) <= 30 else f"{shown[:15]}... ({len(shown)} digits)"
+                raise ExpressionError(f"{name}: number {shown} is out of range; numbers must be finite and at most "
+                                      f"{sys.float_info.max:.4g} in magnitude")  # fmt: skip
 
 
 def _check_exponent(node: ast.AST, where: str) -> None:

@@ -13,7 +13,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import fresnel
 
-from ..validation import finite_number, number_in_range
+from ..errors import ParameterError
+from ..validation import bounded_length, finite_number, number_in_range
 from .slope_curve import FloatArray, SlopeCurve
 
 
@@ -64,15 +65,23 @@ class Helix(SlopeCurve):
 
     family = "helix"
 
+    #: the smallest nonzero |k|: the helix is placed about the z axis, so its coordinates are
+    #: ~ cos^2 b / |k|, and beyond 1e9 model units double precision cannot place it to 1e-7
+    MIN_CURVATURE = 1e-9
+
     def __init__(self, k: float, beta_deg: float, span: tuple[float, float]) -> None:
         self.k = finite_number("k", k)
+        if 0.0 < abs(self.k) < self.MIN_CURVATURE:
+            raise ParameterError(f"k must be 0 (a straight axis) or at least {self.MIN_CURVATURE:g} in magnitude "
+                                 f"(the helix lies on a cylinder of radius cos^2(beta) / |k| about the z axis), "
+                                 f"got {self.k:g}")  # fmt: skip
         super().__init__(beta_deg, span)
 
     @classmethod
     def from_radius_pitch(cls, radius: float, pitch: float, span: tuple[float, float]) -> "Helix":
         """The helix on a cylinder of ``radius`` rising ``pitch`` per turn (pitch may be 0)."""
-        radius = number_in_range("radius", radius, 0.0)
-        pitch = finite_number("pitch", pitch)
+        radius = bounded_length("radius", radius, 0.0)
+        pitch = bounded_length("pitch", pitch)
         beta = math.atan2(pitch, 2.0 * math.pi * radius)
         return cls(math.cos(beta) ** 2 / radius, math.degrees(beta), span)
 
@@ -115,7 +124,7 @@ class Clothoid(SlopeCurve):
     family = "clothoid"
 
     def __init__(self, A: float, beta_deg: float, span: tuple[float, float]) -> None:
-        self.A = number_in_range("A", A, 0.0)
+        self.A = bounded_length("A", A, 0.0)
         super().__init__(beta_deg, span)
 
     def curvature(self, s: ArrayLike) -> FloatArray:
@@ -148,7 +157,7 @@ class CircleInvolute(SlopeCurve):
     s_lower_bound = 0.0
 
     def __init__(self, a: float, beta_deg: float, span: tuple[float, float]) -> None:
-        self.a = number_in_range("a", a, 0.0)
+        self.a = bounded_length("a", a, 0.0)
         super().__init__(beta_deg, span)
 
     def curvature(self, s: ArrayLike) -> FloatArray:

@@ -18,15 +18,7 @@ from ..errors import ParameterError
 def atomic_path(target: str | Path) -> Iterator[Path]:
     """Yield a temporary path in the target's folder; on success it replaces ``target``."""
     target = Path(target)
-    folder = target.parent if str(target.parent) else Path(".")
-    if not folder.is_dir():
-        raise ParameterError(f"output folder {str(folder)!r} does not exist")
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part" + target.suffix, dir=folder)
-    except OSError as exc:
-        raise ParameterError(f"cannot write to {str(folder)!r}: {exc.strerror}") from None
-    os.close(fd)
-    tmp_path = Path(tmp)
+    tmp_path = _temporary(target)
     try:
         yield tmp_path
         os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp makes 0600; outputs get the usual mode
@@ -34,6 +26,30 @@ def atomic_path(target: str | Path) -> Iterator[Path]:
     except BaseException:
         tmp_path.unlink(missing_ok=True)
         raise
+
+
+def check_writable(target: str | Path) -> Path:
+    """Refuse an output before anything is built: its folder is missing or not a folder, it
+    is a folder itself, or no file can be created beside it (read-only, /proc, full disk)."""
+    target = Path(target)
+    if target.is_dir():
+        raise ParameterError(f"output {str(target)!r} is a folder; give a file name")
+    _temporary(target).unlink(missing_ok=True)
+    return target
+
+
+def _temporary(target: Path) -> Path:
+    """An empty temporary file beside ``target`` (a ParameterError naming the output if impossible)."""
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        why = "is not a folder" if folder.exists() else "does not exist"
+        raise ParameterError(f"output {str(target)!r}: output folder {str(folder)!r} {why}")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part" + target.suffix, dir=folder)
+    except OSError as exc:
+        raise ParameterError(f"output {str(target)!r}: cannot write to {str(folder)!r}: {exc.strerror}") from None
+    os.close(fd)
+    return Path(tmp)
 
 
 def _umask() -> int:

@@ -23,6 +23,8 @@ from ..curves.slope_curve import SlopeCurve
 from ..errors import ParameterError, TubecadError
 
 SAMPLES_PER_SPAN = 24
+#: refinements without halving the error after which a failed fit is said to have stalled
+STALLED_ROUNDS = 3
 
 
 class FitError(TubecadError, ValueError):
@@ -70,28 +72,42 @@ def fit_frame(
     max_spans: int = 4096,
 ) -> FrameSpline:
     """Fit F adaptively until the measured bounds meet ``tolerance`` and ``orthogonality``."""
-    if not (isinstance(degree, int) and 3 <= degree <= 9):
+    if isinstance(degree, bool) or not (isinstance(degree, int) and 3 <= degree <= 9):
         raise ParameterError(f"degree must be a whole number in [3, 9], got {degree!r}")
-    for name, value in (("tolerance", tolerance), ("orthogonality", orthogonality)):
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and 0 < value < 1):
-            raise ParameterError(f"fit {name} must be in (0, 1) model units, got {value!r}")
+    tolerance = check_tolerance("tolerance", tolerance)
+    orthogonality = check_tolerance("orthogonality", orthogonality)
     breaks = _initial_breaks(axis, 8)
     best = (math.inf, math.inf)
+    worst: list[float] = []  # per refinement: the largest error in units of its target
     while True:
         spline = _interpolate(axis, breaks, degree)
         pos, orth = _span_errors(axis, spline, breaks, radius_bound)
-        best = min(best, (pos.max(), orth.max()))
+        best = (min(best[0], float(pos.max())), min(best[1], float(orth.max())))
         bad = (pos > 0.5 * tolerance) | (orth > 0.5 * orthogonality)
         if not bad.any():
             return FrameSpline(spline, float(pos.max()), float(orth.max()), radius_bound)
+        worst.append(max(pos.max() / (0.5 * tolerance), orth.max() / (0.5 * orthogonality)))
         if len(breaks) - 1 + bad.sum() > max_spans:
+            stalled = len(worst) > STALLED_ROUNDS and min(worst[-STALLED_ROUNDS:]) > 0.5 * worst[-STALLED_ROUNDS - 1]
+            why = ("the error stopped decreasing under refinement: double precision limits what is reachable, "
+                   "try a looser tolerance") if stalled else (
+                   "the error was still decreasing: try a looser tolerance or split the span")  # fmt: skip
             raise FitError(
                 f"fit tolerance {tolerance:g} / orthogonality {orthogonality:g} not reached with {max_spans} "
-                f"spans of degree {degree}; the best reached was {best[0]:.3g} / {best[1]:.3g} "
-                "(double precision limits what is reachable: try a looser tolerance)"
+                f"spans of degree {degree} (the frame spline must meet half of each, {0.5 * tolerance:g} / "
+                f"{0.5 * orthogonality:g}); the best reached was {best[0]:.3g} / {best[1]:.3g} ({why})"
             )
         mids = 0.5 * (breaks[:-1] + breaks[1:])[bad]
         breaks = np.sort(np.concatenate([breaks, mids]))
+
+
+def check_tolerance(name: str, value: object) -> float:
+    """A fit tolerance in (0, 1) model units, or a ParameterError naming ``name``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)) or not (
+        math.isfinite(value) and 0 < value < 1
+    ):
+        raise ParameterError(f"fit {name} must be in (0, 1) model units, got {value!r:.80}")
+    return float(value)
 
 
 def _initial_breaks(axis: SlopeCurve, spans: int) -> np.ndarray:

@@ -1,8 +1,10 @@
-"""From a checked spec to B-rep: layout, wall and fit sections (README, "Spec files")."""
+"""From a checked spec to B-rep: layout, wall and fit sections (README, "Spec files"),
+and :func:`build_and_export`, the body of ``tubecad build`` for one spec."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from ..brep import NetLayout, TubeBuild, build_tube_solid, build_wall_solid
@@ -133,3 +135,77 @@ def panels_from_spec(spec: TubeSpec, build: TubeBuild) -> list:
         return split_into_panels(build, seams, None if rings == "all" else rings)
     except ParameterError as exc:
         raise SpecError(f"{spec.source}: [panels] {exc} (the layout has {n_s} stringers and {n_r} rings)") from None
+
+
+POLYLINE_SUFFIXES = (".csv", ".json")
+
+
+def split_outputs(outputs) -> tuple[list[Path], list[Path]]:
+    """CAD outputs (.step/.stp, .iges/.igs, .brep) and polyline outputs (.csv, .json);
+    a ParameterError for any other extension, before anything is built."""
+    from ..export.cad import cad_format
+
+    paths = [Path(p) for p in outputs]
+    polylines = [p for p in paths if p.suffix.lower() in POLYLINE_SUFFIXES]
+    cad = [p for p in paths if p not in polylines]
+    for path in cad:
+        cad_format(path)
+    return cad, polylines
+
+
+def build_and_export(spec: TubeSpec, outputs, step_schema: str = "AP214", report_path: Path | None = None,
+                     written: list[Path] | None = None) -> dict[str, Any]:
+    """Build ``spec``'s solid (the wall with [wall], else the capped tube; the named assembly
+    with [stiffeners] or [panels]), write each of ``outputs``, read each back, and return the
+    report (also written to ``report_path`` if given).
+
+    ``tubecad build`` runs this for its one spec and for every job of a batch. Every file is
+    written atomically; each path is appended to ``written`` once it is complete.
+    """  # fmt: skip
+    from ..brep.properties import volume
+    from ..examples import STEEL_DENSITY
+    from ..export.atomic import check_writable, write_text
+    from ..export.cad import cad_format, export_shape
+    from ..stiffeners import net_lines, polylines_csv, polylines_json
+    from ..stiffeners.assembly import export_named_step, named_assembly
+    from .readback import readback_report
+    from .report import build_report, stiffener_report, to_json, tube_report
+
+    written = [] if written is None else written
+    outputs, polyline_outputs = split_outputs(outputs)
+    for path in (*outputs, *polyline_outputs, *([report_path] if report_path is not None else [])):
+        check_writable(path)  # a bad output is refused before anything is built or written
+    result = build_from_spec(spec)
+    report = tube_report(spec.tube, 64, 501)
+    report["brep"] = build_report(result, spec.tube)
+    stiffeners, selection = stiffeners_from_spec(spec, result)
+    panels = panels_from_spec(spec, result)
+    shape = result.shape
+    named = bool(stiffeners or panels)
+    if named:
+        lines = net_lines(result.surfaces[0], result.layout)
+        shape = named_assembly(result, stiffeners, lines, fuse=bool(selection and selection.fuse), panels=panels)
+        density = selection.density if selection else STEEL_DENSITY
+        report["stiffeners"] = stiffener_report(stiffeners, lines, density)
+        report["panels"] = [{"name": p.name, "s": list(p.s_range), "angles_deg": list(p.angles_deg),
+                             "outer_area": p.outer_area, "volume": volume(p.solid),
+                             "mass_kg": p.mass(density)} for p in panels]  # fmt: skip
+    report["exports"] = {}
+    for path in outputs:
+        if named and cad_format(path) == "step":
+            export_named_step(shape, path)  # names and colours: wall, ring_03, stringer_05, ...
+        else:
+            export_shape(shape, path, step_schema)
+        written.append(path)
+        report["exports"][str(path)] = readback_report(path, shape)
+    if polyline_outputs:
+        lines = net_lines(result.surfaces[0], result.layout)
+        if len(result.surfaces) > 1:
+            lines += net_lines(result.surfaces[1], result.layout, "_inner")
+        for path in polyline_outputs:
+            (polylines_csv if path.suffix.lower() == ".csv" else polylines_json)(lines, path)
+            written.append(path)
+            report["exports"][str(path)] = {"bytes": path.stat().st_size, "lines": len(lines)}
+    if report_path is not None:
+        written.append(write_text(report_path, to_json(report)))
+    return report

@@ -3,9 +3,13 @@
     tubecad paper [-o DIR]                    the paper's example: pictures, STEP, IGES, report.json
     tubecad report SPEC.toml                  print the report (JSON) of any spec
     tubecad build SPEC.toml -o OUT.step ...   build the spec's solid, write STEP/IGES/BREP
+    tubecad build A.toml B.toml ... -d DIR    a batch on all cores: DIR/NAME.step, NAME.report.json, batch.json
+    tubecad build SPEC.toml --sweep tube.radius=10,12,15 -d DIR     the spec for each value (a batch)
     tubecad flat SPEC.toml -o DIR             flat patterns of the spec's stiffener webs
 
-Bad input exits with code 2 and a one-line message naming the key or option.
+Bad input exits with code 2 and a one-line message naming the key or option. A batch
+(tubecad.interfaces.batch) prints a line per finished job to stderr and exits with 2 if any
+job failed, 130 on Ctrl-C.
 """
 
 from __future__ import annotations
@@ -22,9 +26,10 @@ from ..examples import (
     PAPER_WALL_THICKNESS, STEEL_DENSITY, paper_tube,
 )  # fmt: skip
 from ..export.atomic import write_text
-from ..export.cad import cad_format, export_shape
+from ..export.cad import export_shape
 from ..export.plots import write_projections
-from .build import build_from_spec, panels_from_spec, stiffener_selection, stiffeners_from_spec
+from .batch import FORMATS as BATCH_FORMATS
+from .build import build_and_export, build_from_spec, split_outputs, stiffener_selection
 from .readback import readback_report
 from .report import DEFAULT_NS, DEFAULT_NU, build_report, stiffener_report, to_json, tube_report
 from .spec import load_spec
@@ -96,12 +101,6 @@ def paper(output: Path, nu: int, ns: int) -> None:
         click.echo(str(path))
 
 
-def props_volume(shape) -> float:
-    from ..brep.properties import volume
-
-    return volume(shape)
-
-
 def write_paper_stiffeners(build, output: Path, report: dict) -> list[Path]:
     """The paper's default stiffeners, named assembly, polylines and picture (issue 4)."""
     import build123d as bd
@@ -169,61 +168,43 @@ def report(spec: Path, nu: int, ns: int) -> None:
 
 
 @cli.command()
-@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
-@click.option("-o", "--output", "outputs", multiple=True, required=True, type=click.Path(dir_okay=False, path_type=Path),
-              help="Output file, repeatable; the format follows the extension: .step/.stp, .iges/.igs, .brep, "
-                   "or .csv/.json for the curvature lines as polylines (position, tangent, normal).")
+@click.argument("specs", metavar="SPEC [SPEC ...]", nargs=-1, required=True,
+                type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output", "outputs", multiple=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="One SPEC: output file, repeatable; the format follows the extension: .step/.stp, .iges/.igs, "
+                   ".brep, or .csv/.json for the curvature lines as polylines (position, tangent, normal).")
 @click.option("--step-schema", type=click.Choice(["AP214", "AP242"]), default="AP214", show_default=True)
 @click.option("--report", "report_path", type=click.Path(dir_okay=False, path_type=Path), default=None,
-              help="Also write the measured report (JSON) here.")
-def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: Path | None) -> None:
+              help="One SPEC: also write the measured report (JSON) here.")
+@click.option("-d", "--out-dir", type=click.Path(file_okay=False, path_type=Path), default=None,
+              help="Batch: folder for NAME.EXT per format, NAME.report.json per job and batch.json (created if needed).")
+@click.option("-f", "--format", "formats", multiple=True, type=click.Choice(BATCH_FORMATS, case_sensitive=False),
+              help="Batch: output format, repeatable (default step).")
+@click.option("--sweep", "sweeps", multiple=True, metavar="SECTION.KEY=VALUES",
+              help="Batch: build each SPEC with KEY set to each value: 10,12,15 (TOML values) or START:STOP:COUNT "
+                   "(inclusive); several --sweep give every combination.")
+@click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
+              help="Batch: jobs run at once, each in its own process  [default: all cores]")
+def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, report_path: Path | None,
+          out_dir: Path | None, formats: tuple[str, ...], sweeps: tuple[str, ...], jobs: int | None) -> None:
     """Build the solid of SPEC (the wall if it has [wall], else the capped tube) and write it.
 
-    Each file is read back and checked; a summary is printed.
+    With one SPEC and -o, each file is read back and checked; a summary is printed.
+
+    Batch (several SPECs, --sweep or -d): every job writes DIR/NAME.EXT for each -f format and
+    DIR/NAME.report.json, a line per finished job goes to stderr, DIR/batch.json lists every
+    job; the exit code is 2 if any job failed.
     """
+    if len(specs) > 1 or sweeps or out_dir is not None:
+        build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path)
+        return
+    if formats or jobs is not None:
+        raise click.UsageError("-f/--format and -j/--jobs are for batch mode (several SPECs, --sweep, or -d/--out-dir)")
+    if not outputs:
+        raise click.UsageError("Missing option '-o' / '--output' (or -d/--out-dir DIR for batch mode).")
     try:
-        polyline_outputs = [p for p in outputs if p.suffix.lower() in (".csv", ".json")]
-        outputs = tuple(p for p in outputs if p not in polyline_outputs)
-        for path in outputs:
-            cad_format(path)
-        checked = load_spec(spec)
-        result = build_from_spec(checked)
-        report = tube_report(checked.tube, 64, 501)
-        report["brep"] = build_report(result, checked.tube)
-        stiffeners, selection = stiffeners_from_spec(checked, result)
-        panels = panels_from_spec(checked, result)
-        shape = result.shape
-        named = bool(stiffeners or panels)
-        if named:
-            from ..examples import STEEL_DENSITY
-            from ..stiffeners import net_lines
-            from ..stiffeners.assembly import export_named_step, named_assembly
-
-            lines = net_lines(result.surfaces[0], result.layout)
-            shape = named_assembly(result, stiffeners, lines, fuse=bool(selection and selection.fuse), panels=panels)
-            density = selection.density if selection else STEEL_DENSITY
-            report["stiffeners"] = stiffener_report(stiffeners, lines, density)
-            report["panels"] = [{"name": p.name, "s": list(p.s_range), "angles_deg": list(p.angles_deg),
-                                 "outer_area": p.outer_area, "volume": props_volume(p.solid),
-                                 "mass_kg": p.mass(density)} for p in panels]  # fmt: skip
-        report["exports"] = {}
-        for path in outputs:
-            if named and cad_format(path) == "step":
-                export_named_step(shape, path)  # names and colours: wall, ring_03, stringer_05, ...
-            else:
-                export_shape(shape, path, step_schema)
-            report["exports"][str(path)] = readback_report(path, shape)
-        if polyline_outputs:
-            from ..stiffeners import net_lines, polylines_csv, polylines_json
-
-            lines = net_lines(result.surfaces[0], result.layout)
-            if len(result.surfaces) > 1:
-                lines += net_lines(result.surfaces[1], result.layout, "_inner")
-            for path in polyline_outputs:
-                (polylines_csv if path.suffix.lower() == ".csv" else polylines_json)(lines, path)
-                report["exports"][str(path)] = {"bytes": path.stat().st_size, "lines": len(lines)}
-        if report_path is not None:
-            write_text(report_path, to_json(report))
+        split_outputs(outputs)  # an unknown extension is refused before anything is built
+        report = build_and_export(load_spec(specs[0]), outputs, step_schema, report_path)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     brep = report["brep"]
@@ -236,6 +217,44 @@ def build(spec: Path, outputs: tuple[Path, ...], step_schema: str, report_path: 
             click.echo(f"{path}: {info['bytes']} bytes, {info['lines']} curvature lines as polylines")
         else:
             click.echo(f"{path}: {info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}")
+
+
+def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path) -> None:
+    """``tubecad build`` over many specs or a sweep (tubecad.interfaces.batch); exits 0, 2 or 130."""
+    import os
+    import time
+
+    from .batch import batch_record, parse_sweep, plan_jobs, run_batch
+
+    why = "several SPECs" if len(specs) > 1 else "--sweep" if sweeps else "-d/--out-dir"
+    if outputs or report_path is not None:
+        raise click.UsageError(f"-o/--output and --report are for one SPEC; in batch mode ({why}) each job writes "
+                               f"DIR/NAME.EXT for each -f/--format and DIR/NAME.report.json into -d/--out-dir DIR")  # fmt: skip
+    if out_dir is None:
+        raise click.UsageError(f"batch mode ({why}) needs -d/--out-dir DIR")
+    try:
+        planned = plan_jobs(specs, [parse_sweep(s) for s in sweeps], out_dir, formats, step_schema)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UserError(f"cannot create output folder {str(out_dir)!r}: {exc.strerror}") from None
+    workers = min(jobs or os.cpu_count() or 1, len(planned))
+    say = lambda line: click.echo(line, err=True)  # noqa: E731
+    say(f"building {len(planned)} job{'s' * (len(planned) > 1)} with {workers} process{'es' * (workers > 1)} into {out_dir}")
+    start = time.perf_counter()
+    results, interrupted = run_batch(planned, workers, say)
+    record = batch_record(planned, results, interrupted, time.perf_counter() - start, workers, sweeps,
+                          formats or ("step",))  # fmt: skip
+    summary = write_text(out_dir / "batch.json", to_json(record))
+    if interrupted:
+        say(f"interrupted: {record['cancelled']} of {len(planned)} jobs cancelled, {record['ok']} done, "
+            f"no partial files; {summary}")  # fmt: skip
+        click.get_current_context().exit(130)
+    say(f"{len(planned)} jobs: {record['ok']} ok, {record['failed']} failed, {record['seconds']:.1f} s; {summary}")
+    if record["failed"]:
+        click.get_current_context().exit(2)
 
 
 @cli.command()
@@ -270,8 +289,41 @@ def flat(spec: Path, output: Path) -> None:
 
 
 def main() -> None:
-    """Console-script entry point."""
-    cli(prog_name="tubecad")
+    """Console-script entry point.
+
+    Ctrl-C and SIGTERM end a run cleanly: both raise KeyboardInterrupt, so every atomic write
+    in progress removes its temporary file; one line "interrupted" goes to stderr and the
+    exit code is 130. Click's own handling (usage errors, --help) is kept otherwise.
+    """
+    import signal
+
+    def terminate(signum, frame):  # SIGTERM: the same clean exit as Ctrl-C
+        raise KeyboardInterrupt
+
+    try:
+        signal.signal(signal.SIGTERM, terminate)
+    except ValueError:  # pragma: no cover - not the main thread (embedded use)
+        pass
+    try:
+        code = cli.main(prog_name="tubecad", standalone_mode=False)
+    except click.exceptions.Abort as exc:
+        if isinstance(exc.__cause__, KeyboardInterrupt):
+            _interrupted()
+        click.echo("Aborted!", err=True)
+        sys.exit(1)
+    except click.ClickException as exc:
+        exc.show()
+        sys.exit(exc.exit_code)
+    except KeyboardInterrupt:
+        _interrupted()
+    sys.exit(code if isinstance(code, int) else 0)
+
+
+def _interrupted() -> None:
+    from .console import INTERRUPTED_EXIT_CODE
+
+    click.echo("interrupted", err=True)
+    sys.exit(INTERRUPTED_EXIT_CODE)
 
 
 if __name__ == "__main__":  # pragma: no cover

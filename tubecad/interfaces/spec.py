@@ -61,8 +61,8 @@ TUBE_KEYS = {
 }
 
 LAYOUT_KEYS = {
-    "rings": Key("integer", required=False, help="ring frames equally spaced in s, ends included, >= 2"),
-    "stringers": Key("integer", required=False, help="stringers at u = 360 j / M degrees, >= 1"),
+    "rings": Key("integer", required=False, help="ring frames equally spaced in s, ends included, 2 to 10000"),
+    "stringers": Key("integer", required=False, help="stringers at u = 360 j / M degrees, 1 to 1000"),
     "s_rings": Key("numbers", required=False, help="explicit ring arc lengths (span ends are added)"),
     "u_stringers_deg": Key("numbers", required=False, help="explicit stringer angles, degrees"),
 }
@@ -113,13 +113,19 @@ class TubeSpec:
 
 def load_spec(path: str | Path) -> TubeSpec:
     """Read and check a TOML spec file."""
+    return parse_spec(read_spec_data(path), str(path))
+
+
+def read_spec_data(path: str | Path) -> dict[str, Any]:
+    """Read a TOML spec file into a dict, unchecked (:func:`parse_spec` checks it)."""
     path = Path(path)
     try:
-        raw = path.read_bytes()
+        with open(path, "rb") as file:
+            raw = file.read(MAX_SPEC_BYTES + 1)  # bounded: /dev/zero or a huge file is refused, not read
     except OSError as exc:
         raise SpecError(f"cannot read spec file {str(path)!r}: {exc.strerror}") from None
     if len(raw) > MAX_SPEC_BYTES:
-        raise SpecError(f"{path}: spec file is {len(raw)} bytes; at most {MAX_SPEC_BYTES} are allowed")
+        raise SpecError(f"{path}: spec file is larger than {MAX_SPEC_BYTES} bytes; at most {MAX_SPEC_BYTES} are allowed")
     try:
         data = tomllib.loads(raw.decode("utf-8"))
     except UnicodeDecodeError:
@@ -128,7 +134,7 @@ def load_spec(path: str | Path) -> TubeSpec:
         raise SpecError(f"{path}: not valid TOML: {exc}") from None
     except RecursionError:
         raise SpecError(f"{path}: not valid TOML: nested too deeply") from None
-    return parse_spec(data, str(path))
+    return data
 
 
 def parse_spec(data: dict[str, Any], source: str = "<spec>") -> TubeSpec:
@@ -139,7 +145,7 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>") -> TubeSpec:
     allowed_sections = {"axis": None, "tube": TUBE_KEYS, **EXTRA_SECTIONS}
     for name, value in data.items():
         if name not in allowed_sections:
-            raise fail(f"unknown section [{name}]; allowed sections are {', '.join(f'[{s}]' for s in allowed_sections)}")
+            raise fail(f"unknown section [{_short(name)}]; allowed sections are {', '.join(f'[{s}]' for s in allowed_sections)}")
         if not isinstance(value, dict):
             raise fail(f"[{name}] must be a table (a [{name}] section), got {_toml_type(value)}")
     for name in ("axis", "tube"):
@@ -151,7 +157,7 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>") -> TubeSpec:
     if not isinstance(curve, str) or curve not in FAMILY_KEYS:
         if "curve" not in axis_data:
             raise fail(f"[axis] curve is missing; allowed: {AXIS_COMMON['curve'].help}")
-        raise fail(f"[axis] curve must be one of {AXIS_COMMON['curve'].help}, got {curve!r}")
+        raise fail(f"[axis] curve must be one of {AXIS_COMMON['curve'].help}, got {_short(repr(curve))}")
     axis_keys = {**AXIS_COMMON, **FAMILY_KEYS[curve]}
     sections = {"axis": _check_keys("axis", axis_data, axis_keys, fail)}
     for name, keys in allowed_sections.items():
@@ -165,12 +171,52 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>") -> TubeSpec:
     except ParameterError as exc:
         raise fail(f"[tube] {exc}") from None
     except RegularityError as exc:
-        raise fail(f"{exc} (or set [tube] allow_irregular = true)") from None
+        raise fail(f"[tube] radius {tube_data['radius']:g}: {_irregular(exc)}") from None
     layout = sections.get("layout", {})
     for count, listed in (("rings", "s_rings"), ("stringers", "u_stringers_deg")):
         if count in layout and listed in layout:
             raise fail(f"[layout] give either {count} or {listed}, not both")
+    _check_build_sections(tube, sections, fail)
     return TubeSpec(tube, sections, source)
+
+
+def _check_build_sections(tube: CurvatureLineTube, sections: dict[str, dict[str, Any]],
+                          fail: Callable[[str], SpecError]) -> None:  # fmt: skip
+    """Check what the B-rep needs ([tube] sizes, [layout], [wall], [fit]) against the tube now,
+    so that a bad value is refused before anything is built, by ``report`` as by ``build``.
+    The rules themselves live with the B-rep code."""
+    from ..brep.solids import MIN_SIZE, wall_radii
+    from ..fitting.frame_spline import check_tolerance
+    from .build import layout_from_section
+
+    if tube.radius < MIN_SIZE:
+        raise fail(f"[tube] radius must be >= {MIN_SIZE:g} model units for a B-rep, got {tube.radius:g}")
+    if tube.length < MIN_SIZE:
+        raise fail(f"[axis] s must span at least {MIN_SIZE:g} model units for a B-rep, got {tube.length:g}")
+    fit = sections.get("fit", {})
+    if "tolerance" in fit:
+        _with_section("fit", fail, lambda: check_tolerance("tolerance", fit["tolerance"]))
+    _with_section("layout", fail, lambda: layout_from_section(tube, sections.get("layout", {})))
+    wall = sections.get("wall")
+    if wall is not None:
+        r_in, r_out = _with_section("wall", fail, lambda: wall_radii(tube.radius, wall["thickness"],
+                                                                      wall.get("side", "centered")))  # fmt: skip
+        try:
+            CurvatureLineTube(tube.axis, r_out)
+        except ParameterError as exc:
+            raise fail(f"[wall] thickness {wall['thickness']:g} puts the wall's outer surface at radius {r_out:g}: {exc}") from None
+        except RegularityError as exc:
+            raise fail(f"[wall] the wall's outer surface is not regular: thickness {wall['thickness']:g} "
+                       f"(side = {wall.get('side', 'centered')!r}) puts it at radius {r_out:g}: {_irregular(exc)}") from None  # fmt: skip
+
+
+def _irregular(exc: RegularityError) -> str:
+    return str(exc).replace("(pass allow_irregular=True to build it anyway)", "(set [tube] allow_irregular = true to build it anyway)")
+
+
+def _short(text: str, most: int = 80) -> str:
+    """``text`` cut to ``most`` characters for a one-line message (a hostile spec can hold megabytes)."""
+    return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
 
 
 def _build_axis(curve: str, values: dict[str, Any]) -> SlopeCurve:
@@ -190,7 +236,7 @@ def _with_section(name: str, fail: Callable[[str], SpecError], build: Callable[[
 def _check_keys(section: str, values: dict[str, Any], keys: dict[str, Key], fail: Callable[[str], SpecError]) -> dict[str, Any]:
     for key in values:
         if key not in keys:
-            raise fail(f"unknown key [{section}] {key}; allowed keys are {', '.join(keys)}")
+            raise fail(f"unknown key [{section}] {_short(key)}; allowed keys are {', '.join(keys)}")
     out: dict[str, Any] = {}
     for key, spec in keys.items():
         if key not in values:

@@ -28,6 +28,12 @@ MAX_SAMPLES = 40_000
 #: the closest return of the axis is reported when it is within this many radii
 REPORT_RETURNS_WITHIN = 3.0
 MAX_CANDIDATES = 200_000
+#: axis sample pairs within REPORT_RETURNS_WITHIN radii kept in memory: an axis that coils
+#: onto itself (a long helix of tiny pitch, a circle run many times round) is sampled more
+#: coarsely instead, so the check stays within ~100 MB and a few seconds
+MAX_PAIRS = 2_000_000
+#: axis samples whose circles are tested for entry at once (bounds the candidate matrix)
+ENTRY_CHUNK = 128
 
 
 @dataclass(frozen=True)
@@ -126,6 +132,11 @@ def _closest_return(
     ss = np.linspace(s[0], s[-1], m)
     pts = axis.position(ss)
     tree = cKDTree(pts)
+    count = (int(tree.count_neighbors(tree, REPORT_RETURNS_WITHIN * radius)) - len(ss)) // 2  # fast: dual tree
+    if count > MAX_PAIRS:  # the axis is packed onto itself: pairs grow as samples^2
+        ss = np.linspace(s[0], s[-1], max(64, int(len(ss) * math.sqrt(MAX_PAIRS / count))))
+        pts = axis.position(ss)
+        tree = cKDTree(pts)
     pairs = tree.query_pairs(REPORT_RETURNS_WITHIN * radius, output_type="ndarray")
     if len(pairs):
         pairs = pairs[np.abs(ss[pairs[:, 0]] - ss[pairs[:, 1]]) >= math.pi * radius]
@@ -144,7 +155,26 @@ def _surface_entry(
     axis: SlopeCurve, radius: float, ss: np.ndarray, pts: np.ndarray, tree: cKDTree, near: np.ndarray
 ) -> tuple[float, float] | None:
     """The deepest point where a circle of the tube (at an axis sample in ``near``) lies
-    inside the tube around a far part of the axis, as (s of the circle, s on the axis)."""
+    inside the tube around a far part of the axis (or on it, to round-off: a circle run
+    round twice), as (s of the circle, s on the axis).
+
+    The samples are taken ENTRY_CHUNK at a time; once an entry is found and more than
+    MAX_CANDIDATES candidates were refined, the search stops (a densely coiled axis)."""
+    best: tuple[float, float, float] | None = None  # (depth, s of the circle, s on the axis)
+    refined = 0
+    for chunk in np.array_split(near, max(1, math.ceil(len(near) / ENTRY_CHUNK))):
+        found, count = _deepest_entry(axis, radius, ss, pts, tree, chunk)
+        refined += count
+        if found is not None and (best is None or found[0] > best[0]):
+            best = found
+        if best is not None and refined > MAX_CANDIDATES:
+            break
+    return None if best is None else (best[1], best[2])
+
+
+def _deepest_entry(
+    axis: SlopeCurve, radius: float, ss: np.ndarray, pts: np.ndarray, tree: cKDTree, near: np.ndarray
+) -> tuple[tuple[float, float, float] | None, int]:
     h = ss[1] - ss[0]
     _, r1, r2 = axis.rotation_minimising_frame(ss[near])
     u = np.linspace(0.0, 2.0 * math.pi, 32, endpoint=False)
@@ -155,7 +185,7 @@ def _surface_entry(
     far = np.abs(ss[cand["j"]] - circle_s[cand["i"]]) >= math.pi * radius
     cand = cand[far]
     if len(cand) == 0:
-        return None
+        return None, 0
     if len(cand) > MAX_CANDIDATES:  # the deepest entry is among the closest candidates
         cand = cand[np.argpartition(cand["v"], MAX_CANDIDATES)[:MAX_CANDIDATES]]
     p_idx, q_idx = cand["i"], cand["j"]
@@ -166,15 +196,22 @@ def _surface_entry(
         r = target - a.position
         f = np.einsum("ij,ij->i", r, a.t)
         fp = -1.0 + a.k * np.einsum("ij,ij->i", r, a.n)
-        x = np.clip(x - f / fp, np.maximum(lo, ss[q_idx] - 2 * h), np.minimum(hi, ss[q_idx] + 2 * h))
+        with np.errstate(divide="ignore", invalid="ignore"):  # fp = 0 at a centre of curvature
+            step = np.where(fp != 0.0, f / fp, 0.0)
+        x = np.clip(x - step, np.maximum(lo, ss[q_idx] - 2 * h), np.minimum(hi, ss[q_idx] + 2 * h))
     a = axis.evaluate(x)
     depth = radius - np.linalg.norm(target - a.position, axis=1)
     in_disc = np.abs(np.einsum("ij,ij->i", target - a.position, a.t)) < 1e-7 * radius  # not beyond an end cap
-    inside = (depth > 1e-9 * radius) & in_disc & (np.abs(x - circle_s[p_idx]) >= math.pi * radius)
+    # depth ~ 0 (to round-off) away from the ends is a surface lying on another part of
+    # itself (a circle run round more than once): refused too; a ring closed end to end is not
+    c_s = circle_s[p_idx]
+    interior = (np.minimum(c_s - lo, hi - c_s) > h) & (np.minimum(x - lo, hi - x) > h)
+    touching = (np.abs(depth) <= 1e-9 * radius) & interior
+    inside = ((depth > 1e-9 * radius) | touching) & in_disc & (np.abs(x - c_s) >= math.pi * radius)
     if not inside.any():
-        return None
+        return None, len(cand)
     k = np.flatnonzero(inside)[np.argmax(depth[inside])]
-    return float(circle_s[p_idx[k]]), float(x[k])
+    return (float(depth[k]), float(circle_s[p_idx[k]]), float(x[k])), len(cand)
 
 
 def _refine_closest(axis: SlopeCurve, ss: np.ndarray, i: int, j: int, sampled: float) -> tuple[float, tuple[float, float]]:

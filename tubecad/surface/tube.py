@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 
 from ..curves.slope_curve import SlopeCurve
 from ..errors import ParameterError, RegularityError
-from ..validation import number_in_range
+from ..validation import bounded_length, flag
 from .forms import FundamentalForms, SurfaceDerivatives
 from .regularity import RegularityReport, check_regularity
 
@@ -38,7 +38,8 @@ class CurvatureLineTube:
         if not isinstance(axis, SlopeCurve):
             raise ParameterError(f"axis must be a tubecad SlopeCurve, got {type(axis).__name__}")
         self.axis = axis
-        self.radius = number_in_range("radius", radius, 0.0)
+        self.radius = bounded_length("radius", radius, 0.0)
+        allow_irregular = flag("allow_irregular", allow_irregular)
         self.regularity: RegularityReport = check_regularity(axis, self.radius)
         if not self.regularity.ok and not allow_irregular:
             raise RegularityError(self.regularity.message())

@@ -1,0 +1,391 @@
+"""``tubecad build`` over many specs or a parameter sweep, on all cores (README, "Command line").
+
+    tubecad build a.toml b.toml -d OUT [-f step -f iges] [-j N]
+    tubecad build paper.toml --sweep tube.radius=10,12,15 --sweep axis.beta_deg=0:30:4 -d OUT
+
+Every job is one spec: a file, or a file with swept values put in (``paper.toml[tube.radius=12]``,
+checked exactly like a file). It runs :func:`~tubecad.interfaces.build.build_and_export`, the
+code path of a single ``tubecad build``, and writes OUT/NAME.EXT for each format and
+OUT/NAME.report.json. Jobs run in a process pool started with "spawn" (OCCT and fork do not
+mix well), or in this process with one job at a time. A failed job does not stop the others
+and leaves none of its files; OUT/batch.json lists every job. On Ctrl-C the pending jobs are
+cancelled and the running ones stopped without partial files.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import glob
+import itertools
+import json
+import math
+import multiprocessing
+import re
+import signal
+import time
+import tomllib
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+from ..errors import ParameterError, TubecadError
+
+#: what -f/--format accepts: CAD files (.step/.stp, .iges/.igs, .brep) and polylines (.csv, .json)
+FORMATS = ("step", "stp", "iges", "igs", "brep", "csv", "json")
+MAX_JOBS = 10_000
+MAX_NAME = 120
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """One --sweep: the spec key ``section.key`` and the values it takes."""
+
+    section: str
+    key: str
+    values: tuple[Any, ...]
+
+    @property
+    def label(self) -> str:
+        return f"{self.section}.{self.key}"
+
+
+@dataclass(frozen=True)
+class Job:
+    """One spec to build (picklable: it travels to a worker process)."""
+
+    name: str
+    spec: str  # the spec file
+    source: str  # how messages name it: the file, or file[section.key=value, ...]
+    overrides: tuple[tuple[str, str, Any], ...]  # (section, key, value) put into the file's spec
+    outputs: tuple[str, ...]
+    report: str
+    step_schema: str = "AP214"
+
+
+@dataclass
+class JobResult:
+    """What became of a job; ``outputs`` are the file names written into the batch folder."""
+
+    name: str
+    status: str  # ok | failed | cancelled
+    error: str | None = None
+    seconds: float | None = None
+    outputs: list[str] = field(default_factory=list)
+    kind: str = ""
+    faces: int = 0
+    valid: bool = False
+
+
+# ---------------------------------------------------------------- sweeps and job names
+
+
+def schema_sections() -> dict[str, dict]:
+    """section -> its allowed keys, as the spec files have them (every family's [axis] keys)."""
+    from .spec import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS
+
+    axis = dict(AXIS_COMMON)
+    for keys in FAMILY_KEYS.values():
+        axis.update(keys)
+    return {"axis": axis, "tube": TUBE_KEYS, **EXTRA_SECTIONS}
+
+
+def parse_sweep(text: str) -> Sweep:
+    """``section.key=v1,v2,...`` (TOML values) or ``section.key=start:stop:count`` (inclusive)."""
+    where = f"--sweep {text!r}"
+    name, sep, values = text.partition("=")
+    name, values = name.strip(), values.strip()
+    if not sep or not name or not values:
+        raise ParameterError(f"{where}: expected SECTION.KEY=VALUES, e.g. tube.radius=10,12,15 or axis.beta_deg=0:30:4")
+    section, dot, key = name.partition(".")
+    sections = schema_sections()
+    if not dot or not key:
+        raise ParameterError(f"{where}: the key must be SECTION.KEY as in the spec file, e.g. tube.radius")
+    if section not in sections:
+        raise ParameterError(f"{where}: unknown section [{section}]; allowed sections are "
+                             f"{', '.join(f'[{s}]' for s in sections)}")  # fmt: skip
+    if key not in sections[section]:
+        raise ParameterError(f"{where}: unknown key [{section}] {key}; allowed keys are {', '.join(sections[section])}")
+    if "\n" in values or "\r" in values:
+        raise ParameterError(f"{where}: the values must be on one line")
+    span = re.fullmatch(r"([^:,\[\]\"']+):([^:,\[\]\"']+):([^:,\[\]\"']+)", values)
+    parsed = _range(where, *span.groups()) if span else _toml_list(where, values)
+    if len(parsed) > MAX_JOBS:
+        raise ParameterError(f"{where}: {len(parsed)} values; at most {MAX_JOBS} are allowed")
+    return Sweep(section, key, tuple(parsed))
+
+
+def _toml(text: str) -> dict[str, Any]:
+    """Parse one generated TOML line ``v = ...`` (tomllib only: nothing is evaluated)."""
+    doc = tomllib.loads(f"v = {text}")
+    if set(doc) != {"v"}:
+        raise tomllib.TOMLDecodeError("expected a single value")
+    return doc
+
+
+def _toml_list(where: str, values: str) -> list[Any]:
+    try:
+        parsed = _toml(f"[{values}]")["v"]
+    except (tomllib.TOMLDecodeError, RecursionError):
+        raise ParameterError(f"{where}: the values must be TOML values separated by commas, e.g. 10,12,15 or "
+                             f"'\"helix\",\"clothoid\"' (strings in quotes), or START:STOP:COUNT") from None  # fmt: skip
+    if not parsed:
+        raise ParameterError(f"{where}: no values")
+    return parsed
+
+
+def _range(where: str, *parts: str) -> list[Any]:
+    def number(v: Any) -> bool:
+        return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+    try:
+        start, stop, count = (_toml(p.strip())["v"] for p in parts)
+        ok = number(start) and number(stop) and type(count) is int and 2 <= count <= MAX_JOBS
+    except tomllib.TOMLDecodeError:
+        ok = False
+    if not ok:
+        raise ParameterError(f"{where}: a range is START:STOP:COUNT with numbers START and STOP and a whole "
+                             f"COUNT in [2, {MAX_JOBS}], e.g. 0:30:4 for 0, 10, 20, 30")  # fmt: skip
+    import numpy as np
+
+    values = np.linspace(start, stop, count).tolist()
+    if isinstance(start, int) and isinstance(stop, int) and all(float(v).is_integer() for v in values):
+        values = [int(v) for v in values]  # 3:9:4 gives the whole numbers 3, 5, 7, 9
+    return values
+
+
+def toml_text(value: Any) -> str:
+    """A value as TOML writes it (for job sources such as ``paper.toml[tube.radius=12.0]``)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float) and not math.isfinite(value):
+        return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(toml_text(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{json.dumps(k)} = {toml_text(v)}" for k, v in value.items()) + "}"
+    return str(value)
+
+
+def _name_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, list):
+        return "-".join(_name_value(v) for v in value)
+    return str(value)
+
+
+def safe_name(text: str) -> str:
+    """Letters, digits and ``. _ + -`` only, at most MAX_NAME characters."""
+    return re.sub(r"[^A-Za-z0-9._+-]+", "_", text).strip("._")[:MAX_NAME] or "spec"
+
+
+def plan_jobs(specs, sweeps: list[Sweep], out_dir: Path, formats, step_schema: str = "AP214") -> list[Job]:
+    """One job per spec file and per combination of the swept values, with unique names."""
+    formats = list(dict.fromkeys(f.lower() for f in formats)) or ["step"]
+    bad = [f for f in formats if f not in FORMATS]
+    if bad:
+        raise ParameterError(f"-f/--format {bad[0]!r}: use one of {', '.join(FORMATS)}")
+    labels = [s.label for s in sweeps]
+    repeated = sorted({x for x in labels if labels.count(x) > 1})
+    if repeated:
+        raise ParameterError(f"--sweep {repeated[0]} is given more than once; give all its values in one --sweep")
+    keys = [s.key for s in sweeps]
+    tags = [s.key if keys.count(s.key) == 1 else f"{s.section}-{s.key}" for s in sweeps]
+    combos = list(itertools.product(*(s.values for s in sweeps)))
+    if len(specs) * len(combos) > MAX_JOBS:
+        raise ParameterError(f"{len(specs)} specs x {len(combos)} swept combinations = {len(specs) * len(combos)} jobs; "
+                             f"at most {MAX_JOBS} are allowed")  # fmt: skip
+    taken = {"batch.json"}
+    jobs = []
+    for spec in specs:
+        spec = Path(spec)
+        for combo in combos:
+            base = safe_name(spec.stem + "".join(f"_{tag}-{_name_value(v)}" for tag, v in zip(tags, combo)))
+            name, n = base, 2
+            while any(f.lower() in taken for f in _file_names(name, formats)):
+                name, n = f"{base}_{n}", n + 1  # same stem twice, or names equal once made safe
+            taken.update(f.lower() for f in _file_names(name, formats))
+            source = str(spec) + (f"[{', '.join(f'{s.label}={toml_text(v)}' for s, v in zip(sweeps, combo))}]"
+                                  if sweeps else "")  # fmt: skip
+            overrides = tuple((s.section, s.key, v) for s, v in zip(sweeps, combo))
+            jobs.append(Job(name, str(spec), source, overrides, tuple(str(out_dir / f"{name}.{f}") for f in formats),
+                            str(out_dir / f"{name}.report.json"), step_schema))  # fmt: skip
+    return jobs
+
+
+def _file_names(name: str, formats) -> list[str]:
+    return [f"{name}.{f}" for f in formats] + [f"{name}.report.json"]
+
+
+# ---------------------------------------------------------------- one job (in a worker or here)
+
+_stopping = False  # a worker was told to stop (the batch was interrupted)
+_busy = False  # a worker is running a job
+
+
+def job_spec(job: Job):
+    """The job's checked spec: the file, with the swept values put in, checked as a file is."""
+    from .spec import parse_spec, read_spec_data
+
+    data = read_spec_data(job.spec)
+    for section, key, value in job.overrides:
+        table = data.setdefault(section, {})
+        if isinstance(table, dict):  # else parse_spec says the section is not a table
+            table[key] = value
+    return parse_spec(data, job.source)
+
+
+def run_job(job: Job) -> JobResult:
+    """Build one job with the single-spec code path; on failure remove what it wrote."""
+    from .build import build_and_export
+
+    global _busy
+    start = time.perf_counter()
+    written: list[Path] = []
+    _busy = True
+    try:
+        if _stopping:
+            raise KeyboardInterrupt
+        report = build_and_export(job_spec(job), job.outputs, job.step_schema, Path(job.report), written)
+    except BaseException as exc:
+        _busy = False
+        for path in written:
+            with contextlib.suppress(OSError):
+                path.unlink()
+        if not isinstance(exc, Exception):
+            raise  # KeyboardInterrupt, SystemExit
+        return JobResult(job.name, "failed", one_line(exc), time.perf_counter() - start)
+    _busy = False
+    brep = report["brep"]
+    valid = bool(brep["valid"]) and all(e.get("valid", True) for e in report["exports"].values())
+    return JobResult(job.name, "ok", None, time.perf_counter() - start, [p.name for p in written],
+                     brep["kind"], brep["faces"], valid)  # fmt: skip
+
+
+def one_line(exc: BaseException) -> str:
+    text = str(exc) if isinstance(exc, TubecadError) else f"{type(exc).__name__}: {exc}"
+    return " ".join(text.split()) or type(exc).__name__
+
+
+def _init_worker() -> None:
+    """Workers leave Ctrl-C to the main process, which stops them with SIGTERM."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _on_sigterm)
+
+
+def _on_sigterm(signum, frame) -> None:
+    global _stopping
+    _stopping = True
+    if _busy:
+        raise KeyboardInterrupt  # the job's atomic writes remove their temporary files
+
+
+# ---------------------------------------------------------------- the batch
+
+
+def progress_line(result: JobResult, done: int, total: int) -> str:
+    head = f"[{done}/{total}] {result.name}: "
+    if result.status != "ok":
+        error = result.error or result.status
+        return head + "FAILED: " + (error if len(error) <= 300 else error[:297] + "...")
+    return head + f"{result.kind} {result.faces} faces {'valid' if result.valid else 'NOT VALID'}, {result.seconds:.1f} s"
+
+
+def run_batch(jobs: list[Job], workers: int, echo: Callable[[str], None]) -> tuple[list[JobResult | None], bool]:
+    """Run the jobs (``workers`` processes, or here if 1), echoing a line per finished job.
+
+    Returns the results in job order (None: cancelled) and whether Ctrl-C interrupted it.
+    """
+    results: dict[int, JobResult] = {}
+
+    def finished(i: int, result: JobResult) -> None:
+        results[i] = result
+        echo(progress_line(result, len(results), len(jobs)))
+
+    interrupted = False
+    if workers <= 1:
+        try:
+            for i, job in enumerate(jobs):
+                finished(i, run_job(job))
+        except KeyboardInterrupt:
+            interrupted = True
+    else:
+        interrupted = _run_pool(jobs, workers, finished, results)
+    if interrupted or any(r.status != "ok" for r in results.values()):
+        remove_temporaries(jobs)
+    return [results.get(i) for i in range(len(jobs))], interrupted
+
+
+def _run_pool(jobs: list[Job], workers: int, finished, results: dict[int, JobResult]) -> bool:
+    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"), initializer=_init_worker)
+    futures: dict = {}
+    try:
+        futures = {pool.submit(run_job, job): i for i, job in enumerate(jobs)}
+        for future in as_completed(futures):
+            finished(futures[future], _result_of(future, jobs[futures[future]]))
+    except KeyboardInterrupt:
+        for future in futures:
+            future.cancel()
+        while True:  # stop the running jobs, wait for the workers (a second Ctrl-C only repeats this)
+            try:
+                _stop_workers(pool)
+                pool.shutdown(wait=True, cancel_futures=True)
+                break
+            except KeyboardInterrupt:
+                continue
+        for future, i in futures.items():  # jobs that finished meanwhile keep their files
+            if i not in results and future.done() and not future.cancelled() and future.exception() is None:
+                results[i] = future.result()
+        return True
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+    return False
+
+
+def _result_of(future, job: Job) -> JobResult:
+    try:
+        return future.result()
+    except BrokenProcessPool:
+        return JobResult(job.name, "failed", "its worker process died (killed, or out of memory?) before it finished")
+    except BaseException as exc:  # noqa: BLE001 - whatever a worker sent back fails that job only
+        return JobResult(job.name, "failed", one_line(exc))
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """SIGTERM to each worker: its running job raises KeyboardInterrupt and cleans up."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        with contextlib.suppress(Exception):
+            if process.is_alive():
+                process.terminate()
+
+
+def remove_temporaries(jobs: list[Job]) -> None:
+    """Remove temporary files of the jobs' targets that a killed worker could leave behind."""
+    for job in jobs:
+        for target in map(Path, (*job.outputs, job.report)):
+            for tmp in target.parent.glob(f".{glob.escape(target.name)}.*.part{glob.escape(target.suffix)}"):
+                tmp.unlink(missing_ok=True)
+
+
+def batch_record(jobs: list[Job], results: list[JobResult | None], interrupted: bool, seconds: float,
+                 workers: int, sweeps: list[str], formats) -> dict[str, Any]:
+    """What batch.json holds: the run and every job (name, source, status, error, seconds, outputs)."""
+    entries = []
+    for job, result in zip(jobs, results):
+        result = result or JobResult(job.name, "cancelled", "interrupted (Ctrl-C) before it finished")
+        entries.append({"name": job.name, "source": job.source,
+                        "sweep": {f"{s}.{k}": v for s, k, v in job.overrides},
+                        "status": result.status, "error": result.error,
+                        "seconds": None if result.seconds is None else round(result.seconds, 3),
+                        "outputs": result.outputs})  # fmt: skip
+    counts = {status: sum(e["status"] == status for e in entries) for status in ("ok", "failed", "cancelled")}
+    return {"jobs_total": len(jobs), **counts, "interrupted": interrupted, "seconds": round(seconds, 3), "workers": workers,
+            "formats": list(formats), "sweeps": list(sweeps), "jobs": entries}  # fmt: skip
