@@ -1,27 +1,41 @@
 """Patch faces of a tube surface between ring frames and stringers, with shared edges.
 
-Vertices and edges are built once and used by both neighbouring faces. Each edge's 3D
-curve is an isoline of the surface (ring: the exact circle s = const; stringer: the
-curvature line u = const) and its pcurves are the straight lines s = const / u = const of
-the parameter plane, with the same parameter, so the edges are same-parameter by
-construction and no sewing is needed. Each face lies on its own Segment()-ed copy of the
-surface, which keeps seams out of multi-face tubes; a single face around the tube uses a
-seam edge instead.
+Vertices and edges are built once and used by both neighbouring faces, so no sewing is
+needed. A stringer edge's 3D curve is the surface's isoline u = const (the curvature line)
+with the pcurve u = const, the same parameter by construction. A ring edge's 3D curve is a
+true circle (Geom_Circle: centre c(s), plane normal t(s), radius rho, angle from the
+stringer origin), so CAD selectors and OCCT's checks see circles; its pcurve is
+(u(theta), s), u(theta) the circle parametrisation's inverse as a quintic B-spline in
+theta (:func:`angle_to_u`, C1 like the circle, fitted once per stringer interval and
+shared by every ring), and the edge tolerance covers what the fit deviates from the exact
+circle. Each face lies on its own Segment()-ed copy of the surface, which keeps seams
+out of multi-face tubes; a single face around the tube uses a seam edge instead.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Sequence
 
+import functools
+import math
+
+import numpy as np
 from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-from OCP.Geom import Geom_BSplineSurface
-from OCP.Geom2d import Geom2d_Line
-from OCP.gp import gp_Dir2d, gp_Pnt2d
+from OCP.Geom import Geom_Circle
+from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Line
+from OCP.gp import gp_Ax2, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d
+from OCP.TColgp import TColgp_Array1OfPnt2d
+from scipy.interpolate import BSpline, make_lsq_spline
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
 from ..errors import TubecadError
+from ..fitting import TubeSurface
+from ..fitting.circle import CircleSpline
+from ..fitting.occ_arrays import integers, knots_and_multiplicities, reals
+from .layout import stringer_parameters
 
 #: edge and vertex tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = 1e-7
@@ -39,35 +53,42 @@ class PatchFaces:
         return [f for row in self.faces for f in row]
 
 
-def patch_faces(surface: Geom_BSplineSurface, s_rings: list[float], u_cuts: list[float], reverse: bool = False) -> PatchFaces:
-    """Faces of ``surface`` between rings ``s_rings`` and stringer cuts ``u_cuts``
-    ([0, ..., 2 pi]); ``reverse`` flips every face (for the inner wall of a solid)."""
+def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_deg: Sequence[float],
+                reverse: bool = False) -> PatchFaces:  # fmt: skip
+    """Faces of ``tube_surface`` between rings ``s_rings`` and the stringers at angles
+    ``stringers_deg`` (increasing, the first at the surface's origin); ``reverse`` flips
+    every face (for the inner wall of a solid)."""
     builder = BRep_Builder()
+    surface = tube_surface.surface
+    angles = [math.radians(a - tube_surface.origin_deg) for a in stringers_deg] + [2 * math.pi]
+    u_cuts = stringer_parameters(stringers_deg, tube_surface.u_at)
     n_rings, n_cuts = len(s_rings), len(u_cuts)
     n_stringers = n_cuts - 1
     seam = n_stringers == 1
 
     vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings]
     rings = []
+    to_u = [angle_to_u(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
+    ring_tolerance = []
     for i, s in enumerate(s_rings):
-        iso = surface.VIso(s)
+        circle, gap = ring_circle(tube_surface, s)
+        ring_tolerance.append(max(TOLERANCE, 2.0 * gap))
         rings.append([
-            _edge(iso, vertices[i][j], vertices[i][(j + 1) % n_stringers], u_cuts[j], u_cuts[j + 1])
+            _edge(circle, vertices[i][j], vertices[i][(j + 1) % n_stringers], angles[j], angles[j + 1])
             for j in range(n_stringers)
         ])  # fmt: skip
-    stringers = []
-    for j in range(n_stringers):
-        iso = surface.UIso(u_cuts[j])
-        stringers.append([
-            _edge(iso, vertices[i][j], vertices[i + 1][j], s_rings[i], s_rings[i + 1]) for i in range(n_rings - 1)
-        ])  # fmt: skip
+    bands = []  # the surface between two rings, cut once: patches and stringer edges copy far fewer poles
+    for s0, s1 in zip(s_rings[:-1], s_rings[1:]):
+        band = surface.Copy()
+        band.Segment(u_cuts[0], u_cuts[-1], s0, s1)
+        bands.append(band)
+    stringers = [[_edge(band.UIso(u_cuts[j]), vertices[i][j], vertices[i + 1][j], s_rings[i], s_rings[i + 1])
+                  for i, band in enumerate(bands)] for j in range(n_stringers)]  # fmt: skip
 
     faces = []
-    for i in range(n_rings - 1):
+    for i, band in enumerate(bands):
         row = []
         s0, s1 = s_rings[i], s_rings[i + 1]
-        band = surface.Copy()  # cut the band between two rings once, then each patch from it:
-        band.Segment(u_cuts[0], u_cuts[-1], s0, s1)  # far fewer poles to copy per patch
         for j in range(n_stringers):
             u0, u1 = u_cuts[j], u_cuts[j + 1]
             piece = band if seam else band.Copy()
@@ -77,8 +98,8 @@ def patch_faces(surface: Geom_BSplineSurface, s_rings: list[float], u_cuts: list
             builder.MakeFace(face, piece, TOLERANCE)
             bottom, top = rings[i][j], rings[i + 1][j]
             left, right = stringers[j][i], stringers[(j + 1) % n_stringers][i]
-            builder.UpdateEdge(bottom, _line(0.0, s0, 1, 0), face, TOLERANCE)
-            builder.UpdateEdge(top, _line(0.0, s1, 1, 0), face, TOLERANCE)
+            builder.UpdateEdge(bottom, _ring_pcurve(to_u[j], s0), face, ring_tolerance[i])
+            builder.UpdateEdge(top, _ring_pcurve(to_u[j], s1), face, ring_tolerance[i + 1])
             if seam:  # one edge used twice: pcurve u = 2 pi for its forward use, u = 0 reversed
                 builder.UpdateEdge(right, _line(u1, 0.0, 0, 1), _line(u0, 0.0, 0, 1), face, TOLERANCE)
             else:
@@ -94,6 +115,70 @@ def patch_faces(surface: Geom_BSplineSurface, s_rings: list[float], u_cuts: list
             row.append(TopoDS_Face.Reversed(face) if reverse else face)
         faces.append(row)
     return PatchFaces(faces, rings, stringers)
+
+
+#: u(theta) is fitted to this (radians of u; x rho, far below the edge tolerance)
+ANGLE_FIT_TOLERANCE = 1e-13
+#: the pcurve's degree and its initial span (degree 9 over 15 deg fits u(theta) to ~1e-15)
+ANGLE_FIT_DEGREE = 9
+ANGLE_FIT_SPAN = math.radians(15.0)
+
+
+def angle_to_u(circle: CircleSpline, a: float, b: float) -> BSpline:
+    """See :func:`_angle_to_u` (cached: every ring and both walls share these curves)."""
+    return _angle_to_u(circle.breaks, float(a), float(b))
+
+
+@functools.lru_cache(maxsize=1024)
+def _angle_to_u(breaks: tuple[float, ...], a: float, b: float) -> BSpline:
+    """u(theta) on [a, b] (radians from the origin) as a C1 B-spline: knots of multiplicity
+    degree - 1 where the circle's sub-arcs join (u(theta) is only C1 there), spans of at
+    most ANGLE_FIT_SPAN, halved until a least-squares fit on Chebyshev points is within
+    ANGLE_FIT_TOLERANCE of the closed form."""
+    circle = CircleSpline.with_breaks(breaks)
+    degree = ANGLE_FIT_DEGREE
+    joints = [arc.start for arc in circle.arcs if a < arc.start < b]
+    segments = np.array([a, *joints, b])
+    refine = 1
+    while True:
+        knots, samples = [a] * (degree + 1), []
+        for k, (lo, hi) in enumerate(zip(segments[:-1], segments[1:])):
+            spans = refine * math.ceil((hi - lo) / ANGLE_FIT_SPAN)
+            knots += list(np.linspace(lo, hi, spans + 1)[1:-1]) + ([joints[k]] * (degree - 1) if k < len(joints) else [])
+            samples.append(lo + (hi - lo) * 0.5 * (1 - np.cos(np.linspace(0, math.pi, 4 * spans + degree + 4))))
+        knots += [b] * (degree + 1)
+        x = np.unique(np.concatenate(samples))
+        spline = make_lsq_spline(x, circle.u_of_theta(x), np.array(knots), k=degree)
+        check = np.linspace(a, b, 200 * refine * len(segments))
+        if np.abs(spline(check) - circle.u_of_theta(check)).max() <= ANGLE_FIT_TOLERANCE or refine >= 8:
+            return spline
+        refine *= 2
+
+
+def _ring_pcurve(to_u: BSpline, s: float) -> Geom2d_BSplineCurve:
+    """The pcurve (u(theta), s) of a ring arc, parameterised by the circle's angle."""
+    poles = TColgp_Array1OfPnt2d(1, len(to_u.c))
+    for i, u in enumerate(to_u.c):
+        poles.SetValue(i + 1, gp_Pnt2d(float(u), s))
+    knots, mults = knots_and_multiplicities(to_u.t)
+    return Geom2d_BSplineCurve(poles, reals(knots), integers(mults), int(to_u.k))
+
+
+def ring_circle(tube_surface: TubeSurface, s: float, samples: int = 16) -> tuple[Geom_Circle, float]:
+    """The ring at ``s`` as an exact circle (parameter: angle from the surface's origin) and
+    its largest measured distance from the surface's isoline s = const."""
+    tube = tube_surface.tube
+    a = math.radians(tube_surface.origin_deg)
+    _, r1, r2 = tube.axis.rotation_minimising_frame(np.array([s]))
+    centre, t = tube.axis.position(np.array([s]))[0], tube.axis.frame(np.array([s]))[0][0]
+    x_dir = math.cos(a) * r1[0] + math.sin(a) * r2[0]
+    circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+                         tube.radius)  # fmt: skip
+    theta = np.linspace(0.0, 2 * math.pi, samples, endpoint=False) + 0.1
+    gap = 0.0
+    for th, u in zip(theta, tube_surface.circle.u_of_theta(theta)):
+        gap = max(gap, circle.Value(float(th)).Distance(tube_surface.surface.Value(float(u), s)))
+    return circle, gap
 
 
 def _vertex(builder: BRep_Builder, point) -> TopoDS_Vertex:

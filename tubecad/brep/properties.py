@@ -35,6 +35,18 @@ def count(shape, kind: str) -> int:
     return found.Extent()
 
 
+def count_circle_edges(shape) -> int:
+    """Edges whose 3D curve is a circle (OCCT's GeomAbs_Circle, what CAD selectors see)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.GeomAbs import GeomAbs_Circle
+    from OCP.TopoDS import TopoDS
+
+    found = TopTools_IndexedMapOfShape()
+    TopExp.MapShapes_s(topods(shape), TopAbs_EDGE, found)
+    return sum(BRepAdaptor_Curve(TopoDS.Edge_s(found.FindKey(i))).GetType() == GeomAbs_Circle
+               for i in range(1, found.Extent() + 1))  # fmt: skip
+
+
 def free_edges(shape) -> int:
     """Edges used by fewer than two faces (a closed solid has none)."""
     edge_faces = TopTools_IndexedDataMapOfShapeListOfShape()
@@ -62,3 +74,39 @@ def faces_area(faces, eps: float = EPS) -> float:
         builder.Add(compound, topods(face))
     return area(compound, eps)
 
+
+
+#: BOPAlgo_ArgumentAnalyzer's checks, all switched on (FreeCAD's "Check geometry" with
+#: "BOP check" and every option): what OCCT tests before a boolean operation
+ANALYZER_MODES = ("ArgumentTypeMode", "SelfInterMode", "SmallEdgeMode", "RebuildFaceMode", "TangentMode",
+                  "MergeVertexMode", "MergeEdgeMode", "ContinuityMode", "CurveOnSurfaceMode")  # fmt: skip
+
+
+def analyzer_findings(shape, modes: tuple[str, ...] = ANALYZER_MODES) -> dict[str, int]:
+    """The findings of OCCT's BOPAlgo_ArgumentAnalyzer with the checks ``modes`` on (default
+    all), as {status name: number of faulty sub-shapes}; {} for a shape fit for booleans.
+
+    Each solid is checked on its own, as a CAD tool checks each part of an imported
+    assembly (stiffeners overlap the wall and each other by design: that is no finding);
+    a shape without solids is checked whole.
+    """
+    from OCP.BOPAlgo import BOPAlgo_ArgumentAnalyzer
+    from OCP.TopExp import TopExp_Explorer
+
+    explorer = TopExp_Explorer(topods(shape), TopAbs_SOLID)
+    parts = []
+    while explorer.More():
+        parts.append(explorer.Current())
+        explorer.Next()
+    findings: dict[str, int] = {}
+    for part in parts or [topods(shape)]:
+        analyzer = BOPAlgo_ArgumentAnalyzer()
+        analyzer.SetShape1(part)
+        for mode in modes:
+            setattr(analyzer, mode, True)
+        analyzer.SetRunParallel(True)
+        analyzer.Perform()
+        for result in analyzer.GetCheckResult() if analyzer.HasFaulty() else []:
+            name = str(result.GetCheckStatus()).rsplit(".", 1)[-1].removeprefix("BOPAlgo_")
+            findings[name] = findings.get(name, 0) + max(result.GetFaultyShapes1().Extent(), 1)
+    return findings

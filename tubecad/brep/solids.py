@@ -29,7 +29,7 @@ from ..fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
 from ..surface import CurvatureLineTube
 from ..validation import bounded_length
 from .faces import TOLERANCE, PatchFaces, patch_faces
-from .layout import NetLayout, stringer_parameters
+from .layout import NetLayout
 
 DEFAULT_TOLERANCE = 1e-8
 
@@ -115,7 +115,7 @@ def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
     """The tube's open shell: faces between rings and stringers."""
     layout = _checked(tube, layout)
-    frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance))
+    frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     surface, patches = _tube_faces(tube, frame, layout)
     shell = _shell(patches.all_faces(), closed=False)
     return TubeBuild(bd.Shell(shell), [surface], [patches], layout, frame, tolerance, [tube.radius])
@@ -125,7 +125,7 @@ def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
     """The tube closed by planar discs in the normal planes at both ends."""
     layout = _checked(tube, layout)
-    frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance))
+    frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     surface, patches = _tube_faces(tube, frame, layout)
     caps = [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
             _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True)]  # fmt: skip
@@ -143,7 +143,8 @@ def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "cen
     except RegularityError as exc:
         raise RegularityError(f"thickness {float(thickness):g} (side = {side!r}) gives a wall between radii {r_in:g} "
                               f"and {r_out:g}: {exc}") from None  # fmt: skip
-    frame = fit_frame(tube.axis, r_out, tolerance, orthogonality_for(tolerance))
+    frame = fit_frame(tube.axis, r_out, tolerance, orthogonality_for(tolerance), rings=layout.s_rings,
+                      radii=(r_out, r_in))  # fmt: skip
     outer, outer_patches = _tube_faces(outer_tube, frame, layout)
     inner, inner_patches = _tube_faces(inner_tube, frame, layout, reverse=True)
     caps = [
@@ -174,9 +175,8 @@ def wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered"
 # --- construction ------------------------------------------------------------------------
 def _tube_faces(tube: CurvatureLineTube, frame: FrameSpline, layout: NetLayout,
                 reverse: bool = False) -> tuple[TubeSurface, PatchFaces]:  # fmt: skip
-    surface = exact_section_surface(tube, frame, origin_deg=layout.stringers_deg[0])
-    u_cuts = stringer_parameters(layout.stringers_deg, surface.u_at)
-    return surface, patch_faces(surface.surface, list(layout.s_rings), u_cuts, reverse=reverse)
+    surface = exact_section_surface(tube, frame, stringers_deg=layout.stringers_deg)
+    return surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=reverse)
 
 
 def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outward: bool) -> TopoDS_Face:
@@ -240,6 +240,6 @@ def _points_away_from_axis(face: TopoDS_Face, tube: CurvatureLineTube) -> bool:
 
 
 def exact_volume(build: TubeBuild, tube: CurvatureLineTube) -> float:
-    """pi (r_out^2 - r_in^2) L for a wall, pi rho^2 L for a tube solid (MATH.md section 4)."""
+    """pi (r_out^2 - r_in^2) L for a wall, pi rho^2 L for a tube solid (docs/MATH.md section 4)."""
     radii = build.radii
     return math.pi * (radii[0] ** 2 - (radii[1] ** 2 if len(radii) > 1 else 0.0)) * tube.length

@@ -1,4 +1,4 @@
-"""Fitting the curvature-line tube into OCCT B-spline surfaces (MATH.md section 6)."""
+"""Fitting the curvature-line tube into OCCT B-spline surfaces (docs/MATH.md section 6)."""
 
 from .exact_section import TubeSurface, exact_section_surface
 from .frame_spline import FitError, FrameSpline, fit_frame

@@ -1,4 +1,4 @@
-"""Exact-section NURBS of the tube (MATH.md section 6): exact rational circles in u,
+"""Exact-section NURBS of the tube (docs/MATH.md section 6): exact rational circles in u,
 a B-spline of the axis and its rotation-minimising frame in s.
 
 Poles P_ij = C_j + rho (X_i R1_j + Y_i R2_j), weights w_i (1 in s), where (X_i, Y_i, w_i)
@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 from OCP.Geom import Geom_BSplineSurface
 
 from ..surface import CurvatureLineTube
-from . import circle
+from .circle import CircleSpline
 from .frame_spline import FrameSpline
 from .occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
 
@@ -26,40 +27,53 @@ class TubeSurface:
     """An OCCT surface of a curvature-line tube; u = 0 is the angle ``origin_deg`` from r1.
 
     Convert angles around the tube (from the RMF normal r1, as in S(u, s)) to the
-    surface's u with :meth:`u_at`.
+    surface's u with :meth:`u_at`; at the circle's breaks (the stringers) u is the angle
+    from the origin exactly.
     """
 
     surface: Geom_BSplineSurface
     tube: CurvatureLineTube
     origin_deg: float
+    circle: CircleSpline
 
     def u_at(self, theta_deg: np.ndarray | float) -> np.ndarray:
-        """OCCT u parameter of the stringer at angle ``theta_deg`` (degrees)."""
+        """OCCT u parameter of the stringer at angle ``theta_deg`` (degrees), in [0, 2 pi)."""
         rel = np.mod(np.radians(np.asarray(theta_deg, dtype=float) - self.origin_deg), 2 * math.pi)
-        return circle.u_of_theta(rel)
+        return self.circle.u_of_theta(rel)
 
     def theta_at(self, u: np.ndarray | float) -> np.ndarray:
         """Angle around the tube (radians, from r1) at the OCCT parameter u."""
-        return circle.theta_of_u(u) + math.radians(self.origin_deg)
+        return self.circle.theta_of_u(u) + math.radians(self.origin_deg)
 
     @property
     def pole_count(self) -> tuple[int, int]:
         return self.surface.NbUPoles(), self.surface.NbVPoles()
 
 
-def exact_section_surface(tube: CurvatureLineTube, frame: FrameSpline, origin_deg: float = 0.0) -> TubeSurface:
-    """Build the periodic-in-u rational surface of ``tube`` on the fitted ``frame``."""
+def exact_section_surface(tube: CurvatureLineTube, frame: FrameSpline, origin_deg: float = 0.0,
+                          stringers_deg: Sequence[float] | None = None) -> TubeSurface:  # fmt: skip
+    """Build the periodic-in-u rational surface of ``tube`` on the fitted ``frame``.
+
+    With ``stringers_deg`` (angles from r1, the face boundaries) the circle's C0 knots are
+    chosen among them (:meth:`CircleSpline.for_stringers`) and the first is the origin
+    u = 0; without, the circle has four quarter arcs from ``origin_deg``.
+    """
+    if stringers_deg is None:
+        circle = CircleSpline.quarters()
+    else:
+        origin_deg = float(stringers_deg[0])
+        circle = CircleSpline.for_stringers(np.radians(np.asarray(stringers_deg, dtype=float) - origin_deg))
     F = frame.spline.c
     C, R1, R2 = F[:, :3], F[:, 3:6], F[:, 6:]
     a = math.radians(origin_deg)
     R1, R2 = math.cos(a) * R1 + math.sin(a) * R2, -math.sin(a) * R1 + math.cos(a) * R2
     rho = tube.radius
-    poles = C[None] + rho * (circle.POLES_X[:, None, None] * R1[None] + circle.POLES_Y[:, None, None] * R2[None])
-    weights = np.repeat(circle.WEIGHTS[:, None], len(C), axis=1)
+    poles = C[None] + rho * (circle.x[:, None, None] * R1[None] + circle.y[:, None, None] * R2[None])
+    weights = np.repeat(circle.weights[:, None], len(C), axis=1)
     s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
     surface = Geom_BSplineSurface(
         points_2d(poles), reals_2d(weights),
-        reals(circle.KNOTS), reals(s_knots), integers(circle.MULTIPLICITIES), integers(s_mults),
+        reals(circle.knots), reals(s_knots), integers(circle.multiplicities), integers(s_mults),
         2, frame.degree, True, False,
     )  # fmt: skip
-    return TubeSurface(surface, tube, origin_deg)
+    return TubeSurface(surface, tube, origin_deg, circle)

@@ -1,20 +1,26 @@
 """The s direction: one B-spline of the 9-vector F(s) = (c(s), r1(s), r2(s)).
 
-c is the axis, (r1, r2) its rotation-minimising normals (MATH.md section 6). F is
-interpolated at the Greville abscissae of a clamped knot vector of degree p, and spans
-are halved until, sampled densely on every span, both
+c is the axis, (r1, r2) its rotation-minimising normals (docs/MATH.md section 6). F is
+interpolated at the Greville abscissae of a clamped knot vector of degree p whose breaks
+include the ring frames (so every face boundary s = s_i is a knot, never a sliver of a
+span away from one), and spans are halved until, sampled densely on every span, both
     |c_fit - c| + R sqrt(|r1_fit - r1|^2 + |r2_fit - r2|^2) <= tolerance / 2      (position)
-    (|c'_fit - c'| + R sqrt(|r1'_fit - r1'|^2 + |r2'_fit - r2'|^2)) / (1 - R |k|) <= orthogonality / 2
+    |cos(S_u, S_s)| of the fitted surface, at every radius built, <= orthogonality / 2
 hold, R the largest radius that will be built on the fit. The first bounds the distance of
-every surface point to the exact tube, the second the |cos| of the angle between the
-isolines (MATH.md section 3: |S_s| >= 1 - rho |k|). The exact derivatives are
-c' = t, r1' = -k cos(w) t, r2' = -k sin(w) t, w = Int sigma ds.
+every surface point to the exact tube. The second is measured on the surface
+S = C + r (cos u R1 + sin u R2) of the fitted frame at ORTHOGONALITY_ANGLES angles; where
+the cheaper bound
+    (|c'_fit - c'| + R sqrt(|r1'_fit - r1'|^2 + |r2'_fit - r2'|^2)) / (1 - R |k|)
+(docs/MATH.md section 3: |S_s| >= 1 - rho |k|) already meets the target the measurement is
+skipped. The exact derivatives are c' = t, r1' = -k cos(w) t, r2' = -k sin(w) t,
+w = Int sigma ds.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 from scipy.interpolate import BSpline, make_interp_spline
@@ -23,6 +29,10 @@ from ..curves.slope_curve import SlopeCurve
 from ..errors import ParameterError, TubecadError
 
 SAMPLES_PER_SPAN = 24
+#: angles around the tube at which the fitted surface's orthogonality is measured
+ORTHOGONALITY_ANGLES = 16
+#: an initial break closer than this fraction of its span to a ring is moved onto the ring
+SNAP_FRACTION = 0.25
 #: refinements without halving the error after which a failed fit is said to have stalled
 STALLED_ROUNDS = 3
 
@@ -70,18 +80,25 @@ def fit_frame(
     orthogonality: float = 1e-9,
     degree: int = 7,
     max_spans: int = 4096,
+    rings: Sequence[float] = (),
+    radii: Sequence[float] = (),
 ) -> FrameSpline:
-    """Fit F adaptively until the measured bounds meet ``tolerance`` and ``orthogonality``."""
+    """Fit F adaptively until the measured bounds meet ``tolerance`` and ``orthogonality``.
+
+    ``rings`` (arc lengths inside the span) become knots; ``radii`` are the tube radii that
+    will be built on the fit (default: ``radius_bound``), each measured for orthogonality.
+    """
     if isinstance(degree, bool) or not (isinstance(degree, int) and 3 <= degree <= 9):
         raise ParameterError(f"degree must be a whole number in [3, 9], got {degree!r}")
     tolerance = check_tolerance("tolerance", tolerance)
     orthogonality = check_tolerance("orthogonality", orthogonality)
-    breaks = _initial_breaks(axis, 8)
+    breaks = _with_rings(_initial_breaks(axis, 8), np.asarray(rings, dtype=float))
+    radii = tuple(float(r) for r in radii) or (float(radius_bound),)
     best = (math.inf, math.inf)
     worst: list[float] = []  # per refinement: the largest error in units of its target
     while True:
         spline = _interpolate(axis, breaks, degree)
-        pos, orth = _span_errors(axis, spline, breaks, radius_bound)
+        pos, orth = _span_errors(axis, spline, breaks, radius_bound, radii, 0.5 * orthogonality)
         best = (min(best[0], float(pos.max())), min(best[1], float(orth.max())))
         bad = (pos > 0.5 * tolerance) | (orth > 0.5 * orthogonality)
         if not bad.any():
@@ -120,6 +137,21 @@ def _initial_breaks(axis: SlopeCurve, spans: int) -> np.ndarray:
     return breaks
 
 
+def _with_rings(breaks: np.ndarray, rings: np.ndarray) -> np.ndarray:
+    """``breaks`` with the rings added; a break within SNAP_FRACTION of its span of a ring
+    is dropped (the ring takes its place), so no sliver spans appear."""
+    s0, s1 = breaks[0], breaks[-1]
+    rings = rings[(rings > s0) & (rings < s1)]
+    if rings.size == 0:
+        return breaks
+    spacing = np.min(np.diff(breaks))
+    inner = breaks[1:-1]
+    near = np.min(np.abs(inner[:, None] - rings[None, :]), axis=1) < SNAP_FRACTION * spacing if inner.size else []
+    merged = np.unique(np.concatenate([[s0], inner[~np.asarray(near, dtype=bool)], rings, [s1]]))
+    keep = np.concatenate([[True], np.diff(merged) > 1e-12 * (s1 - s0)])
+    return merged[keep]
+
+
 def _interpolate(axis: SlopeCurve, breaks: np.ndarray, p: int) -> BSpline:
     knots = np.concatenate([[breaks[0]] * p, breaks, [breaks[-1]] * p])
     n = len(knots) - p - 1
@@ -129,7 +161,10 @@ def _interpolate(axis: SlopeCurve, breaks: np.ndarray, p: int) -> BSpline:
     return make_interp_spline(greville, F, k=p, t=knots)
 
 
-def _span_errors(axis: SlopeCurve, spline: BSpline, breaks: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
+def _span_errors(axis: SlopeCurve, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float],
+                 target: float) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """Per span: the position bound and the orthogonality (the bound, or where it exceeds
+    ``target``, the largest |cos| measured on the fitted surface at every radius)."""
     m = len(breaks) - 1
     frac = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)
     s = (breaks[:-1, None] + np.diff(breaks)[:, None] * frac).ravel()
@@ -139,6 +174,27 @@ def _span_errors(axis: SlopeCurve, spline: BSpline, breaks: np.ndarray, radius: 
         d = a - b
         return np.linalg.norm(d[:, :3], axis=1) + radius * np.linalg.norm(d[:, 3:], axis=1)
 
-    pos = bound(spline(s), F)
-    orth = bound(spline.derivative()(s), dF) / (1.0 - radius * np.abs(axis.curvature(s)))
-    return pos.reshape(m, -1).max(axis=1), orth.reshape(m, -1).max(axis=1)
+    fit, dfit = spline(s), spline.derivative()(s)
+    pos = bound(fit, F)
+    with np.errstate(divide="ignore"):
+        orth = bound(dfit, dF) / np.maximum(1.0 - radius * np.abs(axis.curvature(s)), 0.0)
+    orth = orth.reshape(m, -1).max(axis=1)
+    over = np.flatnonzero(orth > target)
+    if over.size:
+        rows = np.concatenate([np.arange(i * SAMPLES_PER_SPAN, (i + 1) * SAMPLES_PER_SPAN) for i in over])
+        orth[over] = _measured_cos(fit[rows], dfit[rows], radii).reshape(over.size, -1).max(axis=1)
+    return pos.reshape(m, -1).max(axis=1), orth
+
+
+def _measured_cos(fit: np.ndarray, dfit: np.ndarray, radii: Sequence[float]) -> np.ndarray:
+    """max over radii and angles of |cos(S_u, S_s)| of S = C + r (cos u R1 + sin u R2), per sample."""
+    u = np.linspace(0.0, 2 * math.pi, ORTHOGONALITY_ANGLES, endpoint=False)
+    cu, su = np.cos(u)[None, :, None], np.sin(u)[None, :, None]
+    R1, R2, dC, dR1, dR2 = fit[:, None, 3:6], fit[:, None, 6:], dfit[:, None, :3], dfit[:, None, 3:6], dfit[:, None, 6:]
+    worst = np.zeros(len(fit))
+    for r in radii:
+        S_u = -su * R1 + cu * R2
+        S_s = dC + r * (cu * dR1 + su * dR2)
+        cos = np.abs(np.einsum("ijk,ijk->ij", S_u, S_s)) / (np.linalg.norm(S_u, axis=2) * np.linalg.norm(S_s, axis=2))
+        worst = np.maximum(worst, cos.max(axis=1))
+    return worst

@@ -44,6 +44,14 @@ def reals_2d(values: np.ndarray) -> TColStd_Array2OfReal:
 
 
 def knots_and_multiplicities(full_knots: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """A full (repeated) knot vector -> distinct knots and their multiplicities."""
-    knots, mults = np.unique(np.round(full_knots, 12), return_counts=True)
-    return knots, mults
+    """A full (repeated) knot vector -> distinct knots and their multiplicities.
+
+    Knots within a few units of round-off of each other (relative to the vector's
+    magnitude) are one knot, kept at its first value exactly: rounding to a fixed number
+    of decimals would move the end knots of a span far from 0 (s ~ 1e7) off the span.
+    """
+    t = np.asarray(full_knots, dtype=float)
+    close = 8 * np.finfo(float).eps * max(1.0, float(np.abs(t).max()))
+    new = np.concatenate([[True], np.diff(t) > close])
+    starts = np.flatnonzero(new)
+    return t[starts], np.diff(np.append(starts, len(t)))

@@ -16,7 +16,7 @@ DEFAULT_NS = 2001
 
 
 def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT_NS) -> dict[str, Any]:
-    """Exact measures (MATH.md section 4) and what was measured on an ``nu`` x ``ns`` grid."""
+    """Exact measures (docs/MATH.md section 4) and what was measured on an ``nu`` x ``ns`` grid."""
     net = net_errors(tube, nu, ns)
     area = area_by_quadrature(tube)
     u = np.linspace(0.0, 2.0 * np.pi, 32, endpoint=False)[:, None]
@@ -62,10 +62,13 @@ def _version() -> str:
         return "unknown"
 
 
-def build_report(build, tube: CurvatureLineTube, nu: int = 48, ns: int = 1500) -> dict[str, Any]:
+def build_report(build, tube: CurvatureLineTube, nu: int = 48, ns: int = 1500,
+                 self_intersection: bool = False) -> dict[str, Any]:  # fmt: skip
     """What was measured on a built B-rep shape (issue 3): per surface the fit's deviation
     and orthogonality by dense sampling of the OCCT surface, poles; topology and validity;
-    volume and areas against the exact values (MATH.md section 4)."""
+    OCCT's pre-boolean check (BOPAlgo_ArgumentAnalyzer: every check, the self-intersection
+    test only with ``self_intersection``, as it takes ~20 s on an 11 x 8 wall); volume and
+    areas against the exact values (docs/MATH.md section 4)."""
     import math
 
     # imported here so that `tubecad report` (maths only) never loads OCCT
@@ -106,8 +109,11 @@ def build_report(build, tube: CurvatureLineTube, nu: int = 48, ns: int = 1500) -
         "edges": props.count(shape, "edge"),
         "vertices": props.count(shape, "vertex"),
         "free_edges": props.free_edges(shape),
+        "circle_edges": props.count_circle_edges(shape),
         "valid": props.is_valid(shape),
     }
+    modes = tuple(m for m in props.ANALYZER_MODES if self_intersection or m != "SelfInterMode")
+    out["boolean_check"] = {"checks": list(modes), "findings": props.analyzer_findings(shape, modes)}
     if is_solid:
         volume, exact = props.volume(shape), exact_volume(build, tube)
         out.update({"volume": volume, "volume_exact": exact, "volume_relative_error": abs(volume / exact - 1.0)})

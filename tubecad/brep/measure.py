@@ -1,0 +1,152 @@
+"""Measure a B-rep shape, as it is (built, or read back from a file), against the exact tube.
+
+Nothing here trusts how the shape was made. Each non-planar face's own OCCT surface is
+sampled on a grid inside its UV bounds (off any knot lattice) and, at every sample X:
+
+- deviation: | |X - c(s*)| - rho |, c(s*) the closest point of the exact axis (Newton,
+  tubecad.surface.checks.distance_to_axis): the distance from X to the exact tube;
+- orthogonality: |cos| of the angle between the isoparametric directions S_u and S_v;
+- curvature-direction angle: the principal directions of a tube at X are the circle
+  direction t x e and the axis direction t (e = (X - c(s*)) / |X - c(s*)|, t = c'(s*));
+  each isoline direction, projected into the tangent plane, is compared with the nearer
+  of the two: 0 means the isolines are lines of curvature.
+
+Used by the read-back check of every CAD file tubecad writes (tubecad.interfaces.readback)
+and by the benchmarks (benchmarks/measure.py).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Iterator, Sequence
+
+import numpy as np
+from OCP.BRep import BRep_Tool
+from OCP.BRepTools import BRepTools
+from OCP.GeomAbs import GeomAbs_Plane
+from OCP.GeomAdaptor import GeomAdaptor_Surface
+from OCP.GeomLib import GeomLib_IsPlanarSurface
+from OCP.gp import gp_Pnt, gp_Vec
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Face
+
+from ..surface.checks import distance_to_axis
+from .properties import topods
+
+
+def tube_faces(shape) -> Iterator[TopoDS_Face]:
+    """The non-planar faces of ``shape`` (a tube's end caps are planar; a file may hold a
+    plane as a B-spline, which is recognised as planar too)."""
+    explorer = TopExp_Explorer(topods(shape), TopAbs_FACE)
+    while explorer.More():
+        face = TopoDS.Face_s(explorer.Current())
+        surface = BRep_Tool.Surface_s(face)
+        if GeomAdaptor_Surface(surface).GetType() != GeomAbs_Plane and not GeomLib_IsPlanarSurface(surface, 1e-7).IsPlanar():
+            yield face
+        explorer.Next()
+
+
+def sample_face(face: TopoDS_Face, nu: int, nv: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Points, d/du and d/dv of the face's own surface on an nu x nv grid inside its UV bounds
+    (offsets 0.37 and 0.29 of a cell, so no sample sits on a knot or an edge)."""
+    surface = BRep_Tool.Surface_s(face)
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    us = u0 + (np.arange(nu) + 0.37) * (u1 - u0) / nu
+    vs = v0 + (np.arange(nv) + 0.29) * (v1 - v0) / nv
+    out = np.empty((3, nu * nv, 3))
+    p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
+    k = 0
+    for u in us:
+        for v in vs:
+            surface.D1(u, v, p, du, dv)
+            out[0, k] = p.X(), p.Y(), p.Z()
+            out[1, k] = du.X(), du.Y(), du.Z()
+            out[2, k] = dv.X(), dv.Y(), dv.Z()
+            k += 1
+    return out[0], out[1], out[2]
+
+
+def orthogonality(d1: np.ndarray, d2: np.ndarray) -> np.ndarray:
+    """|cos| of the angle between each pair of rows of ``d1`` and ``d2``."""
+    return np.abs(np.einsum("ij,ij->i", d1, d2)) / (np.linalg.norm(d1, axis=1) * np.linalg.norm(d2, axis=1))
+
+
+def net_against_tube(tube, points: np.ndarray, d1: np.ndarray, d2: np.ndarray) -> tuple[float, float, float]:
+    """(max deviation, max |cos| between d1 and d2, max angle in degrees from the curvature
+    directions) of the samples against ``tube`` (a CurvatureLineTube)."""
+    dist, s_star = distance_to_axis(tube.axis, points)
+    axis = tube.axis.evaluate(s_star)
+    radial = points - axis.position
+    e = radial / np.linalg.norm(radial, axis=1)[:, None]
+    circle_dir = np.cross(axis.t, e)
+
+    def angle_from_principal(w: np.ndarray) -> np.ndarray:
+        w = w - np.einsum("ij,ij->i", w, e)[:, None] * e
+        w = w / np.linalg.norm(w, axis=1)[:, None]
+        # atan2(|w x d|, |w . d|): arccos of a cosine near 1 would floor at ~1e-6 deg
+        angles = [np.arctan2(np.linalg.norm(np.cross(w, d), axis=1), np.abs(np.einsum("ij,ij->i", w, d)))
+                  for d in (axis.t, circle_dir)]  # fmt: skip
+        return np.degrees(np.minimum(*angles))
+
+    angle = np.maximum(angle_from_principal(d1), angle_from_principal(d2))
+    return float(np.abs(dist - tube.radius).max()), float(orthogonality(d1, d2).max()), float(angle.max())
+
+
+@dataclass(frozen=True)
+class TubeFacesMeasure:
+    """The tube faces of a shape against the exact tubes of the radii they lie on."""
+
+    max_deviation: float  # from the exact tube of the face's radius
+    max_orthogonality: float  # |cos| between the face's isoparametric directions
+    faces: int  # tube faces measured
+    samples: int
+    skipped: int  # non-planar faces on none of the radii (not measured)
+    per_radius: dict[float, tuple[int, float, float]]  # radius -> (faces, max deviation, max |cos|)
+
+
+def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
+                       every_face: bool = True) -> TubeFacesMeasure:  # fmt: skip
+    """Sample every tube face of ``shape`` (about ``samples`` points in all, at least 2 x 2 per
+    face) and measure it against the exact tube of the radius in ``radii`` it lies on.
+
+    With ``every_face`` (a wall or tube solid) each non-planar face is measured against the
+    nearest radius. Otherwise (an assembly) a face is measured only if its median distance
+    from ``axis`` is within 1e-3 r of a radius r, and within a quarter of the gap to the next
+    one; other faces (a stiffener's web or flange) are counted as ``skipped``.
+    """
+    radii = sorted(float(r) for r in radii)
+    gaps = [b - a for a, b in zip(radii[:-1], radii[1:])]
+    faces = list(tube_faces(shape))
+    if not faces:
+        return TubeFacesMeasure(0.0, 0.0, 0, 0, 0, {})
+    per_face = max(samples // len(faces), 4)
+    nu = max(int(math.sqrt(per_face / 4)), 2)  # around the tube x along it, about 1 : 4
+    nv = max(per_face // nu, 2)
+    grids = [sample_face(face, nu, nv) for face in faces]
+    points = np.concatenate([g[0] for g in grids])
+    dist, _ = distance_to_axis(axis, points)
+    dist = dist.reshape(len(faces), nu * nv)
+    cos = orthogonality(np.concatenate([g[1] for g in grids]), np.concatenate([g[2] for g in grids]))
+    cos = cos.reshape(len(faces), nu * nv)
+    per_radius: dict[float, list] = {}
+    measured = 0
+    for i in range(len(faces)):
+        median = float(np.median(dist[i]))
+        k = int(np.argmin([abs(median - r) for r in radii]))
+        r = radii[k]
+        near = [g for g in (gaps[k - 1] if k > 0 else None, gaps[k] if k < len(gaps) else None) if g is not None]
+        if not every_face and abs(median - r) > min([1e-3 * r] + [0.25 * g for g in near]):
+            continue
+        measured += 1
+        entry = per_radius.setdefault(r, [0, 0.0, 0.0])
+        entry[0] += 1
+        entry[1] = max(entry[1], float(np.abs(dist[i] - r).max()))
+        entry[2] = max(entry[2], float(cos[i].max()))
+    return TubeFacesMeasure(
+        max_deviation=max((e[1] for e in per_radius.values()), default=0.0),
+        max_orthogonality=max((e[2] for e in per_radius.values()), default=0.0),
+        faces=measured, samples=measured * nu * nv, skipped=len(faces) - measured,
+        per_radius={r: tuple(e) for r, e in per_radius.items()},
+    )  # fmt: skip
