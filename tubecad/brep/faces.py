@@ -25,7 +25,7 @@ from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.Geom import Geom_Circle
 from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Line
-from OCP.gp import gp_Ax2, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d
+from OCP.gp import gp_Ax2, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec2d
 from OCP.TColgp import TColgp_Array1OfPnt2d
 from scipy.interpolate import BSpline, make_lsq_spline
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
@@ -68,7 +68,7 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
 
     vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings]
     rings = []
-    to_u = [angle_to_u(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
+    to_u = [_ring_pcurve(angle_to_u(tube_surface.circle, angles[j], angles[j + 1])) for j in range(n_stringers)]
     ring_tolerance = []
     for i, s in enumerate(s_rings):
         circle, gap = ring_circle(tube_surface, s)
@@ -98,8 +98,8 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
             builder.MakeFace(face, piece, TOLERANCE)
             bottom, top = rings[i][j], rings[i + 1][j]
             left, right = stringers[j][i], stringers[(j + 1) % n_stringers][i]
-            builder.UpdateEdge(bottom, _ring_pcurve(to_u[j], s0), face, ring_tolerance[i])
-            builder.UpdateEdge(top, _ring_pcurve(to_u[j], s1), face, ring_tolerance[i + 1])
+            builder.UpdateEdge(bottom, to_u[j].Translated(gp_Vec2d(0.0, s0)), face, ring_tolerance[i])
+            builder.UpdateEdge(top, to_u[j].Translated(gp_Vec2d(0.0, s1)), face, ring_tolerance[i + 1])
             if seam:  # one edge used twice: pcurve u = 2 pi for its forward use, u = 0 reversed
                 builder.UpdateEdge(right, _line(u1, 0.0, 0, 1), _line(u0, 0.0, 0, 1), face, TOLERANCE)
             else:
@@ -155,11 +155,12 @@ def _angle_to_u(breaks: tuple[float, ...], a: float, b: float) -> BSpline:
         refine *= 2
 
 
-def _ring_pcurve(to_u: BSpline, s: float) -> Geom2d_BSplineCurve:
-    """The pcurve (u(theta), s) of a ring arc, parameterised by the circle's angle."""
+def _ring_pcurve(to_u: BSpline) -> Geom2d_BSplineCurve:
+    """The pcurve (u(theta), 0) of a ring arc, parameterised by the circle's angle (each
+    ring's pcurve is this curve translated to s)."""
     poles = TColgp_Array1OfPnt2d(1, len(to_u.c))
     for i, u in enumerate(to_u.c):
-        poles.SetValue(i + 1, gp_Pnt2d(float(u), s))
+        poles.SetValue(i + 1, gp_Pnt2d(float(u), 0.0))
     knots, mults = knots_and_multiplicities(to_u.t)
     return Geom2d_BSplineCurve(poles, reals(knots), integers(mults), int(to_u.k))
 
