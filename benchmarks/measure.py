@@ -1,7 +1,9 @@
 """The same measurements for every method: what a shape is, measured against the exact tube.
 
-Nothing here trusts how a shape was made. Each non-planar face's own OCCT surface is
-sampled on a dense grid inside its UV bounds (off any knot lattice) and, at every sample X:
+The sampling and the measures are the library's (tubecad.brep.measure, which also checks
+every CAD file tubecad writes as read back). Nothing here trusts how a shape was made. Each
+non-planar face's own OCCT surface is sampled on a dense grid inside its UV bounds (off any
+knot lattice) and, at every sample X:
 
 - deviation: | |X - c(s*)| - rho |, c(s*) the closest point of the exact axis (Newton,
   tubecad.surface.checks.distance_to_axis): the distance from X to the exact tube;
@@ -25,21 +27,13 @@ import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-import numpy as np
 from OCP.BRep import BRep_Tool
-from OCP.BRepTools import BRepTools
-from OCP.GeomAbs import GeomAbs_Plane
-from OCP.GeomAdaptor import GeomAdaptor_Surface
 from OCP.GeomConvert import GeomConvert
-from OCP.gp import gp_Pnt, gp_Vec
-from OCP.TopAbs import TopAbs_FACE
-from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS
 
 from tubecad.brep import properties
+from tubecad.brep.measure import net_against_tube, sample_face, tube_faces  # also checks every file tubecad writes
 from tubecad.export.cad import export_shape
 from tubecad.surface import CurvatureLineTube
-from tubecad.surface.checks import distance_to_axis
 
 
 @dataclass
@@ -64,61 +58,11 @@ class Measured:
         return asdict(self)
 
 
-def tube_faces(shape):
-    """The non-planar faces of ``shape`` (the tube; end caps are planar)."""
-    explorer = TopExp_Explorer(properties.topods(shape), TopAbs_FACE)
-    while explorer.More():
-        face = TopoDS.Face_s(explorer.Current())
-        if GeomAdaptor_Surface(BRep_Tool.Surface_s(face)).GetType() != GeomAbs_Plane:
-            yield face
-        explorer.Next()
-
-
 def poles(face) -> int:
     """Number of B-spline poles of the face's surface (converted if it is not a B-spline)."""
     surface = BRep_Tool.Surface_s(face)
     bspline = GeomConvert.SurfaceToBSplineSurface_s(surface)
     return bspline.NbUPoles() * bspline.NbVPoles()
-
-
-def sample_face(face, nu: int, nv: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Points, d/du and d/dv of the face's surface on an nu x nv grid inside its UV bounds."""
-    surface = BRep_Tool.Surface_s(face)
-    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
-    us = u0 + (np.arange(nu) + 0.37) * (u1 - u0) / nu
-    vs = v0 + (np.arange(nv) + 0.29) * (v1 - v0) / nv
-    out = np.empty((3, nu * nv, 3))
-    p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
-    k = 0
-    for u in us:
-        for v in vs:
-            surface.D1(u, v, p, du, dv)
-            out[0, k] = p.X(), p.Y(), p.Z()
-            out[1, k] = du.X(), du.Y(), du.Z()
-            out[2, k] = dv.X(), dv.Y(), dv.Z()
-            k += 1
-    return out[0], out[1], out[2]
-
-
-def net_against_tube(tube: CurvatureLineTube, points: np.ndarray, d1: np.ndarray, d2: np.ndarray) -> tuple[float, float, float]:
-    """(max deviation, max |cos| between d1 and d2, max angle in degrees from the curvature directions)."""
-    dist, s_star = distance_to_axis(tube.axis, points)
-    axis = tube.axis.evaluate(s_star)
-    radial = points - axis.position
-    e = radial / np.linalg.norm(radial, axis=1)[:, None]
-    circle_dir = np.cross(axis.t, e)
-
-    def angle_from_principal(w: np.ndarray) -> np.ndarray:
-        w = w - np.einsum("ij,ij->i", w, e)[:, None] * e
-        w = w / np.linalg.norm(w, axis=1)[:, None]
-        # atan2(|w x d|, |w . d|): arccos of a cosine near 1 would floor at ~1e-6 deg
-        angles = [np.arctan2(np.linalg.norm(np.cross(w, d), axis=1), np.abs(np.einsum("ij,ij->i", w, d)))
-                  for d in (axis.t, circle_dir)]  # fmt: skip
-        return np.degrees(np.minimum(*angles))
-
-    cos = np.abs(np.einsum("ij,ij->i", d1, d2)) / (np.linalg.norm(d1, axis=1) * np.linalg.norm(d2, axis=1))
-    angle = np.maximum(angle_from_principal(d1), angle_from_principal(d2))
-    return float(np.abs(dist - tube.radius).max()), float(cos.max()), float(angle.max())
 
 
 def measure(method: str, shape, tube: CurvatureLineTube, build_s: float, samples: int = 60_000,

@@ -1,8 +1,9 @@
-"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|scaling] [--out DIR]``.
+"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|scaling|stiffened] [--out DIR]``.
 
 Prints the tables and writes DIR/benchmarks.json (every number) and DIR/benchmarks.md
-(the tables, as pasted into README.md). Default DIR: benchmarks/results.
-Takes a few minutes on 2 cores; ``--quick`` runs smaller sizes in well under a minute.
+(the tables, as pasted into README.md). Default DIR: benchmarks/results (the published
+numbers); with ``--quick`` (smaller sizes, well under a minute on 2 cores) the default is
+benchmarks/results/quick (git-ignored), and a quick run never writes the published files.
 """
 
 from __future__ import annotations
@@ -19,8 +20,12 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 
 import compare  # noqa: E402
 import scaling  # noqa: E402
+import stiffened  # noqa: E402
 
 from tubecad.export.atomic import write_text  # noqa: E402
+
+#: the published results (README.md quotes them); --quick never writes here
+PUBLISHED = Path(__file__).resolve().parent / "results"
 
 
 def scaling_tables(result: dict) -> str:
@@ -56,9 +61,14 @@ def scaling_tables(result: dict) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes and fewer samples (a smoke run)")
-    parser.add_argument("--only", choices=["compare", "scaling"], help="run one part only")
-    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parent / "results")
+    parser.add_argument("--only", choices=["compare", "scaling", "stiffened"], help="run one part only")
+    parser.add_argument("--out", type=Path, default=None,
+                        help="folder for the results (default benchmarks/results; with --quick benchmarks/results/quick)")
     args = parser.parse_args(argv)
+    if args.out is None:
+        args.out = PUBLISHED / "quick" if args.quick else PUBLISHED
+    elif args.quick and args.out.resolve() == PUBLISHED:
+        parser.error(f"--quick does not overwrite the published results in {PUBLISHED}; give another --out")
     args.out.mkdir(parents=True, exist_ok=True)
     log = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
     result: dict = {"machine": {"python": platform.python_version(), "cpus": os.cpu_count(), "platform": platform.platform()},
@@ -78,6 +88,10 @@ def main(argv: list[str] | None = None) -> int:
             "fit": scaling.fit_scaling((1e-4, 1e-8), (1e-4,), log=log) if args.quick else scaling.fit_scaling(log=log),
         }  # fmt: skip
         tables.append(scaling_tables(result["scaling"]))
+    if args.only in (None, "stiffened"):
+        log("stiffened wall against the plain wall:")
+        result["stiffened"] = stiffened.run(repeats=1 if args.quick else 3, log=log)
+        tables.append(stiffened.table(result["stiffened"]))
     result["seconds"] = time.perf_counter() - started
     text = "\n\n".join(tables)
     write_text(args.out / "benchmarks.json", json.dumps(result, indent=2))

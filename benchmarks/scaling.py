@@ -165,8 +165,8 @@ def brep_scaling(wall_layouts=WALL_LAYOUTS, sewing_layouts=SEWING_LAYOUTS, log=p
 def fit_scaling(tolerances=TOLERANCES, peer_tolerances=PEER_TOLERANCES, log=print) -> list[dict]:
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 
-    from measure import net_against_tube, sample_face
     from tubecad import paper_tube
+    from tubecad.brep.measure import net_against_tube, sample_face
     from tubecad.brep.solids import orthogonality_for
     from tubecad.fitting import exact_section_surface, fit_frame, measure_surface
     from tubecad.fitting.generic import grid_surface

@@ -1,4 +1,4 @@
-"""Axes (MATH.md section 1): closed forms checked against their definitions and against
+"""Axes (docs/MATH.md section 1): closed forms checked against their definitions and against
 the independent numeric (Chebyshev quadrature) path."""
 
 import math

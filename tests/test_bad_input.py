@@ -323,13 +323,14 @@ def test_an_endless_spec_file_is_not_read_to_the_end():
         (["somefile.txt/out.step"], ("output folder", "somefile.txt' is not a folder")),
         (["/proc/tubecad-test/out.step"], ("output '/proc/tubecad-test/out.step'",)),
         (["/proc/out.step"], ("output '/proc/out.step': cannot write to '/proc'",)),
-        (["out.stl"], ("unknown extension; use one of .step, .stp, .iges, .igs, .brep",)),
-        (["out"], ("unknown extension",)),
+        (["out.obj"], ("unknown extension '.obj'; use one of .step, .stp, .iges, .igs, .brep, .stl, .3mf, .gltf, .glb, "
+                       ".csv, .json",)),
+        (["out"], ("output 'out': no extension; use one of .step",)),
         (["out.step", "missing/out.iges"], ("missing' does not exist",)),  # nothing written, not even out.step
         (["out.step", "somefile.txt/lines.csv"], ("is not a folder",)),
         (["out.step", "--report", "somefile.txt/r.json"], ("r.json': output folder",)),
     ],
-    ids=["missing_folder", "under_a_file", "proc_subfolder", "proc", "stl", "no_extension", "second_output_bad",
+    ids=["missing_folder", "under_a_file", "proc_subfolder", "proc", "unknown_extension", "no_extension", "second_output_bad",
          "polylines_bad", "report_bad"],
 )  # fmt: skip
 def test_unwritable_outputs_are_refused_before_building(tmp_path, monkeypatch, outputs, says):

@@ -171,7 +171,7 @@ def test_job_names_are_unique_and_safe(tmp_path):
         (["two.toml"], "batch mode (several SPECs) needs -d/--out-dir"),
         (["-f", "iges", "-o", "x.step"], "-f/--format and -j/--jobs are for batch mode"),
         ([], "Missing option '-o' / '--output'"),
-        (["-d", "out", "-f", "stl"], "'stl' is not one of"),
+        (["-d", "out", "-f", "obj"], "'obj' is not one of"),
     ],
 )
 def test_batch_option_errors(tmp_path, args, says, monkeypatch):

@@ -43,8 +43,8 @@ def test_round_trip_keeps_a_valid_identical_solid(tmp_path, wall, name, volume_r
 def test_unknown_extension_and_missing_folder(tmp_path, wall):
     from tubecad import ParameterError
 
-    with pytest.raises(ParameterError, match="unknown extension"):
-        export_shape(wall, tmp_path / "w.stl")
+    with pytest.raises(ParameterError, match="unknown extension '.obj'; use one of .step, .stp, .iges, .igs, .brep, .stl"):
+        export_shape(wall, tmp_path / "w.obj")
     with pytest.raises(ParameterError, match="does not exist"):
         export_shape(wall, tmp_path / "nope" / "w.step")
 
@@ -55,7 +55,7 @@ def test_failed_write_leaves_no_file(tmp_path, wall, monkeypatch):
     def boom(*args):
         raise KeyboardInterrupt  # an interrupted build
 
-    monkeypatch.setattr(cad, "_write_step", boom)
+    monkeypatch.setattr(cad, "write_step", boom)
     target = tmp_path / "w.step"
     target.write_text("previous good file")
     with pytest.raises(KeyboardInterrupt):

@@ -1,4 +1,4 @@
-"""Regularity (MATH.md section 5): folded or self-intersecting tubes are refused, saying where."""
+"""Regularity (docs/MATH.md section 5): folded or self-intersecting tubes are refused, saying where."""
 
 import math
 import re

@@ -60,7 +60,7 @@ def test_paper_command_writes_report_and_pictures(tmp_path):
     assert report["max_orthogonality_error"] < 1e-13 and report["max_M_error"] < 1e-13
     png = (out / "projections.png").read_bytes()
     assert png.startswith(b"\x89PNG") and len(png) > 50_000
-    svg = (out / "projections.svg").read_text()
+    svg = (out / "projections.svg").read_text(encoding="utf-8")
     assert "<svg" in svg and svg.count("<path") > 1000  # the net's cells are drawn
     assert not [p for p in out.iterdir() if p.name.startswith(".")]  # no temporary files left
     mask = os.umask(0)

@@ -29,7 +29,7 @@ def wall():
 
 def test_lines_lie_on_the_surfaces_and_export_as_curves(tmp_path, wall):
     lines = net_lines(wall.surfaces[0], wall.layout) + net_lines(wall.surfaces[1], wall.layout, "_inner")
-    assert [ln.name for ln in lines[:5]] == ["ring_00", "ring_01", "ring_02", "ring_03", "stringer_00"]
+    assert [ln.name for ln in lines[:5]] == ["line_ring_00", "line_ring_01", "line_ring_02", "line_ring_03", "line_stringer_00"]
     for line in lines:
         curve = BRepAdaptor_Curve(line.edge().wrapped)
         tube = line.surface.tube
@@ -64,7 +64,7 @@ def test_polylines_carry_position_tangent_and_normal(tmp_path, wall):
                         mid / np.linalg.norm(mid, axis=1, keepdims=True))  # fmt: skip
         assert cos.min() > 0.999  # the tangent points along the line
     first = rows[0]
-    assert first["line"] == "ring_00_inner" and float(first["surface_radius"]) == 14.0
+    assert first["line"] == "line_ring_00_inner" and float(first["surface_radius"]) == 14.0
 
 
 def unique_edges(shape):
@@ -169,7 +169,7 @@ def test_named_step_assembly_keeps_names_colours_and_solids(tmp_path):
     assert props.is_valid(wall) and props.volume(wall) == pytest.approx(math.pi * (16**2 - 14**2) * 1000, rel=1e-6)
     assert props.volume(ring) == pytest.approx(math.pi * (14**2 - 11**2) * 1.0, rel=1e-6)
     assert ring.color is not None and tuple(round(c, 2) for c in tuple(ring.color)[:3]) == (0.85, 0.45, 0.2)
-    assert [c.label for c in back.children[-1].children][:2] == ["ring_00_inner", "ring_01_inner"]
+    assert [c.label for c in back.children[-1].children][:2] == ["line_ring_00_inner", "line_ring_01_inner"]
     with pytest.raises(ParameterError, match=r"stiffener rings must be indices in \[0, 3\], got \[7\]"):
         build_stiffeners(build, [7], [], Profile())
 
@@ -351,7 +351,8 @@ def test_build_writes_polylines_by_extension(tmp_path):
     result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "n.csv"), "-o", str(tmp_path / "n.json")])
     assert result.exit_code == 0, result.output
     data = json.loads((tmp_path / "n.json").read_text())
-    assert [ln["name"] for ln in data["lines"]][:5] == ["ring_00", "ring_01", "ring_02", "stringer_00", "stringer_01"]
+    assert [ln["name"] for ln in data["lines"]][:5] == ["line_ring_00", "line_ring_01", "line_ring_02", "line_stringer_00",
+                                                        "line_stringer_01"]  # fmt: skip
     assert {ln["surface_radius"] for ln in data["lines"]} == {16.0, 14.0}
     rows = (tmp_path / "n.csv").read_text().splitlines()
     assert rows[0].startswith("line,kind,index") and len(rows) == 1 + 200 * 10

@@ -1,4 +1,4 @@
-"""The curvature-line tube (MATH.md sections 2-4), measured numerically on every family."""
+"""The curvature-line tube (docs/MATH.md sections 2-4), measured numerically on every family."""
 
 import math
 

@@ -1,4 +1,4 @@
-"""Symbolic proof (sympy) of MATH.md section 3 for the general slope-curve tube.
+"""Symbolic proof (sympy) of docs/MATH.md section 3 for the general slope-curve tube.
 
 psi(s) is an arbitrary function; the axis is only known through c'(s) = t(psi), which
 is what makes s its arc length. The claims: E = rho^2, F = 0, G = (1 - rho k cos phi)^2,

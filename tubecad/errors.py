@@ -18,7 +18,7 @@ class ExpressionError(ParameterError):
 
 
 class RegularityError(TubecadError, ValueError):
-    """The tube is not a regular surface over the requested span (MATH.md section 5)."""
+    """The tube is not a regular surface over the requested span (docs/MATH.md section 5)."""
 
 
 class SpecError(TubecadError, ValueError):

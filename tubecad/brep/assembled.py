@@ -2,8 +2,9 @@
 
 Every edge is made once, from one 3D curve that *is* an isoline of the faces it bounds,
 and gets on each of those faces the straight pcurve u = const or s = const with the same
-parameter; on a plane its pcurve is the curve's projection (exact for a planar curve).
-Edges are therefore same-parameter by construction and nothing has to be sewn.
+parameter (an exact circle, parameterised by angle, comes with its own pcurve); on a plane
+its pcurve is the curve's projection (exact for a planar curve). Edges are therefore
+same-parameter by construction and nothing has to be sewn.
 
 :func:`strip_solid` builds the solid swept by a cross-section whose boundary is a cycle of
 strips: strip k is ``surface_k`` over u in [u0_k, u1_k] (u0 > u1 runs it backwards) and the
@@ -106,6 +107,13 @@ def plane_face(origin: np.ndarray, normal: np.ndarray, x_dir: np.ndarray,
         wire.Closed(True)
         builder.Add(face, wire)
     return face
+
+
+def c0_knots(surface: Geom_BSplineSurface) -> list[float]:
+    """The u-knots where ``surface`` is only C0 (multiplicity >= its u-degree): a face
+    should end there (OCCT's pre-boolean check reports a face or edge across one)."""
+    degree = surface.UDegree()
+    return [surface.UKnot(i) for i in range(1, surface.NbUKnots() + 1) if surface.UMultiplicity(i) >= degree]
 
 
 def closed_solid(faces: Sequence[TopoDS_Face]) -> TopoDS_Solid:

@@ -68,7 +68,7 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
 
     vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings]
     rings = []
-    to_u = [_ring_pcurve(angle_to_u(tube_surface.circle, angles[j], angles[j + 1])) for j in range(n_stringers)]
+    to_u = [ring_pcurve(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
     ring_tolerance = []
     for i, s in enumerate(s_rings):
         circle, gap = ring_circle(tube_surface, s)
@@ -124,6 +124,13 @@ ANGLE_FIT_DEGREE = 9
 ANGLE_FIT_SPAN = math.radians(15.0)
 
 
+def ring_pcurve(circle: CircleSpline, a: float, b: float) -> Geom2d_BSplineCurve:
+    """The pcurve (u(theta), 0) of the ring arc theta in [a, b] (radians from the surface's
+    origin) on a surface of ``circle``, parameterised by the angle like the arc's Geom_Circle;
+    the arc at s uses it translated by (0, s). Cached: every ring and surface shares them."""
+    return _ring_pcurve(_angle_to_u(circle.breaks, float(a), float(b)))
+
+
 def angle_to_u(circle: CircleSpline, a: float, b: float) -> BSpline:
     """See :func:`_angle_to_u` (cached: every ring and both walls share these curves)."""
     return _angle_to_u(circle.breaks, float(a), float(b))
@@ -155,6 +162,7 @@ def _angle_to_u(breaks: tuple[float, ...], a: float, b: float) -> BSpline:
         refine *= 2
 
 
+@functools.lru_cache(maxsize=1024)
 def _ring_pcurve(to_u: BSpline) -> Geom2d_BSplineCurve:
     """The pcurve (u(theta), 0) of a ring arc, parameterised by the circle's angle (each
     ring's pcurve is this curve translated to s)."""

@@ -108,7 +108,7 @@ class TubeFacesMeasure:
 
 def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
                        every_face: bool = True) -> TubeFacesMeasure:  # fmt: skip
-    """Sample every tube face of ``shape`` (about ``samples`` points in all, at least 2 x 2 per
+    """Sample every tube face of ``shape`` (about ``samples`` points in all, at least one per
     face) and measure it against the exact tube of the radius in ``radii`` it lies on.
 
     With ``every_face`` (a wall or tube solid) each non-planar face is measured against the
@@ -121,9 +121,12 @@ def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
     faces = list(tube_faces(shape))
     if not faces:
         return TubeFacesMeasure(0.0, 0.0, 0, 0, 0, {})
-    per_face = max(samples // len(faces), 4)
-    nu = max(int(math.sqrt(per_face / 4)), 2)  # around the tube x along it, about 1 : 4
-    nv = max(per_face // nu, 2)
+    per_face = samples // len(faces)
+    if per_face >= 4:
+        nu = max(int(math.sqrt(per_face / 4)), 2)  # around the tube x along it, about 1 : 4
+        nv = max(per_face // nu, 2)
+    else:  # many faces: still every face, with one or two samples each
+        nu, nv = 1, max(per_face, 1)
     grids = [sample_face(face, nu, nv) for face in faces]
     points = np.concatenate([g[0] for g in grids])
     dist, _ = distance_to_axis(axis, points)

@@ -1,4 +1,4 @@
-"""Axes: slope curves from a natural equation k(s) and an elevation angle (MATH.md section 1)."""
+"""Axes: slope curves from a natural equation k(s) and an elevation angle (docs/MATH.md section 1)."""
 
 from .custom import CustomCurvature
 from .families import CircleInvolute, Clothoid, Helix, LogSpiral

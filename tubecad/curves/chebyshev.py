@@ -4,7 +4,7 @@ A function on [a, b] is resolved panel by panel: on each panel it is interpolate
 Chebyshev-Lobatto points and the panel is halved until the series' tail is below
 ``tol`` times the function's scale. Integrating the series term by term (numpy's chebint)
 then gives antiderivatives accurate to round-off (~1e-14 relative), which is how the
-custom-curvature axis reaches closed-form accuracy (MATH.md section 1).
+custom-curvature axis reaches closed-form accuracy (docs/MATH.md section 1).
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Slope curves from any curvature function k(s), integrated numerically.
 
-The three quadratures of MATH.md section 1 (Int k ds, Int cos psi ds, Int sin psi ds)
+The three quadratures of docs/MATH.md section 1 (Int k ds, Int cos psi ds, Int sin psi ds)
 are done with adaptive piecewise Chebyshev series (:mod:`.chebyshev`) over the span,
 reaching ~1e-14 relative accuracy: the tests compare this path with every closed-form
 family. Integration starts at the span's start with psi(s0) = ``psi0_deg`` and

@@ -1,4 +1,4 @@
-"""Slope-curve families with closed-form integrals (MATH.md section 1).
+"""Slope-curve families with closed-form integrals (docs/MATH.md section 1).
 
 Each family gives k(s) and the antiderivatives Int k ds, Int cos psi ds, Int sin psi ds
 in closed form, so the axis, its frame and the tube are evaluated exactly (to round-off).

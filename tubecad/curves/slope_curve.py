@@ -1,6 +1,6 @@
 """Slope curves: spatial axes of constant elevation angle given by a natural equation.
 
-MATH.md section 1 (paper eq. 2, 5, 8). A slope curve is fixed by its curvature k(s) as a
+docs/MATH.md section 1 (paper eq. 2, 5, 8). A slope curve is fixed by its curvature k(s) as a
 function of its own arc length s and a constant elevation angle beta (|beta| < 90 deg):
 
     psi(s) = (1 / cos b) Int k ds
@@ -102,7 +102,7 @@ class SlopeCurve(ABC):
         return self.curvature(s) * math.tan(self.beta)
 
     def twist(self, s: ArrayLike) -> FloatArray:
-        """Int sigma ds = psi sin b: the angle the Frenet frame turns about t (MATH.md section 2)."""
+        """Int sigma ds = psi sin b: the angle the Frenet frame turns about t (docs/MATH.md section 2)."""
         return self.psi(s) * self._sin_b
 
     def position(self, s: ArrayLike) -> FloatArray:

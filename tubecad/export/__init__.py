@@ -1,1 +1,1 @@
-"""Outputs: pictures now; STEP, IGES and BREP files as the B-rep stage lands."""
+"""Outputs: CAD files (cad), meshes (mesh), the one table of formats by extension (registry), pictures and renders."""

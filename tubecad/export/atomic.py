@@ -18,13 +18,15 @@ from ..errors import ParameterError
 def atomic_path(target: str | Path) -> Iterator[Path]:
     """Yield a temporary path in the target's folder; on success it replaces ``target``."""
     target = Path(target)
-    tmp_path = _temporary(target)
+    tmp_path = None
     try:
+        tmp_path = _temporary(target)
         yield tmp_path
         os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp makes 0600; outputs get the usual mode
         os.replace(tmp_path, target)
     except BaseException:
-        tmp_path.unlink(missing_ok=True)
+        if tmp_path is not None:
+            tmp_path.unlink(missing_ok=True)
         raise
 
 
@@ -34,7 +36,12 @@ def check_writable(target: str | Path) -> Path:
     target = Path(target)
     if target.is_dir():
         raise ParameterError(f"output {str(target)!r} is a folder; give a file name")
-    _temporary(target).unlink(missing_ok=True)
+    probe = None
+    try:
+        probe = _temporary(target)
+    finally:
+        if probe is not None:
+            probe.unlink(missing_ok=True)
     return target
 
 
@@ -48,8 +55,12 @@ def _temporary(target: Path) -> Path:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part" + target.suffix, dir=folder)
     except OSError as exc:
         raise ParameterError(f"output {str(target)!r}: cannot write to {str(folder)!r}: {exc.strerror}") from None
-    os.close(fd)
-    return Path(tmp)
+    try:  # an interrupt (Ctrl-C, SIGTERM) from here on must not leave the file behind
+        os.close(fd)
+        return Path(tmp)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
 
 
 def _umask() -> int:

@@ -1,25 +1,41 @@
 """CAD files: STEP (AP214 or AP242, millimetres), IGES (B-rep mode) and BREP.
 
 Every write goes to a temporary file that replaces the target only when complete.
-The format follows the file extension (.step/.stp, .iges/.igs, .brep).
+The format follows the file extension (tubecad.export.registry lists every extension,
+including the mesh and polyline formats).
+
+STEP is always written through OCCT's XCAF writer (STEPCAFControl_Writer, as build123d's
+``export_step`` does), so every file carries product names: the file's name for a single
+solid, the labels (``wall``, ``ring_03``, ...) and colours of a build123d assembly. The
+schema is one of OCCT's global settings (``write.step.schema``); :func:`step_settings`
+sets it for one write only, after the STEP controllers exist (their first initialisation
+would reset it), and restores the previous value afterwards.
 """
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
+from typing import Iterator
 
+from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
 from OCP.BRep import BRep_Builder
 from OCP.BRepTools import BRepTools
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.IGESControl import IGESControl_Controller, IGESControl_Reader, IGESControl_Writer
 from OCP.Interface import Interface_Static
 from OCP.Message import Message, Message_PrinterOStream
-from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader, STEPControl_Writer
+from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Reader, STEPCAFControl_Writer
+from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller, STEPControl_Reader
+from OCP.TCollection import TCollection_ExtendedString, TCollection_HAsciiString
+from OCP.TDataStd import TDataStd_Name
+from OCP.TDF import TDF_Label, TDF_LabelSequence
 from OCP.TopoDS import TopoDS_Shape
+from OCP.XCAFDoc import XCAFDoc_DocumentTool, XCAFDoc_ShapeTool
+from OCP.XSControl import XSControl_WorkSession
 
 from ..brep.properties import topods
 from ..errors import ParameterError, TubecadError
-from .atomic import atomic_path
 
 FORMATS = {".step": "step", ".stp": "step", ".iges": "iges", ".igs": "iges", ".brep": "brep"}
 STEP_SCHEMAS = {"AP214": "AP214IS", "AP242": "AP242DIS"}
@@ -30,22 +46,132 @@ class ExportError(TubecadError):
 
 
 def cad_format(path: str | Path) -> str:
-    """'step', 'iges' or 'brep' from the extension, or a ParameterError listing them."""
+    """'step', 'iges' or 'brep' from the extension; a ParameterError listing every extension
+    tubecad writes (tubecad.export.registry) for any other."""
     fmt = FORMATS.get(Path(path).suffix.lower())
     if fmt is None:
-        raise ParameterError(f"output {str(path)!r}: unknown extension; use one of {', '.join(FORMATS)}")
+        from .registry import output_format
+
+        output_format(path)  # an unknown extension: the error lists them all
+        raise ParameterError(f"output {str(path)!r}: {Path(path).suffix} is not a B-rep format; "
+                             f"use one of {', '.join(FORMATS)}")  # fmt: skip
     return fmt
 
 
-def export_shape(shape, path: str | Path, step_schema: str = "AP214") -> Path:
-    """Write ``shape`` (OCCT or build123d/CadQuery) to ``path`` in the format of its extension."""
-    fmt = cad_format(path)
+def export_shape(shape, path: str | Path, step_schema: str = "AP214", name: str | None = None) -> Path:
+    """Write ``shape`` (OCCT or build123d/CadQuery) to ``path`` in the format of its extension:
+    STEP, IGES, BREP, or a mesh for visual use (STL, 3MF, glTF), see tubecad.export.registry.
+    ``name``: the product name in STEP (default: the file's stem)."""
+    from .registry import Exportable, write_output
+
+    return write_output(Exportable(shape, step_schema=step_schema, name=name), path)[0]
+
+
+def write_cad(fmt: str, shape, path: str | Path, step_schema: str = "AP214", name: str = "tubecad") -> None:
+    """Write ``shape`` in ``fmt`` ('step', 'iges' or 'brep') to ``path`` as it is (not atomic)."""
     _quiet()
-    with atomic_path(path) as tmp:
-        {"step": lambda: _write_step(topods(shape), tmp, step_schema),
-         "iges": lambda: _write_iges(topods(shape), tmp),
-         "brep": lambda: _write_brep(topods(shape), tmp)}[fmt]()  # fmt: skip
-    return Path(path)
+    if fmt == "step":
+        write_step(shape, path, step_schema, name)
+    elif fmt == "iges":
+        _write_iges(topods(shape), Path(path))
+    else:
+        _write_brep(topods(shape), Path(path))
+
+
+@contextlib.contextmanager
+def step_settings(schema: str = "AP214") -> Iterator[None]:
+    """OCCT's STEP write settings (schema, millimetres) for the writes inside the block only.
+
+    The STEP controllers are initialised first: their first initialisation in a process
+    creates the settings with their defaults, so a value set before it would be lost.
+    The previous values are restored afterwards, so other writers in the process (a plain
+    STEPControl_Writer, CadQuery's exportStep) keep theirs.
+    """
+    if schema not in STEP_SCHEMAS:
+        raise ParameterError(f"step_schema must be one of {', '.join(STEP_SCHEMAS)}, got {schema!r}")
+    STEPControl_Controller.Init_s()
+    STEPCAFControl_Controller.Init_s()
+    wanted = {"write.step.schema": STEP_SCHEMAS[schema], "write.step.unit": "MM"}
+    saved = {key: Interface_Static.CVal_s(key) for key in wanted}
+    try:
+        for key, value in wanted.items():
+            Interface_Static.SetCVal_s(key, value)
+        yield
+    finally:
+        for key, value in saved.items():
+            Interface_Static.SetCVal_s(key, value)
+
+
+def write_step(shape, path: str | Path, schema: str = "AP214", name: str = "tubecad") -> None:
+    """Write ``shape`` to STEP at ``path`` (not atomic) with OCCT's XCAF writer: names and
+    colours of a build123d assembly are kept, and the top product is called ``name``."""
+    import build123d as bd
+    from build123d.exporters3d import _create_xde  # the XCAF document export_step writes
+
+    _quiet()
+    node = shape if isinstance(shape, bd.Shape) else bd.Shape.cast(topods(shape))
+    if node.parent is not None:  # a part of an assembly, written on its own: the XCAF document needs a root
+        part = bd.Shape.cast(node.wrapped)
+        part.label, part.color = node.label, node.color
+        node = part if not node.children else bd.Compound(children=[bd.Shape.cast(c.wrapped) for c in node.children])
+    doc = _create_xde(node, bd.Unit.MM, auto_naming=True)
+    shape_tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    roots = TDF_LabelSequence()
+    shape_tool.GetFreeShapes(roots)
+    for i in range(1, roots.Length() + 1):
+        TDataStd_Name.Set_s(roots.Value(i), TCollection_ExtendedString(name))
+    with step_settings(schema):
+        writer = STEPCAFControl_Writer(XSControl_WorkSession(), False)
+        writer.SetColorMode(True)
+        writer.SetLayerMode(True)
+        writer.SetNameMode(True)
+        if not writer.Transfer(doc, STEPControl_AsIs):
+            raise ExportError(f"OCCT could not translate the shape to STEP for {str(path)!r}")
+        # the header exists once the shape is transferred; an empty header made before
+        # (as build123d's export_step does) would fix FILE_SCHEMA to AP214
+        header = APIHeaderSection_MakeHeader(writer.Writer().Model())
+        if header.IsDone():
+            header.SetName(TCollection_HAsciiString(name))
+            header.SetOriginatingSystem(TCollection_HAsciiString("tubecad"))
+        if writer.Write(str(path)) != IFSelect_RetDone:
+            raise ExportError(f"OCCT could not write STEP to {str(path)!r}")
+
+
+def step_names(path: str | Path) -> list[tuple[int, str]]:
+    """The product and component names of a STEP file as OCCT's XCAF reader sees them:
+    (depth, name) in tree order, depth 0 for the top products."""
+    from OCP.XCAFApp import XCAFApp_Application
+    from OCP.TDocStd import TDocStd_Document
+
+    _quiet()
+    doc = TDocStd_Document(TCollection_ExtendedString("XmlOcaf"))
+    XCAFApp_Application.GetApplication_s().NewDocument(TCollection_ExtendedString("MDTV-XCAF"), doc)
+    reader = STEPCAFControl_Reader()
+    reader.SetNameMode(True)
+    if reader.ReadFile(str(path)) != IFSelect_RetDone or not reader.Transfer(doc):
+        raise ExportError(f"cannot read STEP file {str(path)!r}")
+    tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    out: list[tuple[int, str]] = []
+
+    def name_of(label: TDF_Label) -> str:
+        attr = TDataStd_Name()
+        return attr.Get().ToExtString() if label.FindAttribute(TDataStd_Name.GetID_s(), attr) else ""
+
+    def visit(label: TDF_Label, depth: int) -> None:
+        out.append((depth, name_of(label)))
+        referred = TDF_Label()
+        if XCAFDoc_ShapeTool.IsReference_s(label) and XCAFDoc_ShapeTool.GetReferredShape_s(label, referred):
+            label = referred
+        children = TDF_LabelSequence()
+        XCAFDoc_ShapeTool.GetComponents_s(label, children, False)
+        for i in range(1, children.Length() + 1):
+            visit(children.Value(i), depth + 1)
+
+    roots = TDF_LabelSequence()
+    tool.GetFreeShapes(roots)
+    for i in range(1, roots.Length() + 1):
+        visit(roots.Value(i), 0)
+    return out
 
 
 def import_shape(path: str | Path) -> TopoDS_Shape:
@@ -62,16 +188,6 @@ def import_shape(path: str | Path) -> TopoDS_Shape:
         raise ExportError(f"cannot read {fmt.upper()} file {str(path)!r}")
     reader.TransferRoots()
     return reader.OneShape()
-
-
-def _write_step(shape: TopoDS_Shape, path: Path, schema: str) -> None:
-    if schema not in STEP_SCHEMAS:
-        raise ParameterError(f"step_schema must be one of {', '.join(STEP_SCHEMAS)}, got {schema!r}")
-    Interface_Static.SetCVal_s("write.step.schema", STEP_SCHEMAS[schema])
-    Interface_Static.SetCVal_s("write.step.unit", "MM")
-    writer = STEPControl_Writer()
-    if writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone or writer.Write(str(path)) != IFSelect_RetDone:
-        raise ExportError(f"OCCT could not write STEP to {str(path)!r}")
 
 
 def _write_iges(shape: TopoDS_Shape, path: Path) -> None:

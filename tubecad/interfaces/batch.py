@@ -31,9 +31,10 @@ from pathlib import Path
 from typing import Any, Callable
 
 from ..errors import ParameterError, TubecadError
+from ..export.registry import FORMAT_NAMES
 
-#: what -f/--format accepts: CAD files (.step/.stp, .iges/.igs, .brep) and polylines (.csv, .json)
-FORMATS = ("step", "stp", "iges", "igs", "brep", "csv", "json")
+#: what -f/--format accepts: every extension of tubecad.export.registry, without the dot
+FORMATS = FORMAT_NAMES
 MAX_JOBS = 10_000
 MAX_NAME = 120
 

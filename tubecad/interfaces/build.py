@@ -117,7 +117,7 @@ def stiffeners_from_spec(spec: TubeSpec, build: TubeBuild) -> tuple[list, Stiffe
     try:
         return build_stiffeners(build, selection.rings, selection.stringers, selection.profile, selection.side,
                                 build.tolerance), selection  # fmt: skip
-    except (ParameterError, RegularityError) as exc:
+    except (ParameterError, RegularityError, FitError) as exc:
         raise SpecError(f"{spec.source}: [stiffeners] {exc}") from None
 
 
@@ -137,20 +137,46 @@ def panels_from_spec(spec: TubeSpec, build: TubeBuild) -> list:
         raise SpecError(f"{spec.source}: [panels] {exc} (the layout has {n_s} stringers and {n_r} rings)") from None
 
 
-POLYLINE_SUFFIXES = (".csv", ".json")
-
-
 def split_outputs(outputs) -> tuple[list[Path], list[Path]]:
-    """CAD outputs (.step/.stp, .iges/.igs, .brep) and polyline outputs (.csv, .json);
-    a ParameterError for any other extension, before anything is built."""
-    from ..export.cad import cad_format
+    """Shape outputs (CAD and mesh formats) and polyline outputs (.csv, .json), by the one
+    table of formats (tubecad.export.registry); a ParameterError listing every allowed
+    extension for any other, before anything is built."""
+    from ..export.registry import output_format
 
     paths = [Path(p) for p in outputs]
-    polylines = [p for p in paths if p.suffix.lower() in POLYLINE_SUFFIXES]
-    cad = [p for p in paths if p not in polylines]
-    for path in cad:
-        cad_format(path)
-    return cad, polylines
+    kinds = {p: output_format(p).kind for p in paths}
+    return [p for p in paths if kinds[p] != "polylines"], [p for p in paths if kinds[p] == "polylines"]
+
+
+def wall_lines(build: TubeBuild) -> list:
+    """The layout's curvature lines on every wall surface (``..._inner`` on the inner one)."""
+    from ..stiffeners import net_lines
+
+    lines = net_lines(build.surfaces[0], build.layout)
+    if len(build.surfaces) > 1:
+        lines += net_lines(build.surfaces[1], build.layout, "_inner")
+    return lines
+
+
+def mesh_deflection(build: TubeBuild) -> float:
+    """The linear deflection of mesh outputs: 1e-3 of the smallest tube radius."""
+    from ..export.mesh import RELATIVE_DEFLECTION
+
+    return RELATIVE_DEFLECTION * min(build.radii)
+
+
+def check_output(tmp: Path, fmt, target: Path, shape, build: TubeBuild, wall_solids: int | None,
+                 deflection: float) -> dict[str, Any]:  # fmt: skip
+    """Read a just-written temporary file back and measure it (tubecad.interfaces.readback);
+    raises if it does not hold the build's tolerance, so the file is never moved into place.
+    ``wall_solids``: for an assembly, how many of its first solids are the wall."""
+    from .readback import mesh_report, readback_report
+
+    if fmt.kind == "cad":
+        return readback_report(tmp, shape, build, target, wall_solids)
+    if fmt.kind == "mesh":
+        return mesh_report(tmp, fmt.name, build, deflection, target, wall_solids)
+    return {"bytes": tmp.stat().st_size, "lines": len(wall_lines(build))}
 
 
 def build_and_export(spec: TubeSpec, outputs, step_schema: str = "AP214", report_path: Path | None = None,
@@ -160,20 +186,22 @@ def build_and_export(spec: TubeSpec, outputs, step_schema: str = "AP214", report
     report (also written to ``report_path`` if given).
 
     ``tubecad build`` runs this for its one spec and for every job of a batch. Every file is
-    written atomically; each path is appended to ``written`` once it is complete.
+    written atomically and read back before it is moved into place: a file that does not
+    hold the tolerance (see tubecad.interfaces.readback) is refused and never left behind.
+    Each path is appended to ``written`` once it is complete.
     """  # fmt: skip
     from ..brep.properties import volume
     from ..examples import STEEL_DENSITY
     from ..export.atomic import check_writable, write_text
-    from ..export.cad import cad_format, export_shape
-    from ..stiffeners import net_lines, polylines_csv, polylines_json
-    from ..stiffeners.assembly import export_named_step, named_assembly
-    from .readback import readback_report
+    from ..export.registry import Exportable, write_output
+    from ..stiffeners import net_lines
+    from ..stiffeners.assembly import named_assembly
     from .report import build_report, stiffener_report, to_json, tube_report
 
     written = [] if written is None else written
-    outputs, polyline_outputs = split_outputs(outputs)
-    for path in (*outputs, *polyline_outputs, *([report_path] if report_path is not None else [])):
+    outputs = [Path(p) for p in outputs]
+    split_outputs(outputs)  # an unknown extension is refused, listing them all, before anything is built
+    for path in (*outputs, *([report_path] if report_path is not None else [])):
         check_writable(path)  # a bad output is refused before anything is built or written
     result = build_from_spec(spec)
     report = tube_report(spec.tube, 64, 501)
@@ -191,21 +219,14 @@ def build_and_export(spec: TubeSpec, outputs, step_schema: str = "AP214", report
                              "outer_area": p.outer_area, "volume": volume(p.solid),
                              "mass_kg": p.mass(density)} for p in panels]  # fmt: skip
     report["exports"] = {}
-    for path in outputs:
-        if named and cad_format(path) == "step":
-            export_named_step(shape, path)  # names and colours: wall, ring_03, stringer_05, ...
-        else:
-            export_shape(shape, path, step_schema)
-        written.append(path)
-        report["exports"][str(path)] = readback_report(path, shape)
-    if polyline_outputs:
-        lines = net_lines(result.surfaces[0], result.layout)
-        if len(result.surfaces) > 1:
-            lines += net_lines(result.surfaces[1], result.layout, "_inner")
-        for path in polyline_outputs:
-            (polylines_csv if path.suffix.lower() == ".csv" else polylines_json)(lines, path)
-            written.append(path)
-            report["exports"][str(path)] = {"bytes": path.stat().st_size, "lines": len(lines)}
+    wall_solids = (len(panels) or 1) if named else None  # the assembly's first solids: the wall, or its panels
+    deflection = mesh_deflection(result)
+    item = Exportable(shape, lambda: wall_lines(result), step_schema, mesh_deflection=deflection)
+    for path in outputs:  # STEP of an assembly keeps its names: wall, ring_03, line_ring_03, ...
+        done, info = write_output(item, path, lambda tmp, fmt, path=path: check_output(
+            tmp, fmt, path, shape, result, wall_solids, deflection))  # fmt: skip
+        written.append(done)
+        report["exports"][str(path)] = info
     if report_path is not None:
         written.append(write_text(report_path, to_json(report)))
     return report

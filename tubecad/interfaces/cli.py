@@ -26,9 +26,9 @@ from ..examples import (
     PAPER_WALL_THICKNESS, STEEL_DENSITY, paper_tube,
 )  # fmt: skip
 from ..export.atomic import write_text
-from ..export.cad import export_shape
+from ..export.registry import Exportable, write_output
 from ..export.plots import write_projections
-from .batch import FORMATS as BATCH_FORMATS
+from ..export.registry import FORMAT_NAMES as BATCH_FORMATS
 from .build import build_and_export, build_from_spec, split_outputs, stiffener_selection
 from .readback import readback_report
 from .report import DEFAULT_NS, DEFAULT_NU, build_report, stiffener_report, to_json, tube_report
@@ -72,8 +72,9 @@ def paper(output: Path, nu: int, ns: int) -> None:
     the curvature-line net); paper.step and paper.iges, the wall solid (thickness 2,
     centred: radii 14 and 16) with 11 ring frames and 8 stringers as its edges;
     paper_step.png, a picture rendered from the STEP file read back; paper_stiffened.step,
-    a named assembly (wall, ring_01..ring_09 and stringer_00..stringer_06 flat-bar
-    stiffeners inside the wall, curvature_lines) and its picture paper_stiffened.png;
+    a named assembly (wall, ring_01..ring_09 and stringer_00, _02, _04, _06 flat-bar
+    stiffeners inside the wall, curvature_lines with line_ring_00.., line_stringer_00..
+    and their _inner twins) and its picture paper_stiffened.png;
     paper_lines.csv/.json, the curvature lines as polylines with tangents and normals;
     report.json.
     """
@@ -88,9 +89,12 @@ def paper(output: Path, nu: int, ns: int) -> None:
         report = tube_report(tube, nu, ns)
         report["brep"] = build_report(build, tube)
         exports = {}
-        for name in ("paper.step", "paper.iges"):
-            written.append(export_shape(build.shape, output / name))
-            exports[name] = readback_report(output / name, build.shape)
+        for name in ("paper.step", "paper.iges"):  # each file measured as read back before it is moved into place
+            def check(tmp, fmt, target=output / name):
+                return readback_report(tmp, build.shape, build, target)
+
+            path, exports[name] = write_output(Exportable(build.shape), output / name, check)
+            written.append(path)
         report["exports"] = exports
         written.append(render_step_picture(output / "paper.step", output / "paper_step.png"))
         written += write_paper_stiffeners(build, output, report)
@@ -172,7 +176,8 @@ def report(spec: Path, nu: int, ns: int) -> None:
                 type=click.Path(dir_okay=False, path_type=Path))
 @click.option("-o", "--output", "outputs", multiple=True, type=click.Path(dir_okay=False, path_type=Path),
               help="One SPEC: output file, repeatable; the format follows the extension: .step/.stp, .iges/.igs, "
-                   ".brep, or .csv/.json for the curvature lines as polylines (position, tangent, normal).")
+                   ".brep (exact B-rep), .stl, .3mf, .gltf/.glb (meshes for visual use), or .csv/.json for the "
+                   "curvature lines as polylines (position, tangent, normal).")
 @click.option("--step-schema", type=click.Choice(["AP214", "AP242"]), default="AP214", show_default=True)
 @click.option("--report", "report_path", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="One SPEC: also write the measured report (JSON) here.")
@@ -202,10 +207,13 @@ def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, 
         raise click.UsageError("-f/--format and -j/--jobs are for batch mode (several SPECs, --sweep, or -d/--out-dir)")
     if not outputs:
         raise click.UsageError("Missing option '-o' / '--output' (or -d/--out-dir DIR for batch mode).")
+    written: list[Path] = []
     try:
         split_outputs(outputs)  # an unknown extension is refused before anything is built
-        report = build_and_export(load_spec(specs[0]), outputs, step_schema, report_path)
+        report = build_and_export(load_spec(specs[0]), outputs, step_schema, report_path, written)
     except TubecadError as exc:
+        for path in written:  # a failed build (e.g. a file that cannot hold the tolerance) leaves no files
+            path.unlink(missing_ok=True)
         raise UserError(str(exc)) from None
     brep = report["brep"]
     click.echo(
@@ -213,10 +221,19 @@ def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, 
         f"fit deviation {brep['fit']['max_deviation']:.2e}, orthogonality {brep['fit']['max_orthogonality_error']:.2e}"
     )
     for path, info in report["exports"].items():
-        if "lines" in info:
-            click.echo(f"{path}: {info['bytes']} bytes, {info['lines']} curvature lines as polylines")
-        else:
-            click.echo(f"{path}: {info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}")
+        click.echo(f"{path}: {export_summary(info)}")
+
+
+def export_summary(info: dict) -> str:
+    """One line on a written file, from what was measured on it as read back."""
+    if "lines" in info:
+        return f"{info['bytes']} bytes, {info['lines']} curvature lines as polylines"
+    if "triangles" in info:
+        checked = f", vertices within {info['max_vertex_deviation']:.1e} of the tube" if "max_vertex_deviation" in info else ""
+        return f"{info['bytes']} bytes, mesh for visual use: {info['triangles']} triangles{checked}"
+    measured = (f", file deviation {info['max_deviation']:.2e}, orthogonality {info['max_orthogonality_error']:.2e}"
+                if "max_deviation" in info else "")  # fmt: skip
+    return f"{info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}{measured}"
 
 
 def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path) -> None:

@@ -208,6 +208,12 @@ def _check_build_sections(tube: CurvatureLineTube, sections: dict[str, dict[str,
         except RegularityError as exc:
             raise fail(f"[wall] the wall's outer surface is not regular: thickness {wall['thickness']:g} "
                        f"(side = {wall.get('side', 'centered')!r}) puts it at radius {r_out:g}: {_irregular(exc)}") from None  # fmt: skip
+        if "stiffeners" in sections:  # a stiffener too high for the wall's curvature
+            from ..stiffeners.limits import check_spec_heights
+
+            layout = layout_from_section(tube, sections.get("layout", {}))
+            _with_section("stiffeners", fail, lambda: check_spec_heights(tube.axis, layout, (r_in, r_out),
+                                                                         sections["stiffeners"]))  # fmt: skip
 
 
 def _irregular(exc: RegularityError) -> str:

@@ -1,8 +1,10 @@
 """Stiffener sets on a wall and the named STEP assembly handed downstream (issue 4).
 
-The assembly is a build123d Compound: ``wall``, one solid per stiffener (``ring_03``,
-``stringer_05``), and ``curvature_lines`` with one labelled edge per line; written with
-build123d's XCAF STEP writer, so names and colours show in a downstream CAD tree.
+The assembly is a build123d Compound: ``wall`` (or its panels ``panel_r0_s1``, ...), one
+solid per stiffener (``ring_03``, ``stringer_05``), and ``curvature_lines`` with one
+labelled edge per line (``line_ring_03``, ``line_stringer_05``, ``..._inner``): every name
+unique. Written with OCCT's XCAF STEP writer (tubecad.export.cad.write_step), so names and
+colours show in a downstream CAD tree, under a top product named after the file.
 """
 
 from __future__ import annotations
@@ -47,7 +49,7 @@ def named_assembly(build: TubeBuild, stiffeners: Sequence[Stiffener], lines: Seq
     """``wall`` and the stiffeners as labelled, coloured solids (or, with ``fuse``, one solid
     ``wall`` with the stiffeners merged in), plus the ``curvature_lines``. With ``panels``
     the wall is an assembly ``wall`` of the panels ``panel_r0_s0``, ... (not fused)."""
-    wall = build.shape
+    wall = bd.Solid(build.shape.wrapped)  # a new node: the build's own shape is not put under the assembly
     children: list[bd.Shape] = []
     if panels:
         parts = []
@@ -73,9 +75,12 @@ def named_assembly(build: TubeBuild, stiffeners: Sequence[Stiffener], lines: Seq
     return bd.Compound(label="tubecad", children=children)
 
 
-def export_named_step(assembly: bd.Compound, path: str | Path) -> Path:
-    """Write the assembly to STEP (AP214, mm) with its names and colours, atomically."""
+def export_named_step(assembly: bd.Compound, path: str | Path, step_schema: str = "AP214",
+                      name: str | None = None) -> Path:  # fmt: skip
+    """Write the assembly to STEP (``step_schema``, mm) with its names and colours, atomically;
+    the top product is ``name`` (default: the file's stem)."""
+    from ..export.cad import write_step
+
     with atomic_path(path) as tmp:
-        if not bd.export_step(assembly, str(tmp)):
-            raise ParameterError(f"could not write STEP to {str(path)!r}")
+        write_step(assembly, tmp, step_schema, name or Path(path).stem)
     return Path(path)

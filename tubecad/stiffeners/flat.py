@@ -4,7 +4,7 @@ Along a line of curvature the surface normals form a developable strip (Rodrigue
 dN = -kappa_n dX), so a web standing along the normal develops without stretching:
 - a stringer's web develops to the region between the plane curve whose curvature is
   kappa_g = +-kappa_n (+ outside, - inside) and its offset by the web height h. With
-  phi = theta - Int sigma ds (MATH.md section 2) and s the axis arc length:
+  phi = theta - Int sigma ds (docs/MATH.md section 2) and s the axis arc length:
       d alpha / ds = +-k cos phi,  d gamma / ds = (1 - R k cos phi) (cos alpha, sin alpha),
   the base edge has length Int (1 - R k cos phi) ds, the top edge is the same curvature
   line on the tube of radius R +- h: length Int |1 - (R +- h) k cos phi| ds, and the area is

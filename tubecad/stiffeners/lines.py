@@ -5,7 +5,7 @@ stringer (angle theta = const) is its isoline UIso(u(theta)), an orthogonal traj
 the circles. Both lie on the fitted surface by construction and within the fit tolerance
 of the exact tube. Polylines carry exact values from the tube's own formulas: position
 S(theta, s), unit tangent (-sin th r1 + cos th r2 along a ring, t along a stringer,
-MATH.md section 3) and the outward unit surface normal.
+docs/MATH.md section 3) and the outward unit surface normal.
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ from ..fitting import TubeSurface
 class CurvatureLine:
     """One ring frame or stringer on one tube surface."""
 
-    name: str  # ring_03, stringer_05 (inner surface: ..._inner)
+    name: str  # line_ring_03, line_stringer_05 (inner surface: ..._inner): unlike the stiffeners ring_03, ...
     kind: str  # "ring" | "stringer"
     index: int
     value: float  # s of a ring, angle in degrees of a stringer
@@ -68,9 +68,10 @@ class CurvatureLine:
 
 
 def net_lines(surface: TubeSurface, layout: NetLayout, suffix: str = "") -> list[CurvatureLine]:
-    """The layout's rings and stringers on ``surface``, named ring_00.., stringer_00.."""
-    rings = [CurvatureLine(f"ring_{i:02d}{suffix}", "ring", i, s, surface) for i, s in enumerate(layout.s_rings)]
-    stringers = [CurvatureLine(f"stringer_{j:02d}{suffix}", "stringer", j, a, surface)
+    """The layout's rings and stringers on ``surface``, named line_ring_00.., line_stringer_00..
+    (plus ``suffix``, e.g. ``_inner``), so that no line shares a name with a stiffener."""
+    rings = [CurvatureLine(f"line_ring_{i:02d}{suffix}", "ring", i, s, surface) for i, s in enumerate(layout.s_rings)]
+    stringers = [CurvatureLine(f"line_stringer_{j:02d}{suffix}", "stringer", j, a, surface)
                  for j, a in enumerate(layout.stringers_deg)]  # fmt: skip
     return rings + stringers
 
@@ -90,6 +91,11 @@ COLUMNS = ["line", "kind", "index", "surface_radius", "s", "theta_deg", "x", "y"
 
 def polylines_csv(lines: list[CurvatureLine], path: str | Path, points: int = 200) -> Path:
     """One row per point: line, kind, index, surface radius, s, theta, position, tangent, normal."""
+    return write_text(path, polylines_csv_text(lines, points))
+
+
+def polylines_csv_text(lines: list[CurvatureLine], points: int = 200) -> str:
+    """The text of :func:`polylines_csv`."""
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(COLUMNS)
@@ -99,14 +105,19 @@ def polylines_csv(lines: list[CurvatureLine], path: str | Path, points: int = 20
             writer.writerow([line.name, line.kind, line.index, repr(line.radius), repr(float(p["s"][i])),
                              repr(float(p["theta_deg"][i])), *map(repr, map(float, p["position"][i])),
                              *map(repr, map(float, p["tangent"][i])), *map(repr, map(float, p["normal"][i]))])  # fmt: skip
-    return write_text(path, out.getvalue())
+    return out.getvalue()
 
 
 def polylines_json(lines: list[CurvatureLine], path: str | Path, points: int = 200) -> Path:
     """{"lines": [{name, kind, index, surface_radius, closed, s, theta_deg, position, tangent, normal}]}."""
+    return write_text(path, polylines_json_text(lines, points))
+
+
+def polylines_json_text(lines: list[CurvatureLine], points: int = 200) -> str:
+    """The text of :func:`polylines_json`."""
     data = []
     for line in lines:
         p = line.polyline(points)
         data.append({"name": line.name, "kind": line.kind, "index": line.index, "surface_radius": line.radius,
                      "closed": line.kind == "ring", **{k: v.tolist() for k, v in p.items()}})  # fmt: skip
-    return write_text(path, json.dumps({"units": "mm", "lines": data}) + "\n")
+    return json.dumps({"units": "mm", "lines": data}) + "\n"

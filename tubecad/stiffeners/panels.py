@@ -3,8 +3,9 @@
 A panel lies between two ring frames s_a < s_b and two seam stringers th_a -> th_b
 (counter-clockwise). Its faces: the outer and inner wall surfaces between the seams
 (exact-section patches), the two seam faces along the normal strip from r_in to r_out
-(ruled, as exact as the wall), and two planar caps in the normal planes. Panels fit
-together into the wall: their volumes add up to it.
+(ruled, as exact as the wall), and two planar caps in the normal planes, sharing their
+edges (nothing is sewn). Panels fit together into the wall: their volumes add up to it.
+With a single seam a panel is its bay all round (a full turn, the seam one of its edges).
 """
 
 from __future__ import annotations
@@ -13,16 +14,15 @@ import math
 from dataclasses import dataclass
 
 import build123d as bd
-import numpy as np
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
-from OCP.gp import gp_Pnt
 
 from ..brep import TubeBuild
 from ..brep import properties as props
+from ..brep.assembled import Strip, c0_knots, strip_solid
 from ..errors import ParameterError
 from ..fitting import exact_section_surface
 from ..surface import CurvatureLineTube
-from .solids import ruled_surface, sew_solid
+from .rings import swept_section
+from .solids import cap_plane, ruled_surface, surface_part
 
 
 @dataclass
@@ -62,33 +62,24 @@ def split_into_panels(build: TubeBuild, seams: list[int], rings: list[int] | Non
 
 
 def panel(build: TubeBuild, axis, r_in: float, r_out: float, a_deg: float, b_deg: float, name: str) -> Panel:
-    """One panel over ``axis``'s span between the angles a_deg -> b_deg."""
+    """One panel over ``axis``'s span between the angles a_deg -> b_deg: outer patch a -> b,
+    seam b (r_out -> r_in), inner patch b -> a, seam a (r_in -> r_out), counter-clockwise
+    about +t, with shared edges and planar caps (:func:`tubecad.brep.assembled.strip_solid`)."""
     frame = build.frame
     s0, s1 = axis.span
-    surfaces = [exact_section_surface(CurvatureLineTube(axis, r, allow_irregular=True), frame, origin_deg=a_deg)
-                for r in (r_out, r_in)]  # fmt: skip
-    u1 = float(surfaces[0].u_at(b_deg)) if (b_deg - a_deg) % 360 else 2 * math.pi
-    faces = [BRepBuilderAPI_MakeFace(ts.surface, 0.0, u1, s0, s1, 1e-7).Face() for ts in surfaces]
-    for angle in (a_deg, b_deg):
-        faces.append(BRepBuilderAPI_MakeFace(ruled_surface(frame, math.radians(angle), (0.0, r_in), (0.0, r_out)),
-                                             0.0, 1.0, s0, s1, 1e-7).Face())  # fmt: skip
-    for s in (s0, s1):
-        faces.append(_cap(surfaces, frame.spline(s), a_deg, b_deg, s, u1, r_in, r_out))
-    solid = sew_solid(faces, name)
-    return Panel(name, (s0, s1), (a_deg, b_deg), solid, props.area(bd.Face(faces[0])))
-
-
-def _cap(surfaces, F: np.ndarray, a_deg: float, b_deg: float, s: float, u1: float, r_in: float, r_out: float):
-    """Annular sector in the normal plane at s: outer arc, seam line, inner arc, seam line."""
-    c, r1, r2 = F[:3], F[3:6], F[6:]
-
-    def point(angle_deg: float, r: float) -> gp_Pnt:
-        a = math.radians(angle_deg)
-        return gp_Pnt(*map(float, c + r * (math.cos(a) * r1 + math.sin(a) * r2)))
-
-    wire = BRepBuilderAPI_MakeWire()
-    wire.Add(BRepBuilderAPI_MakeEdge(surfaces[0].surface.VIso(s), 0.0, u1).Edge())
-    wire.Add(BRepBuilderAPI_MakeEdge(point(b_deg, r_out), point(b_deg, r_in)).Edge())
-    wire.Add(BRepBuilderAPI_MakeEdge(surfaces[1].surface.VIso(s), 0.0, u1).Edge())
-    wire.Add(BRepBuilderAPI_MakeEdge(point(a_deg, r_in), point(a_deg, r_out)).Edge())
-    return BRepBuilderAPI_MakeFace(wire.Wire(), True).Face()
+    if not (b_deg - a_deg) % 360:  # one seam: the bay all round, the seam an edge of it
+        section = [(s0, r_in), (s1, r_in), (s1, r_out), (s0, r_out)]
+        solid, tube_faces = swept_section(axis, section, build.tolerance, origin_deg=a_deg)
+        return Panel(name, (s0, s1), (a_deg, b_deg), bd.Solid(solid), props.faces_area(tube_faces[r_out]))
+    outer, inner = (exact_section_surface(CurvatureLineTube(axis, r, allow_irregular=True), frame, origin_deg=a_deg)
+                    for r in (r_out, r_in))  # fmt: skip
+    u1 = float(outer.u_at(b_deg))
+    # the wall patches in pieces between the surfaces' C0 knots (each piece its own face)
+    cuts = [0.0] + [u for u in c0_knots(outer.surface) if 1e-12 < u < u1 - 1e-12] + [u1]
+    pieces = list(zip(cuts[:-1], cuts[1:]))
+    strips = [Strip(surface_part(outer.surface, p, q), p, q) for p, q in pieces]
+    strips.append(Strip(ruled_surface(frame, math.radians(b_deg), (0.0, r_in), (0.0, r_out)), 1.0, 0.0))
+    strips += [Strip(surface_part(inner.surface, p, q), q, p) for p, q in pieces[::-1]]
+    strips.append(Strip(ruled_surface(frame, math.radians(a_deg), (0.0, r_in), (0.0, r_out)), 0.0, 1.0))
+    solid, faces = strip_solid(strips, s0, s1, (cap_plane(frame, s0), cap_plane(frame, s1)), counter_clockwise=True)
+    return Panel(name, (s0, s1), (a_deg, b_deg), bd.Solid(solid), props.faces_area(faces[: len(pieces)]))

@@ -1,4 +1,4 @@
-"""The curvature-line tube S(u, s), its fundamental forms and regularity (MATH.md sections 2-5)."""
+"""The curvature-line tube S(u, s), its fundamental forms and regularity (docs/MATH.md sections 2-5)."""
 
 from .forms import FundamentalForms, SurfaceDerivatives
 from .regularity import RegularityReport, check_regularity

@@ -1,4 +1,4 @@
-"""Measured checks of a tube against the exact facts of MATH.md sections 3-4.
+"""Measured checks of a tube against the exact facts of docs/MATH.md sections 3-4.
 
 These do not trust any formula of the tube: they measure the net's orthogonality and
 conjugacy from the derivative vectors, integrate the area numerically, and find each

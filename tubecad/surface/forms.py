@@ -2,7 +2,7 @@
 
 Nothing here assumes the tube: E, F, G, L, M, N are dot products of the derivative
 vectors and of the unit normal S_u x S_s / |S_u x S_s|, so a wrong parameterisation shows
-up as F != 0 or M != 0 (MATH.md section 3).
+up as F != 0 or M != 0 (docs/MATH.md section 3).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Regularity of a tube (MATH.md section 5).
+"""Regularity of a tube (docs/MATH.md section 5).
 
 Locally the tube is regular only where rho |k(s)| < 1 (else G = 0 somewhere on the
 circle and the surface folds). Globally it self-intersects where the axis comes back

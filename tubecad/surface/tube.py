@@ -1,4 +1,4 @@
-"""The tubular surface referred to its lines of curvature (paper eq. 7, MATH.md section 2).
+"""The tubular surface referred to its lines of curvature (paper eq. 7, docs/MATH.md section 2).
 
     phi = u - Int sigma ds            (for a slope curve Int sigma ds = psi sin b)
     S(u, s) = c(s) + rho (cos phi n(s) + sin phi bn(s))
@@ -44,7 +44,7 @@ class CurvatureLineTube:
         if not self.regularity.ok and not allow_irregular:
             raise RegularityError(self.regularity.message())
 
-    # --- exact measures (MATH.md section 4) -------------------------------------------
+    # --- exact measures (docs/MATH.md section 4) -------------------------------------------
     @property
     def span(self) -> tuple[float, float]:
         return self.axis.span
@@ -66,7 +66,7 @@ class CurvatureLineTube:
 
     def offset(self, distance: float, *, allow_irregular: bool = False) -> "CurvatureLineTube":
         """The normal offset by ``distance`` (outward > 0): the tube of radius rho + distance
-        on the same axis, with the same curvature-line net (MATH.md section 4)."""
+        on the same axis, with the same curvature-line net (docs/MATH.md section 4)."""
         return CurvatureLineTube(self.axis, self.radius + distance, allow_irregular=allow_irregular)
 
     # --- evaluation -------------------------------------------------------------------

@@ -1,0 +1,122 @@
+"""How far a stiffener may stand from its wall: the radius its frame is fitted to, and the
+limit on ``height`` it implies, checked before anything is fitted.
+
+A point at distance d from the axis, swept along it, moves at the rate 1 - d k cos(phi)
+(docs/MATH.md section 3: G = (1 - rho k cos phi)^2), so the stiffener's surfaces stay
+regular, and its frame can be fitted, only while d max|k| < 1 over its span. The largest d:
+- ring frame (the tube slices between r_min and r_max): R + height outside, R inside;
+- stringer (its outline swept with the rotation-minimising frame): the outline corner
+  farthest from the axis, sqrt(v^2 + w^2) for a corner w across and v along the normal:
+  sqrt((R + height)^2 + w_max^2) outside (w_max: half the web thickness, half a T flange,
+  or an L flange's reach), and max(R, sqrt((R - height)^2 + w_max^2)) inside.
+Outside, d max|k| < 1 gives height < 1 / max|k| - R for a ring and
+height < sqrt(1 / max|k|^2 - w_max^2) - R for a stringer. Inside, the stiffener reaches
+in to R - height, which must stay >= MIN_SIZE.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from ..brep.solids import MIN_SIZE
+from ..curves.slope_curve import SlopeCurve
+from ..errors import ParameterError
+from ..fitting import FitError
+from .profiles import Profile
+
+SAMPLES = 2001
+
+
+def max_curvature(axis: SlopeCurve) -> tuple[float, float]:
+    """(max |k(s)|, s where it is reached) over the axis' span: the largest of SAMPLES
+    equally spaced values, refined by bounded minimisation between its neighbours."""
+    s = np.linspace(*axis.span, SAMPLES)
+    k = np.abs(axis.curvature(s))
+    i = int(np.argmax(k))
+    best = (float(k[i]), float(s[i]))
+    if 0 < i < SAMPLES - 1:
+        res = minimize_scalar(lambda x: -abs(float(axis.curvature(x))), bounds=(s[i - 1], s[i + 1]), method="bounded")
+        if -res.fun > best[0]:
+            best = (float(-res.fun), float(res.x))
+    return best
+
+
+def reach(profile: Profile, radius: float, side: str, kind: str) -> float:
+    """The largest distance from the axis of the stiffener's cross-section (module docstring)."""
+    sign = 1.0 if side == "outside" else -1.0
+    top = radius + sign * profile.height
+    if kind == "ring":
+        return max(radius, top)
+    w_max = max(abs(w) for w, _ in profile.outline())
+    return max(radius, math.hypot(top, w_max))
+
+
+def checked_reach(axis: SlopeCurve, profile: Profile, radius: float, side: str, kind: str) -> float:
+    """:func:`reach`, or a ParameterError naming ``height`` (or ``flange_width``) and its
+    limit on this wall when the stiffener cannot be built: reach max|k| >= 1 over the
+    axis' span, or an inside stiffener reaching in past the axis."""
+    h = profile.height
+    if side == "inside" and not radius - h >= MIN_SIZE:
+        raise ParameterError(f"height must be < R = {radius:g} for side = 'inside' on this wall (its innermost radius "
+                             f"R - height must stay >= {MIN_SIZE:g}), got {h:.10g}")  # fmt: skip
+    d = reach(profile, radius, side, kind)
+    k_max, s_at = max_curvature(axis)
+    if d * k_max < 1.0:
+        return d
+    where = f"R = {radius:g}, max|k| = {k_max:.6g} at s = {s_at:.6g}"
+    w_max = max(abs(w) for w, _ in profile.outline())
+    if side == "outside":
+        if kind == "ring":
+            limit, rule = 1.0 / k_max - radius, "(R + height) max|k| must stay < 1"
+        else:
+            limit = math.sqrt(max(1.0 / k_max**2 - w_max**2, 0.0)) - radius
+            rule = (f"the stringer's outer corners, sqrt((R + height)^2 + {w_max:g}^2) from the axis, times max|k| "
+                    f"must stay < 1")  # fmt: skip
+        raise ParameterError(f"height must be < {limit:.6g} for side = 'outside' on this wall: {rule} ({where}), "
+                             f"got {h:.10g}")  # fmt: skip
+    raise ParameterError(f"flange_width is too wide for side = 'inside' on this wall: the flange corners reach "
+                         f"{d:.6g} from the axis, and that times max|k| must stay < 1 ({where}; the flange reaches "
+                         f"{w_max:g} across), got {profile.flange_width:.10g}")  # fmt: skip
+
+
+def fit_failure(exc: Exception, name: str, axis: SlopeCurve, reach: float) -> FitError:
+    """A FitError of a stiffener's frame, saying how close to the limit it stands."""
+    k_max, s_at = max_curvature(axis)
+    return FitError(f"{name}: its frame, fitted to its farthest point {reach:.6g} from the axis (reach max|k| = "
+                    f"{reach * k_max:.4g} at s = {s_at:.6g}, which must stay < 1), did not reach the fit tolerance "
+                    f"(a lower height or a looser tolerance helps): {exc}")  # fmt: skip
+
+
+def check_spec_heights(axis: SlopeCurve, layout, radii: tuple[float, float], section: dict) -> None:
+    """A [stiffeners] section's height against the wall between ``radii`` = (r_in, r_out) on
+    ``axis`` with ``layout`` (a NetLayout), before anything is built (ParameterError as
+    :func:`checked_reach`). Other faults (keys, profile, indices) are left to the build."""
+    from .profiles import SIDES
+
+    side = section.get("side", "outside")
+    try:
+        profile = Profile(section.get("profile", "flat"), section["height"], section["thickness"],
+                          section.get("flange_width", 0.0), section.get("flange_thickness", 0.0))  # fmt: skip
+    except (KeyError, TypeError, ParameterError):
+        return
+    if side not in SIDES:
+        return
+    radius = radii[1] if side == "outside" else radii[0]
+
+    def chosen(key: str, count: int) -> list[int]:
+        value = section.get(key, [])
+        indices = range(count) if value == "all" else value if isinstance(value, list) else []
+        return [i for i in indices if isinstance(i, int) and 0 <= i < count]
+
+    s0, s1 = axis.span
+    w = [w for w, _ in profile.outline()]
+    for i in chosen("rings", len(layout.s_rings)):  # a ring sees the curvature over its own width
+        s = float(layout.s_rings[i])
+        lo, hi = max(s0, s + min(w)), min(s1, s + max(w))
+        if hi > lo:
+            checked_reach(axis.restricted((lo, hi)), profile, radius, side, "ring")
+    if chosen("stringers", len(layout.stringers_deg)):
+        checked_reach(axis, profile, radius, side, "stringer")

@@ -1,0 +1,242 @@
+"""Ring frames as solids of revolution about their ring's axis, built with no boolean.
+
+A ring frame's cross-section is a rectilinear polygon in the (s, r) half-plane (s the arc
+length along the axis, r the distance from it) swept once round the tube:
+- every polygon edge of constant r is a tube face of radius r over an s-interval (the
+  exact-section NURBS on one frame fit of the ring's short span, see :func:`fit_span`);
+- every edge of constant s is a planar annulus in the normal plane at s;
+- every polygon vertex (s, r) is an exact circle (Geom_Circle, by angle; within the fit's
+  deviation of the surface's isoline s = const) shared by the tube face and the annulus
+  that meet there; its pcurve on the tube face is (u(theta), s), u(theta) the surface's
+  circle parametrisation inverted (:func:`tubecad.brep.faces.ring_pcurve`).
+A flat bar is a rectangle, a T or L ring one polygon of 8 or 6 corners: web and flange are
+one solid, with shared edges and nothing fused or sewn. The tube faces are cut where the
+surface's u-parametrisation is only C0 and at least at quarter turns.
+
+Volume (Pappus on a curved axis, exact for a regular tube): the tube of radius r between
+s_a and s_b encloses pi r^2 (s_b - s_a), so by Green's theorem in the (s, r) plane, for a
+counter-clockwise polygon (s across, r up),
+    V = Int Int 2 pi r dr ds = -pi sum over its edges of r^2 (s_b - s_a).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy as np
+from OCP.Geom import Geom_Circle
+from OCP.Geom2d import Geom2d_Curve
+from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Vec2d
+from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Vertex
+
+from ..brep.assembled import TOLERANCE, CapPlane, c0_knots, closed_solid, edge, patch_face, plane_face, vertex
+from ..brep.faces import ring_pcurve
+from ..brep.solids import MIN_SIZE, orthogonality_for
+from ..curves.slope_curve import SlopeCurve
+from ..errors import ParameterError
+from ..fitting import TubeSurface, exact_section_surface, fit_frame
+from ..surface import CurvatureLineTube
+from .limits import max_curvature
+from .profiles import Profile
+
+Section = list[tuple[float, float]]
+
+
+def ring_section(profile: Profile, s: float, radius: float, side: str, span: tuple[float, float]) -> Section:
+    """The ring frame's cross-section at ``s``: the profile's outline (w, h) placed at
+    (s + w, R + h) outside or (s + w, R - h) inside and closed by its base r = R, clipped to
+    ``span``, counter-clockwise in (s, r). Corners within MIN_SIZE of a span end snap to it."""
+    sign = 1.0 if side == "outside" else -1.0
+    lo, hi = span
+    points = _clip(_clip([(s + w, radius + sign * h) for w, h in profile.outline()], lo, 1.0), hi, -1.0)
+    points = _simplified([(lo if abs(p - lo) < MIN_SIZE else hi if abs(p - hi) < MIN_SIZE else p, r) for p, r in points])
+    if len(points) < 4:
+        raise ParameterError(f"the ring at s = {s:g} lies outside the span [{lo:g}, {hi:g}]")
+    if section_area(points) < 0:
+        points = points[::-1]
+    short = min(abs(a[0] - b[0]) + abs(a[1] - b[1]) for a, b in zip(points, points[1:] + points[:1]))
+    if short < MIN_SIZE:
+        raise ParameterError(f"the ring at s = {s:g} has a side {short:.3g} long in its cross-section (clipped to the "
+                             f"span [{lo:g}, {hi:g}]); every side must be at least {MIN_SIZE:g}")  # fmt: skip
+    return points
+
+
+def _clip(points: Section, bound: float, keep: float) -> Section:
+    """Sutherland-Hodgman: the part of the polygon where keep * (s - bound) >= 0."""
+    out: Section = []
+    for a, b in zip(points, points[1:] + points[:1]):
+        a_in, b_in = keep * (a[0] - bound) >= 0, keep * (b[0] - bound) >= 0
+        if a_in:
+            out.append(a)
+        if a_in != b_in:  # only edges of constant r cross a line s = const
+            out.append((bound, a[1] + (bound - a[0]) / (b[0] - a[0]) * (b[1] - a[1])))
+    return out
+
+
+def _simplified(points: Section) -> Section:
+    """Without repeated corners and corners in the middle of a straight side."""
+    points = list(points)
+    k = 0
+    while len(points) >= 3 and k < len(points):
+        p, q, r = points[k - 1], points[k], points[(k + 1) % len(points)]
+        if q == p or p[0] == q[0] == r[0] or p[1] == q[1] == r[1]:
+            del points[k]
+            k = 0
+        else:
+            k += 1
+    return points
+
+
+def section_area(section: Section) -> float:
+    """Signed area of the polygon in (s, r) (shoelace), > 0 counter-clockwise."""
+    return 0.5 * sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(section, section[1:] + section[:1]))
+
+
+def section_volume(section: Section) -> float:
+    """The exact volume of the swept section: -pi sum r^2 (s_b - s_a) over its edges."""
+    return -math.pi * sum(a[1] ** 2 * (b[0] - a[0]) for a, b in zip(section, section[1:] + section[:1]) if a[1] == b[1])
+
+
+def ring_solid(axis: SlopeCurve, section: Section, tolerance: float) -> TopoDS_Solid:
+    """The solid swept by the counter-clockwise rectilinear ``section`` round ``axis``, on one
+    frame fit of the section's s-range to its largest radius."""
+    return swept_section(axis, section, tolerance)[0]
+
+
+def swept_section(axis: SlopeCurve, section: Section, tolerance: float,
+                  origin_deg: float = 0.0) -> tuple[TopoDS_Solid, dict[float, list[TopoDS_Face]]]:  # fmt: skip
+    """:func:`ring_solid`, with the tube faces cut (also) at the angle ``origin_deg`` from r1;
+    returns the solid and its tube faces by radius."""
+    s_values, radii = [p[0] for p in section], [p[1] for p in section]
+    sub = axis.restricted(fit_span(axis, min(s_values), max(s_values), max(radii)))
+    frame = fit_frame(sub, max(radii), tolerance, orthogonality_for(tolerance))
+    surfaces: dict[float, TubeSurface] = {}
+    for r in radii:
+        if r not in surfaces:
+            surfaces[r] = exact_section_surface(CurvatureLineTube(sub, r, allow_irregular=True), frame, origin_deg)
+    arcs = {r: _Arcs(ts, max(radii)) for r, ts in surfaces.items()}
+    circles = [_circle(arcs[r], s) for s, r in section]
+    # the exact circles are within the fit's deviation of the surfaces' isolines
+    edge_tolerance = max(TOLERANCE, 2.0 * frame.position_bound)
+    faces: list[TopoDS_Face] = []
+    tube_faces: dict[float, list[TopoDS_Face]] = {}
+    n = len(section)
+    for i in range(n):
+        j = (i + 1) % n
+        (sa, ra), (sb, rb) = section[i], section[j]
+        if ra == rb:  # a tube face; the solid lies at larger r when the edge runs along +s
+            lo, hi = (i, j) if sa < sb else (j, i)
+            band = _band(arcs[ra], circles[lo], circles[hi], edge_tolerance, reverse=sa < sb)
+            tube_faces.setdefault(ra, []).extend(band)
+            faces += band
+        else:  # an annulus; the solid lies at smaller s when the edge runs along +r
+            outer, inner = (j, i) if rb > ra else (i, j)
+            faces.append(_annulus(circles[outer], circles[inner], outward=rb > ra))
+    return closed_solid(faces), tube_faces
+
+
+def fit_span(axis: SlopeCurve, lo: float, hi: float, reach: float) -> tuple[float, float]:
+    """The span the ring's frame is fitted on: [lo, hi] widened, within the axis' span, to
+    at least max(reach, 2 (hi - lo)) while reach max|k| < 1 holds on it. On a span of a
+    millimetre the fit's derivatives carry rounding of |c| eps / (span / 8), which near the
+    regularity limit (divided by 1 - reach |k|) exceeds the orthogonality target; the faces
+    are cut to [lo, hi] anyway."""
+    s0, s1 = axis.span
+    want = min(max(reach, 2.0 * (hi - lo)), s1 - s0)
+    a, b = max(s0, lo - (want - (hi - lo)) / 2), min(s1, hi + (want - (hi - lo)) / 2)
+    a, b = max(s0, min(a, b - want)), min(s1, max(b, a + want))
+    for _ in range(20):
+        if max_curvature(axis.restricted((a, b)))[0] * reach < 1.0:
+            return a, b
+        a, b = 0.5 * (a + lo), 0.5 * (b + hi)
+    return lo, hi
+
+
+def u_cuts(ts: TubeSurface) -> list[float]:
+    """Where the tube faces are cut round the surface: its u-knots where it is only C0
+    (multiplicity >= degree), and the quarter turns; from the period's start to its end."""
+    surface = ts.surface
+    u_start, u_end, _, _ = surface.Bounds()
+    cuts = [u_start]
+    cuts += c0_knots(surface)
+    cuts += [float(u) for u in ts.u_at(ts.origin_deg + np.array([90.0, 180.0, 270.0]))]
+    period = u_end - u_start
+    inside = sorted(u for u in cuts if u_start <= u < u_end - 1e-9 * period)
+    out = [inside[0]] + [u for a, u in zip(inside, inside[1:]) if u - a > 1e-9 * period]
+    return out + [u_end]
+
+
+class _Arcs:
+    """How one tube surface is cut round: the cuts u_j, their angles theta_j from the
+    surface's origin, and per arc the map theta -> u as a plane B-spline curve (the pcurve
+    of an exact circle arc, parameterised by angle, on a face of the surface)."""
+
+    def __init__(self, ts: TubeSurface, r_max: float) -> None:
+        self.ts = ts
+        self.cuts = u_cuts(ts)
+        angles = ts.theta_at(np.asarray(self.cuts)) - math.radians(ts.origin_deg)
+        angles[-1] = angles[0] + 2 * math.pi
+        self.angles = angles
+        self._pcurves = [ring_pcurve(ts.circle, a, b) for a, b in zip(angles[:-1], angles[1:])]
+
+    def pcurve(self, j: int, s: float) -> Geom2d_Curve:
+        """The pcurve (u(theta), s) of arc j of the circle at ``s``."""
+        return self._pcurves[j].Translated(gp_Vec2d(0.0, s))
+
+
+class _Circle:
+    """The ring s = const of one tube surface as arcs of an exact circle between the cuts."""
+
+    def __init__(self, vertices: list[TopoDS_Vertex], arcs: list[TopoDS_Edge], s: float, plane: CapPlane) -> None:
+        self.vertices, self.arcs, self.s, self.plane = vertices, arcs, s, plane
+
+
+def _circle(arcs: _Arcs, s: float) -> _Circle:
+    """The circle of the surface's radius at ``s`` (Geom_Circle: centre c(s), axis t(s),
+    angle from the surface's origin, so CAD sees a circle), in arcs between the cuts."""
+    ts = arcs.ts
+    axis, surface = ts.tube.axis, ts.surface
+    t, r1, r2 = (v[0] for v in axis.rotation_minimising_frame(np.array([s])))
+    centre = axis.position(np.array([s]))[0]
+    a = math.radians(ts.origin_deg)
+    x_dir = math.cos(a) * r1 + math.sin(a) * r2
+    circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+                         ts.tube.radius)  # fmt: skip
+    m = len(arcs.cuts) - 1
+    vertices = [vertex(surface.Value(u, s)) for u in arcs.cuts[:-1]]
+    edges = [edge(circle, vertices[j], vertices[(j + 1) % m], arcs.angles[j], arcs.angles[j + 1]) for j in range(m)]
+    return _Circle(vertices, edges, s, CapPlane(centre, t, x_dir))
+
+
+def _band(arcs: _Arcs, bottom: _Circle, top: _Circle, tolerance: float, reverse: bool) -> list[TopoDS_Face]:
+    """The tube faces between the circles ``bottom`` (smaller s) and ``top``, one per arc;
+    the circle arcs get their pcurves (u(theta), s) on them."""
+    surface, cuts = arcs.ts.surface, arcs.cuts
+    m = len(cuts) - 1
+    stringers = [edge(_iso_part(surface, cuts[j], bottom.s, top.s), bottom.vertices[j], top.vertices[j], bottom.s, top.s)
+                 for j in range(m)]  # fmt: skip
+    return [patch_face(surface, cuts[j], cuts[j + 1], bottom.s, top.s, bottom.arcs[j], stringers[(j + 1) % m],
+                       top.arcs[j], stringers[j], reverse=reverse,
+                       ring_pcurves=(arcs.pcurve(j, bottom.s), arcs.pcurve(j, top.s)), ring_tolerance=tolerance)
+            for j in range(m)]  # fmt: skip
+
+
+def _iso_part(surface, u: float, s0: float, s1: float):
+    """The isoline u = const for s0 <= s <= s1 only (the frame may run further)."""
+    iso = surface.UIso(u)
+    iso.Segment(s0, s1)
+    return iso
+
+
+def _annulus(outer: _Circle, inner: _Circle, outward: bool) -> TopoDS_Face:
+    """The planar annulus between two circles in the normal plane at their s (exact: the
+    circles lie in it); its normal is +t (``outward``) or -t."""
+    # the arcs run counter-clockwise about +t: the outer loop must run counter-clockwise
+    # about the face normal, the hole clockwise
+    loops = []
+    for k, circle in enumerate((outer, inner)):
+        along = outward == (k == 0)
+        loops.append([(arc, along) for arc in (circle.arcs if along else circle.arcs[::-1])])
+    plane = outer.plane
+    return plane_face(plane.origin, plane.normal if outward else -plane.normal, plane.x_dir, loops)
