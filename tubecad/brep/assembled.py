@@ -116,17 +116,23 @@ def c0_knots(surface: Geom_BSplineSurface) -> list[float]:
     return [surface.UKnot(i) for i in range(1, surface.NbUKnots() + 1) if surface.UMultiplicity(i) >= degree]
 
 
-def closed_solid(faces: Sequence[TopoDS_Face]) -> TopoDS_Solid:
-    """The solid bounded by ``faces`` (oriented outward by the caller), as one closed shell."""
+def shell_of(faces: Sequence[TopoDS_Face], closed: bool) -> TopoDS_Shell:
+    """One shell of ``faces`` that share their edges (nothing is sewn)."""
     builder = BRep_Builder()
     shell = TopoDS_Shell()
     builder.MakeShell(shell)
     for face in faces:
         builder.Add(shell, face)
-    shell.Closed(True)
+    shell.Closed(closed)
+    return shell
+
+
+def closed_solid(faces: Sequence[TopoDS_Face]) -> TopoDS_Solid:
+    """The solid bounded by ``faces`` (oriented outward by the caller), as one closed shell."""
+    builder = BRep_Builder()
     solid = TopoDS_Solid()
     builder.MakeSolid(solid)
-    builder.Add(solid, shell)
+    builder.Add(solid, shell_of(faces, closed=True))
     return solid
 
 

@@ -62,7 +62,7 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
     surface = tube_surface.surface
     angles = [math.radians(a - tube_surface.origin_deg) for a in stringers_deg] + [2 * math.pi]
     u_cuts = stringer_parameters(stringers_deg, tube_surface.u_at)
-    n_rings, n_cuts = len(s_rings), len(u_cuts)
+    n_cuts = len(u_cuts)
     n_stringers = n_cuts - 1
     seam = n_stringers == 1
 

@@ -22,12 +22,13 @@ from OCP.BRepGProp import BRepGProp_Face
 from OCP.BRepTools import BRepTools
 from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
-from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid, TopoDS_Wire
+from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Wire
 
 from ..errors import ParameterError, RegularityError
 from ..fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
 from ..surface import CurvatureLineTube
 from ..validation import bounded_length
+from .assembled import closed_solid, shell_of
 from .faces import TOLERANCE, PatchFaces, patch_faces
 from .layout import NetLayout
 
@@ -117,7 +118,7 @@ def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
     layout = _checked(tube, layout)
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     surface, patches = _tube_faces(tube, frame, layout)
-    shell = _shell(patches.all_faces(), closed=False)
+    shell = shell_of(patches.all_faces(), closed=False)
     return TubeBuild(bd.Shell(shell), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
 
@@ -203,16 +204,6 @@ def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outw
     return face
 
 
-def _shell(faces: list[TopoDS_Face], closed: bool) -> TopoDS_Shell:
-    builder = BRep_Builder()
-    shell = TopoDS_Shell()
-    builder.MakeShell(shell)
-    for face in faces:
-        builder.Add(shell, face)
-    shell.Closed(closed)
-    return shell
-
-
 def _solid(faces: list[TopoDS_Face], tube: CurvatureLineTube) -> TopoDS_Solid:
     """The closed shell of ``faces`` (the first an outer tube face) as a solid.
 
@@ -221,10 +212,7 @@ def _solid(faces: list[TopoDS_Face], tube: CurvatureLineTube) -> TopoDS_Solid:
     ray casting through every face (over half the build time of a 10,000-face wall), so
     it is only the fallback.
     """
-    builder = BRep_Builder()
-    solid = TopoDS_Solid()
-    builder.MakeSolid(solid)
-    builder.Add(solid, _shell(faces, closed=True))
+    solid = closed_solid(faces)
     if not _points_away_from_axis(faces[0], tube):
         BRepLib.OrientClosedSolid_s(solid)
     return solid

@@ -22,7 +22,6 @@ counter-clockwise polygon (s across, r up),
 from __future__ import annotations
 
 import math
-from typing import Sequence
 
 import numpy as np
 from OCP.Geom import Geom_Circle
