@@ -9,7 +9,7 @@ import pytest
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.TopAbs import TopAbs_EDGE
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS
+from tubecad.occ_compat import as_edge
 
 from conftest import FAMILY_CASES
 from tubecad import CurvatureLineTube, LogSpiral, ParameterError, RegularityError, paper_tube
@@ -68,7 +68,7 @@ def test_unreachable_tolerance_says_the_best_reached():
 def edges_of(shape):
     explorer, out = TopExp_Explorer(props.topods(shape), TopAbs_EDGE), []
     while explorer.More():
-        out.append(TopoDS.Edge_s(explorer.Current()))
+        out.append(as_edge(explorer.Current()))
         explorer.Next()
     return out
 
@@ -110,10 +110,10 @@ def test_edges_are_exactly_the_requested_rings_and_stringers():
 def test_neighbouring_faces_share_one_edge():
     build = build_tube_solid(paper_tube(), NetLayout.equal(paper_tube(), 5, 4))
     from OCP.TopAbs import TopAbs_FACE
-    from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape
+    from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape
     from OCP.TopExp import TopExp
 
-    edge_faces = TopTools_IndexedDataMapOfShapeListOfShape()
+    edge_faces = IndexedDataMapOfShapeListOfShape()
     TopExp.MapShapesAndAncestors_s(build.shape.wrapped, TopAbs_EDGE, TopAbs_FACE, edge_faces)
     uses = [edge_faces.FindFromIndex(i).Extent() for i in range(1, edge_faces.Extent() + 1)]
     assert set(uses) == {2}
@@ -165,7 +165,7 @@ def test_same_line_listed_twice_is_one_line():
 
 
 def test_solids_work_in_build123d_and_cadquery():
-    import cadquery as cq
+    cq = pytest.importorskip("cadquery", reason="CadQuery is the extra tubecad[cadquery]")
 
     import tubecad.interfaces.cadquery_plugin  # noqa: F401
 

@@ -10,7 +10,7 @@ from OCP.BRep import BRep_Tool
 from OCP.BRepTools import BRepTools
 from OCP.Geom import Geom_BSplineCurve
 from OCP.gp import gp_Pnt, gp_Vec
-from OCP.TColgp import TColgp_Array1OfPnt
+from tubecad.occ_compat import Array1OfPnt
 
 from tubecad import CircleInvolute, CurvatureLineTube, CustomCurvature, Helix, LogSpiral, paper_tube
 from tubecad.brep import NetLayout, build_tube_solid, build_wall_solid
@@ -31,7 +31,7 @@ BREAK_CASES = {
 
 
 def occ_circle(circle: CircleSpline) -> Geom_BSplineCurve:
-    poles = TColgp_Array1OfPnt(1, len(circle.x))
+    poles = Array1OfPnt(1, len(circle.x))
     for i, (x, y) in enumerate(zip(circle.x, circle.y)):
         poles.SetValue(i + 1, gp_Pnt(x, y, 0.0))
     return Geom_BSplineCurve(poles, reals(circle.weights), reals(circle.knots), integers(circle.multiplicities), 2, True)

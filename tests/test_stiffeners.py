@@ -8,6 +8,7 @@ import build123d as bd
 import numpy as np
 import pytest
 from OCP.BRepAdaptor import BRepAdaptor_Curve
+from tubecad.occ_compat import as_edge
 
 from tubecad import CurvatureLineTube, ParameterError, paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
@@ -70,12 +71,11 @@ def test_polylines_carry_position_tangent_and_normal(tmp_path, wall):
 def unique_edges(shape):
     from OCP.TopAbs import TopAbs_EDGE
     from OCP.TopExp import TopExp
-    from OCP.TopoDS import TopoDS
-    from OCP.TopTools import TopTools_IndexedMapOfShape
+    from tubecad.occ_compat import IndexedMapOfShape
 
-    found = TopTools_IndexedMapOfShape()
+    found = IndexedMapOfShape()
     TopExp.MapShapes_s(props.topods(shape), TopAbs_EDGE, found)
-    return [TopoDS.Edge_s(found.FindKey(i)) for i in range(1, found.Extent() + 1)]
+    return [as_edge(found.FindKey(i)) for i in range(1, found.Extent() + 1)]
 
 
 def section_moments(profile: Profile, R: float, side: str):

@@ -26,7 +26,7 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.Geom import Geom_Circle
 from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Line
 from OCP.gp import gp_Ax2, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec2d
-from OCP.TColgp import TColgp_Array1OfPnt2d
+from ..occ_compat import Array1OfPnt2d
 from scipy.interpolate import BSpline, make_lsq_spline
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
@@ -166,7 +166,7 @@ def _angle_to_u(breaks: tuple[float, ...], a: float, b: float) -> BSpline:
 def _ring_pcurve(to_u: BSpline) -> Geom2d_BSplineCurve:
     """The pcurve (u(theta), 0) of a ring arc, parameterised by the circle's angle (each
     ring's pcurve is this curve translated to s)."""
-    poles = TColgp_Array1OfPnt2d(1, len(to_u.c))
+    poles = Array1OfPnt2d(1, len(to_u.c))
     for i, u in enumerate(to_u.c):
         poles.SetValue(i + 1, gp_Pnt2d(float(u), 0.0))
     knots, mults = knots_and_multiplicities(to_u.t)

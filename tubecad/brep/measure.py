@@ -30,7 +30,8 @@ from OCP.GeomLib import GeomLib_IsPlanarSurface
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Face
+from OCP.TopoDS import TopoDS_Face
+from ..occ_compat import as_face
 
 from ..surface.checks import distance_to_axis
 from .properties import topods
@@ -41,7 +42,7 @@ def tube_faces(shape) -> Iterator[TopoDS_Face]:
     plane as a B-spline, which is recognised as planar too)."""
     explorer = TopExp_Explorer(topods(shape), TopAbs_FACE)
     while explorer.More():
-        face = TopoDS.Face_s(explorer.Current())
+        face = as_face(explorer.Current())
         surface = BRep_Tool.Surface_s(face)
         if GeomAdaptor_Surface(surface).GetType() != GeomAbs_Plane and not GeomLib_IsPlanarSurface(surface, 1e-7).IsPlanar():
             yield face

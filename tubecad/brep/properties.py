@@ -13,7 +13,7 @@ from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SOLID, TopAbs_VERTEX
 from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
-from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape, TopTools_IndexedMapOfShape
+from ..occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge
 
 EPS = 1e-10
 KINDS = {"solid": TopAbs_SOLID, "face": TopAbs_FACE, "edge": TopAbs_EDGE, "vertex": TopAbs_VERTEX}
@@ -30,7 +30,7 @@ def is_valid(shape) -> bool:
 
 def count(shape, kind: str) -> int:
     """Number of distinct sub-shapes of ``kind`` (solid, face, edge, vertex)."""
-    found = TopTools_IndexedMapOfShape()
+    found = IndexedMapOfShape()
     TopExp.MapShapes_s(topods(shape), KINDS[kind], found)
     return found.Extent()
 
@@ -39,17 +39,16 @@ def count_circle_edges(shape) -> int:
     """Edges whose 3D curve is a circle (OCCT's GeomAbs_Circle, what CAD selectors see)."""
     from OCP.BRepAdaptor import BRepAdaptor_Curve
     from OCP.GeomAbs import GeomAbs_Circle
-    from OCP.TopoDS import TopoDS
 
-    found = TopTools_IndexedMapOfShape()
+    found = IndexedMapOfShape()
     TopExp.MapShapes_s(topods(shape), TopAbs_EDGE, found)
-    return sum(BRepAdaptor_Curve(TopoDS.Edge_s(found.FindKey(i))).GetType() == GeomAbs_Circle
+    return sum(BRepAdaptor_Curve(as_edge(found.FindKey(i))).GetType() == GeomAbs_Circle
                for i in range(1, found.Extent() + 1))  # fmt: skip
 
 
 def free_edges(shape) -> int:
     """Edges used by fewer than two faces (a closed solid has none)."""
-    edge_faces = TopTools_IndexedDataMapOfShapeListOfShape()
+    edge_faces = IndexedDataMapOfShapeListOfShape()
     TopExp.MapShapesAndAncestors_s(topods(shape), TopAbs_EDGE, TopAbs_FACE, edge_faces)
     return sum(1 for i in range(1, edge_faces.Extent() + 1) if edge_faces.FindFromIndex(i).Extent() < 2)
 

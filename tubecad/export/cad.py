@@ -29,13 +29,14 @@ from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Reader,
 from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller, STEPControl_Reader
 from OCP.TCollection import TCollection_ExtendedString, TCollection_HAsciiString
 from OCP.TDataStd import TDataStd_Name
-from OCP.TDF import TDF_Label, TDF_LabelSequence
+from OCP.TDF import TDF_Label
 from OCP.TopoDS import TopoDS_Shape
 from OCP.XCAFDoc import XCAFDoc_DocumentTool, XCAFDoc_ShapeTool
 from OCP.XSControl import XSControl_WorkSession
 
 from ..brep.properties import topods
 from ..errors import ParameterError, TubecadError
+from ..occ_compat import LabelSequence
 
 FORMATS = {".step": "step", ".stp": "step", ".iges": "iges", ".igs": "iges", ".brep": "brep"}
 STEP_SCHEMAS = {"AP214": "AP214IS", "AP242": "AP242DIS"}
@@ -116,7 +117,7 @@ def write_step(shape, path: str | Path, schema: str = "AP214", name: str = "tube
         node = part if not node.children else bd.Compound(children=[bd.Shape.cast(c.wrapped) for c in node.children])
     doc = _create_xde(node, bd.Unit.MM, auto_naming=True)
     shape_tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
-    roots = TDF_LabelSequence()
+    roots = LabelSequence()
     shape_tool.GetFreeShapes(roots)
     for i in range(1, roots.Length() + 1):
         TDataStd_Name.Set_s(roots.Value(i), TCollection_ExtendedString(name))
@@ -162,12 +163,12 @@ def step_names(path: str | Path) -> list[tuple[int, str]]:
         referred = TDF_Label()
         if XCAFDoc_ShapeTool.IsReference_s(label) and XCAFDoc_ShapeTool.GetReferredShape_s(label, referred):
             label = referred
-        children = TDF_LabelSequence()
+        children = LabelSequence()
         XCAFDoc_ShapeTool.GetComponents_s(label, children, False)
         for i in range(1, children.Length() + 1):
             visit(children.Value(i), depth + 1)
 
-    roots = TDF_LabelSequence()
+    roots = LabelSequence()
     tool.GetFreeShapes(roots)
     for i in range(1, roots.Length() + 1):
         visit(roots.Value(i), 0)

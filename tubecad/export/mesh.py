@@ -19,6 +19,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from ..occ_compat import as_face
 
 from ..brep.properties import topods
 from ..errors import TubecadError
@@ -157,7 +158,6 @@ def _read_gltf(path: Path) -> tuple[np.ndarray, int]:
     from OCP.TopAbs import TopAbs_FACE
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopLoc import TopLoc_Location
-    from OCP.TopoDS import TopoDS
     from OCP.XCAFApp import XCAFApp_Application
 
     doc = TDocStd_Document(TCollection_ExtendedString("BinXCAF"))
@@ -172,7 +172,7 @@ def _read_gltf(path: Path) -> tuple[np.ndarray, int]:
     nodes, triangles = [], 0
     while explorer.More():
         location = TopLoc_Location()
-        tri = BRep_Tool.Triangulation_s(TopoDS.Face_s(explorer.Current()), location)
+        tri = BRep_Tool.Triangulation_s(as_face(explorer.Current()), location)
         if tri is not None:
             trsf = location.Transformation()
             for i in range(1, tri.NbNodes() + 1):

@@ -38,8 +38,8 @@ from OCP.GCPnts import GCPnts_QuasiUniformDeflection  # noqa: E402
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_SHELL  # noqa: E402
 from OCP.TopExp import TopExp, TopExp_Explorer  # noqa: E402
 from OCP.TopLoc import TopLoc_Location  # noqa: E402
-from OCP.TopoDS import TopoDS, TopoDS_Shape  # noqa: E402
-from OCP.TopTools import TopTools_IndexedMapOfShape  # noqa: E402
+from OCP.TopoDS import TopoDS_Shape  # noqa: E402
+from ..occ_compat import IndexedMapOfShape, as_edge, as_face  # noqa: E402
 
 from .atomic import atomic_path  # noqa: E402
 
@@ -117,7 +117,7 @@ def _triangles(shape: TopoDS_Shape) -> np.ndarray:
     out = []
     explorer = TopExp_Explorer(shape, TopAbs_FACE)
     while explorer.More():
-        face = TopoDS.Face_s(explorer.Current())
+        face = as_face(explorer.Current())
         explorer.Next()
         loc = TopLoc_Location()
         poly = BRep_Tool.Triangulation_s(face, loc)
@@ -169,11 +169,11 @@ def _bisect_long(tris: np.ndarray, limit: float) -> tuple[np.ndarray, np.ndarray
 def _edges(shape: TopoDS_Shape, deflection: float) -> list[np.ndarray]:
     """Each unique, non-degenerate edge sampled at EDGE_SAMPLES parameter values, or more if the
     chord deflection asks for more, (m, 3)."""
-    emap = TopTools_IndexedMapOfShape()
+    emap = IndexedMapOfShape()
     TopExp.MapShapes_s(shape, TopAbs_EDGE, emap)
     out = []
     for i in range(1, emap.Extent() + 1):
-        edge = TopoDS.Edge_s(emap.FindKey(i))
+        edge = as_edge(emap.FindKey(i))
         if BRep_Tool.Degenerated_s(edge):
             continue
         curve = BRepAdaptor_Curve(edge)  # includes the edge's location

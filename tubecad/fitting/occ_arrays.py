@@ -6,37 +6,36 @@ from typing import Sequence
 
 import numpy as np
 from OCP.gp import gp_Pnt
-from OCP.TColgp import TColgp_Array2OfPnt
-from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal, TColStd_Array2OfReal
+from ..occ_compat import Array1OfInteger, Array1OfReal, Array2OfPnt, Array2OfReal
 
 
-def reals(values: Sequence[float]) -> TColStd_Array1OfReal:
-    out = TColStd_Array1OfReal(1, len(values))
+def reals(values: Sequence[float]) -> Array1OfReal:
+    out = Array1OfReal(1, len(values))
     for i, v in enumerate(values):
         out.SetValue(i + 1, float(v))
     return out
 
 
-def integers(values: Sequence[int]) -> TColStd_Array1OfInteger:
-    out = TColStd_Array1OfInteger(1, len(values))
+def integers(values: Sequence[int]) -> Array1OfInteger:
+    out = Array1OfInteger(1, len(values))
     for i, v in enumerate(values):
         out.SetValue(i + 1, int(v))
     return out
 
 
-def points_2d(points: np.ndarray) -> TColgp_Array2OfPnt:
-    """(n, m, 3) -> TColgp_Array2OfPnt(1..n, 1..m)."""
+def points_2d(points: np.ndarray) -> Array2OfPnt:
+    """(n, m, 3) -> Array2OfPnt(1..n, 1..m)."""
     n, m, _ = points.shape
-    out = TColgp_Array2OfPnt(1, n, 1, m)
+    out = Array2OfPnt(1, n, 1, m)
     for i in range(n):
         for j in range(m):
             out.SetValue(i + 1, j + 1, gp_Pnt(*map(float, points[i, j])))
     return out
 
 
-def reals_2d(values: np.ndarray) -> TColStd_Array2OfReal:
+def reals_2d(values: np.ndarray) -> Array2OfReal:
     n, m = values.shape
-    out = TColStd_Array2OfReal(1, n, 1, m)
+    out = Array2OfReal(1, n, 1, m)
     for i in range(n):
         for j in range(m):
             out.SetValue(i + 1, j + 1, float(values[i, j]))

@@ -10,7 +10,11 @@ whose faces are bounded by the chosen ring frames and stringers.
 
 from __future__ import annotations
 
-import cadquery as cq
+try:
+    import cadquery as cq
+except ImportError as exc:  # CadQuery is an extra: it pins OCP 7.9, build123d 0.13 needs OCP 8
+    raise ImportError("tubecad's CadQuery plugin needs CadQuery: pip install 'tubecad[cadquery]' "
+                      "(CadQuery 2.8 runs on OCP 7.9, so it brings build123d 0.12)") from exc
 
 from ..brep import NetLayout, build_tube_solid, build_wall_solid
 from ..brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS

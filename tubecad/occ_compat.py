@@ -1,0 +1,66 @@
+"""The OCP names that moved between OCCT generations, in one place.
+
+build123d 0.12 and CadQuery 2.8 sit on OCP 7.9, build123d 0.13 on OCP 8. OCP 8 moved the
+NCollection instances (the TColgp / TColStd arrays, the TopTools maps, TDF_LabelSequence) into
+``OCP.collections`` under template-style names (``Array1_double`` for
+``TColStd_Array1OfReal``), and the TopoDS downcasts lost their ``_s`` suffix
+(``TopoDS.Face`` for ``TopoDS.Face_s``). Everything else tubecad uses kept its name.
+Import these names from here, never from OCP directly.
+"""
+
+from __future__ import annotations
+
+try:  # OCP 8
+    from OCP.collections import (
+        Array1_double as Array1OfReal,
+        Array1_gp_Pnt as Array1OfPnt,
+        Array1_gp_Pnt2d as Array1OfPnt2d,
+        Array1_int as Array1OfInteger,
+        Array2_double as Array2OfReal,
+        Array2_gp_Pnt as Array2OfPnt,
+        IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedDataMapOfShapeListOfShape,
+        IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedMapOfShape,
+        Sequence_TDF_Label as LabelSequence,
+    )
+
+    OCP_GENERATION = 8
+except ImportError:  # OCP 7.9
+    from OCP.TColgp import TColgp_Array1OfPnt as Array1OfPnt
+    from OCP.TColgp import TColgp_Array1OfPnt2d as Array1OfPnt2d
+    from OCP.TColgp import TColgp_Array2OfPnt as Array2OfPnt
+    from OCP.TColStd import TColStd_Array1OfInteger as Array1OfInteger
+    from OCP.TColStd import TColStd_Array1OfReal as Array1OfReal
+    from OCP.TColStd import TColStd_Array2OfReal as Array2OfReal
+    from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape as IndexedDataMapOfShapeListOfShape
+    from OCP.TopTools import TopTools_IndexedMapOfShape as IndexedMapOfShape
+    from OCP.TDF import TDF_LabelSequence as LabelSequence
+
+    OCP_GENERATION = 7
+
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Solid
+
+
+def _downcast(name: str):
+    return getattr(TopoDS, name, None) or getattr(TopoDS, f"{name}_s")
+
+
+_face, _edge, _solid = _downcast("Face"), _downcast("Edge"), _downcast("Solid")
+
+
+def as_face(shape: TopoDS_Shape) -> TopoDS_Face:
+    """``shape`` (a face found by an explorer or map) as a TopoDS_Face."""
+    return _face(shape)
+
+
+def as_edge(shape: TopoDS_Shape) -> TopoDS_Edge:
+    """``shape`` as a TopoDS_Edge."""
+    return _edge(shape)
+
+
+def as_solid(shape: TopoDS_Shape) -> TopoDS_Solid:
+    """``shape`` as a TopoDS_Solid."""
+    return _solid(shape)
+
+
+__all__ = ["OCP_GENERATION", "Array1OfInteger", "Array1OfPnt", "Array1OfPnt2d", "Array1OfReal", "Array2OfPnt",
+           "Array2OfReal", "IndexedDataMapOfShapeListOfShape", "IndexedMapOfShape", "LabelSequence", "as_edge", "as_face", "as_solid"]  # fmt: skip
