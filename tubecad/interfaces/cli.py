@@ -19,20 +19,41 @@ from pathlib import Path
 
 import click
 
-from ..brep import build_wall_solid
 from ..errors import TubecadError
-from ..examples import (
-    PAPER_LAYOUT, PAPER_RING_PROFILE, PAPER_STIFFENER_RINGS, PAPER_STIFFENER_STRINGERS, PAPER_STRINGER_PROFILE,
-    PAPER_WALL_THICKNESS, STEEL_DENSITY, paper_tube,
-)  # fmt: skip
 from ..export.atomic import write_text
-from ..export.registry import Exportable, write_output
-from ..export.plots import write_projections
 from ..export.registry import FORMAT_NAMES as BATCH_FORMATS
-from .build import build_and_export, build_from_spec, split_outputs, stiffener_selection
-from .readback import readback_report
-from .report import DEFAULT_NS, DEFAULT_NU, build_report, stiffener_report, to_json, tube_report
-from .spec import load_spec
+from ..export.registry import Exportable, write_output
+
+from .console import interrupts_end_at_once
+from .grid import DEFAULT_NS, DEFAULT_NU
+
+
+def _load() -> None:
+    """The heavy imports (numpy/scipy, OCCT and build123d, matplotlib), made by the first
+    command that needs them, so that ``tubecad --help`` starts in a fraction of a second."""
+    global build_wall_solid, PAPER_LAYOUT, PAPER_RING_PROFILE, PAPER_STIFFENER_RINGS, PAPER_STIFFENER_STRINGERS
+    global PAPER_STRINGER_PROFILE, PAPER_WALL_THICKNESS, STEEL_DENSITY, paper_tube, write_projections
+    global build_and_export, build_from_spec, split_outputs, stiffener_selection, readback_report
+    global build_report, stiffener_report, to_json, tube_report, load_spec
+    with interrupts_end_at_once():
+        from ..brep import build_wall_solid
+        from ..examples import (
+            PAPER_LAYOUT, PAPER_RING_PROFILE, PAPER_STIFFENER_RINGS, PAPER_STIFFENER_STRINGERS, PAPER_STRINGER_PROFILE,
+            PAPER_WALL_THICKNESS, STEEL_DENSITY, paper_tube,
+        )  # fmt: skip
+        from ..export.plots import write_projections
+        from .build import build_and_export, build_from_spec, split_outputs, stiffener_selection
+        from .readback import readback_report
+        from .report import build_report, stiffener_report, to_json, tube_report
+        from .spec import load_spec
+
+
+def _load_maths() -> None:
+    """What ``tubecad report`` needs: numpy/scipy and the spec checker, never OCCT."""
+    global to_json, tube_report, load_spec
+    with interrupts_end_at_once():
+        from .report import to_json, tube_report
+        from .spec import load_spec
 
 
 class UserError(click.ClickException):
@@ -78,6 +99,7 @@ def paper(output: Path, nu: int, ns: int) -> None:
     paper_lines.csv/.json, the curvature lines as polylines with tangents and normals;
     report.json.
     """
+    _load()
     try:
         output.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -164,6 +186,7 @@ def render_step_picture(step: Path, png: Path) -> Path:
 @with_grid_options
 def report(spec: Path, nu: int, ns: int) -> None:
     """Print the JSON report of the tube described by SPEC (a TOML file)."""
+    _load_maths()
     try:
         tube = load_spec(spec).tube
         click.echo(to_json(tube_report(tube, nu, ns)), nl=False)
@@ -200,6 +223,7 @@ def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, 
     DIR/NAME.report.json, a line per finished job goes to stderr, DIR/batch.json lists every
     job; the exit code is 2 if any job failed.
     """
+    _load()
     if len(specs) > 1 or sweeps or out_dir is not None:
         build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path)
         return
@@ -281,6 +305,7 @@ def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, rep
 def flat(spec: Path, output: Path) -> None:
     """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, mm), NAME.svg/.png
     each, and flat.json with every web's area and edge lengths."""
+    _load()
     from ..stiffeners.flat import ring_flat_pattern, stringer_flat_pattern
 
     try:

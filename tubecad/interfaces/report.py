@@ -11,8 +11,7 @@ import numpy as np
 from ..surface import CurvatureLineTube
 from ..surface.checks import area_by_quadrature, axis_distance_errors, net_errors
 
-DEFAULT_NU = 256
-DEFAULT_NS = 2001
+from .grid import DEFAULT_NS, DEFAULT_NU  # noqa: E402  (re-exported)
 
 
 def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT_NS) -> dict[str, Any]:
