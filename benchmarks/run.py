@@ -1,4 +1,4 @@
-"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|scaling|stiffened] [--out DIR]``.
+"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|scaling|stiffened|startup] [--out DIR]``.
 
 Prints the tables and writes DIR/benchmarks.json (every number) and DIR/benchmarks.md
 (the tables, as pasted into README.md). Default DIR: benchmarks/results (the published
@@ -20,6 +20,7 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 
 import compare  # noqa: E402
 import scaling  # noqa: E402
+import startup  # noqa: E402
 import stiffened  # noqa: E402
 
 from tubecad.export.atomic import write_text  # noqa: E402
@@ -61,7 +62,7 @@ def scaling_tables(result: dict) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes and fewer samples (a smoke run)")
-    parser.add_argument("--only", choices=["compare", "scaling", "stiffened"], help="run one part only")
+    parser.add_argument("--only", choices=["compare", "scaling", "stiffened", "startup"], help="run one part only")
     parser.add_argument("--out", type=Path, default=None,
                         help="folder for the results (default benchmarks/results; with --quick benchmarks/results/quick)")
     args = parser.parse_args(argv)
@@ -92,6 +93,10 @@ def main(argv: list[str] | None = None) -> int:
         log("stiffened wall against the plain wall:")
         result["stiffened"] = stiffened.run(repeats=1 if args.quick else 3, log=log)
         tables.append(stiffened.table(result["stiffened"]))
+    if args.only in (None, "startup"):
+        log("start-up times:")
+        result["startup"] = startup.run(repeats=2 if args.quick else 5, log=log)
+        tables.append(startup.table(result["startup"]))
     result["seconds"] = time.perf_counter() - started
     text = "\n\n".join(tables)
     write_text(args.out / "benchmarks.json", json.dumps(result, indent=2))

@@ -636,6 +636,8 @@ def help_options(sub: str) -> tuple[dict[str, Option], tuple[int, float]]:
 
 def check_tubecad(args: list[str], where: str) -> None:
     assert args, f"{where}: 'tubecad' without a subcommand"
+    if args in (["--help"], ["-h"], ["--version"]):  # the group's own options
+        return
     sub, rest = args[0], args[1:]
     assert sub in subcommands(), f"{where}: tubecad has no subcommand {sub!r} (it has {sorted(subcommands())})"
     options, (least, most) = help_options(sub)

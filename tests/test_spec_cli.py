@@ -141,3 +141,20 @@ def test_console_script_is_installed_and_runs():
                           capture_output=True, text=True, env={**os.environ, "MPLBACKEND": "Agg"}, timeout=120)  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert json.loads(done.stdout)["parameters"]["axis"]["curve"] == "helix"
+
+
+@pytest.mark.parametrize("args", [["--help"], ["build", "--help"], ["paper", "--help"]])
+def test_help_loads_no_occt(args):
+    """`tubecad --help` starts without OCCT, build123d or matplotlib (lazy imports). (`tubecad
+    report` still loads OCCT: its spec check uses the B-rep's size rules, in modules that import it.)"""
+    import subprocess
+    import sys
+
+    sample = str(Path(__file__).resolve().parent.parent / "samples" / "helix.toml")
+    args = [sample if a == "SAMPLE" else a for a in args]
+    code = ("import sys\nfrom tubecad.interfaces.cli import cli\ntry:\n    cli.main(%r, standalone_mode=False)\n"
+            "except SystemExit:\n    pass\nprint('LOADED', sorted(m for m in ('OCP', 'build123d', 'matplotlib') if m in sys.modules))"
+            % (args,))  # fmt: skip
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip().splitlines()[-1] == "LOADED []"

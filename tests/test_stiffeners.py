@@ -36,7 +36,8 @@ def test_lines_lie_on_the_surfaces_and_export_as_curves(tmp_path, wall):
         tube = line.surface.tube
         for p in np.linspace(curve.FirstParameter(), curve.LastParameter(), 25):
             q = curve.Value(p)
-            th, s = (line.surface.theta_at(p), line.value) if line.kind == "ring" else (math.radians(line.value), p)
+            # a ring is a Geom_Circle whose parameter is the angle from the surface's origin
+            th, s = (p + math.radians(line.surface.origin_deg), line.value) if line.kind == "ring" else (math.radians(line.value), p)
             assert np.linalg.norm(np.array([q.X(), q.Y(), q.Z()]) - tube.points(th, s)) < 1e-8
     compound = lines_compound(lines)
     step = import_shape(export_shape(compound, tmp_path / "lines.step"))
@@ -356,3 +357,22 @@ def test_build_writes_polylines_by_extension(tmp_path):
     assert {ln["surface_radius"] for ln in data["lines"]} == {16.0, 14.0}
     rows = (tmp_path / "n.csv").read_text().splitlines()
     assert rows[0].startswith("line,kind,index") and len(rows) == 1 + 200 * 10
+
+
+def test_ring_lines_are_true_circles_and_pass_the_continuity_check():
+    """FreeCAD's BOP check flagged every line_ring_* (a C0-knotted B-spline); now circles."""
+    import build123d as bd
+
+    from tubecad import paper_tube
+    from tubecad.brep import NetLayout, build_wall_solid
+    from tubecad.brep.properties import analyzer_findings
+    from tubecad.stiffeners import net_lines
+
+    tube = paper_tube()
+    build = build_wall_solid(tube, 2.0, layout=NetLayout.equal(tube, 5, 4))
+    rings = [line for line in net_lines(build.surfaces[1], build.layout, "_inner") if line.kind == "ring"]
+    for line in rings:
+        edge = line.edge()
+        assert edge.geom_type == bd.GeomType.CIRCLE and edge.radius == pytest.approx(14.0, rel=1e-15)
+        assert edge.length == pytest.approx(2 * math.pi * 14.0, rel=1e-14)
+        assert analyzer_findings(edge.wrapped, ("ContinuityMode",)) == {}

@@ -1,9 +1,9 @@
 """Curvature lines as CAD edges and as polylines for CNC, FEA and robots (issue 4).
 
-A ring frame (s = const) is the exact rational circle VIso(s) of the fitted surface; a
-stringer (angle theta = const) is its isoline UIso(u(theta)), an orthogonal trajectory of
-the circles. Both lie on the fitted surface by construction and within the fit tolerance
-of the exact tube. Polylines carry exact values from the tube's own formulas: position
+A ring frame (s = const) is the exact circle (Geom_Circle: centre c(s), normal t(s)), as
+the wall's ring edges are, within the fit tolerance of the fitted surface's isoline; a
+stringer (angle theta = const) is the fitted surface's isoline UIso(u(theta)), an
+orthogonal trajectory of the circles, within the fit tolerance of the exact tube. Polylines carry exact values from the tube's own formulas: position
 S(theta, s), unit tangent (-sin th r1 + cos th r2 along a ring, t along a stringer,
 docs/MATH.md section 3) and the outward unit surface normal.
 """
@@ -21,6 +21,7 @@ import build123d as bd
 import numpy as np
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 
+from ..brep.faces import ring_circle
 from ..brep.layout import NetLayout
 from ..export.atomic import write_text
 from ..fitting import TubeSurface
@@ -41,10 +42,11 @@ class CurvatureLine:
         return self.surface.tube.radius
 
     def edge(self) -> bd.Edge:
-        """The line as a build123d Edge on the fitted OCCT surface."""
+        """The line as a build123d Edge: a ring is the exact circle (Geom_Circle, as the
+        wall's ring edges), a stringer the fitted surface's isoline."""
         surf = self.surface.surface
         if self.kind == "ring":
-            maker = BRepBuilderAPI_MakeEdge(surf.VIso(self.value))
+            maker = BRepBuilderAPI_MakeEdge(ring_circle(self.surface, self.value)[0])
         else:
             s0, s1 = self.surface.tube.span
             maker = BRepBuilderAPI_MakeEdge(surf.UIso(float(self.surface.u_at(self.value))), s0, s1)
