@@ -1,18 +1,9 @@
 """The same measurements for every method: what a shape is, measured against the exact tube.
 
-The sampling and the measures are the library's (tubecad.brep.measure, which also checks
-every CAD file tubecad writes as read back). Nothing here trusts how a shape was made. Each
-non-planar face's own OCCT surface is sampled on a dense grid inside its UV bounds (off any
-knot lattice) and, at every sample X:
-
-- deviation: | |X - c(s*)| - rho |, c(s*) the closest point of the exact axis (Newton,
-  tubecad.surface.checks.distance_to_axis): the distance from X to the exact tube;
-- orthogonality: |cos| of the angle between the isoparametric directions S_u and S_v;
-- curvature-direction angle: the principal directions of a tube at X are the circle
-  direction t x e and the axis direction t (e = (X - c(s*)) / |X - c(s*)|, t = c'(s*));
-  each isoline direction, projected into the tangent plane, is compared with the nearer
-  of the two. The max over both isoline families, in degrees: 0 means the isolines are
-  lines of curvature.
+The sampling and the measures (deviation from the exact tube, |cos| between the isolines,
+angle from the curvature directions) are the library's, defined in tubecad.brep.measure,
+which also checks every CAD file tubecad writes as read back; nothing here trusts how a
+shape was made.
 
 Plus, per shape: B-spline poles (summed over faces; other surface kinds are converted by
 GeomConvert first), the area of the tube faces against 2 pi rho L and the solid's volume
