@@ -14,6 +14,19 @@ from typing import Iterator
 from ..errors import ParameterError
 
 
+#: temporaries of atomic writes in progress: an interrupt that lands between two steps of
+#: the bookkeeping below still leaves none (see :func:`remove_temporaries`)
+_LIVE: set[Path] = set()
+
+
+def remove_temporaries() -> None:
+    """Remove the temporary file of every atomic write still in progress (called when an
+    interrupt ends the command), so an interrupt can never leave a ``.part`` file."""
+    for path in list(_LIVE):
+        path.unlink(missing_ok=True)
+        _LIVE.discard(path)
+
+
 @contextlib.contextmanager
 def atomic_path(target: str | Path) -> Iterator[Path]:
     """Yield a temporary path in the target's folder; on success it replaces ``target``."""
@@ -24,9 +37,11 @@ def atomic_path(target: str | Path) -> Iterator[Path]:
         yield tmp_path
         os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp makes 0600; outputs get the usual mode
         os.replace(tmp_path, target)
+        _LIVE.discard(tmp_path)
     except BaseException:
         if tmp_path is not None:
             tmp_path.unlink(missing_ok=True)
+            _LIVE.discard(tmp_path)
         raise
 
 
@@ -42,6 +57,7 @@ def check_writable(target: str | Path) -> Path:
     finally:
         if probe is not None:
             probe.unlink(missing_ok=True)
+            _LIVE.discard(probe)
     return target
 
 
@@ -56,6 +72,7 @@ def _temporary(target: Path) -> Path:
     except OSError as exc:
         raise ParameterError(f"output {str(target)!r}: cannot write to {str(folder)!r}: {exc.strerror}") from None
     try:  # an interrupt (Ctrl-C, SIGTERM) from here on must not leave the file behind
+        _LIVE.add(Path(tmp))
         os.close(fd)
         return Path(tmp)
     except BaseException:

@@ -20,7 +20,7 @@ from pathlib import Path
 import click
 
 from ..errors import TubecadError
-from ..export.atomic import write_text
+from ..export.atomic import remove_temporaries, write_text
 from ..export.registry import FORMAT_NAMES as BATCH_FORMATS
 from ..export.registry import Exportable, write_output
 
@@ -364,6 +364,7 @@ def main() -> None:
 def _interrupted() -> None:
     from .console import INTERRUPTED_EXIT_CODE
 
+    remove_temporaries()
     click.echo("interrupted", err=True)
     sys.exit(INTERRUPTED_EXIT_CODE)
 
