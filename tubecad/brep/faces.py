@@ -6,7 +6,7 @@ with the pcurve u = const, the same parameter by construction. A ring edge's 3D 
 true circle (Geom_Circle: centre c(s), plane normal t(s), radius rho, angle from the
 stringer origin), so CAD selectors and OCCT's checks see circles; its pcurve is
 (u(theta), s), u(theta) the circle parametrisation's inverse as a quintic B-spline in
-theta (:func:`angle_to_u`, C1 like the circle, fitted once per stringer interval and
+theta (:func:`ring_pcurve`, C1 like the circle, fitted once per stringer interval and
 shared by every ring), and the edge tolerance covers what the fit deviates from the exact
 circle. Each face lies on its own Segment()-ed copy of the surface, which keeps seams
 out of multi-face tubes; a single face around the tube uses a seam edge instead.
@@ -129,11 +129,6 @@ def ring_pcurve(circle: CircleSpline, a: float, b: float) -> Geom2d_BSplineCurve
     origin) on a surface of ``circle``, parameterised by the angle like the arc's Geom_Circle;
     the arc at s uses it translated by (0, s). Cached: every ring and surface shares them."""
     return _ring_pcurve(_angle_to_u(circle.breaks, float(a), float(b)))
-
-
-def angle_to_u(circle: CircleSpline, a: float, b: float) -> BSpline:
-    """See :func:`_angle_to_u` (cached: every ring and both walls share these curves)."""
-    return _angle_to_u(circle.breaks, float(a), float(b))
 
 
 @functools.lru_cache(maxsize=1024)

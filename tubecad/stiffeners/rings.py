@@ -114,7 +114,7 @@ def swept_section(axis: SlopeCurve, section: Section, tolerance: float,
     for r in radii:
         if r not in surfaces:
             surfaces[r] = exact_section_surface(CurvatureLineTube(sub, r, allow_irregular=True), frame, origin_deg)
-    arcs = {r: _Arcs(ts, max(radii)) for r, ts in surfaces.items()}
+    arcs = {r: _Arcs(ts) for r, ts in surfaces.items()}
     circles = [_circle(arcs[r], s) for s, r in section]
     # the exact circles are within the fit's deviation of the surfaces' isolines
     edge_tolerance = max(TOLERANCE, 2.0 * frame.position_bound)
@@ -171,7 +171,7 @@ class _Arcs:
     surface's origin, and per arc the map theta -> u as a plane B-spline curve (the pcurve
     of an exact circle arc, parameterised by angle, on a face of the surface)."""
 
-    def __init__(self, ts: TubeSurface, r_max: float) -> None:
+    def __init__(self, ts: TubeSurface) -> None:
         self.ts = ts
         self.cuts = u_cuts(ts)
         angles = ts.theta_at(np.asarray(self.cuts)) - math.radians(ts.origin_deg)
