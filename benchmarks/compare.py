@@ -36,24 +36,34 @@ def timed_build(make, tube, path, repeats: int) -> tuple[object, bool, float]:
     return shape, solid, best
 
 
-def compare_spec(name: str, spec: Path, samples: int, repeats: int, log=print) -> dict:
-    tube = load_spec(spec).tube
-    path = spine(tube)
+def run_methods(name: str, tube, runs, samples: int, repeats: int, log=print) -> list[Measured]:
+    """Build (best of ``repeats``) and measure each (method, builder, spine) of ``runs`` on ``tube``."""
     results: list[Measured] = []
-    for method, make in METHODS.items():
+    for method, make, path in runs:
         shape, solid, build_s = timed_build(make, tube, path, repeats)
         results.append(measure(method, shape, tube, build_s, samples, solid=solid))
         log(f"  {name}: {method}: {results[-1].max_deviation:.2e} deviation, {build_s * 1e3:.0f} ms")
-    ours, peers = results[0], results[1:]
-    ratios = {}
+    return results
+
+
+def ratios(ours: Measured, peers: list[Measured]) -> dict:
+    """Per column of RATIO_METRICS: the best of ``peers`` and tubecad / it."""
+    out = {}
     for metric in RATIO_METRICS:
         best = min(peers, key=lambda m: getattr(m, metric))
         value = getattr(best, metric)
-        ratios[metric] = {"best_peer": best.method, "best_peer_value": value, "tubecad": getattr(ours, metric),
-                          "ratio": getattr(ours, metric) / value if value else None}  # fmt: skip
+        out[metric] = {"best_peer": best.method, "best_peer_value": value, "tubecad": getattr(ours, metric),
+                       "ratio": getattr(ours, metric) / value if value else None}  # fmt: skip
+    return out
+
+
+def compare_spec(name: str, spec: Path, samples: int, repeats: int, log=print) -> dict:
+    tube = load_spec(spec).tube
+    path = spine(tube)
+    results = run_methods(name, tube, [(method, make, path) for method, make in METHODS.items()], samples, repeats, log)
     return {"spec": str(spec.relative_to(ROOT)), "length": tube.length, "radius": tube.radius,
             "spine_points": SPINE_POINTS, "spine_deviation": spine_deviation(tube, path),
-            "methods": [m.as_dict() for m in results], "ratios": ratios}  # fmt: skip
+            "methods": [m.as_dict() for m in results], "ratios": ratios(results[0], results[1:])}  # fmt: skip
 
 
 def run(samples: int = 60_000, repeats: int = 3, log=print) -> dict:
@@ -63,28 +73,26 @@ def run(samples: int = 60_000, repeats: int = 3, log=print) -> dict:
     return out
 
 
+def method_table(methods: list[dict], ratio_rows: list[tuple[str, dict]]) -> list[str]:
+    """One Markdown table: a row per measured method, then one row per (label, ratios)."""
+    lines = ["| method | build ms | STEP ms | poles | max deviation | max \\|cos\\| | curvature-line angle (deg) "
+             "| area error | STEP KB | valid |", "|" + "---|" * 10]  # fmt: skip
+    for m in methods:
+        lines.append(f"| {m['method']} | {m['build_s'] * 1e3:.0f} | {m['export_s'] * 1e3:.0f} | {m['poles']:,} "
+                     f"| {m['max_deviation']:.1e} | {m['max_orthogonality']:.1e} | {m['max_curvature_angle_deg']:.1e} "
+                     f"| {m['area_rel_error']:.1e} | {m['step_bytes'] / 1024:.0f} | {'yes' if m['valid'] else 'NO'} |")  # fmt: skip
+    for label, r in ratio_rows:
+        cells = ["-" if r[metric]["ratio"] is None else f"{r[metric]['ratio']:.2g}" for metric in RATIO_METRICS]
+        lines.append(f"| *{label}* | " + " | ".join(cells) + " | |")
+    return lines
+
+
 def table(result: dict) -> str:
     """The comparison as a Markdown table (one block per spec), with the ratio row."""
-    head = ("| method | build ms | STEP ms | poles | max deviation | max \\|cos\\| | curvature-line angle (deg) "
-            "| area error | STEP KB | valid |")  # fmt: skip
-    rule = "|" + "---|" * 10
     lines = []
     for name, spec in result["specs"].items():
         lines += [f"**{name}** (`{spec['spec']}`, L = {spec['length']:g}, rho = {spec['radius']:g}; "
-                  f"sweep spine {spec['spine_points']} points, {spec['spine_deviation']:.1e} from the axis)", "",
-                  head, rule]  # fmt: skip
-        for m in spec["methods"]:
-            lines.append(f"| {m['method']} | {m['build_s'] * 1e3:.0f} | {m['export_s'] * 1e3:.0f} | {m['poles']:,} "
-                         f"| {m['max_deviation']:.1e} | {m['max_orthogonality']:.1e} | {m['max_curvature_angle_deg']:.1e} "
-                         f"| {m['area_rel_error']:.1e} | {m['step_bytes'] / 1024:.0f} | {'yes' if m['valid'] else 'NO'} |")  # fmt: skip
-        r = spec["ratios"]
-
-        def ratio(metric: str) -> str:
-            value = r[metric]["ratio"]
-            return "-" if value is None else f"{value:.2g}"
-
-        lines.append(f"| *tubecad / best peer* | {ratio('build_s')} | {ratio('export_s')} | {ratio('poles')} "
-                     f"| {ratio('max_deviation')} | {ratio('max_orthogonality')} | {ratio('max_curvature_angle_deg')} "
-                     f"| {ratio('area_rel_error')} | {ratio('step_bytes')} | |")  # fmt: skip
+                  f"sweep spine {spec['spine_points']} points, {spec['spine_deviation']:.1e} from the axis)", ""]  # fmt: skip
+        lines += method_table(spec["methods"], [("tubecad / best peer", spec["ratios"])])
         lines.append("")
     return "\n".join(lines)

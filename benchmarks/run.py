@@ -1,4 +1,4 @@
-"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|scaling|stiffened|startup] [--out DIR]``.
+"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|axes|scaling|stiffened|startup] [--out DIR]``.
 
 Prints the tables and writes DIR/benchmarks.json (every number) and DIR/benchmarks.md
 (the tables, as pasted into README.md). Default DIR: benchmarks/results (the published
@@ -18,6 +18,7 @@ from pathlib import Path
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
+import axes  # noqa: E402
 import compare  # noqa: E402
 import scaling  # noqa: E402
 import startup  # noqa: E402
@@ -62,7 +63,7 @@ def scaling_tables(result: dict) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes and fewer samples (a smoke run)")
-    parser.add_argument("--only", choices=["compare", "scaling", "stiffened", "startup"], help="run one part only")
+    parser.add_argument("--only", choices=["compare", "axes", "scaling", "stiffened", "startup"], help="run one part only")
     parser.add_argument("--out", type=Path, default=None,
                         help="folder for the results (default benchmarks/results; with --quick benchmarks/results/quick)")
     args = parser.parse_args(argv)
@@ -80,6 +81,11 @@ def main(argv: list[str] | None = None) -> int:
         log("comparison with the peers:")
         result["compare"] = compare.run(samples=12_000 if args.quick else 60_000, repeats=1 if args.quick else 3, log=log)
         tables.append(compare.table(result["compare"]))
+    if args.only in (None, "axes"):
+        log("any axis (trefoil, spline edge, route) against the sweeps:")
+        result["axes"] = axes.run(quick=args.quick, samples=12_000 if args.quick else 60_000,
+                                  repeats=1 if args.quick else 3, log=log)  # fmt: skip
+        tables.append(axes.table(result["axes"]))
     if args.only in (None, "scaling"):
         log("scaling:")
         result["scaling"] = {

@@ -3,7 +3,7 @@
 ``python benchmarks/startup.py`` runs each command in a fresh process, best of N:
 ``tubecad --help`` (the command line, lazy: no numpy, no OCCT), ``import tubecad`` (the
 package, lazy), ``import tubecad.surface`` (numpy/scipy), ``tubecad report`` on a sample
-(today it still loads OCCT through the spec's B-rep checks) and ``import tubecad.brep``
+(the spec checked against the B-rep's size rules, from light modules: no OCCT) and ``from tubecad.brep import build_wall_solid``
 (OCCT and build123d: what every build needs), each marked with whether it loads OCCT. The
 peer is ``import build123d`` itself, run side by side.
 """
@@ -24,7 +24,7 @@ CASES = {
     "import tubecad": [PYTHON, "-c", "import tubecad"],
     "import tubecad.surface (numpy, scipy)": [PYTHON, "-c", "import tubecad.surface"],
     "tubecad report samples/helix.toml": [str(CONSOLE), "report", str(Path(__file__).resolve().parent.parent / "samples" / "helix.toml")],
-    "import tubecad.brep (tubecad build)": [PYTHON, "-c", "import tubecad.brep"],
+    "from tubecad.brep import build_wall_solid (tubecad build)": [PYTHON, "-c", "from tubecad.brep import build_wall_solid"],
     "import build123d (peer)": [PYTHON, "-c", "import build123d"],
 }
 

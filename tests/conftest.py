@@ -38,3 +38,20 @@ def family_tube(request) -> CurvatureLineTube:
 @pytest.fixture
 def rng() -> np.random.Generator:
     return np.random.default_rng(20261122)
+
+
+def assert_build_refused(tmp_path, spec_text: str, says: str) -> None:
+    """`tubecad build` of ``spec_text`` exits 2 with one line containing ``says``, and
+    writes no file."""
+    from click.testing import CliRunner
+
+    from tubecad.interfaces.cli import cli
+
+    spec = tmp_path / "bad.toml"
+    spec.write_text(spec_text)
+    out = tmp_path / "out.step"
+    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    message = result.output.strip()
+    assert "\n" not in message and says in message, message
+    assert not out.exists()

@@ -10,8 +10,9 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))
 
+from axes import CASES  # noqa: E402
 from measure import measure  # noqa: E402
-from peers import METHODS, spine, spine_deviation  # noqa: E402
+from peers import METHODS, SWEEPS, spine, spine_deviation  # noqa: E402
 
 from tubecad import paper_tube  # noqa: E402
 
@@ -44,3 +45,21 @@ def test_the_measure_sees_the_twist_of_a_frenet_sweep(tube_and_spine, tmp_path):
     m = measure("frenet", shape, tube, 0.0, samples=8_000, workdir=tmp_path)
     assert m.valid and m.max_deviation < 1e-2
     assert m.max_curvature_angle_deg > 1.0 and m.max_orthogonality > 1e-2
+
+
+@pytest.mark.parametrize("case", ["spline edge", "route"])
+def test_the_any_axis_peers_sweep_the_axis_itself_and_tubecad_meets_the_targets(case, tmp_path):
+    """benchmarks/axes.py: every spine the peers get is the tubecad axis' own curve (the
+    refined edge too: knot insertion keeps the curve); tubecad meets the targets there by
+    the benchmark measure; a CorrectedFrenet sweep of the same spine is the same tube."""
+    tube, spines, _ = CASES[case](True)
+    built: dict = {}
+    for label, (make, _) in spines.items():
+        built[label] = make(built)
+        assert spine_deviation(tube, built[label]) < 1e-9
+    shape, _ = METHODS["tubecad"](tube, None)
+    m = measure("tubecad", shape, tube, 0.0, samples=6_000, workdir=tmp_path)
+    assert m.valid and m.max_deviation < 1e-8 and m.max_orthogonality < 1e-9 and m.max_curvature_angle_deg < 1e-6
+    shape, _ = SWEEPS["OCCT MakePipeShell CorrectedFrenet, tol 1e-9"](tube, next(iter(built.values())))
+    peer = measure("corrected frenet", shape, tube, 0.0, samples=6_000, workdir=tmp_path)
+    assert peer.valid and peer.max_deviation < 1e-8

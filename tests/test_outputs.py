@@ -309,7 +309,7 @@ def test_iges_of_a_large_involute_is_not_reported_valid(tmp_path):
 
 
 def test_file_orthogonality_is_checked_against_the_fitted_target(tmp_path, wall, monkeypatch):
-    import tubecad.brep.solids as solids
+    import tubecad.fitting.tolerance as policy
     from tubecad.export.registry import Exportable, write_output
     from tubecad.interfaces.readback import FileAccuracyError, readback_report
 
@@ -319,7 +319,7 @@ def test_file_orthogonality_is_checked_against_the_fitted_target(tmp_path, wall,
     path, info = write_output(Exportable(wall.shape), tmp_path / "w.iges", check)
     assert info["max_deviation"] < 1e-8 and 0 < info["max_orthogonality_error"] < 1e-9
     assert info["measured_faces"] == 2 * 5 * 4 and info["samples"] <= 4000
-    monkeypatch.setattr(solids, "orthogonality_for", lambda tolerance: info["max_orthogonality_error"] / 2)
+    monkeypatch.setattr(policy, "orthogonality_for", lambda tolerance: info["max_orthogonality_error"] / 2)
     with pytest.raises(FileAccuracyError, match=r"^w.iges: IGES holds the isolines orthogonal only to \|cos\| "):
         write_output(Exportable(wall.shape), tmp_path / "w2.iges", check)
     assert not (tmp_path / "w2.iges").exists()

@@ -5,7 +5,8 @@ is picked up by the next run. One test per block, named by its index, language a
 line (``-k python`` or ``-k 05`` picks blocks):
 
 - ```python blocks run in README order in one namespace (later blocks use names from earlier
-  ones), in a temporary working directory with MPLBACKEND=Agg. Tracebacks point at the README's
+  ones), in a temporary working directory with README_ENVIRONMENT (MPLBACKEND=Agg, and
+  OCP_VSCODE_PYTEST=1 so that tubecad.show needs no viewer). Tracebacks point at the README's
   own lines. Files a snippet names (``"wall.step"``) must exist afterwards and read back;
   ``# ~3e-16`` and ``# (64, 1001, 3)`` comments are checked against the value printed or
   assigned on that line; other comments that state something are checked by CLAIMS below, and
@@ -127,20 +128,26 @@ def quickstart_lines() -> tuple[int, int]:
     return begin[0], end[0]
 
 
+#: set while a snippet runs: no plot windows; tubecad.show records what it would send to
+#: OCP CAD Viewer instead of needing a running one (tests/test_viewer.py runs a real viewer)
+README_ENVIRONMENT = {"MPLBACKEND": "Agg", "OCP_VSCODE_PYTEST": "1"}
+
+
 @contextlib.contextmanager
 def readme_environment(workdir: Path):
-    """chdir into ``workdir`` with MPLBACKEND=Agg, restoring both afterwards."""
-    old_cwd, old_backend = os.getcwd(), os.environ.get("MPLBACKEND")
-    os.environ["MPLBACKEND"] = "Agg"
+    """chdir into ``workdir`` with README_ENVIRONMENT set, restoring all afterwards."""
+    old_cwd, old_env = os.getcwd(), {name: os.environ.get(name) for name in README_ENVIRONMENT}
+    os.environ.update(README_ENVIRONMENT)
     os.chdir(workdir)
     try:
         yield
     finally:
         os.chdir(old_cwd)
-        if old_backend is None:
-            os.environ.pop("MPLBACKEND", None)
-        else:
-            os.environ["MPLBACKEND"] = old_backend
+        for name, value in old_env.items():
+            if value is None:
+                os.environ.pop(name, None)
+            else:
+                os.environ[name] = value
 
 
 # ---------------------------------------------------------------------------------------------
@@ -219,7 +226,7 @@ def python_session(tmp_path_factory) -> PythonSession:
 NUMBER = r"[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?"
 APPROX = re.compile(rf"~\s*({NUMBER})")
 SHAPE = re.compile(r"^\(\s*(\d+(?:\s*,\s*\d+)+)\s*,?\s*\)")
-STATES_A_NUMBER = re.compile(rf"~\s*\d|\d(?:\.\d+)?[eE][-+]?\d|\(\s*\d+\s*,\s*\d+")
+STATES_A_NUMBER = re.compile(r"~\s*\d|\d(?:\.\d+)?[eE][-+]?\d|\(\s*\d+\s*,\s*\d+")
 FILE_NAME = re.compile(r"^[\w.-]+\.(step|stp|iges|igs|brep|csv|json|dxf|svg|png)$", re.IGNORECASE)
 
 
@@ -544,7 +551,7 @@ def run_spec_through_cli(block: Block, data: dict, workdir: Path) -> None:
     import build123d as bd
 
     from tubecad.brep import properties as props
-    from tubecad.interfaces.build import layout_from_section
+    from tubecad.interfaces.layout_section import layout_from_section
     from tubecad.interfaces.spec import parse_spec
 
     spec = workdir / f"block{block.index}.toml"

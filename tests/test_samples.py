@@ -49,3 +49,24 @@ def test_wall_samples_write_valid_step(tmp_path, script, faces):
         assert props.count(shape, "face") > 162
         removed = math.pi * (16**2 - 14**2) * 1000.0 - props.volume(shape)
         assert removed == pytest.approx(math.pi * 4**2 * 2.0, rel=0.05)
+
+
+def test_build123d_spline_sample_builds_a_stiffened_wall_around_the_edge(tmp_path):
+    """issue 11: a spline Edge of a build123d model as the axis: the STEP assembly holds the
+    wall and four ring frames, every solid valid, and the wall's volume is the exact
+    pi (r_out^2 - r_in^2) L of a tube wall on that very edge's length."""
+    import build123d as bd
+
+    out = tmp_path / "spline.step"
+    done = subprocess.run([sys.executable, str(SAMPLES / "build123d_spline_wall.py"), str(out)],
+                          capture_output=True, text=True, timeout=300)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    with bd.BuildLine() as model:
+        bd.Spline((0, 0, 0), (60, 25, 10), (120, 10, 45), (180, -30, 40), (230, -20, 0))
+    length = model.edges()[0].length
+    parts = {c.label: c for c in bd.import_step(out).children}
+    assert set(parts) == {"wall", "ring_01", "ring_03", "ring_05", "ring_07", "curvature_lines"}
+    assert all(parts[name].is_valid for name in parts if name != "curvature_lines")
+    from tubecad.brep.properties import volume  # adaptive Gauss to 1e-12: build123d's default is ~1e-7 here
+
+    assert volume(parts["wall"]) == pytest.approx(math.pi * (6.8**2 - 6.0**2) * length, rel=1e-9)

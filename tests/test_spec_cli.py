@@ -27,7 +27,8 @@ def run(*args):
 
 def test_every_family_has_a_sample_spec():
     curves = {load_spec(p).axis.family for p in SAMPLE_SPECS}
-    assert curves == {"log_spiral", "helix", "clothoid", "involute", "custom"}
+    assert curves == {"log_spiral", "helix", "clothoid", "involute", "custom", "natural", "parametric", "points", "edge",
+                      "route"}
 
 
 @pytest.mark.parametrize("spec", SAMPLE_SPECS, ids=lambda p: p.stem)
@@ -80,7 +81,7 @@ def write(tmp_path, text, name="spec.toml"):
         (lambda t: t.replace("a = 10.0", "a = -10.0"), "[axis] a must be in (0, inf), got -10"),
         (lambda t: t.replace("a = 10.0", "a = 'ten'"), "[axis] a must be a number"),
         (lambda t: t.replace("a = 10.0\n", ""), "[axis] a is missing"),
-        (lambda t: t.replace("a = 10.0", "a = 10.0\nb = 3"), "unknown key [axis] b; allowed keys are curve, beta_deg, s, a"),
+        (lambda t: t.replace("a = 10.0", "a = 10.0\nb = 3"), "unknown key [axis] b; allowed keys are curve, a, beta_deg, s"),
         (lambda t: t.replace("log_spiral", "spiral"), "[axis] curve must be one of log_spiral | helix"),
         (lambda t: t.replace("beta_deg = 10.0", "beta_deg = 90"), "[axis] beta_deg must be in (-90, 90), got 90"),
         (lambda t: t.replace("beta_deg = 10.0", "beta_deg = nan"), "[axis] beta_deg must be finite"),
@@ -143,15 +144,16 @@ def test_console_script_is_installed_and_runs():
     assert json.loads(done.stdout)["parameters"]["axis"]["curve"] == "helix"
 
 
-@pytest.mark.parametrize("args", [["--help"], ["build", "--help"], ["paper", "--help"]])
+@pytest.mark.parametrize("args", [["--help"], ["build", "--help"], ["paper", "--help"], ["report", "SAMPLE"],
+                                  ["report", "STIFFENED"]])  # fmt: skip
 def test_help_loads_no_occt(args):
-    """`tubecad --help` starts without OCCT, build123d or matplotlib (lazy imports). (`tubecad
-    report` still loads OCCT: its spec check uses the B-rep's size rules, in modules that import it.)"""
+    """`tubecad --help` and `tubecad report` start without OCCT, build123d or matplotlib (lazy
+    imports): the report's spec check (sizes, layout, wall, stiffener heights) uses light modules."""
     import subprocess
     import sys
 
-    sample = str(Path(__file__).resolve().parent.parent / "samples" / "helix.toml")
-    args = [sample if a == "SAMPLE" else a for a in args]
+    samples = {"SAMPLE": str(SAMPLES / "helix.toml"), "STIFFENED": str(SAMPLES / "helix_stiffened.toml")}
+    args = [samples.get(a, a) for a in args]
     code = ("import sys\nfrom tubecad.interfaces.cli import cli\ntry:\n    cli.main(%r, standalone_mode=False)\n"
             "except SystemExit:\n    pass\nprint('LOADED', sorted(m for m in ('OCP', 'build123d', 'matplotlib') if m in sys.modules))"
             % (args,))  # fmt: skip

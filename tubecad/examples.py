@@ -13,7 +13,8 @@ from .curves import LogSpiral
 from .surface import CurvatureLineTube
 
 if TYPE_CHECKING:
-    from .brep import NetLayout
+    from .brep import NetLayout, TubeBuild
+    from .stiffeners.solids import Stiffener
 
 PAPER_A = 10.0
 PAPER_BETA_DEG = 10.0
@@ -47,3 +48,22 @@ PAPER_STIFFENER_STRINGERS = [0, 2, 4, 6]
 PAPER_RING_PROFILE = ("flat", 3.0, 1.0)
 PAPER_STRINGER_PROFILE = ("flat", 2.0, 1.0)
 STEEL_DENSITY = 7.85e-6  # kg / mm^3
+
+
+def paper_wall() -> "TubeBuild":
+    """The wall `tubecad paper` writes: the paper's tube, PAPER_WALL_THICKNESS thick,
+    centred, on PAPER_LAYOUT."""
+    from .brep import build_wall_solid
+
+    tube = paper_tube()
+    return build_wall_solid(tube, PAPER_WALL_THICKNESS, "centered", PAPER_LAYOUT(tube))
+
+
+def paper_stiffeners(build: "TubeBuild") -> list["Stiffener"]:
+    """The stiffeners `tubecad paper` adds to ``build`` (the paper wall): flat-bar ring frames
+    at PAPER_STIFFENER_RINGS and stringers at PAPER_STIFFENER_STRINGERS, inside the wall."""
+    from .stiffeners.assembly import build_stiffeners
+    from .stiffeners.profiles import Profile
+
+    rings = build_stiffeners(build, PAPER_STIFFENER_RINGS, [], Profile(*PAPER_RING_PROFILE), "inside")
+    return rings + build_stiffeners(build, [], PAPER_STIFFENER_STRINGERS, Profile(*PAPER_STRINGER_PROFILE), "inside")

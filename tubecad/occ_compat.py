@@ -37,14 +37,14 @@ except ImportError:  # OCP 7.9
 
     OCP_GENERATION = 7
 
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Solid
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Solid, TopoDS_Wire
 
 
 def _downcast(name: str):
     return getattr(TopoDS, name, None) or getattr(TopoDS, f"{name}_s")
 
 
-_face, _edge, _solid = _downcast("Face"), _downcast("Edge"), _downcast("Solid")
+_face, _edge, _solid, _wire = _downcast("Face"), _downcast("Edge"), _downcast("Solid"), _downcast("Wire")
 
 
 def as_face(shape: TopoDS_Shape) -> TopoDS_Face:
@@ -62,5 +62,11 @@ def as_solid(shape: TopoDS_Shape) -> TopoDS_Solid:
     return _solid(shape)
 
 
+def as_wire(shape: TopoDS_Shape) -> TopoDS_Wire:
+    """``shape`` as a TopoDS_Wire."""
+    return _wire(shape)
+
+
 __all__ = ["OCP_GENERATION", "Array1OfInteger", "Array1OfPnt", "Array1OfPnt2d", "Array1OfReal", "Array2OfPnt",
-           "Array2OfReal", "IndexedDataMapOfShapeListOfShape", "IndexedMapOfShape", "LabelSequence", "as_edge", "as_face", "as_solid"]  # fmt: skip
+           "Array2OfReal", "IndexedDataMapOfShapeListOfShape", "IndexedMapOfShape", "LabelSequence", "as_edge", "as_face", "as_solid",
+           "as_wire"]  # fmt: skip

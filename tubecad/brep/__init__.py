@@ -1,9 +1,14 @@
-"""B-rep shells and solids whose edges are the chosen curvature lines."""
+"""B-rep shells and solids whose edges are the chosen curvature lines.
 
-from .layout import NetLayout
-from .solids import (
-    TubeBuild, build_tube_shell, build_tube_solid, build_wall_solid, tube_shell, tube_solid, wall_solid, wall_radii,
-)  # fmt: skip
+Exports are lazy (tubecad._lazy): the light modules (layout, wall) load without OCCT."""
 
-__all__ = ["NetLayout", "TubeBuild", "build_tube_shell", "build_tube_solid", "build_wall_solid", "tube_shell",
-           "tube_solid", "wall_solid", "wall_radii"]  # fmt: skip
+from .._lazy import lazy_exports
+
+_PUBLIC = {
+    "NetLayout": ".layout", "wall_radii": ".wall",
+    **{name: ".solids" for name in ("TubeBuild", "build_tube_shell", "build_tube_solid", "build_wall_solid",
+                                    "tube_shell", "tube_solid", "wall_solid")},
+}  # fmt: skip
+
+__all__ = list(_PUBLIC)
+__getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())

@@ -30,9 +30,10 @@ from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid, TopoDS_Vertex, TopoDS_Wire
 
 from ..errors import TubecadError
+from ..fitting.tolerance import EDGE_TOLERANCE
 
 #: edge, vertex and face tolerance: Precision::Confusion(); the geometry is far tighter
-TOLERANCE = 1e-7
+TOLERANCE = EDGE_TOLERANCE
 
 
 def vertex(point: gp_Pnt) -> TopoDS_Vertex:

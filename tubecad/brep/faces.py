@@ -35,10 +35,11 @@ from ..errors import TubecadError
 from ..fitting import TubeSurface
 from ..fitting.circle import CircleSpline
 from ..fitting.occ_arrays import integers, knots_and_multiplicities, reals
+from ..fitting.tolerance import EDGE_TOLERANCE
 from .layout import stringer_parameters
 
 #: edge and vertex tolerance: Precision::Confusion(); the geometry is far tighter
-TOLERANCE = 1e-7
+TOLERANCE = EDGE_TOLERANCE
 
 
 @dataclass
@@ -174,7 +175,7 @@ def ring_circle(tube_surface: TubeSurface, s: float, samples: int = 16) -> tuple
     tube = tube_surface.tube
     a = math.radians(tube_surface.origin_deg)
     _, r1, r2 = tube.axis.rotation_minimising_frame(np.array([s]))
-    centre, t = tube.axis.position(np.array([s]))[0], tube.axis.frame(np.array([s]))[0][0]
+    centre, t = tube.axis.position(np.array([s]))[0], tube.axis.rotation_minimising_frame(np.array([s]))[0][0]
     x_dir = math.cos(a) * r1[0] + math.sin(a) * r2[0]
     circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
                          tube.radius)  # fmt: skip

@@ -29,7 +29,8 @@ class NetLayout:
 
     @classmethod
     def equal(cls, tube: CurvatureLineTube, rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS) -> "NetLayout":
-        """``rings`` frames equally spaced in s (ends included), ``stringers`` at 360 j / M deg."""
+        """``rings`` frames equally spaced in s (ends included), ``stringers`` at 360 j / M deg
+        (a route's joints are added, see :meth:`explicit`)."""
         _whole("rings", rings, 2, MAX_RINGS)
         _whole("stringers", stringers, 1, MAX_STRINGERS)
         _face_count(rings, stringers)
@@ -37,7 +38,8 @@ class NetLayout:
 
     @classmethod
     def explicit(cls, tube: CurvatureLineTube, s_rings: Sequence[float], stringers_deg: Sequence[float]) -> "NetLayout":
-        """Given lists; the span ends are added to the rings if missing."""
+        """Given lists; the span ends are added to the rings if missing, and on an axis whose
+        joints are rings (a route) its joints (a ring within 1e-6 of the span from one moves onto it)."""
         s0, s1 = tube.span
         rings = _numbers("s_rings", s_rings, f"a non-empty list of finite arc lengths in [{s0:g}, {s1:g}]", MAX_RINGS)
         angles = _numbers("u_stringers_deg", stringers_deg, "a non-empty list of finite angles", MAX_STRINGERS)
@@ -46,6 +48,11 @@ class NetLayout:
         if rings.min() < s0 - 1e-9 * (s1 - s0) or rings.max() > s1 + 1e-9 * (s1 - s0):
             raise ParameterError(f"s_rings must lie in the span [{s0:g}, {s1:g}], got [{rings.min():g}, {rings.max():g}]")
         rings = np.unique(np.clip(np.concatenate([[s0, s1], rings]), s0, s1))
+        if tube.axis.rings_at_joints:  # a route's line-bend joints are always rings (faces lie on one piece)
+            joints = np.array([s for s, _ in tube.axis.joints], dtype=float)
+            if joints.size:
+                far = np.min(np.abs(rings[:, None] - joints[None, :]), axis=1) >= 1e-6 * (s1 - s0)
+                rings = np.unique(np.concatenate([rings[far], joints]))
         if np.min(np.diff(rings)) < 1e-6 * (s1 - s0):
             raise ParameterError("s_rings must be distinct (at least 1e-6 of the span apart)")
         if angles.size == 0 or not np.all(np.isfinite(angles)):

@@ -78,7 +78,7 @@ def net_against_tube(tube, points: np.ndarray, d1: np.ndarray, d2: np.ndarray) -
     """(max deviation, max |cos| between d1 and d2, max angle in degrees from the curvature
     directions) of the samples against ``tube`` (a CurvatureLineTube)."""
     dist, s_star = distance_to_axis(tube.axis, points)
-    axis = tube.axis.evaluate(s_star)
+    axis = tube.axis.at(s_star)
     radial = points - axis.position
     e = radial / np.linalg.norm(radial, axis=1)[:, None]
     circle_dir = np.cross(axis.t, e)

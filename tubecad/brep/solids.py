@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Callable
 
 import build123d as bd
 import numpy as np
@@ -26,20 +27,15 @@ from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Wire
 
 from ..errors import ParameterError, RegularityError
 from ..fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
+from ..fitting.tolerance import DEFAULT_TOLERANCE, MIN_SIZE, orthogonality_for  # noqa: F401  (re-exported)
 from ..surface import CurvatureLineTube
-from ..validation import bounded_length
 from .assembled import closed_solid, shell_of
 from .faces import TOLERANCE, PatchFaces, patch_faces
 from .layout import NetLayout
+from .wall import WALL_SIDES, wall_radii  # noqa: F401  (re-exported)
 
-DEFAULT_TOLERANCE = 1e-8
-
-
-def orthogonality_for(tolerance: float) -> float:
-    """The |cos| the isolines are fitted to: tolerance / 10, and never worse than 1e-6
-    (1e-9 at the default tolerance 1e-8)."""
-    return min(1e-6, tolerance / 10) if isinstance(tolerance, (int, float)) and tolerance > 0 else tolerance
-WALL_SIDES = ("centered", "inside", "outside")
+#: progress(step, done, total), called as a build advances (the library never prints)
+Progress = Callable[[str, int, int], None]
 
 
 @dataclass
@@ -67,30 +63,6 @@ class TubeBuild:
         return [[bd.Face(f) for f in row] for row in self.patches[surface].faces]
 
 
-#: the smallest radius and wall thickness a B-rep is built with: 100 x the edge tolerance
-#: (OCCT's Precision::Confusion, 1e-7); below it edges and faces collapse within tolerance
-MIN_SIZE = 100 * TOLERANCE
-
-
-def wall_radii(radius: float, thickness: float, side: str) -> tuple[float, float]:
-    """(r_in, r_out) of a wall of ``thickness`` placed ``side`` of the tube of ``radius``."""
-    thickness = bounded_length("thickness", thickness, 0.0)
-    if not isinstance(side, str) or side not in WALL_SIDES:
-        raise ParameterError(f"side must be one of {', '.join(WALL_SIDES)}, got {side!r:.80}")
-    if thickness < MIN_SIZE:
-        raise ParameterError(f"thickness must be >= {MIN_SIZE:g} model units (100 x OCCT's edge precision 1e-7), "
-                             f"got {thickness:g}")  # fmt: skip
-    r_in, r_out = {"centered": (radius - thickness / 2, radius + thickness / 2),
-                   "inside": (radius - thickness, radius), "outside": (radius, radius + thickness)}[side]  # fmt: skip
-    if r_in < MIN_SIZE:
-        if side == "outside":
-            raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep, got {radius:g}")
-        limit = {"centered": 2 * radius, "inside": radius}[side]
-        raise ParameterError(f"thickness must be < {limit:g} for side = {side!r} (radius {radius:g}; the inner "
-                             f"radius must stay >= {MIN_SIZE:g}), got {thickness:g}")  # fmt: skip
-    return r_in, r_out
-
-
 def _checked(tube: object, layout: object) -> NetLayout:
     """The arguments every builder shares: a tube, a layout (default equal), a buildable radius."""
     if not isinstance(tube, CurvatureLineTube):
@@ -109,6 +81,11 @@ def _checked(tube: object, layout: object) -> NetLayout:
     if tube.radius < MIN_SIZE:
         raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
                              f"got {tube.radius:g}")  # fmt: skip
+    ends = tube.axis.position(np.array(tube.span))
+    gap = float(np.linalg.norm(ends[1] - ends[0]))
+    if gap <= 1e-6 * tube.length:  # a closed loop: its end discs would coincide; it needs a tube without caps
+        raise ParameterError(f"the axis closes on itself (its ends are {gap:.3g} apart): closed tubes without caps "
+                             "are not built yet; shorten the span")  # fmt: skip
     return layout
 
 
@@ -123,20 +100,28 @@ def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
 
 
 def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
-                     tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
-    """The tube closed by planar discs in the normal planes at both ends."""
+                     tolerance: float = DEFAULT_TOLERANCE, progress: Progress | None = None) -> TubeBuild:  # fmt: skip
+    """The tube closed by planar discs in the normal planes at both ends. ``progress(step,
+    done, total)`` is called after the frame fit, the surface and the solid."""
+    report = progress or (lambda *_: None)
     layout = _checked(tube, layout)
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
+    report("frame fit", 1, 3)
     surface, patches = _tube_faces(tube, frame, layout)
+    report("surface", 2, 3)
     caps = [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
             _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True)]  # fmt: skip
     solid = _solid(patches.all_faces() + caps, tube)
+    report("solid", 3, 3)
     return TubeBuild(bd.Solid(solid), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
 
 def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered",
-                     layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
-    """The wall between the tubes of radii r_in < r_out on ``tube``'s axis, with annular caps."""
+                     layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE,
+                     progress: Progress | None = None) -> TubeBuild:  # fmt: skip
+    """The wall between the tubes of radii r_in < r_out on ``tube``'s axis, with annular caps.
+    ``progress(step, done, total)`` is called after the frame fit, each surface and the solid."""
+    report = progress or (lambda *_: None)
     layout = _checked(tube, layout)
     r_in, r_out = wall_radii(tube.radius, thickness, side)
     try:
@@ -146,13 +131,17 @@ def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "cen
                               f"and {r_out:g}: {exc}") from None  # fmt: skip
     frame = fit_frame(tube.axis, r_out, tolerance, orthogonality_for(tolerance), rings=layout.s_rings,
                       radii=(r_out, r_in))  # fmt: skip
+    report("frame fit", 1, 4)
     outer, outer_patches = _tube_faces(outer_tube, frame, layout)
+    report("outer surface", 2, 4)
     inner, inner_patches = _tube_faces(inner_tube, frame, layout, reverse=True)
+    report("inner surface", 3, 4)
     caps = [
         _cap(tube, layout.s_rings[0], [outer_patches.rings[0], inner_patches.rings[0]], outward=False),
         _cap(tube, layout.s_rings[-1], [outer_patches.rings[-1], inner_patches.rings[-1]], outward=True),
     ]
     solid = _solid(outer_patches.all_faces() + inner_patches.all_faces() + caps, tube)
+    report("solid", 4, 4)
     return TubeBuild(bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, frame, tolerance,
                      [r_out, r_in])  # fmt: skip
 
@@ -184,8 +173,8 @@ def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outw
     """Planar face in the normal plane at ``s`` bounded by ``rings`` (outer first, then the hole);
     its normal is +t at the end of the tube (``outward``) and -t at the start."""
     builder = BRep_Builder()
-    a = tube.axis.evaluate(np.array([s]))
-    centre, t, n = a.position[0], a.t[0], a.n[0]
+    a = tube.axis.at(np.array([s]))
+    centre, t, n = a.position[0], a.t[0], a.r1[0]
     normal = t if outward else -t
     plane = Geom_Plane(gp_Ax3(gp_Pnt(*centre), gp_Dir(*normal), gp_Dir(*n)))
     face = TopoDS_Face()

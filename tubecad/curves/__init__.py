@@ -1,5 +1,8 @@
-"""Axes: slope curves from a natural equation k(s) and an elevation angle (docs/MATH.md section 1)."""
+"""Axes: the :class:`Axis` protocol every stage takes (docs/MATH.md section 7) and its kinds;
+slope curves from a natural equation k(s) and an elevation angle (section 1).
+"""
 
+from .axis import Axis, AxisFrame
 from .custom import CustomCurvature
 from .families import CircleInvolute, Clothoid, Helix, LogSpiral
 from .slope_curve import AxisSample, SlopeCurve
@@ -9,4 +12,4 @@ FAMILIES: dict[str, type[SlopeCurve]] = {
     cls.family: cls for cls in (LogSpiral, Helix, Clothoid, CircleInvolute, CustomCurvature)
 }
 
-__all__ = ["AxisSample", "SlopeCurve", "LogSpiral", "Helix", "Clothoid", "CircleInvolute", "CustomCurvature", "FAMILIES"]
+__all__ = ["Axis", "AxisFrame", "AxisSample", "SlopeCurve", "LogSpiral", "Helix", "Clothoid", "CircleInvolute", "CustomCurvature", "FAMILIES"]

@@ -4,7 +4,8 @@ A function on [a, b] is resolved panel by panel: on each panel it is interpolate
 Chebyshev-Lobatto points and the panel is halved until the series' tail is below
 ``tol`` times the function's scale. Integrating the series term by term (numpy's chebint)
 then gives antiderivatives accurate to round-off (~1e-14 relative), which is how the
-custom-curvature axis reaches closed-form accuracy (docs/MATH.md section 1).
+custom-curvature axis reaches closed-form accuracy (docs/MATH.md section 1). Values may be
+vectors (a curve x(t) in 3-D, a frame): the coefficients then carry trailing axes.
 """
 
 from __future__ import annotations
@@ -20,7 +21,8 @@ FloatFunction = Callable[[np.ndarray], np.ndarray]
 
 
 class PiecewiseChebyshev:
-    """f(x) on [breaks[0], breaks[-1]]: Chebyshev coefficients ``coeffs[i]`` on panel i."""
+    """f(x) on [breaks[0], breaks[-1]]: Chebyshev coefficients ``coeffs[i]`` on panel i,
+    shape (panels, degree + 1, *value_shape)."""
 
     def __init__(self, breaks: np.ndarray, coeffs: np.ndarray) -> None:
         self.breaks = np.asarray(breaks, dtype=float)
@@ -37,10 +39,14 @@ class PiecewiseChebyshev:
         degree: int = 24,
         tol: float = 1e-15,
         max_panels: int = 2048,
+        breaks: np.ndarray | None = None,
     ) -> "PiecewiseChebyshev":
-        """Resolve ``f`` on [a, b] adaptively. ``f`` takes and returns float arrays."""
+        """Resolve ``f`` on [a, b] adaptively, starting from the panels between ``breaks``
+        (e.g. a spline's knots; default [a, b]). ``f`` takes an array of x and returns an
+        array of that shape, or of that shape + a value shape (vectors: all resolved)."""
         nodes = np.cos(np.pi * np.arange(degree + 1) / degree)[::-1]  # Lobatto, ascending
-        todo = [(a, b)]
+        edges = np.asarray([a, b] if breaks is None else breaks, dtype=float)
+        todo = list(zip(edges[:-1], edges[1:]))
         done: list[tuple[float, float, np.ndarray]] = []
         scale = 0.0
         while todo:
@@ -48,13 +54,17 @@ class PiecewiseChebyshev:
             hi = np.array([p[1] for p in todo])
             x = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * nodes
             with np.errstate(all="ignore"):
-                y = np.asarray(f(x), dtype=float) * np.ones_like(x)
+                y = np.asarray(f(x), dtype=float)
+                y = y * np.ones(x.shape + y.shape[x.ndim:])
             bad = ~np.isfinite(y)
             if bad.any():
-                raise ParameterError(f"{name} is not finite at s = {x[bad][0]:.6g} (got {y[bad][0]})")
+                where = np.argwhere(bad)[0]
+                raise ParameterError(f"{name} is not finite at s = {x[tuple(where[:2])]:.6g} (got {y[tuple(where)]})")
             scale = max(scale, float(np.abs(y).max()), 1e-300)
-            coeffs = C.chebfit(nodes, y.T, degree).T  # one row per panel
-            tail = np.abs(coeffs[:, -4:]).max(axis=1)
+            value_shape = y.shape[2:]
+            flat = np.moveaxis(y, 1, 0).reshape(degree + 1, -1)  # nodes x (panels * values)
+            coeffs = np.moveaxis(C.chebfit(nodes, flat, degree).reshape(degree + 1, len(todo), *value_shape), 0, 1)
+            tail = np.abs(coeffs[:, -4:]).reshape(len(todo), -1).max(axis=1)
             resolved = tail <= tol * scale * 10 + 1e-300
             next_todo = []
             for i, (l, h) in enumerate(todo):
@@ -75,24 +85,30 @@ class PiecewiseChebyshev:
         breaks = np.array([p[0] for p in done] + [done[-1][1]])
         return cls(breaks, np.array([p[2] for p in done]))
 
+    @property
+    def value_shape(self) -> tuple[int, ...]:
+        return self.coeffs.shape[2:]
+
     def __call__(self, x: np.ndarray) -> np.ndarray:
-        """Evaluate at ``x`` (any shape) by Clenshaw's recurrence, vectorised over all points."""
+        """Evaluate at ``x`` (any shape; result x.shape + value_shape) by Clenshaw's
+        recurrence, vectorised over all points."""
         x = np.asarray(x, dtype=float)
         i = np.clip(np.searchsorted(self.breaks, x, side="right") - 1, 0, len(self.coeffs) - 1)
         lo, hi = self.breaks[i], self.breaks[i + 1]
-        z = (2.0 * x - lo - hi) / (hi - lo)
-        b1 = np.zeros_like(z)
-        b2 = np.zeros_like(z)
+        z = ((2.0 * x - lo - hi) / (hi - lo)).reshape(x.shape + (1,) * len(self.value_shape))
+        b1 = np.zeros(x.shape + self.value_shape)
+        b2 = np.zeros(x.shape + self.value_shape)
         for j in range(self.coeffs.shape[1] - 1, 0, -1):
             b1, b2 = self.coeffs[i, j] + 2.0 * z * b1 - b2, b1
         return self.coeffs[i, 0] + z * b1 - b2
 
-    def antiderivative(self, value_at_start: float = 0.0) -> "PiecewiseChebyshev":
+    def antiderivative(self, value_at_start: float | np.ndarray = 0.0) -> "PiecewiseChebyshev":
         """The continuous antiderivative F with F(breaks[0]) = value_at_start."""
         half_widths = 0.5 * np.diff(self.breaks)
         integ = np.array([C.chebint(c, lbnd=-1.0, scl=h) for c, h in zip(self.coeffs, half_widths)])
-        panel_totals = C.chebval(1.0, integ.T)
-        offsets = value_at_start + np.concatenate([[0.0], np.cumsum(panel_totals)[:-1]])
+        panel_totals = integ.sum(axis=1)  # F(panel end) - F(panel start), as T_j(1) = 1
+        zero = np.zeros((1,) + self.value_shape)
+        offsets = np.asarray(value_at_start, dtype=float) + np.concatenate([zero, np.cumsum(panel_totals, axis=0)[:-1]])
         integ[:, 0] += offsets
         return PiecewiseChebyshev(self.breaks, integ)
 

@@ -12,25 +12,25 @@ function of its own arc length s and a constant elevation angle beta (|beta| < 9
 
 with torsion sigma = k tan b (Lancret). A concrete family only supplies k(s), dk/ds and
 the antiderivatives Int k ds, Int cos psi ds, Int sin psi ds; everything else is here.
+As an :class:`~tubecad.curves.axis.Axis` its rotation-minimising frame is the Frenet frame
+turned back by w = Int sigma ds = psi sin b, so its normal development is
+k1 = k cos w, k2 = k sin w (docs/MATH.md section 7).
 The curvature k is signed: k < 0 turns the horizontal projection clockwise, and the
 frame (t, n, bn) above stays continuous through k = 0.
 """
 
 from __future__ import annotations
 
-import copy
 import math
-from abc import ABC, abstractmethod
+from abc import abstractmethod
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from ..errors import ParameterError
 from ..validation import number_in_range, span_pair
-
-FloatArray = NDArray[np.float64]
+from .axis import Axis, FloatArray
 
 
 @dataclass(frozen=True)
@@ -47,7 +47,7 @@ class AxisSample:
     torsion: FloatArray
 
 
-class SlopeCurve(ABC):
+class SlopeCurve(Axis):
     """A slope curve of elevation angle ``beta_deg`` over the arc-length ``span``.
 
     Subclasses implement the natural equation of one family. All evaluation methods take
@@ -88,11 +88,6 @@ class SlopeCurve(ABC):
         """The family's own parameters, as spec keys and values."""
 
     # --- derived quantities -----------------------------------------------------------
-    @property
-    def length(self) -> float:
-        """Arc length of the axis over its span, s1 - s0."""
-        return self.span[1] - self.span[0]
-
     def psi(self, s: ArrayLike) -> FloatArray:
         """psi(s) = (1 / cos b) Int k ds: direction angle of the horizontal projection (eq. 8)."""
         return self.turning(s) / self._cos_b
@@ -124,6 +119,22 @@ class SlopeCurve(ABC):
         cw, sw = np.cos(w), np.sin(w)
         return t, cw * n - sw * bn, sw * n + cw * bn
 
+    def normal_development(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """(k1, k2) = k (cos w, sin w), w = psi sin b: since n = cos w r1 + sin w r2."""
+        k, w = self.curvature(s), self.twist(s)
+        return k * np.cos(w), k * np.sin(w)
+
+    def normal_development_derivative(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """(k1', k2') = k' (cos w, sin w) + k sigma (-sin w, cos w), as w' = sigma."""
+        k, dk, w = self.curvature(s), self.curvature_derivative(s), self.twist(s)
+        spin = k * k * math.tan(self.beta)
+        cw, sw = np.cos(w), np.sin(w)
+        return dk * cw - spin * sw, dk * sw + spin * cw
+
+    def frame_rate(self, s: ArrayLike) -> FloatArray:
+        """sqrt(k^2 + sigma^2) = |k| / cos b: the Darboux vector's length."""
+        return np.abs(self.curvature(s)) / self._cos_b
+
     def evaluate(self, s: ArrayLike) -> AxisSample:
         """Position, Frenet frame, psi, k and torsion at arc lengths ``s``."""
         s = np.asarray(s, dtype=float)
@@ -131,17 +142,6 @@ class SlopeCurve(ABC):
         t, n, bn = self._frame_from_psi(psi)
         k = self.curvature(s)
         return AxisSample(s, self.position(s), t, n, bn, psi, k, k * math.tan(self.beta))
-
-    def restricted(self, span: tuple[float, float]) -> "SlopeCurve":
-        """The same curve over a sub-span of its span (e.g. one ring frame's width)."""
-        s0, s1 = span_pair("span", span, self.s_lower_bound)
-        lo, hi = self.span
-        slack = 1e-9 * (hi - lo)
-        if s0 < lo - slack or s1 > hi + slack:
-            raise ParameterError(f"span must lie within [{lo:g}, {hi:g}], got [{s0:g}, {s1:g}]")
-        curve = copy.copy(self)
-        curve.span = (max(s0, lo), min(s1, hi))
-        return curve
 
     def describe(self) -> dict[str, Any]:
         """Spec-style description: ``curve``, the family's parameters, ``beta_deg``, ``s``."""

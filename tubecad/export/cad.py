@@ -1,4 +1,4 @@
-"""CAD files: STEP (AP214 or AP242, millimetres), IGES (B-rep mode) and BREP.
+"""CAD files: STEP (AP214 or AP242), IGES (B-rep mode) and BREP.
 
 Every write goes to a temporary file that replaces the target only when complete.
 The format follows the file extension (tubecad.export.registry lists every extension,
@@ -10,6 +10,14 @@ solid, the labels (``wall``, ``ring_03``, ...) and colours of a build123d assemb
 schema is one of OCCT's global settings (``write.step.schema``); :func:`step_settings`
 sets it for one write only, after the STEP controllers exist (their first initialisation
 would reset it), and restores the previous value afterwards.
+
+Length units (tubecad.units): the coordinates are written as they are, in the model's
+unit (``length_unit``, default mm), and the file says which unit that is: STEP's
+SI_UNIT / CONVERSION_BASED_UNIT (the XCAF document's length unit and ``write.step.unit``
+both set to it, so OCCT scales nothing) and the IGES global section's unit flag and name
+(with the model's cascade unit set to it). BREP holds no unit. OCCT's readers convert a
+file into ``xstep.cascade.unit`` (millimetres by default, as build123d's ``import_step``
+does); :func:`import_shape` reads in the unit asked.
 """
 
 from __future__ import annotations
@@ -37,6 +45,7 @@ from OCP.XSControl import XSControl_WorkSession
 from ..brep.properties import topods
 from ..errors import ParameterError, TubecadError
 from ..occ_compat import LabelSequence
+from ..units import DEFAULT_LENGTH_UNIT, length_unit as unit_of
 
 FORMATS = {".step": "step", ".stp": "step", ".iges": "iges", ".igs": "iges", ".brep": "brep"}
 STEP_SCHEMAS = {"AP214": "AP214IS", "AP242": "AP242DIS"}
@@ -59,29 +68,33 @@ def cad_format(path: str | Path) -> str:
     return fmt
 
 
-def export_shape(shape, path: str | Path, step_schema: str = "AP214", name: str | None = None) -> Path:
+def export_shape(shape, path: str | Path, step_schema: str = "AP214", name: str | None = None,
+                 length_unit: str = DEFAULT_LENGTH_UNIT) -> Path:  # fmt: skip
     """Write ``shape`` (OCCT or build123d/CadQuery) to ``path`` in the format of its extension:
     STEP, IGES, BREP, or a mesh for visual use (STL, 3MF, glTF), see tubecad.export.registry.
-    ``name``: the product name in STEP (default: the file's stem)."""
+    ``name``: the product name in STEP (default: the file's stem); ``length_unit``: the unit of
+    the shape's coordinates, which the file states (mm, cm, m, in, ft; tubecad.units)."""
     from .registry import Exportable, write_output
 
-    return write_output(Exportable(shape, step_schema=step_schema, name=name), path)[0]
+    return write_output(Exportable(shape, step_schema=step_schema, name=name, length_unit=length_unit), path)[0]
 
 
-def write_cad(fmt: str, shape, path: str | Path, step_schema: str = "AP214", name: str = "tubecad") -> None:
-    """Write ``shape`` in ``fmt`` ('step', 'iges' or 'brep') to ``path`` as it is (not atomic)."""
+def write_cad(fmt: str, shape, path: str | Path, step_schema: str = "AP214", name: str = "tubecad",
+              length_unit: str = DEFAULT_LENGTH_UNIT) -> None:  # fmt: skip
+    """Write ``shape`` in ``fmt`` ('step', 'iges' or 'brep') to ``path`` as it is (not atomic),
+    its coordinates in ``length_unit`` (BREP holds no unit)."""
     _quiet()
     if fmt == "step":
-        write_step(shape, path, step_schema, name)
+        write_step(shape, path, step_schema, name, length_unit)
     elif fmt == "iges":
-        _write_iges(topods(shape), Path(path))
+        _write_iges(topods(shape), Path(path), length_unit)
     else:
         _write_brep(topods(shape), Path(path))
 
 
 @contextlib.contextmanager
-def step_settings(schema: str = "AP214") -> Iterator[None]:
-    """OCCT's STEP write settings (schema, millimetres) for the writes inside the block only.
+def step_settings(schema: str = "AP214", length_unit: str = DEFAULT_LENGTH_UNIT) -> Iterator[None]:
+    """OCCT's STEP write settings (schema, length unit) for the writes inside the block only.
 
     The STEP controllers are initialised first: their first initialisation in a process
     creates the settings with their defaults, so a value set before it would be lost.
@@ -92,7 +105,7 @@ def step_settings(schema: str = "AP214") -> Iterator[None]:
         raise ParameterError(f"step_schema must be one of {', '.join(STEP_SCHEMAS)}, got {schema!r}")
     STEPControl_Controller.Init_s()
     STEPCAFControl_Controller.Init_s()
-    wanted = {"write.step.schema": STEP_SCHEMAS[schema], "write.step.unit": "MM"}
+    wanted = {"write.step.schema": STEP_SCHEMAS[schema], "write.step.unit": unit_of(length_unit).step}
     saved = {key: Interface_Static.CVal_s(key) for key in wanted}
     try:
         for key, value in wanted.items():
@@ -103,9 +116,11 @@ def step_settings(schema: str = "AP214") -> Iterator[None]:
             Interface_Static.SetCVal_s(key, value)
 
 
-def write_step(shape, path: str | Path, schema: str = "AP214", name: str = "tubecad") -> None:
+def write_step(shape, path: str | Path, schema: str = "AP214", name: str = "tubecad",
+               length_unit: str = DEFAULT_LENGTH_UNIT) -> None:  # fmt: skip
     """Write ``shape`` to STEP at ``path`` (not atomic) with OCCT's XCAF writer: names and
-    colours of a build123d assembly are kept, and the top product is called ``name``."""
+    colours of a build123d assembly are kept, and the top product is called ``name``. The
+    coordinates are in ``length_unit``, and the file says so."""
     import build123d as bd
     from build123d.exporters3d import _create_xde  # the XCAF document export_step writes
 
@@ -115,13 +130,15 @@ def write_step(shape, path: str | Path, schema: str = "AP214", name: str = "tube
         part = bd.Shape.cast(node.wrapped)
         part.label, part.color = node.label, node.color
         node = part if not node.children else bd.Compound(children=[bd.Shape.cast(c.wrapped) for c in node.children])
-    doc = _create_xde(node, bd.Unit.MM, auto_naming=True)
+    unit = unit_of(length_unit)
+    # the document's unit and write.step.unit agree, so the writer scales nothing
+    doc = _create_xde(node, bd.Unit[unit.build123d], auto_naming=True)
     shape_tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
     roots = LabelSequence()
     shape_tool.GetFreeShapes(roots)
     for i in range(1, roots.Length() + 1):
         TDataStd_Name.Set_s(roots.Value(i), TCollection_ExtendedString(name))
-    with step_settings(schema):
+    with step_settings(schema, unit.name):
         writer = STEPCAFControl_Writer(XSControl_WorkSession(), False)
         writer.SetColorMode(True)
         writer.SetLayerMode(True)
@@ -175,8 +192,10 @@ def step_names(path: str | Path) -> list[tuple[int, str]]:
     return out
 
 
-def import_shape(path: str | Path) -> TopoDS_Shape:
-    """Read a STEP, IGES or BREP file back into one OCCT shape."""
+def import_shape(path: str | Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> TopoDS_Shape:
+    """Read a STEP, IGES or BREP file back into one OCCT shape, its coordinates converted
+    from the file's unit into ``length_unit`` (default mm, as OCCT and build123d read; BREP
+    holds no unit and is read as it is)."""
     fmt = cad_format(path)
     _quiet()
     if fmt == "brep":
@@ -184,16 +203,36 @@ def import_shape(path: str | Path) -> TopoDS_Shape:
         if not BRepTools.Read_s(shape, str(path), BRep_Builder()):
             raise ExportError(f"cannot read BREP file {str(path)!r}")
         return shape
+    (STEPControl_Controller if fmt == "step" else IGESControl_Controller).Init_s()
     reader = STEPControl_Reader() if fmt == "step" else IGESControl_Reader()
-    if reader.ReadFile(str(path)) != IFSelect_RetDone:
-        raise ExportError(f"cannot read {fmt.upper()} file {str(path)!r}")
-    reader.TransferRoots()
+    with _static("xstep.cascade.unit", unit_of(length_unit).step):  # the unit the reader converts into
+        if reader.ReadFile(str(path)) != IFSelect_RetDone:
+            raise ExportError(f"cannot read {fmt.upper()} file {str(path)!r}")
+        reader.TransferRoots()
     return reader.OneShape()
 
 
-def _write_iges(shape: TopoDS_Shape, path: Path) -> None:
+@contextlib.contextmanager
+def _static(key: str, value: str) -> Iterator[None]:
+    """OCCT's global setting ``key`` set to ``value`` inside the block only."""
+    saved = Interface_Static.CVal_s(key)
+    if not Interface_Static.SetCVal_s(key, value):
+        raise ExportError(f"OCCT does not accept {key} = {value!r}")
+    try:
+        yield
+    finally:
+        Interface_Static.SetCVal_s(key, saved)
+
+
+def _write_iges(shape: TopoDS_Shape, path: Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> None:
     IGESControl_Controller.Init_s()
-    writer = IGESControl_Writer("MM", 1)  # 1: B-rep entities (solids and shells survive)
+    unit = unit_of(length_unit)
+    writer = IGESControl_Writer(unit.step, 1)  # the file's unit; 1: B-rep entities (solids and shells survive)
+    # the model's coordinates are in that unit too (as IGESCAFControl_Writer sets from a
+    # document's length unit), so nothing is scaled
+    section = writer.Model().GlobalSection()
+    section.SetCascadeUnit(unit.mm)
+    writer.Model().SetGlobalSection(section)
     if not writer.AddShape(shape):
         raise ExportError("OCCT could not translate the shape to IGES")
     writer.ComputeModel()

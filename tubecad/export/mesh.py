@@ -1,6 +1,6 @@
-"""Triangle meshes for visual use: STL, 3MF and glTF (.gltf/.glb), through build123d's
-exporters, and read back with independent readers (OCCT's RWStl and RWGltf_CafReader,
-lib3mf for 3MF).
+"""Triangle meshes for visual use: STL, 3MF and glTF (.gltf/.glb), meshed to one tolerance
+(tubecad.export.meshing) and written by OCCT (STL), lib3mf (3MF) and build123d (glTF), and
+read back with independent readers (OCCT's RWStl and RWGltf_CafReader, lib3mf for 3MF).
 
 A mesh is not the exact surface: its triangles are within ``deflection`` (model units) of
 the B-rep, and its vertices lie on the B-rep up to the file's number format (32-bit floats
@@ -8,6 +8,10 @@ in all three formats). Use STEP or BREP for the exact geometry.
 
 A ``.gltf`` file is written self-contained (its binary buffer embedded as a base64 data URI),
 so that it is one file, written atomically like every other output.
+
+Units: 3MF records the model's length unit (``length_unit``, tubecad.units) and keeps the
+coordinates; glTF is always in metres, so its coordinates are scaled from the model's unit;
+STL records no unit (the coordinates are the model's).
 """
 
 from __future__ import annotations
@@ -19,15 +23,12 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from ..occ_compat import as_face
 
 from ..brep.properties import topods
 from ..errors import TubecadError
+from ..units import DEFAULT_LENGTH_UNIT, length_unit as unit_of
 
-#: default linear deflection of a mesh, relative to the smallest tube radius (or size) meshed
-RELATIVE_DEFLECTION = 1e-3
-#: default angular deflection (radians)
-ANGULAR_DEFLECTION = 0.1
+from .meshing import ANGULAR_DEFLECTION, RELATIVE_DEFLECTION  # noqa: F401  (the defaults, tubecad.export.meshing)
 
 
 class MeshError(TubecadError):
@@ -58,10 +59,19 @@ def _solids(shape) -> list:
 
 
 def write_mesh(fmt: str, shape, path: str | Path, deflection: float | None = None,
-               angular: float = ANGULAR_DEFLECTION) -> None:  # fmt: skip
-    """Write ``shape`` as ``fmt`` ('stl', '3mf', 'gltf' or 'glb') to ``path`` (not atomic)."""
+               angular: float = ANGULAR_DEFLECTION, length_unit: str = DEFAULT_LENGTH_UNIT,
+               build=None) -> None:  # fmt: skip
+    """Write ``shape`` as ``fmt`` ('stl', '3mf', 'gltf' or 'glb') to ``path`` (not atomic);
+    its coordinates are in ``length_unit``. Its triangles stay within ``deflection`` (model
+    units) and ``angular`` (radians) of the B-rep; ``build`` (a TubeBuild whose tube or wall
+    ``shape`` is or holds) is meshed on its curvature-line grid (tubecad.export.meshing)."""
     import build123d as bd
     from OCP.BRepTools import BRepTools
+    from OCP.StlAPI import StlAPI_Writer
+
+    from .meshing import meshed_deflection, tessellate, write_3mf
+
+    unit = bd.Unit[unit_of(length_unit).build123d]
 
     deflection = default_deflection(shape) if deflection is None else deflection
     path = Path(path)
@@ -69,29 +79,30 @@ def write_mesh(fmt: str, shape, path: str | Path, deflection: float | None = Non
     if not parts:
         raise MeshError(f"{path.name}: nothing to mesh (the shape has no faces)")
     try:
+        tessellate(parts, deflection, angular, build)  # the writers below use these triangles as they are
         if fmt == "stl":
             whole = parts[0] if len(parts) == 1 else bd.Compound(children=[bd.Shape.cast(p.wrapped) for p in parts])
-            ok = bd.export_stl(whole, str(path), tolerance=deflection, angular_tolerance=angular)
+            writer = StlAPI_Writer()
+            writer.ASCIIMode = False
+            ok = writer.Write(whole.wrapped, str(path))
         elif fmt == "3mf":
-            mesher = bd.Mesher()
-            for part in parts:
-                mesher.add_shape(part, linear_deflection=deflection, angular_deflection=angular)
-            mesher.write(str(path))
+            write_3mf(parts, path, unit)
             ok = path.stat().st_size > 0
         else:
             node = shape if isinstance(shape, bd.Shape) else bd.Shape.cast(topods(shape))
+            deflection = max(deflection, meshed_deflection(node.wrapped))  # build123d keeps a mesh within it
             if fmt == "glb":
-                ok = bd.export_gltf(node, str(path), binary=True, linear_deflection=deflection,
+                ok = bd.export_gltf(node, str(path), unit=unit, binary=True, linear_deflection=deflection,
                                     angular_deflection=angular)  # fmt: skip
             else:
                 with tempfile.TemporaryDirectory() as folder:
                     glb = Path(folder) / "mesh.glb"
-                    ok = bd.export_gltf(node, str(glb), binary=True, linear_deflection=deflection,
+                    ok = bd.export_gltf(node, str(glb), unit=unit, binary=True, linear_deflection=deflection,
                                         angular_deflection=angular)  # fmt: skip
                     if ok:
                         path.write_text(glb_to_gltf(glb.read_bytes()), encoding="utf-8")
     finally:
-        for part in parts:  # meshing left triangulations on the caller's faces
+        for part in (*parts, *([build.shape] if build is not None else [])):  # meshing left triangulations on the caller's faces
             BRepTools.Clean_s(part.wrapped)
     if not ok:
         raise MeshError(f"build123d could not write {fmt.upper()} to {str(path)!r}")
@@ -118,10 +129,20 @@ def glb_to_gltf(data: bytes) -> str:
     return json.dumps(doc, separators=(",", ":")) + "\n"
 
 
-def read_mesh(path: str | Path, fmt: str) -> tuple[np.ndarray, int]:
-    """The vertices (n x 3, model units, Z up) and the triangle count of a mesh file, read by
-    OCCT (STL, glTF) or lib3mf (3MF): returns (vertices, triangles)."""
+def read_mesh(path: str | Path, fmt: str, length_unit: str = DEFAULT_LENGTH_UNIT) -> tuple[np.ndarray, int]:
+    """The vertices (n x 3, in ``length_unit``, Z up) and the triangle count of a mesh file,
+    read by OCCT (STL, glTF) or lib3mf (3MF): returns (vertices, triangles). STL holds no
+    unit: its coordinates are taken as they are."""
+    vertices, triangles = read_mesh_triangles(path, fmt, length_unit)
+    return vertices, len(triangles)
+
+
+def read_mesh_triangles(path: str | Path, fmt: str, length_unit: str = DEFAULT_LENGTH_UNIT
+                        ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """As :func:`read_mesh`, with the triangles: (vertices n x 3, triangles m x 3 indices
+    into them, 0-based)."""
     path = Path(path)
+    unit = unit_of(length_unit)
     if fmt == "stl":
         from OCP.RWStl import RWStl
 
@@ -129,56 +150,45 @@ def read_mesh(path: str | Path, fmt: str) -> tuple[np.ndarray, int]:
         if tri is None or tri.NbNodes() == 0:
             raise MeshError(f"cannot read STL file {str(path)!r}")
         nodes = np.array([(p.X(), p.Y(), p.Z()) for p in (tri.Node(i) for i in range(1, tri.NbNodes() + 1))])
-        return nodes, tri.NbTriangles()
+        faces = np.array([tri.Triangle(i).Get() for i in range(1, tri.NbTriangles() + 1)], dtype=int).reshape(-1, 3)
+        return nodes, faces - 1
     if fmt == "3mf":
         import build123d as bd
 
         mesher = bd.Mesher()
         reader = mesher.model.QueryReader("3mf")
         reader.ReadFromFile(str(path))
-        nodes, triangles = [], 0
+        nodes, faces = [], []
         objects = mesher.model.GetMeshObjects()
         for _ in range(objects.Count()):
             objects.MoveNext()
             mesh = objects.GetCurrentMeshObject()
+            faces += [[i + len(nodes) for i in t.Indices] for t in mesh.GetTriangleIndices()]
             nodes += [tuple(v.Coordinates) for v in mesh.GetVertices()]
-            triangles += mesh.GetTriangleCount()
-        scale = {0: 1e-3, 1: 1.0, 2: 10.0, 3: 25.4, 4: 304.8, 5: 1000.0}.get(int(mesher.model.GetUnit()), 1.0)
-        return np.array(nodes, dtype=float).reshape(-1, 3) * scale, triangles
-    return _read_gltf(path)
+        # lib3mf's units (micron, millimeter, centimeter, inch, foot, meter) in millimetres
+        file_mm = {0: 1e-3, 1: 1.0, 2: 10.0, 3: 25.4, 4: 304.8, 5: 1000.0}.get(int(mesher.model.GetUnit()), 1.0)
+        vertices = np.array(nodes, dtype=float).reshape(-1, 3) * (file_mm / unit.mm)
+        return vertices, np.array(faces, dtype=int).reshape(-1, 3)
+    return _read_gltf(path, unit.metres)
 
 
-def _read_gltf(path: Path) -> tuple[np.ndarray, int]:
-    from OCP.BRep import BRep_Tool
+def _read_gltf(path: Path, metres: float = 1e-3) -> tuple[np.ndarray, np.ndarray]:
+    """glTF (metres, Y up) read into the unit of ``metres`` per unit, Z up: (vertices, triangles)."""
     from OCP.Message import Message_ProgressRange
     from OCP.RWGltf import RWGltf_CafReader
     from OCP.RWMesh import RWMesh_CoordinateSystem
     from OCP.TCollection import TCollection_AsciiString, TCollection_ExtendedString
     from OCP.TDocStd import TDocStd_Document
-    from OCP.TopAbs import TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopLoc import TopLoc_Location
     from OCP.XCAFApp import XCAFApp_Application
+
+    from .meshing import face_triangles
 
     doc = TDocStd_Document(TCollection_ExtendedString("BinXCAF"))
     XCAFApp_Application.GetApplication_s().NewDocument(TCollection_ExtendedString("BinXCAF"), doc)
     reader = RWGltf_CafReader()
     reader.SetDocument(doc)
-    reader.SetSystemLengthUnit(0.001)  # millimetres, Z up, as the model was (glTF: metres, Y up)
+    reader.SetSystemLengthUnit(metres)  # the model's unit, Z up, as the model was (glTF: metres, Y up)
     reader.SetSystemCoordinateSystem(RWMesh_CoordinateSystem.RWMesh_CoordinateSystem_Zup)
     if not reader.Perform(TCollection_AsciiString(str(path)), Message_ProgressRange()):
         raise MeshError(f"cannot read glTF file {str(path)!r}")
-    explorer = TopExp_Explorer(reader.SingleShape(), TopAbs_FACE)
-    nodes, triangles = [], 0
-    while explorer.More():
-        location = TopLoc_Location()
-        tri = BRep_Tool.Triangulation_s(as_face(explorer.Current()), location)
-        if tri is not None:
-            trsf = location.Transformation()
-            for i in range(1, tri.NbNodes() + 1):
-                p = tri.Node(i).Transformed(trsf)
-                nodes.append((p.X(), p.Y(), p.Z()))
-            triangles += tri.NbTriangles()
-        explorer.Next()
-    return np.array(nodes, dtype=float).reshape(-1, 3), triangles
-
+    return face_triangles(reader.SingleShape())

@@ -17,19 +17,27 @@ from pathlib import Path
 from typing import Any, Callable
 
 from ..errors import ParameterError
+from ..units import DEFAULT_LENGTH_UNIT
 from .atomic import atomic_path
 
 
 @dataclass
 class Exportable:
     """What an output is made from: the shape (a solid, or a build123d assembly with names
-    and colours), the curvature lines for the polyline formats, and the writers' options."""
+    and colours), the curvature lines for the polyline formats, and the writers' options.
+
+    ``length_unit``: the unit of the model's coordinates (tubecad.units), which every format
+    that records a unit states (STEP, IGES, 3MF; glTF is scaled to its metres); the
+    coordinates themselves are written as they are."""
 
     shape: Any = None
     lines: Callable[[], list] | None = None  # the CurvatureLines, made when a polyline file asks
     step_schema: str = "AP214"
     name: str | None = None  # product name in STEP; default: the file's stem
-    mesh_deflection: float | None = None  # default: tubecad.export.mesh.default_deflection
+    mesh_deflection: float | None = None  # model units; default: tubecad.export.mesh.default_deflection
+    mesh_angular: float | None = None  # radians; default: tubecad.export.meshing.ANGULAR_DEFLECTION
+    build: Any = None  # the TubeBuild of the shape's tube or wall: meshed on its curvature-line grid
+    length_unit: str = DEFAULT_LENGTH_UNIT
 
 
 @dataclass(frozen=True)
@@ -45,7 +53,7 @@ def _cad(fmt: str):
     def write(item: Exportable, path: Path, name: str) -> None:
         from .cad import write_cad
 
-        write_cad(fmt, _shape(item, path), path, item.step_schema, name)
+        write_cad(fmt, _shape(item, path), path, item.step_schema, name, item.length_unit)
 
     return write
 
@@ -54,7 +62,10 @@ def _mesh(fmt: str):
     def write(item: Exportable, path: Path, name: str) -> None:
         from .mesh import write_mesh
 
-        write_mesh(fmt, _shape(item, path), path, item.mesh_deflection)
+        from .meshing import ANGULAR_DEFLECTION
+
+        angular = ANGULAR_DEFLECTION if item.mesh_angular is None else item.mesh_angular
+        write_mesh(fmt, _shape(item, path), path, item.mesh_deflection, angular, item.length_unit, item.build)
 
     return write
 
@@ -65,7 +76,8 @@ def _polylines(fmt: str):
 
         if item.lines is None:
             raise ParameterError(f"output {path.name!r}: {fmt.upper()} holds curvature lines; this output has none")
-        text = (polylines_csv_text if fmt == "csv" else polylines_json_text)(item.lines())
+        lines = item.lines()
+        text = polylines_csv_text(lines) if fmt == "csv" else polylines_json_text(lines, length_unit=item.length_unit)
         path.write_text(text, encoding="utf-8")
 
     return write
@@ -78,13 +90,14 @@ def _shape(item: Exportable, path: Path):
 
 
 FORMATS: tuple[OutputFormat, ...] = (
-    OutputFormat("step", (".step", ".stp"), "cad", "AP214 or AP242 (`--step-schema`), mm, product names and colours; "
-                 "about 14 significant digits", _cad("step")),
-    OutputFormat("iges", (".iges", ".igs"), "cad", "B-rep entities (solids, shells), mm; holds the surface less closely than STEP",
-                 _cad("iges")),
+    OutputFormat("step", (".step", ".stp"), "cad", "AP214 or AP242 (`--step-schema`), in `[units] length`, product "
+                 "names and colours; about 14 significant digits", _cad("step")),
+    OutputFormat("iges", (".iges", ".igs"), "cad", "B-rep entities (solids, shells), in `[units] length`; holds the "
+                 "surface less closely than STEP", _cad("iges")),
     OutputFormat("brep", (".brep",), "cad", "OCCT's own format: every digit of a double", _cad("brep")),
     OutputFormat("stl", (".stl",), "mesh", "binary STL, 32-bit floats, for viewing and printing", _mesh("stl")),
-    OutputFormat("3mf", (".3mf",), "mesh", "one mesh per solid, with its name and colour", _mesh("3mf")),
+    OutputFormat("3mf", (".3mf",), "mesh", "one mesh per solid, with its name and colour, in `[units] length`",
+                 _mesh("3mf")),
     OutputFormat("gltf", (".gltf",), "mesh", "glTF 2.0 text with the buffer embedded: one file (metres, Y up)",
                  _mesh("gltf")),
     OutputFormat("glb", (".glb",), "mesh", "glTF 2.0 binary (metres, Y up)", _mesh("glb")),

@@ -1,7 +1,14 @@
-"""Fitting the curvature-line tube into OCCT B-spline surfaces (docs/MATH.md section 6)."""
+"""Fitting the curvature-line tube into OCCT B-spline surfaces (docs/MATH.md section 6).
 
-from .exact_section import TubeSurface, exact_section_surface
-from .frame_spline import FitError, FrameSpline, fit_frame
-from .measure import SurfaceMeasure, measure_surface
+Exports are lazy (tubecad._lazy): the tolerance policy and the frame fit load without OCCT."""
 
-__all__ = ["TubeSurface", "exact_section_surface", "FrameSpline", "fit_frame", "FitError", "SurfaceMeasure", "measure_surface"]
+from .._lazy import lazy_exports
+
+_PUBLIC = {
+    "TubeSurface": ".exact_section", "exact_section_surface": ".exact_section",
+    "FrameSpline": ".frame_spline", "fit_frame": ".frame_spline", "FitError": ".frame_spline",
+    "SurfaceMeasure": ".measure", "measure_surface": ".measure",
+}  # fmt: skip
+
+__all__ = list(_PUBLIC)
+__getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())

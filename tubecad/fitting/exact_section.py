@@ -1,7 +1,8 @@
 """Exact-section NURBS of the tube (docs/MATH.md section 6): exact rational circles in u,
 a B-spline of the axis and its rotation-minimising frame in s.
 
-Poles P_ij = C_j + rho (X_i R1_j + Y_i R2_j), weights w_i (1 in s), where (X_i, Y_i, w_i)
+Poles P_ij = C_j + rho (X_i R1_j + Y_i R2_j), weights w_i (1 in s; w_i v_j on a route's
+exact rational frame, :mod:`.route_frame`, which is the same identity in homogeneous form), where (X_i, Y_i, w_i)
 is the unit circle of :mod:`.circle` and (C_j, R1_j, R2_j) the poles of the frame spline.
 Because the weights are a product with all s-weights 1, every s-isoline is exactly the
 circle C(s) + rho (x(u) R1(s) + y(u) R2(s)); only the s direction is approximated.
@@ -11,7 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 from OCP.Geom import Geom_BSplineSurface
@@ -35,6 +36,14 @@ class TubeSurface:
     tube: CurvatureLineTube
     origin_deg: float
     circle: CircleSpline
+    #: v -> s where the surface's parameter v is not the arc length (a route's rational frame)
+    arc_length: Callable[[np.ndarray], np.ndarray] | None = None
+
+    def s_at(self, v: np.ndarray | float) -> np.ndarray:
+        """Arc length s of the ring at the OCCT parameter v (v itself unless the frame is
+        rational; equal at every ring in any case)."""
+        v = np.asarray(v, dtype=float)
+        return v if self.arc_length is None else self.arc_length(v)
 
     def u_at(self, theta_deg: np.ndarray | float) -> np.ndarray:
         """OCCT u parameter of the stringer at angle ``theta_deg`` (degrees), in [0, 2 pi)."""
@@ -69,11 +78,12 @@ def exact_section_surface(tube: CurvatureLineTube, frame: FrameSpline, origin_de
     R1, R2 = math.cos(a) * R1 + math.sin(a) * R2, -math.sin(a) * R1 + math.cos(a) * R2
     rho = tube.radius
     poles = C[None] + rho * (circle.x[:, None, None] * R1[None] + circle.y[:, None, None] * R2[None])
-    weights = np.repeat(circle.weights[:, None], len(C), axis=1)
+    s_weights = np.ones(len(C)) if frame.weights is None else frame.weights
+    weights = circle.weights[:, None] * s_weights[None, :]  # a product: rational circles in u and (routes) in s
     s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
     surface = Geom_BSplineSurface(
         points_2d(poles), reals_2d(weights),
         reals(circle.knots), reals(s_knots), integers(circle.multiplicities), integers(s_mults),
         2, frame.degree, True, False,
     )  # fmt: skip
-    return TubeSurface(surface, tube, origin_deg, circle)
+    return TubeSurface(surface, tube, origin_deg, circle, frame.arc_length)

@@ -12,21 +12,22 @@ S = C + r (cos u R1 + sin u R2) of the fitted frame at ORTHOGONALITY_ANGLES angl
 the cheaper bound
     (|c'_fit - c'| + R sqrt(|r1'_fit - r1'|^2 + |r2'_fit - r2'|^2)) / (1 - R |k|)
 (docs/MATH.md section 3: |S_s| >= 1 - rho |k|) already meets the target the measurement is
-skipped. The exact derivatives are c' = t, r1' = -k cos(w) t, r2' = -k sin(w) t,
-w = Int sigma ds.
+skipped. The exact derivatives are c' = t, r1' = -k1 t, r2' = -k2 t (the Bishop
+equations, docs/MATH.md section 7; for a slope curve k1 = k cos w, k2 = k sin w).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 from scipy.interpolate import BSpline, make_interp_spline
 
-from ..curves.slope_curve import SlopeCurve
+from ..curves.axis import Axis
 from ..errors import ParameterError, TubecadError
+from .tolerance import check_tolerance
 
 SAMPLES_PER_SPAN = 24
 #: angles around the tube at which the fitted surface's orthogonality is measured
@@ -43,12 +44,31 @@ class FitError(TubecadError, ValueError):
 
 @dataclass(frozen=True)
 class FrameSpline:
-    """F(s) = (c, r1, r2) as a scipy BSpline, with the bounds it was measured to meet."""
+    """F(s) = (c, r1, r2) as a scipy BSpline, with the bounds it was measured to meet.
+
+    A route's exact frame (:mod:`.route_frame`) is rational: ``spline`` then holds its
+    poles and knots, ``weights`` the pole weights, and its parameter v equals the arc
+    length s only at the breaks (``arc_length`` maps v -> s, ``parameter`` s -> v)."""
 
     spline: BSpline
     position_bound: float
     orthogonality_bound: float
     radius_bound: float
+    weights: np.ndarray | None = None
+    arc_length: Callable[[np.ndarray], np.ndarray] | None = None
+    parameter: Callable[[np.ndarray], np.ndarray] | None = None
+
+    @property
+    def rational(self) -> bool:
+        return self.weights is not None
+
+    def values(self, v: np.ndarray | float) -> np.ndarray:
+        """F at parameters ``v`` (weights applied), shape v.shape + (9,)."""
+        if self.weights is None:
+            return self.spline(v)
+        H = BSpline(self.spline.t, self.spline.c * self.weights[:, None], self.spline.k)
+        W = BSpline(self.spline.t, self.weights, self.spline.k)
+        return H(v) / np.asarray(W(v))[..., None]
 
     @property
     def degree(self) -> int:
@@ -63,18 +83,16 @@ class FrameSpline:
         return len(np.unique(self.spline.t)) - 1
 
 
-def exact_frame(axis: SlopeCurve, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def exact_frame(axis: Axis, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """F(s) and F'(s), each (len(s), 9)."""
-    t, r1, r2 = axis.rotation_minimising_frame(s)
-    w = axis.twist(s)
-    k = axis.curvature(s)
-    F = np.hstack([axis.position(s), r1, r2])
-    dF = np.hstack([t, -(k * np.cos(w))[:, None] * t, -(k * np.sin(w))[:, None] * t])
+    a = axis.at(s)
+    F = np.hstack([a.position, a.r1, a.r2])
+    dF = np.hstack([a.t, -a.k1[:, None] * a.t, -a.k2[:, None] * a.t])
     return F, dF
 
 
 def fit_frame(
-    axis: SlopeCurve,
+    axis: Axis,
     radius_bound: float,
     tolerance: float = 1e-8,
     orthogonality: float = 1e-9,
@@ -92,12 +110,19 @@ def fit_frame(
         raise ParameterError(f"degree must be a whole number in [3, 9], got {degree!r}")
     tolerance = check_tolerance("tolerance", tolerance)
     orthogonality = check_tolerance("orthogonality", orthogonality)
-    breaks = _with_rings(_initial_breaks(axis, 8), np.asarray(rings, dtype=float))
+    from ..curves.route import RouteAxis
+
+    if isinstance(axis, RouteAxis):  # lines and bends: the exact rational frame, nothing to fit
+        from .route_frame import route_frame
+
+        return route_frame(axis, radius_bound, rings, radii, tolerance, orthogonality)
+    joints = _joint_multiplicities(axis, degree)
+    breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([np.asarray(rings, dtype=float), list(joints)]))
     radii = tuple(float(r) for r in radii) or (float(radius_bound),)
     best = (math.inf, math.inf)
     worst: list[float] = []  # per refinement: the largest error in units of its target
     while True:
-        spline = _interpolate(axis, breaks, degree)
+        spline = _interpolate(axis, breaks, degree, joints)
         pos, orth = _span_errors(axis, spline, breaks, radius_bound, radii, 0.5 * orthogonality)
         best = (min(best[0], float(pos.max())), min(best[1], float(orth.max())))
         bad = (pos > 0.5 * tolerance) | (orth > 0.5 * orthogonality)
@@ -118,19 +143,11 @@ def fit_frame(
         breaks = np.sort(np.concatenate([breaks, mids]))
 
 
-def check_tolerance(name: str, value: object) -> float:
-    """A fit tolerance in (0, 1) model units, or a ParameterError naming ``name``."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)) or not (
-        math.isfinite(value) and 0 < value < 1
-    ):
-        raise ParameterError(f"fit {name} must be in (0, 1) model units, got {value!r:.80}")
-    return float(value)
-
-
-def _initial_breaks(axis: SlopeCurve, spans: int) -> np.ndarray:
-    """Equidistribute Int (|k| / cos b + 1 / L) ds: the total curvature, plus length."""
+def _initial_breaks(axis: Axis, spans: int) -> np.ndarray:
+    """Equidistribute Int (frame rate + 1 / L) ds: the frame's total turning, plus length
+    (for a slope curve the rate is |k| / cos b = sqrt(k^2 + sigma^2))."""
     s = np.linspace(*axis.span, 2001)
-    density = np.abs(axis.curvature(s)) / math.cos(axis.beta) + 1.0 / axis.length
+    density = axis.frame_rate(s) + 1.0 / axis.length
     cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(s))])
     breaks = np.interp(np.linspace(0, cumulative[-1], spans + 1), cumulative, s)
     breaks[0], breaks[-1] = axis.span
@@ -152,8 +169,17 @@ def _with_rings(breaks: np.ndarray, rings: np.ndarray) -> np.ndarray:
     return merged[keep]
 
 
-def _interpolate(axis: SlopeCurve, breaks: np.ndarray, p: int) -> BSpline:
-    knots = np.concatenate([[breaks[0]] * p, breaks, [breaks[-1]] * p])
+def _joint_multiplicities(axis: Axis, degree: int) -> dict[float, int]:
+    """Inner joint s -> knot multiplicity degree - continuity: there the frame F = (c, r1, r2)
+    is only C^continuity (a spline axis' knot, a route's line-bend joint), and the fit must
+    be allowed the same, or it would refine towards the joint without end."""
+    s0, s1 = axis.span
+    return {float(s): degree - int(c) for s, c in axis.joints if s0 < s < s1 and 0 <= c < degree}
+
+
+def _interpolate(axis: Axis, breaks: np.ndarray, p: int, joints: dict[float, int]) -> BSpline:
+    inner = [b for b in breaks[1:-1] for _ in range(joints.get(float(b), 1))]
+    knots = np.concatenate([[breaks[0]] * (p + 1), inner, [breaks[-1]] * (p + 1)])
     n = len(knots) - p - 1
     greville = np.array([knots[i + 1 : i + p + 1].mean() for i in range(n)])
     greville = np.clip(greville, breaks[0], breaks[-1])  # a mean of equal knots can round past them
@@ -161,7 +187,7 @@ def _interpolate(axis: SlopeCurve, breaks: np.ndarray, p: int) -> BSpline:
     return make_interp_spline(greville, F, k=p, t=knots)
 
 
-def _span_errors(axis: SlopeCurve, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float],
+def _span_errors(axis: Axis, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float],
                  target: float) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """Per span: the position bound and the orthogonality (the bound, or where it exceeds
     ``target``, the largest |cos| measured on the fitted surface at every radius)."""

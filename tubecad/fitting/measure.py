@@ -40,7 +40,7 @@ def measure_surface(ts: TubeSurface, nu: int = 48, ns: int = 1500) -> SurfaceMea
             pts[i, j] = p.X(), p.Y(), p.Z()
             du[i, j] = vu.X(), vu.Y(), vu.Z()
             ds[i, j] = vs.X(), vs.Y(), vs.Z()
-    exact = ts.tube.points(ts.theta_at(us)[:, None], ss[None, :])
+    exact = ts.tube.points(ts.theta_at(us)[:, None], ts.s_at(ss)[None, :])
     deviation = np.linalg.norm(pts - exact, axis=-1).max()
     cos = np.abs(np.einsum("ijk,ijk->ij", du, ds)) / np.linalg.norm(du, axis=-1) / np.linalg.norm(ds, axis=-1)
     return SurfaceMeasure(float(deviation), float(cos.max()), nu * ns)

@@ -63,6 +63,8 @@ class Job:
     outputs: tuple[str, ...]
     report: str
     step_schema: str = "AP214"
+    mesh_tolerance: float | None = None  # --mesh-tolerance (model units), for mesh formats
+    mesh_angle: float | None = None  # --mesh-angle (degrees)
 
 
 @dataclass
@@ -77,6 +79,7 @@ class JobResult:
     kind: str = ""
     faces: int = 0
     valid: bool = False
+    built: str = ""  # what was built, for the job's line: "wall 50 faces valid + 5 ring + 4 stringer stiffeners (T)"
 
 
 # ---------------------------------------------------------------- sweeps and job names
@@ -188,8 +191,10 @@ def safe_name(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9._+-]+", "_", text).strip("._")[:MAX_NAME] or "spec"
 
 
-def plan_jobs(specs, sweeps: list[Sweep], out_dir: Path, formats, step_schema: str = "AP214") -> list[Job]:
-    """One job per spec file and per combination of the swept values, with unique names."""
+def plan_jobs(specs, sweeps: list[Sweep], out_dir: Path, formats, step_schema: str = "AP214",
+              mesh_tolerance: float | None = None, mesh_angle: float | None = None) -> list[Job]:  # fmt: skip
+    """One job per spec file and per combination of the swept values, with unique names;
+    mesh formats are meshed to ``mesh_tolerance`` and ``mesh_angle`` (checked per job)."""
     formats = list(dict.fromkeys(f.lower() for f in formats)) or ["step"]
     bad = [f for f in formats if f not in FORMATS]
     if bad:
@@ -218,7 +223,7 @@ def plan_jobs(specs, sweeps: list[Sweep], out_dir: Path, formats, step_schema: s
                                   if sweeps else "")  # fmt: skip
             overrides = tuple((s.section, s.key, v) for s, v in zip(sweeps, combo))
             jobs.append(Job(name, str(spec), source, overrides, tuple(str(out_dir / f"{name}.{f}") for f in formats),
-                            str(out_dir / f"{name}.report.json"), step_schema))  # fmt: skip
+                            str(out_dir / f"{name}.report.json"), step_schema, mesh_tolerance, mesh_angle))  # fmt: skip
     return jobs
 
 
@@ -241,7 +246,7 @@ def job_spec(job: Job):
         table = data.setdefault(section, {})
         if isinstance(table, dict):  # else parse_spec says the section is not a table
             table[key] = value
-    return parse_spec(data, job.source)
+    return parse_spec(data, job.source, Path(job.spec).parent)
 
 
 def run_job(job: Job) -> JobResult:
@@ -255,7 +260,8 @@ def run_job(job: Job) -> JobResult:
     try:
         if _stopping:
             raise KeyboardInterrupt
-        report = build_and_export(job_spec(job), job.outputs, job.step_schema, Path(job.report), written)
+        mesh = {k: v for k, v in (("mesh_tolerance", job.mesh_tolerance), ("mesh_angle", job.mesh_angle)) if v is not None}
+        report = build_and_export(job_spec(job), job.outputs, job.step_schema, Path(job.report), written, **mesh)
     except BaseException as exc:
         _busy = False
         for path in written:
@@ -268,7 +274,23 @@ def run_job(job: Job) -> JobResult:
     brep = report["brep"]
     valid = bool(brep["valid"]) and all(e.get("valid", True) for e in report["exports"].values())
     return JobResult(job.name, "ok", None, time.perf_counter() - start, [p.name for p in written],
-                     brep["kind"], brep["faces"], valid)  # fmt: skip
+                     brep["kind"], brep["faces"], valid, what_was_built(report, valid))  # fmt: skip
+
+
+def what_was_built(report: dict[str, Any], valid: bool = True) -> str:
+    """From a job's report: 'wall 50 faces valid + 5 ring + 4 stringer stiffeners (T)', with
+    '+ 6 panels' for [panels]; 'tube_solid 6 faces valid' for a plain tube."""
+    brep = report["brep"]
+    text = f"{brep['kind']} {brep['faces']} faces {'valid' if valid else 'NOT VALID'}"
+    stiffeners = (report.get("stiffeners") or {}).get("stiffeners", [])
+    if stiffeners:
+        kinds = [k for k in ("ring", "stringer") if any(s["kind"] == k for s in stiffeners)]
+        counts = " + ".join(f"{sum(s['kind'] == k for s in stiffeners)} {k}" for k in kinds)
+        profiles = ", ".join(dict.fromkeys(s["profile"] for s in stiffeners))
+        text += f" + {counts} stiffener{'s' * (len(stiffeners) > 1)} ({profiles})"
+    if report.get("panels"):
+        text += f" + {len(report['panels'])} panels"
+    return text
 
 
 def one_line(exc: BaseException) -> str:
@@ -297,7 +319,9 @@ def progress_line(result: JobResult, done: int, total: int) -> str:
     if result.status != "ok":
         error = result.error or result.status
         return head + "FAILED: " + (error if len(error) <= 300 else error[:297] + "...")
-    return head + f"{result.kind} {result.faces} faces {'valid' if result.valid else 'NOT VALID'}, {result.seconds:.1f} s"
+    built = result.built or f"{result.kind} {result.faces} faces {'valid' if result.valid else 'NOT VALID'}"
+    files = len(result.outputs)
+    return head + f"{built}, {files} file{'s' * (files != 1)}, {result.seconds:.1f} s"
 
 
 def run_batch(jobs: list[Job], workers: int, echo: Callable[[str], None]) -> tuple[list[JobResult | None], bool]:

@@ -7,37 +7,21 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..brep import NetLayout, TubeBuild, build_tube_solid, build_wall_solid
-from ..brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
-from ..brep.solids import DEFAULT_TOLERANCE
+from ..brep import TubeBuild, build_tube_solid, build_wall_solid
+from ..fitting.tolerance import DEFAULT_TOLERANCE
 from ..errors import ParameterError, RegularityError, SpecError
 from ..fitting import FitError
 from ..stiffeners.profiles import Profile
 from ..surface import CurvatureLineTube
+from ..units import DEFAULT_LENGTH_UNIT
+from .layout_section import layout_from_section
+from .progress import Progress, ProgressCallback
 from .spec import TubeSpec
 
 
-def layout_from_section(tube: CurvatureLineTube, section: dict[str, Any]) -> NetLayout:
-    """[layout]: rings / stringers counts, or s_rings / u_stringers_deg lists."""
-    import numpy as np
-
-    if "s_rings" in section:
-        s_rings = section["s_rings"]
-    else:
-        rings = section.get("rings", DEFAULT_RINGS)
-        NetLayout.equal(tube, rings, 1)  # checks the count
-        s_rings = np.linspace(*tube.span, rings)
-    if "u_stringers_deg" in section:
-        angles = section["u_stringers_deg"]
-    else:
-        stringers = section.get("stringers", DEFAULT_STRINGERS)
-        NetLayout.equal(tube, 2, stringers)
-        angles = 360.0 * np.arange(stringers) / stringers
-    return NetLayout.explicit(tube, s_rings, angles)
-
-
-def build_from_spec(spec: TubeSpec) -> TubeBuild:
-    """The wall solid if the spec has [wall], else the capped tube solid."""
+def build_from_spec(spec: TubeSpec, progress: ProgressCallback | None = None) -> TubeBuild:
+    """The wall solid if the spec has [wall], else the capped tube solid; ``progress(step,
+    done, total)`` is called as it is built."""
     tube = spec.tube
     try:
         layout = layout_from_section(tube, spec.sections.get("layout", {}))
@@ -47,8 +31,8 @@ def build_from_spec(spec: TubeSpec) -> TubeBuild:
     wall = spec.sections.get("wall")
     try:
         if wall is None:
-            return build_tube_solid(tube, layout, tolerance)
-        return build_wall_solid(tube, wall["thickness"], wall.get("side", "centered"), layout, tolerance)
+            return build_tube_solid(tube, layout, tolerance, progress)
+        return build_wall_solid(tube, wall["thickness"], wall.get("side", "centered"), layout, tolerance, progress)
     except FitError as exc:
         raise SpecError(f"{spec.source}: [fit] {exc}") from None
     except RegularityError as exc:
@@ -77,8 +61,8 @@ class StiffenerSelection:
 
 def stiffener_selection(spec: TubeSpec, build: TubeBuild) -> StiffenerSelection | None:
     """The checked [stiffeners] section, or None if the spec has none."""
-    from ..examples import STEEL_DENSITY
     from ..stiffeners.profiles import SIDES
+    from ..units import steel_density
 
     section = spec.sections.get("stiffeners")
     if section is None:
@@ -100,15 +84,17 @@ def stiffener_selection(spec: TubeSpec, build: TubeBuild) -> StiffenerSelection 
     side = section.get("side", "outside")
     if side not in SIDES:
         raise SpecError(f"{spec.source}: [stiffeners] side must be one of {', '.join(SIDES)}, got {side!r}")
-    density = section.get("density", STEEL_DENSITY)
+    density = section.get("density", steel_density(spec.length_unit))  # kg per cubic [units] length
     if not density > 0:
         raise SpecError(f"{spec.source}: [stiffeners] density must be > 0, got {density}")
     return StiffenerSelection(chosen("rings", len(build.layout.s_rings)), chosen("stringers", len(build.layout.stringers_deg)),
                               profile, side, section.get("fuse", False), density)  # fmt: skip
 
 
-def stiffeners_from_spec(spec: TubeSpec, build: TubeBuild) -> tuple[list, StiffenerSelection | None]:
-    """The [stiffeners] section's stiffener solids on ``build``'s wall ([] without the section)."""
+def stiffeners_from_spec(spec: TubeSpec, build: TubeBuild, progress: ProgressCallback | None = None
+                         ) -> tuple[list, StiffenerSelection | None]:  # fmt: skip
+    """The [stiffeners] section's stiffener solids on ``build``'s wall ([] without the section);
+    ``progress(name, done, total)`` after each."""
     from ..stiffeners.assembly import build_stiffeners
 
     selection = stiffener_selection(spec, build)
@@ -116,7 +102,7 @@ def stiffeners_from_spec(spec: TubeSpec, build: TubeBuild) -> tuple[list, Stiffe
         return [], None
     try:
         return build_stiffeners(build, selection.rings, selection.stringers, selection.profile, selection.side,
-                                build.tolerance), selection  # fmt: skip
+                                build.tolerance, progress), selection  # fmt: skip
     except (ParameterError, RegularityError, FitError) as exc:
         raise SpecError(f"{spec.source}: [stiffeners] {exc}") from None
 
@@ -159,28 +145,67 @@ def wall_lines(build: TubeBuild) -> list:
 
 
 def mesh_deflection(build: TubeBuild) -> float:
-    """The linear deflection of mesh outputs: 1e-3 of the smallest tube radius."""
-    from ..export.mesh import RELATIVE_DEFLECTION
+    """The default linear deflection of mesh outputs: 1e-3 of the smallest tube radius."""
+    from ..export.meshing import checked_tolerance
 
-    return RELATIVE_DEFLECTION * min(build.radii)
+    return checked_tolerance(None, None, min(build.radii))[0]
+
+
+#: how the command line names the mesh tolerances (in messages)
+MESH_OPTIONS = ("--mesh-tolerance", "--mesh-angle")
+
+
+def mesh_tolerance_for(spec: TubeSpec, linear: float | None = None, angle_deg: float | None = None
+                       ) -> tuple[float, float]:  # fmt: skip
+    """(linear deflection, angular deflection in radians) of the spec's mesh outputs, checked
+    before anything is built (tubecad.export.meshing: the defaults, and the ranges relative
+    to the spec's smallest tube radius); a SpecError names the option and the range."""
+    from ..brep.wall import wall_radii
+    from ..export.meshing import checked_tolerance
+
+    radius, wall = spec.tube.radius, spec.sections.get("wall")
+    if wall is not None:
+        try:
+            radius = min(wall_radii(radius, wall["thickness"], wall.get("side", "centered")))
+        except (ParameterError, KeyError):
+            pass  # the build says what is wrong with [wall]
+    try:
+        return checked_tolerance(linear, angle_deg, radius, MESH_OPTIONS)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: {exc}") from None
+
+
+def check_mesh_options(outputs, mesh_tolerance: float | None, mesh_angle: float | None) -> None:
+    """--mesh-tolerance and --mesh-angle only with a mesh output among ``outputs`` (paths or
+    names with an extension): a ParameterError otherwise."""
+    from ..export.registry import EXTENSIONS
+
+    if mesh_tolerance is None and mesh_angle is None or any(Path(p).suffix.lower() not in EXTENSIONS for p in outputs):
+        return  # an unknown extension is refused by split_outputs, listing them all
+    if not any(getattr(EXTENSIONS.get(Path(p).suffix.lower()), "kind", "") == "mesh" for p in outputs):
+        meshes = ", ".join(ext for ext, fmt in EXTENSIONS.items() if fmt.kind == "mesh")
+        raise ParameterError(f"{' and '.join(MESH_OPTIONS)} apply to mesh outputs ({meshes}); none is asked for")
 
 
 def check_output(tmp: Path, fmt, target: Path, shape, build: TubeBuild, wall_solids: int | None,
-                 deflection: float) -> dict[str, Any]:  # fmt: skip
+                 deflection: float, length_unit: str = DEFAULT_LENGTH_UNIT,
+                 angular: float | None = None) -> dict[str, Any]:  # fmt: skip
     """Read a just-written temporary file back and measure it (tubecad.interfaces.readback);
     raises if it does not hold the build's tolerance, so the file is never moved into place.
-    ``wall_solids``: for an assembly, how many of its first solids are the wall."""
+    ``wall_solids``: for an assembly, how many of its first solids are the wall;
+    ``length_unit``: the model's unit, which the file is read back into."""
     from .readback import mesh_report, readback_report
 
     if fmt.kind == "cad":
-        return readback_report(tmp, shape, build, target, wall_solids)
+        return readback_report(tmp, shape, build, target, wall_solids, length_unit)
     if fmt.kind == "mesh":
-        return mesh_report(tmp, fmt.name, build, deflection, target, wall_solids)
+        return mesh_report(tmp, fmt.name, build, deflection, target, wall_solids, length_unit, angular)
     return {"bytes": tmp.stat().st_size, "lines": len(wall_lines(build))}
 
 
 def build_and_export(spec: TubeSpec, outputs, step_schema: str = "AP214", report_path: Path | None = None,
-                     written: list[Path] | None = None) -> dict[str, Any]:
+                     written: list[Path] | None = None, mesh_tolerance: float | None = None,
+                     mesh_angle: float | None = None, progress: Progress | None = None) -> dict[str, Any]:
     """Build ``spec``'s solid (the wall with [wall], else the capped tube; the named assembly
     with [stiffeners] or [panels]), write each of ``outputs``, read each back, and return the
     report (also written to ``report_path`` if given).
@@ -188,45 +213,64 @@ def build_and_export(spec: TubeSpec, outputs, step_schema: str = "AP214", report
     ``tubecad build`` runs this for its one spec and for every job of a batch. Every file is
     written atomically and read back before it is moved into place: a file that does not
     hold the tolerance (see tubecad.interfaces.readback) is refused and never left behind.
-    Each path is appended to ``written`` once it is complete.
+    Each path is appended to ``written`` once it is complete. Mesh outputs are meshed to
+    ``mesh_tolerance`` (model units) and ``mesh_angle`` (degrees), checked before anything is
+    built (:func:`mesh_tolerance_for`). ``progress`` hears of each stage (the wall, each
+    stiffener, each file written and read back); it shows nothing by default.
     """  # fmt: skip
     from ..brep.properties import volume
-    from ..examples import STEEL_DENSITY
     from ..export.atomic import check_writable, write_text
     from ..export.registry import Exportable, write_output
     from ..stiffeners import net_lines
     from ..stiffeners.assembly import named_assembly
+    from ..units import steel_density
     from .report import build_report, stiffener_report, to_json, tube_report
 
     written = [] if written is None else written
+    progress = progress if progress is not None else Progress(enabled=False)
+    unit = spec.length_unit  # [units] length: the model's unit, stated in every file and the report
     outputs = [Path(p) for p in outputs]
     split_outputs(outputs)  # an unknown extension is refused, listing them all, before anything is built
     for path in (*outputs, *([report_path] if report_path is not None else [])):
         check_writable(path)  # a bad output is refused before anything is built or written
-    result = build_from_spec(spec)
-    report = tube_report(spec.tube, 64, 501)
+    deflection, angular = mesh_tolerance_for(spec, mesh_tolerance, mesh_angle)
+    kind = "wall" if "wall" in spec.sections else "tube"
+    progress.step(f"building the {kind}", 4 if kind == "wall" else 3)
+    result = build_from_spec(spec, progress.update)
+    report = tube_report(spec.tube, 64, 501, length_unit=unit)
     report["brep"] = build_report(result, spec.tube)
-    stiffeners, selection = stiffeners_from_spec(spec, result)
+    if "stiffeners" in spec.sections:
+        progress.step("building stiffeners")
+    stiffeners, selection = stiffeners_from_spec(spec, result, progress.update)
+    if "panels" in spec.sections:
+        progress.step("splitting the wall into panels")
     panels = panels_from_spec(spec, result)
     shape = result.shape
     named = bool(stiffeners or panels)
     if named:
+        progress.step("assembling" + (" (fusing the stiffeners into the wall)" if selection and selection.fuse else ""))
         lines = net_lines(result.surfaces[0], result.layout)
         shape = named_assembly(result, stiffeners, lines, fuse=bool(selection and selection.fuse), panels=panels)
-        density = selection.density if selection else STEEL_DENSITY
-        report["stiffeners"] = stiffener_report(stiffeners, lines, density)
+        density = selection.density if selection else steel_density(unit)
+        report["stiffeners"] = stiffener_report(stiffeners, lines, density, unit)
         report["panels"] = [{"name": p.name, "s": list(p.s_range), "angles_deg": list(p.angles_deg),
                              "outer_area": p.outer_area, "volume": volume(p.solid),
                              "mass_kg": p.mass(density)} for p in panels]  # fmt: skip
     report["exports"] = {}
     wall_solids = (len(panels) or 1) if named else None  # the assembly's first solids: the wall, or its panels
-    deflection = mesh_deflection(result)
-    item = Exportable(shape, lambda: wall_lines(result), step_schema, mesh_deflection=deflection)
+    item = Exportable(shape, lambda: wall_lines(result), step_schema, mesh_deflection=deflection, length_unit=unit,
+                      mesh_angular=angular, build=result)  # fmt: skip
+
+    def check(tmp, fmt, path):
+        progress.advance(1, f"wrote {path.name}")
+        return check_output(tmp, fmt, path, shape, result, wall_solids, deflection, unit, angular)
+
+    progress.step("writing and reading back files", 2 * len(outputs))
     for path in outputs:  # STEP of an assembly keeps its names: wall, ring_03, line_ring_03, ...
-        done, info = write_output(item, path, lambda tmp, fmt, path=path: check_output(
-            tmp, fmt, path, shape, result, wall_solids, deflection))  # fmt: skip
+        done, info = write_output(item, path, lambda tmp, fmt, path=path: check(tmp, fmt, path))
         written.append(done)
         report["exports"][str(path)] = info
+        progress.advance(1, f"checked {path.name}")
     if report_path is not None:
         written.append(write_text(report_path, to_json(report)))
     return report

@@ -18,7 +18,7 @@ except ImportError as exc:  # CadQuery is an extra: it pins OCP 7.9, build123d 0
 
 from ..brep import NetLayout, build_tube_solid, build_wall_solid
 from ..brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
-from ..brep.solids import DEFAULT_TOLERANCE
+from ..fitting.tolerance import DEFAULT_TOLERANCE
 from ..surface import CurvatureLineTube
 
 

@@ -6,6 +6,8 @@
     tubecad build A.toml B.toml ... -d DIR    a batch on all cores: DIR/NAME.step, NAME.report.json, batch.json
     tubecad build SPEC.toml --sweep tube.radius=10,12,15 -d DIR     the spec for each value (a batch)
     tubecad flat SPEC.toml -o DIR             flat patterns of the spec's stiffener webs
+    tubecad schema [-o FILE]                  the JSON Schema of spec files, for editors
+    tubecad view SPEC.toml | paper [--port N] the named, coloured tree in OCP CAD Viewer
 
 Bad input exits with code 2 and a one-line message naming the key or option. A batch
 (tubecad.interfaces.batch) prints a line per finished job to stderr and exits with 2 if any
@@ -23,6 +25,7 @@ from ..errors import TubecadError
 from ..export.atomic import remove_temporaries, write_text
 from ..export.registry import FORMAT_NAMES as BATCH_FORMATS
 from ..export.registry import Exportable, write_output
+from ..units import DEFAULT_LENGTH_UNIT
 
 from .console import interrupts_end_at_once
 from .grid import DEFAULT_NS, DEFAULT_NU
@@ -131,13 +134,12 @@ def write_paper_stiffeners(build, output: Path, report: dict) -> list[Path]:
     """The paper's default stiffeners, named assembly, polylines and picture (issue 4)."""
     import build123d as bd
 
+    from ..examples import paper_stiffeners
     from ..export.render import render_shape_png
     from ..stiffeners import net_lines, polylines_csv, polylines_json
-    from ..stiffeners.assembly import build_stiffeners, export_named_step, named_assembly
-    from ..stiffeners.profiles import Profile
+    from ..stiffeners.assembly import export_named_step, named_assembly
 
-    stiffeners = build_stiffeners(build, PAPER_STIFFENER_RINGS, [], Profile(*PAPER_RING_PROFILE), "inside")
-    stiffeners += build_stiffeners(build, [], PAPER_STIFFENER_STRINGERS, Profile(*PAPER_STRINGER_PROFILE), "inside")
+    stiffeners = paper_stiffeners(build)  # shared with `tubecad view paper`
     lines = net_lines(build.surfaces[0], build.layout) + net_lines(build.surfaces[1], build.layout, "_inner")
     step = export_named_step(named_assembly(build, stiffeners, lines), output / "paper_stiffened.step")
     report["stiffeners"] = stiffener_report(stiffeners, lines, STEEL_DENSITY)
@@ -160,14 +162,16 @@ def write_flat_patterns(stiffeners, folder: Path) -> list[Path]:
     return write_patterns(patterns, folder)
 
 
-def write_patterns(patterns, folder: Path) -> list[Path]:
-    """webs.dxf (all), NAME.svg and NAME.png per web, flat.json with the measures."""
+def write_patterns(patterns, folder: Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> list[Path]:
+    """webs.dxf (all), NAME.svg and NAME.png per web, flat.json with the measures; lengths
+    in ``length_unit`` (the spec's [units] length, stated in the DXF and flat.json)."""
     from ..stiffeners.flat import write_dxf, write_picture
 
-    written = [write_dxf(patterns, folder / "webs.dxf")]
+    written = [write_dxf(patterns, folder / "webs.dxf", length_unit=length_unit)]
     for pattern in patterns:
         written += write_picture(pattern, folder)
-    summary = {"webs": [{"name": p.name, "kind": p.kind, "area": p.area, "base_length": p.base_length,
+    summary = {"units": {"length": length_unit},
+               "webs": [{"name": p.name, "kind": p.kind, "area": p.area, "base_length": p.base_length,
                          "top_length": p.top_length} for p in patterns]}  # fmt: skip
     written.append(write_text(folder / "flat.json", to_json(summary)))
     return written
@@ -188,8 +192,27 @@ def report(spec: Path, nu: int, ns: int) -> None:
     """Print the JSON report of the tube described by SPEC (a TOML file)."""
     _load_maths()
     try:
-        tube = load_spec(spec).tube
-        click.echo(to_json(tube_report(tube, nu, ns)), nl=False)
+        checked = load_spec(spec)
+        click.echo(to_json(tube_report(checked.tube, nu, ns, checked.length_unit)), nl=False)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+
+
+@cli.command()
+@click.option("-o", "--output", "output", default=None, type=click.Path(dir_okay=False, path_type=Path),
+              help="Write the schema to this file (atomically) instead of printing it.")
+def schema(output: Path | None) -> None:
+    """Print the JSON Schema (draft 2020-12) of spec files, for editors' completion and checks:
+    e.g. tubecad schema -o tubecad-spec.schema.json, and "#:schema ./tubecad-spec.schema.json"
+    as the first line of a spec (Even Better TOML / taplo). Made from the spec checker's own
+    key tables; the checker stays the authority (it also checks the geometry)."""
+    from .schema import schema_text  # light: no numpy, no OCCT
+
+    if output is None:
+        click.echo(schema_text(), nl=False)
+        return
+    try:
+        click.echo(str(write_text(output, schema_text())))
     except TubecadError as exc:
         raise UserError(str(exc)) from None
 
@@ -213,8 +236,18 @@ def report(spec: Path, nu: int, ns: int) -> None:
                    "(inclusive); several --sweep give every combination.")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
               help="Batch: jobs run at once, each in its own process  [default: all cores]")
+@click.option("--mesh-tolerance", type=float, default=None, metavar="LENGTH",
+              help="Mesh outputs only (.stl, .3mf, .gltf, .glb): the farthest a triangle may lie from the surface, "
+                   "in model units, from 1e-4 to 1 x the smallest tube radius  [default: 1e-3 x that radius]")
+@click.option("--mesh-angle", type=float, default=None, metavar="DEGREES",
+              help="Mesh outputs only: the most the normal may turn between neighbouring triangles, 1 to 45; the "
+                   "finer of the two tolerances wins  [default: 5.73 (0.1 rad)]")
+@click.option("-q", "--quiet", is_flag=True,
+              help="No progress on stderr (shown once a build has run 2 s: a bar on a terminal, else lines); "
+                   "batch: no line per job.")
 def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, report_path: Path | None,
-          out_dir: Path | None, formats: tuple[str, ...], sweeps: tuple[str, ...], jobs: int | None) -> None:
+          out_dir: Path | None, formats: tuple[str, ...], sweeps: tuple[str, ...], jobs: int | None,
+          mesh_tolerance: float | None, mesh_angle: float | None, quiet: bool) -> None:
     """Build the solid of SPEC (the wall if it has [wall], else the capped tube) and write it.
 
     With one SPEC and -o, each file is read back and checked; a summary is printed.
@@ -224,8 +257,16 @@ def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, 
     job; the exit code is 2 if any job failed.
     """
     _load()
+    from .build import check_mesh_options
+    from .progress import Progress
+
+    try:
+        check_mesh_options(outputs or [f"job.{f}" for f in formats or ("step",)], mesh_tolerance, mesh_angle)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
     if len(specs) > 1 or sweeps or out_dir is not None:
-        build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path)
+        build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path,
+                    (mesh_tolerance, mesh_angle), quiet)  # fmt: skip
         return
     if formats or jobs is not None:
         raise click.UsageError("-f/--format and -j/--jobs are for batch mode (several SPECs, --sweep, or -d/--out-dir)")
@@ -234,7 +275,9 @@ def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, 
     written: list[Path] = []
     try:
         split_outputs(outputs)  # an unknown extension is refused before anything is built
-        report = build_and_export(load_spec(specs[0]), outputs, step_schema, report_path, written)
+        with Progress(enabled=not quiet) as progress:  # on stderr, once the build has run for 2 s
+            report = build_and_export(load_spec(specs[0]), outputs, step_schema, report_path, written,
+                                      mesh_tolerance, mesh_angle, progress)  # fmt: skip
     except TubecadError as exc:
         for path in written:  # a failed build (e.g. a file that cannot hold the tolerance) leaves no files
             path.unlink(missing_ok=True)
@@ -253,15 +296,20 @@ def export_summary(info: dict) -> str:
     if "lines" in info:
         return f"{info['bytes']} bytes, {info['lines']} curvature lines as polylines"
     if "triangles" in info:
-        checked = f", vertices within {info['max_vertex_deviation']:.1e} of the tube" if "max_vertex_deviation" in info else ""
-        return f"{info['bytes']} bytes, mesh for visual use: {info['triangles']} triangles{checked}"
+        checked = (f", within {info['max_triangle_deviation']:.1e} of the tube (vertices {info['max_vertex_deviation']:.1e})"
+                   if "max_triangle_deviation" in info else "")  # fmt: skip
+        asked = (f", tolerance {info['deflection']:.3g} and {info['angular_deflection_deg']:.3g} deg"
+                 if info.get("deflection") is not None and info.get("angular_deflection_deg") is not None else "")  # fmt: skip
+        return f"{info['bytes']} bytes, mesh for visual use: {info['triangles']} triangles{checked}{asked}"
     measured = (f", file deviation {info['max_deviation']:.2e}, orthogonality {info['max_orthogonality_error']:.2e}"
                 if "max_deviation" in info else "")  # fmt: skip
     return f"{info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}{measured}"
 
 
-def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path) -> None:
-    """``tubecad build`` over many specs or a sweep (tubecad.interfaces.batch); exits 0, 2 or 130."""
+def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path, mesh=(None, None),
+                quiet: bool = False) -> None:  # fmt: skip
+    """``tubecad build`` over many specs or a sweep (tubecad.interfaces.batch); exits 0, 2 or 130.
+    ``mesh``: (--mesh-tolerance, --mesh-angle); ``quiet``: no line per job."""
     import os
     import time
 
@@ -274,7 +322,7 @@ def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, rep
     if out_dir is None:
         raise click.UsageError(f"batch mode ({why}) needs -d/--out-dir DIR")
     try:
-        planned = plan_jobs(specs, [parse_sweep(s) for s in sweeps], out_dir, formats, step_schema)
+        planned = plan_jobs(specs, [parse_sweep(s) for s in sweeps], out_dir, formats, step_schema, *mesh)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     try:
@@ -283,9 +331,10 @@ def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, rep
         raise UserError(f"cannot create output folder {str(out_dir)!r}: {exc.strerror}") from None
     workers = min(jobs or os.cpu_count() or 1, len(planned))
     say = lambda line: click.echo(line, err=True)  # noqa: E731
-    say(f"building {len(planned)} job{'s' * (len(planned) > 1)} with {workers} process{'es' * (workers > 1)} into {out_dir}")
+    if not quiet:
+        say(f"building {len(planned)} job{'s' * (len(planned) > 1)} with {workers} process{'es' * (workers > 1)} into {out_dir}")
     start = time.perf_counter()
-    results, interrupted = run_batch(planned, workers, say)
+    results, interrupted = run_batch(planned, workers, (lambda line: None) if quiet else say)
     record = batch_record(planned, results, interrupted, time.perf_counter() - start, workers, sweeps,
                           formats or ("step",))  # fmt: skip
     summary = write_text(out_dir / "batch.json", to_json(record))
@@ -303,7 +352,7 @@ def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, rep
 @click.option("-o", "--output", "output", required=True, type=click.Path(file_okay=False, path_type=Path),
               help="Folder for webs.dxf, one SVG and PNG per web, and flat.json (created if needed).")
 def flat(spec: Path, output: Path) -> None:
-    """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, mm), NAME.svg/.png
+    """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, [units] length), NAME.svg/.png
     each, and flat.json with every web's area and edge lengths."""
     _load()
     from ..stiffeners.flat import ring_flat_pattern, stringer_flat_pattern
@@ -323,11 +372,30 @@ def flat(spec: Path, output: Path) -> None:
         patterns = [ring_flat_pattern(base.radius, height, side, f"ring_{i:02d}") for i in chosen.rings]
         patterns += [stringer_flat_pattern(base, layout.stringers_deg[j], height, side, f"stringer_{j:02d}")
                      for j in chosen.stringers]  # fmt: skip
-        written = write_patterns(patterns, output)
+        written = write_patterns(patterns, output, checked.length_unit)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     for path in written:
         click.echo(str(path))
+
+
+@cli.command()
+@click.argument("spec", metavar="SPEC")
+@click.option("--port", type=click.IntRange(1, 65535), default=None,
+              help="Port of the viewer  [default: $OCP_PORT, else 3939]")
+@click.option("--host", default="127.0.0.1", show_default=True, help="Host of the viewer.")
+def view(spec: str, port: int | None, host: str) -> None:
+    """Show SPEC (a TOML file, or the word paper for the paper's stiffened wall) in OCP CAD
+    Viewer: wall (translucent, or its [panels]), ring_XX and stringer_XX stiffeners, and the
+    curvature lines line_ring_XX, line_stringer_XX. Start a viewer first: the VS Code extension
+    "OCP CAD Viewer", or python -m ocp_viewer --port N. Without one: exit code 2 at once."""
+    from .viewer import show  # light; OCCT and ocp_vscode are imported after the port check
+
+    try:
+        shown = show(spec, port=port, host=host)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    click.echo(shown.summary())
 
 
 def main() -> None:

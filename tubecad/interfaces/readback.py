@@ -9,19 +9,20 @@ so at large coordinates the file can lose what the fit reached), or its isolines
 orthogonal than the fitted target, is refused with :class:`FileAccuracyError`.
 
 Mesh files (STL, 3MF, glTF) are visual: they are read back by independent readers and
-every vertex is checked to lie within the mesh deflection of the exact tube (plain walls
-and tubes; an assembly's stiffeners stand off the tube, so there only the count is given).
+every vertex, and every triangle (at its centroid and edge midpoints), is checked to lie
+within the mesh deflection of the exact tube (plain walls and tubes; an assembly's
+stiffeners stand off the tube, so there only the count is given).
 """
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from ..brep import properties as props
 from ..export.cad import ExportError, import_shape
+from ..units import DEFAULT_LENGTH_UNIT
 
 #: samples per file for the read-back measure (spread over the tube faces, at least 2 x 2 each)
 READBACK_SAMPLES = 3000
@@ -34,14 +35,16 @@ class FileAccuracyError(ExportError):
 
 
 def readback_report(path: str | Path, written, build=None, target: str | Path | None = None,
-                    wall_solids: int | None = None) -> dict[str, Any]:  # fmt: skip
+                    wall_solids: int | None = None,
+                    length_unit: str = DEFAULT_LENGTH_UNIT) -> dict[str, Any]:  # fmt: skip
     """Validity, counts, free edges, and volume/area relative to the written shape; with
     ``build`` (a TubeBuild) also the deviation and orthogonality measured on the file's tube
     faces, refused (FileAccuracyError naming ``target``, the path the user asked for) when
     above the build's tolerance or its fitted orthogonality. ``wall_solids``: the file holds an
     assembly whose first ``wall_solids`` solids are the wall (1, or one per panel); only
-    their faces on the wall's tubes are measured (stiffeners are separate parts)."""
-    shape = import_shape(path)
+    their faces on the wall's tubes are measured (stiffeners are separate parts).
+    ``length_unit``: the model's unit (tubecad.units), which the file is read back into."""
+    shape = import_shape(path, length_unit)
     out: dict[str, Any] = {
         "bytes": Path(path).stat().st_size,
         "valid": props.is_valid(shape),
@@ -67,7 +70,7 @@ def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> 
     FileAccuracyError when the file does not meet the build's tolerance or orthogonality.
     ``wall_solids``: see :func:`readback_report`."""
     from ..brep.measure import measure_tube_faces, tube_faces
-    from ..brep.solids import orthogonality_for
+    from ..fitting.tolerance import orthogonality_for
     from ..export.cad import cad_format
 
     axis = build.surfaces[0].tube.axis
@@ -100,26 +103,33 @@ def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> 
 
 
 def mesh_report(path: str | Path, fmt: str, build=None, deflection: float | None = None,
-                target: str | Path | None = None, wall_solids: int | None = None) -> dict[str, Any]:  # fmt: skip
-    """Triangles and vertices of a mesh file read back; with ``build`` and no ``wall_solids``
-    (not an assembly), the max distance of its vertices from the exact tubes, refused above
-    ``deflection``."""
-    from ..export.mesh import read_mesh
-    from ..surface.checks import distance_to_axis
+                target: str | Path | None = None, wall_solids: int | None = None,
+                length_unit: str = DEFAULT_LENGTH_UNIT, angular: float | None = None) -> dict[str, Any]:  # fmt: skip
+    """Triangles and vertices of a mesh file read back (into the model's ``length_unit``), and
+    the tolerances it was meshed to (``deflection``, model units; ``angular``, radians). With
+    ``build`` and no ``wall_solids`` (not an assembly): how far its vertices, and its triangles
+    (centroids and edge midpoints), lie from the exact tubes; refused when the vertices are
+    beyond ``deflection`` or the triangles beyond ``deflection`` plus what the vertices are off
+    (the file's 32-bit floats)."""
+    from ..export.mesh import read_mesh_triangles
+    from ..export.tessellate import mesh_deviation
 
-    vertices, triangles = read_mesh(path, fmt)
+    vertices, triangles = read_mesh_triangles(path, fmt, length_unit)
     target = Path(target if target is not None else path)
-    if not triangles:
+    if not len(triangles):
         raise FileAccuracyError(f"{target.name}: {fmt.upper()} read back with no triangles")
     out: dict[str, Any] = {"bytes": Path(path).stat().st_size, "mesh": "visual (triangles, 32-bit floats)",
-                           "triangles": int(triangles), "vertices": int(len(vertices)), "deflection": deflection}  # fmt: skip
+                           "triangles": int(len(triangles)), "vertices": int(len(vertices)), "deflection": deflection,
+                           "angular_deflection_deg": None if angular is None else math.degrees(angular)}  # fmt: skip
     if build is not None and wall_solids is None:
-        dist, _ = distance_to_axis(build.surfaces[0].tube.axis, vertices)
-        off = float(np.min(np.abs(dist[:, None] - np.asarray(build.radii)[None, :]), axis=1).max())
-        out["max_vertex_deviation"] = off
+        off, sag = mesh_deviation(build.surfaces[0].tube.axis, build.radii, vertices, triangles)
+        out["max_vertex_deviation"], out["max_triangle_deviation"] = off, sag
         if deflection is not None and off > deflection:
             raise FileAccuracyError(f"{target.name}: {fmt.upper()} holds the vertices only to {off:.2g} at this size, "
                                     f"above the mesh deflection {deflection:g}; use STEP or BREP")  # fmt: skip
+        if deflection is not None and sag > deflection + off:
+            raise FileAccuracyError(f"{target.name}: {fmt.upper()} triangles lie up to {sag:.2g} from the tube, above "
+                                    f"the mesh deflection {deflection:g} (+ {off:.1g} for the file's floats)")  # fmt: skip
     return out
 
 

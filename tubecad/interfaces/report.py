@@ -10,12 +10,16 @@ import numpy as np
 
 from ..surface import CurvatureLineTube
 from ..surface.checks import area_by_quadrature, axis_distance_errors, net_errors
+from ..units import DEFAULT_LENGTH_UNIT, density_unit
 
 from .grid import DEFAULT_NS, DEFAULT_NU  # noqa: E402  (re-exported)
 
 
-def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT_NS) -> dict[str, Any]:
-    """Exact measures (docs/MATH.md section 4) and what was measured on an ``nu`` x ``ns`` grid."""
+def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT_NS,
+                length_unit: str = DEFAULT_LENGTH_UNIT) -> dict[str, Any]:  # fmt: skip
+    """Exact measures (docs/MATH.md section 4) and what was measured on an ``nu`` x ``ns`` grid;
+    lengths, areas and volumes are in ``length_unit`` (the spec's [units] length), as the
+    report states."""
     net = net_errors(tube, nu, ns)
     area = area_by_quadrature(tube)
     u = np.linspace(0.0, 2.0 * np.pi, 32, endpoint=False)[:, None]
@@ -24,6 +28,7 @@ def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT
     reg = tube.regularity
     return {
         "tubecad_version": _version(),
+        "units": {"length": length_unit},
         "parameters": {"axis": tube.axis.describe(), "tube": {"radius": tube.radius}},
         "length": tube.length,
         "area_exact": tube.area_exact,
@@ -119,9 +124,9 @@ def build_report(build, tube: CurvatureLineTube, nu: int = 48, ns: int = 1500,
     return out
 
 
-def stiffener_report(stiffeners, lines, density: float) -> dict[str, Any]:
+def stiffener_report(stiffeners, lines, density: float, length_unit: str = DEFAULT_LENGTH_UNIT) -> dict[str, Any]:
     """Every curvature line (length) and stiffener (position, profile, length along its base
-    line, volume, mass at ``density`` kg/mm^3), issue 4."""
+    line, volume, mass at ``density`` kg per cubic ``length_unit``), issue 4."""
     from ..brep import properties as props
 
     out_lines = [{"name": ln.name, "kind": ln.kind, "surface_radius": ln.radius,
@@ -137,5 +142,5 @@ def stiffener_report(stiffeners, lines, density: float) -> dict[str, Any]:
             "length": st.length(),
             "volume": volume, "mass_kg": volume * density, "valid": props.is_valid(st.solid),
         })  # fmt: skip
-    return {"density_kg_per_mm3": density, "lines": out_lines, "stiffeners": out_stiffeners,
-            "total_stiffener_mass_kg": sum(s["mass_kg"] for s in out_stiffeners)}  # fmt: skip
+    return {"density": density, "density_unit": density_unit(length_unit), "lines": out_lines,
+            "stiffeners": out_stiffeners, "total_stiffener_mass_kg": sum(s["mass_kg"] for s in out_stiffeners)}  # fmt: skip

@@ -9,8 +9,18 @@
     [tube]
     radius = 15.0
 
+    [units]                   # optional
+    length = "mm"             # mm | cm | m | in | ft: every length above, and in the files
+
 Every key is checked: unknown or missing keys, wrong types and out-of-range values raise
 :class:`SpecError` naming the section, the key and what is allowed.
+
+The keys themselves are tables in :mod:`tubecad.interfaces.spec_keys` (light, no numpy),
+from which ``tubecad schema`` also makes the JSON Schema (:mod:`tubecad.interfaces.schema`)
+that editors use. The schema checks types, ranges, choices and unknown keys; this checker
+checks those with one-line messages and, beyond them, what depends on the geometry.
+[units] length is the model's unit: nothing is rescaled, the writers state it in the files
+(:mod:`tubecad.units`), and [stiffeners] density is per cubic unit of it.
 """
 
 from __future__ import annotations
@@ -21,81 +31,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from ..curves import FAMILIES, SlopeCurve
+from ..curves import Axis
 from ..errors import ParameterError, RegularityError, SpecError
 from ..surface import CurvatureLineTube
-from ..validation import span_pair
+from .axis_section import build_axis
+# the key tables live in a light module (no numpy, no OCCT) that ``tubecad schema`` reads too
+from .spec_keys import (  # noqa: F401  (re-exported: tubecad.interfaces.spec.Key, ...)
+    AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, FIT_KEYS, LAYOUT_KEYS, PANEL_KEYS, STIFFENER_KEYS, TUBE_KEYS,
+    UNITS_KEYS, WALL_KEYS, Key,
+)  # fmt: skip
 
 MAX_SPEC_BYTES = 1_000_000
-
-
-@dataclass(frozen=True)
-class Key:
-    """One allowed key: its TOML type(s), whether it is required, and what it means."""
-
-    kind: str  # "number", "string", "bool", "pair", "triple"
-    required: bool = True
-    help: str = ""
-
-
-#: family -> its own [axis] keys (besides curve, beta_deg, s)
-FAMILY_KEYS: dict[str, dict[str, Key]] = {
-    "log_spiral": {"a": Key("number", help="k = a / s, a > 0")},
-    "helix": {"k": Key("number", help="constant curvature k (0 gives a straight axis)")},
-    "clothoid": {"A": Key("number", help="k = s / A^2, A > 0")},
-    "involute": {"a": Key("number", help="k = 1 / sqrt(2 a s): involute of a circle of radius a > 0")},
-    "custom": {
-        "k": Key("string", help="curvature as an arithmetic expression in s"),
-        "psi0_deg": Key("number", required=False, help="direction of the plan at s0, degrees"),
-        "origin": Key("triple", required=False, help="axis point at s0, [x, y, z]"),
-    },
-}
-AXIS_COMMON = {
-    "curve": Key("string", help=" | ".join(FAMILY_KEYS)),
-    "beta_deg": Key("number", help="elevation angle, -90 < beta_deg < 90"),
-    "s": Key("pair", help="arc-length span [start, end]"),
-}
-TUBE_KEYS = {
-    "radius": Key("number", help="radius rho > 0 of the generating circle"),
-    "allow_irregular": Key("bool", required=False, help="build even if rho*k >= 1 or the axis comes back within 2 rho"),
-}
-
-LAYOUT_KEYS = {
-    "rings": Key("integer", required=False, help="ring frames equally spaced in s, ends included, 2 to 10000"),
-    "stringers": Key("integer", required=False, help="stringers at u = 360 j / M degrees, 1 to 1000"),
-    "s_rings": Key("numbers", required=False, help="explicit ring arc lengths (span ends are added)"),
-    "u_stringers_deg": Key("numbers", required=False, help="explicit stringer angles, degrees"),
-}
-WALL_KEYS = {
-    "thickness": Key("number", help="wall thickness > 0"),
-    "side": Key("string", required=False, help="centered | inside | outside (default centered)"),
-}
-FIT_KEYS = {
-    "tolerance": Key("number", required=False, help="max deviation from the exact tube, model units, in (0, 1)"),
-}
-
-STIFFENER_KEYS = {
-    "rings": Key("selection", required=False, help='ring indices into the layout, or "all" (default none)'),
-    "stringers": Key("selection", required=False, help='stringer indices into the layout, or "all" (default none)'),
-    "profile": Key("string", required=False, help="flat | T | L (default flat)"),
-    "height": Key("number", help="web height from the wall > 0"),
-    "thickness": Key("number", help="web thickness > 0"),
-    "flange_width": Key("number", required=False, help="T and L: total flange width > thickness"),
-    "flange_thickness": Key("number", required=False, help="T and L: flange thickness in (0, height)"),
-    "side": Key("string", required=False, help="outside | inside (default outside)"),
-    "fuse": Key("bool", required=False, help="merge the stiffeners into the wall (default false)"),
-    "density": Key("number", required=False, help="kg/mm^3 for the reported masses (default steel, 7.85e-6)"),
-}
-
-PANEL_KEYS = {
-    "seams": Key("selection", help='seam stringers: indices into the layout\'s stringers, or "all"'),
-    "rings": Key("selection", required=False, help='ring indices bounding the panels, or "all" (default all)'),
-}
-
-#: sections beyond [axis] and [tube]
-EXTRA_SECTIONS: dict[str, dict[str, Key]] = {
-    "layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS, "stiffeners": STIFFENER_KEYS, "panels": PANEL_KEYS,
-}  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -107,13 +53,18 @@ class TubeSpec:
     source: str
 
     @property
-    def axis(self) -> SlopeCurve:
+    def axis(self) -> Axis:
         return self.tube.axis
+
+    @property
+    def length_unit(self) -> str:
+        """The unit of every length in the spec and in the files written from it ([units] length)."""
+        return self.sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
 
 
 def load_spec(path: str | Path) -> TubeSpec:
     """Read and check a TOML spec file."""
-    return parse_spec(read_spec_data(path), str(path))
+    return parse_spec(read_spec_data(path), str(path), Path(path).parent)
 
 
 def read_spec_data(path: str | Path) -> dict[str, Any]:
@@ -137,7 +88,7 @@ def read_spec_data(path: str | Path) -> dict[str, Any]:
     return data
 
 
-def parse_spec(data: dict[str, Any], source: str = "<spec>") -> TubeSpec:
+def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None = None) -> TubeSpec:
     """Check a parsed spec (a dict as tomllib gives) and build its tube."""
     def fail(msg: str) -> SpecError:
         return SpecError(f"{source}: {msg}")
@@ -164,7 +115,8 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>") -> TubeSpec:
         if name != "axis" and name in data:
             sections[name] = _check_keys(name, data[name], keys, fail)  # type: ignore[arg-type]
 
-    axis = _with_section("axis", fail, lambda: _build_axis(curve, sections["axis"]))
+    length_unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+    axis = _with_section("axis", fail, lambda: build_axis(curve, sections["axis"], base, length_unit))
     tube_data = sections["tube"]
     try:
         tube = CurvatureLineTube(axis, tube_data["radius"], allow_irregular=tube_data.get("allow_irregular", False))
@@ -185,9 +137,9 @@ def _check_build_sections(tube: CurvatureLineTube, sections: dict[str, dict[str,
     """Check what the B-rep needs ([tube] sizes, [layout], [wall], [fit]) against the tube now,
     so that a bad value is refused before anything is built, by ``report`` as by ``build``.
     The rules themselves live with the B-rep code."""
-    from ..brep.solids import MIN_SIZE, wall_radii
-    from ..fitting.frame_spline import check_tolerance
-    from .build import layout_from_section
+    from ..brep.wall import wall_radii
+    from ..fitting.tolerance import MIN_SIZE, check_tolerance
+    from .layout_section import layout_from_section
 
     if tube.radius < MIN_SIZE:
         raise fail(f"[tube] radius must be >= {MIN_SIZE:g} model units for a B-rep, got {tube.radius:g}")
@@ -225,13 +177,6 @@ def _short(text: str, most: int = 80) -> str:
     return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
 
 
-def _build_axis(curve: str, values: dict[str, Any]) -> SlopeCurve:
-    cls = FAMILIES[curve]
-    span = span_pair("s", values["s"], cls.s_lower_bound)
-    params = {k: v for k, v in values.items() if k not in AXIS_COMMON}
-    return cls(beta_deg=values["beta_deg"], span=span, **params)  # type: ignore[call-arg]
-
-
 def _with_section(name: str, fail: Callable[[str], SpecError], build: Callable[[], Any]) -> Any:
     try:
         return build()
@@ -266,18 +211,27 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[s
         "pair": isinstance(value, list) and len(value) == 2 and all(number(v) for v in value),
         "triple": isinstance(value, list) and len(value) == 3 and all(number(v) for v in value),
         "numbers": isinstance(value, list) and len(value) > 0 and all(number(v) for v in value),
+        "number_or_numbers": number(value) or (isinstance(value, list) and len(value) > 0 and all(number(v) for v in value)),
         "integer": isinstance(value, int) and not isinstance(value, bool),
         "selection": value == "all" or (isinstance(value, list) and all(isinstance(v, int) and not isinstance(v, bool)
                                                                          for v in value)),
+        "points": isinstance(value, list) and len(value) >= 3 and all(
+            isinstance(p, list) and len(p) == 3 and all(number(v) for v in p) for p in value),
     }[spec.kind]
     if not ok:
         wanted = {"number": "a number", "string": "a string", "bool": "true or false", "integer": "a whole number",
                   "pair": "a list of two numbers", "triple": "a list of three numbers",
                   "numbers": "a non-empty list of numbers",
-                  "selection": 'a list of whole-number indices or "all"'}[spec.kind]  # fmt: skip
+                  "number_or_numbers": "a number or a non-empty list of numbers",
+                  "selection": 'a list of whole-number indices or "all"',
+                  "points": "a list of three or more [x, y, z] points"}[spec.kind]  # fmt: skip
         raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}")
     if spec.kind == "number" and not math.isfinite(value):
         raise fail(f"{where} must be finite ({spec.help}), got {value}")
+    if spec.kind == "number_or_numbers" and not all(math.isfinite(v) for v in (value if isinstance(value, list) else [value])):
+        raise fail(f"{where} must be finite ({spec.help}), got {_short(repr(value))}")
+    if spec.choices and value not in spec.choices:
+        raise fail(f"{where} must be one of {', '.join(spec.choices)}, got {_short(repr(value))}")
     return value
 
 

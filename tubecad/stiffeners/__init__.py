@@ -1,5 +1,10 @@
-"""Stiffeners and seams on the curvature-line net: lines, stiffener solids, flat patterns."""
+"""Stiffeners and seams on the curvature-line net: lines, stiffener solids, flat patterns.
 
-from .lines import CurvatureLine, lines_compound, net_lines, polylines_csv, polylines_json
+Exports are lazy (tubecad._lazy): the height limits load without OCCT."""
 
-__all__ = ["CurvatureLine", "net_lines", "lines_compound", "polylines_csv", "polylines_json"]
+from .._lazy import lazy_exports
+
+_PUBLIC = {name: ".lines" for name in ("CurvatureLine", "net_lines", "lines_compound", "polylines_csv", "polylines_json")}
+
+__all__ = list(_PUBLIC)
+__getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())

@@ -10,7 +10,7 @@ colours show in a downstream CAD tree, under a top product named after the file.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Sequence
+from typing import Callable, Sequence
 
 import build123d as bd
 
@@ -28,9 +28,11 @@ STRINGER_COLOUR = bd.Color(0.25, 0.55, 0.35)
 
 
 def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence[int], profile: Profile,
-                     side: str = "outside", tolerance: float = 1e-8) -> list[Stiffener]:  # fmt: skip
+                     side: str = "outside", tolerance: float = 1e-8,
+                     progress: Callable[[str, int, int], None] | None = None) -> list[Stiffener]:  # fmt: skip
     """Stiffeners on the wall of ``build`` at the layout's ring indices ``rings`` and stringer
-    indices ``stringers``, standing on its outer (``outside``) or inner (``inside``) surface."""
+    indices ``stringers``, standing on its outer (``outside``) or inner (``inside``) surface.
+    ``progress(name, done, total)`` is called after each one (e.g. ``('ring_02', 2, 9)``)."""
     layout = build.layout
     radius = build.radii[0] if side == "outside" else build.radii[-1]
     base = CurvatureLineTube(build.surfaces[0].tube.axis, radius, allow_irregular=True)
@@ -38,9 +40,15 @@ def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence
         bad = [i for i in chosen if not (isinstance(i, int) and 0 <= i < count)]
         if bad:
             raise ParameterError(f"stiffener {name} must be indices in [0, {count - 1}], got {bad}")
-    out = [ring_stiffener(base, layout.s_rings[i], profile, side, tolerance, f"ring_{i:02d}") for i in rings]
-    out += [stringer_stiffener(base, layout.stringers_deg[j], profile, side, tolerance=tolerance,
-                               name=f"stringer_{j:02d}") for j in stringers]  # fmt: skip
+    makers = [lambda i=i: ring_stiffener(base, layout.s_rings[i], profile, side, tolerance, f"ring_{i:02d}")
+              for i in rings]  # fmt: skip
+    makers += [lambda j=j: stringer_stiffener(base, layout.stringers_deg[j], profile, side, tolerance=tolerance,
+                                              name=f"stringer_{j:02d}") for j in stringers]  # fmt: skip
+    out = []
+    for make in makers:
+        out.append(make())
+        if progress is not None:
+            progress(out[-1].name, len(out), len(makers))
     return out
 
 
@@ -76,11 +84,12 @@ def named_assembly(build: TubeBuild, stiffeners: Sequence[Stiffener], lines: Seq
 
 
 def export_named_step(assembly: bd.Compound, path: str | Path, step_schema: str = "AP214",
-                      name: str | None = None) -> Path:  # fmt: skip
-    """Write the assembly to STEP (``step_schema``, mm) with its names and colours, atomically;
-    the top product is ``name`` (default: the file's stem)."""
+                      name: str | None = None, length_unit: str = "mm") -> Path:  # fmt: skip
+    """Write the assembly to STEP (``step_schema``, coordinates in ``length_unit``, which the
+    file states) with its names and colours, atomically; the top product is ``name``
+    (default: the file's stem)."""
     from ..export.cad import write_step
 
     with atomic_path(path) as tmp:
-        write_step(assembly, tmp, step_schema, name or Path(path).stem)
+        write_step(assembly, tmp, step_schema, name or Path(path).stem, length_unit)
     return Path(path)

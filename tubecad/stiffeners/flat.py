@@ -24,6 +24,7 @@ import numpy as np
 from ..curves.chebyshev import PiecewiseChebyshev
 from ..export.atomic import atomic_path, save_figure
 from ..surface import CurvatureLineTube
+from ..units import DEFAULT_LENGTH_UNIT, length_unit as length_unit_of
 
 
 @dataclass(frozen=True)
@@ -47,8 +48,8 @@ def stringer_flat_pattern(base: CurvatureLineTube, theta_deg: float, height: flo
     s0, s1 = axis.span
     theta = math.radians(theta_deg)
 
-    def kc(s: np.ndarray) -> np.ndarray:  # k cos phi
-        return axis.curvature(s) * np.cos(theta - axis.twist(s))
+    def kc(s: np.ndarray) -> np.ndarray:  # kappa_u = k1 cos theta + k2 sin theta (= k cos phi)
+        return base.normal_curvature(theta, s)
 
     alpha = PiecewiseChebyshev.fit(lambda s: sign * kc(s), s0, s1, name="k cos phi").antiderivative()
     speed = lambda s: 1.0 - R * kc(s)  # noqa: E731
@@ -84,12 +85,17 @@ def polygon_area(points: np.ndarray) -> float:
     return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
 
 
-def write_dxf(patterns: list[FlatPattern], path: str | Path, gap: float = 10.0) -> Path:
-    """All patterns side by side in one DXF (mm), one layer per pattern, outlines as closed
-    polylines (rings: two circles)."""
+def write_dxf(patterns: list[FlatPattern], path: str | Path, gap: float | None = None,
+              length_unit: str = DEFAULT_LENGTH_UNIT) -> Path:  # fmt: skip
+    """All patterns side by side in one DXF, one layer per pattern, outlines as closed
+    polylines (rings: two circles). The coordinates are in ``length_unit`` (the spec's
+    [units] length), which the file states ($INSUNITS, and $MEASUREMENT: imperial for in and
+    ft, metric otherwise); ``gap`` between patterns: default 10 mm in that unit."""
     import ezdxf
 
-    doc = ezdxf.new(units=4)  # 4 = millimetres
+    unit = length_unit_of(length_unit)
+    gap = 10.0 / unit.mm if gap is None else gap
+    doc = ezdxf.new(units=unit.dxf)  # sets $INSUNITS and $MEASUREMENT
     space = doc.modelspace()
     x_offset = 0.0
     for pattern in patterns:

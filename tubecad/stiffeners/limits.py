@@ -21,16 +21,16 @@ import math
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..brep.solids import MIN_SIZE
-from ..curves.slope_curve import SlopeCurve
+from ..curves.axis import Axis
 from ..errors import ParameterError
-from ..fitting import FitError
+from ..fitting.frame_spline import FitError
+from ..fitting.tolerance import MIN_SIZE
 from .profiles import Profile
 
 SAMPLES = 2001
 
 
-def max_curvature(axis: SlopeCurve) -> tuple[float, float]:
+def max_curvature(axis: Axis) -> tuple[float, float]:
     """(max |k(s)|, s where it is reached) over the axis' span: the largest of SAMPLES
     equally spaced values, refined by bounded minimisation between its neighbours."""
     s = np.linspace(*axis.span, SAMPLES)
@@ -54,7 +54,7 @@ def reach(profile: Profile, radius: float, side: str, kind: str) -> float:
     return max(radius, math.hypot(top, w_max))
 
 
-def checked_reach(axis: SlopeCurve, profile: Profile, radius: float, side: str, kind: str) -> float:
+def checked_reach(axis: Axis, profile: Profile, radius: float, side: str, kind: str) -> float:
     """:func:`reach`, or a ParameterError naming ``height`` (or ``flange_width``) and its
     limit on this wall when the stiffener cannot be built: reach max|k| >= 1 over the
     axis' span, or an inside stiffener reaching in past the axis."""
@@ -82,7 +82,7 @@ def checked_reach(axis: SlopeCurve, profile: Profile, radius: float, side: str, 
                          f"{w_max:g} across), got {profile.flange_width:.10g}")  # fmt: skip
 
 
-def fit_failure(exc: Exception, name: str, axis: SlopeCurve, reach: float) -> FitError:
+def fit_failure(exc: Exception, name: str, axis: Axis, reach: float) -> FitError:
     """A FitError of a stiffener's frame, saying how close to the limit it stands."""
     k_max, s_at = max_curvature(axis)
     return FitError(f"{name}: its frame, fitted to its farthest point {reach:.6g} from the axis (reach max|k| = "
@@ -90,7 +90,7 @@ def fit_failure(exc: Exception, name: str, axis: SlopeCurve, reach: float) -> Fi
                     f"(a lower height or a looser tolerance helps): {exc}")  # fmt: skip
 
 
-def check_spec_heights(axis: SlopeCurve, layout, radii: tuple[float, float], section: dict) -> None:
+def check_spec_heights(axis: Axis, layout, radii: tuple[float, float], section: dict) -> None:
     """A [stiffeners] section's height against the wall between ``radii`` = (r_in, r_out) on
     ``axis`` with ``layout`` (a NetLayout), before anything is built (ParameterError as
     :func:`checked_reach`). Other faults (keys, profile, indices) are left to the build."""

@@ -25,6 +25,7 @@ from ..brep.faces import ring_circle
 from ..brep.layout import NetLayout
 from ..export.atomic import write_text
 from ..fitting import TubeSurface
+from ..units import DEFAULT_LENGTH_UNIT
 
 
 @dataclass(frozen=True)
@@ -64,7 +65,7 @@ class CurvatureLine:
         else:
             s = np.linspace(*tube.span, points)
             theta = np.full_like(s, math.radians(self.value))
-            tangent = tube.axis.frame(s)[0]  # S_s = (1 - rho k cos phi) t, and 1 - rho k cos phi > 0
+            tangent = tube.axis.rotation_minimising_frame(s)[0]  # S_s = (1 - rho kappa_u) t, 1 - rho kappa_u > 0
         return {"s": s, "theta_deg": np.degrees(theta), "position": tube.points(theta, s),
                 "tangent": tangent, "normal": tube.normal(theta, s)}  # fmt: skip
 
@@ -110,16 +111,17 @@ def polylines_csv_text(lines: list[CurvatureLine], points: int = 200) -> str:
     return out.getvalue()
 
 
-def polylines_json(lines: list[CurvatureLine], path: str | Path, points: int = 200) -> Path:
-    """{"lines": [{name, kind, index, surface_radius, closed, s, theta_deg, position, tangent, normal}]}."""
-    return write_text(path, polylines_json_text(lines, points))
+def polylines_json(lines: list[CurvatureLine], path: str | Path, points: int = 200, length_unit: str = DEFAULT_LENGTH_UNIT) -> Path:
+    """{"units": length_unit, "lines": [{name, kind, index, surface_radius, closed, s, theta_deg, position,
+    tangent, normal}]}; ``length_unit``: the model's unit (tubecad.units)."""
+    return write_text(path, polylines_json_text(lines, points, length_unit))
 
 
-def polylines_json_text(lines: list[CurvatureLine], points: int = 200) -> str:
+def polylines_json_text(lines: list[CurvatureLine], points: int = 200, length_unit: str = DEFAULT_LENGTH_UNIT) -> str:
     """The text of :func:`polylines_json`."""
     data = []
     for line in lines:
         p = line.polyline(points)
         data.append({"name": line.name, "kind": line.kind, "index": line.index, "surface_radius": line.radius,
                      "closed": line.kind == "ring", **{k: v.tolist() for k, v in p.items()}})  # fmt: skip
-    return json.dumps({"units": "mm", "lines": data}) + "\n"
+    return json.dumps({"units": length_unit, "lines": data}) + "\n"

@@ -31,8 +31,8 @@ from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Vertex
 
 from ..brep.assembled import TOLERANCE, CapPlane, c0_knots, closed_solid, edge, patch_face, plane_face, vertex
 from ..brep.faces import ring_pcurve
-from ..brep.solids import MIN_SIZE, orthogonality_for
-from ..curves.slope_curve import SlopeCurve
+from ..fitting.tolerance import MIN_SIZE, orthogonality_for
+from ..curves.axis import Axis
 from ..errors import ParameterError
 from ..fitting import TubeSurface, exact_section_surface, fit_frame
 from ..surface import CurvatureLineTube
@@ -97,13 +97,13 @@ def section_volume(section: Section) -> float:
     return -math.pi * sum(a[1] ** 2 * (b[0] - a[0]) for a, b in zip(section, section[1:] + section[:1]) if a[1] == b[1])
 
 
-def ring_solid(axis: SlopeCurve, section: Section, tolerance: float) -> TopoDS_Solid:
+def ring_solid(axis: Axis, section: Section, tolerance: float) -> TopoDS_Solid:
     """The solid swept by the counter-clockwise rectilinear ``section`` round ``axis``, on one
     frame fit of the section's s-range to its largest radius."""
     return swept_section(axis, section, tolerance)[0]
 
 
-def swept_section(axis: SlopeCurve, section: Section, tolerance: float,
+def swept_section(axis: Axis, section: Section, tolerance: float,
                   origin_deg: float = 0.0) -> tuple[TopoDS_Solid, dict[float, list[TopoDS_Face]]]:  # fmt: skip
     """:func:`ring_solid`, with the tube faces cut (also) at the angle ``origin_deg`` from r1;
     returns the solid and its tube faces by radius."""
@@ -113,7 +113,11 @@ def swept_section(axis: SlopeCurve, section: Section, tolerance: float,
     surfaces: dict[float, TubeSurface] = {}
     for r in radii:
         if r not in surfaces:
-            surfaces[r] = exact_section_surface(CurvatureLineTube(sub, r, allow_irregular=True), frame, origin_deg)
+            # a route's exact frame has v = s only at its breaks: per radius, the s of its corners
+            # (breaks at other radii' corners would be C0 knots inside this radius' faces)
+            on = frame if not sub.rings_at_joints else fit_frame(
+                sub, max(radii), tolerance, orthogonality_for(tolerance), rings=[p[0] for p in section if p[1] == r])
+            surfaces[r] = exact_section_surface(CurvatureLineTube(sub, r, allow_irregular=True), on, origin_deg)
     arcs = {r: _Arcs(ts) for r, ts in surfaces.items()}
     circles = [_circle(arcs[r], s) for s, r in section]
     # the exact circles are within the fit's deviation of the surfaces' isolines
@@ -135,7 +139,7 @@ def swept_section(axis: SlopeCurve, section: Section, tolerance: float,
     return closed_solid(faces), tube_faces
 
 
-def fit_span(axis: SlopeCurve, lo: float, hi: float, reach: float) -> tuple[float, float]:
+def fit_span(axis: Axis, lo: float, hi: float, reach: float) -> tuple[float, float]:
     """The span the ring's frame is fitted on: [lo, hi] widened, within the axis' span, to
     at least max(reach, 2 (hi - lo)) while reach max|k| < 1 holds on it. On a span of a
     millimetre the fit's derivatives carry rounding of |c| eps / (span / 8), which near the

@@ -28,10 +28,10 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 from OCP.Geom import Geom_BSplineSurface
 
 from ..brep.assembled import CapPlane, Strip, strip_solid
-from ..brep.solids import orthogonality_for
+from ..fitting.tolerance import orthogonality_for
 from ..errors import ParameterError
 from ..fitting import FitError, exact_section_surface, fit_frame
-from ..fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals
+from ..fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
 from ..surface import CurvatureLineTube
 from .limits import checked_reach, fit_failure
 from .profiles import SIDES, Profile
@@ -122,7 +122,7 @@ def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profi
 def cap_plane(frame, s: float) -> CapPlane:
     """The normal plane at ``s`` of the fitted frame: through C(s), spanned by R1(s), R2(s),
     in which every section s = const of the surfaces built on the frame lies exactly."""
-    F = frame.spline(s)
+    F = frame.values(s)
     c, r1, r2 = F[:3], F[3:6], F[6:]
     normal = np.cross(r1, r2)
     return CapPlane(c, normal / np.linalg.norm(normal), r1 / np.linalg.norm(r1))
@@ -151,6 +151,10 @@ def ruled_surface(frame, theta: float, p: tuple[float, float], q: tuple[float, f
     E = -math.sin(theta) * R1 + math.cos(theta) * R2
     poles = np.stack([C + p[1] * N + p[0] * E, C + q[1] * N + q[0] * E])
     s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
+    if frame.weights is not None:  # a route's rational frame: the same weights along s
+        return Geom_BSplineSurface(points_2d(poles), reals_2d(np.vstack([frame.weights, frame.weights])),
+                                   reals([0.0, 1.0]), reals(s_knots), integers([2, 2]), integers(s_mults), 1,
+                                   frame.degree)  # fmt: skip
     return Geom_BSplineSurface(points_2d(poles), reals([0.0, 1.0]), reals(s_knots), integers([2, 2]),
                                integers(s_mults), 1, frame.degree)  # fmt: skip
 

@@ -68,10 +68,10 @@ def distance_to_axis(
         s_guess = samples[cKDTree(axis.position(samples)).query(p)[1]]
     x = np.clip(np.asarray(s_guess, dtype=float), lo, hi)
     for _ in range(iters):
-        a = axis.evaluate(x)
+        a = axis.at(x)
         r = p - a.position
         f = np.einsum("...i,...i", r, a.t)
-        fp = -1.0 + a.k * np.einsum("...i,...i", r, a.n)
+        fp = -1.0 + np.einsum("...i,...i", r, a.curvature_vector)
         x = np.clip(x - f / fp, lo, hi)
     return np.linalg.norm(p - axis.position(x), axis=-1), x
 

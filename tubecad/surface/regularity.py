@@ -22,7 +22,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize, minimize_scalar
 from scipy.spatial import cKDTree
 
-from ..curves.slope_curve import SlopeCurve
+from ..curves.axis import Axis
 
 MAX_SAMPLES = 40_000
 #: the closest return of the axis is reported when it is within this many radii
@@ -81,7 +81,7 @@ class RegularityReport:
         return "tube is not regular: " + "; ".join(lines) + " (pass allow_irregular=True to build it anyway)"
 
 
-def check_regularity(axis: SlopeCurve, radius: float) -> RegularityReport:
+def check_regularity(axis: Axis, radius: float) -> RegularityReport:
     """Measure local and global regularity of the tube of ``radius`` about ``axis``."""
     s0, s1 = axis.span
     n = int(min(MAX_SAMPLES, max(2001, math.ceil(8 * axis.length / radius) + 1)))
@@ -94,7 +94,7 @@ def check_regularity(axis: SlopeCurve, radius: float) -> RegularityReport:
     return RegularityReport(radius, max_rho_k, s_max, folded, approach, pair, crossing)
 
 
-def _refine_max(axis: SlopeCurve, radius: float, s: np.ndarray, i: int) -> tuple[float, float]:
+def _refine_max(axis: Axis, radius: float, s: np.ndarray, i: int) -> tuple[float, float]:
     lo, hi = s[max(i - 1, 0)], s[min(i + 1, len(s) - 1)]
     best = (float(s[i]), float(radius * abs(axis.curvature(s[i]))))
     if 0 < i < len(s) - 1:
@@ -104,7 +104,7 @@ def _refine_max(axis: SlopeCurve, radius: float, s: np.ndarray, i: int) -> tuple
     return best
 
 
-def _folded_intervals(axis: SlopeCurve, radius: float, s: np.ndarray, bad: np.ndarray) -> list[tuple[float, float]]:
+def _folded_intervals(axis: Axis, radius: float, s: np.ndarray, bad: np.ndarray) -> list[tuple[float, float]]:
     """Maximal runs of s where rho |k| >= 1, with their ends refined by root finding."""
     def excess(x: float) -> float:
         return radius * abs(float(axis.curvature(x))) - 1.0
@@ -121,7 +121,7 @@ def _folded_intervals(axis: SlopeCurve, radius: float, s: np.ndarray, bad: np.nd
 
 
 def _closest_return(
-    axis: SlopeCurve, radius: float, s: np.ndarray
+    axis: Axis, radius: float, s: np.ndarray
 ) -> tuple[float | None, tuple[float, float] | None, tuple[float, float] | None]:
     """Closest distance (if under 3 rho) between axis points more than pi*rho apart along the
     axis, where, and a (circle s, axis s) pair where the surface enters the tube elsewhere."""
@@ -152,7 +152,7 @@ def _closest_return(
 
 
 def _surface_entry(
-    axis: SlopeCurve, radius: float, ss: np.ndarray, pts: np.ndarray, tree: cKDTree, near: np.ndarray
+    axis: Axis, radius: float, ss: np.ndarray, pts: np.ndarray, tree: cKDTree, near: np.ndarray
 ) -> tuple[float, float] | None:
     """The deepest point where a circle of the tube (at an axis sample in ``near``) lies
     inside the tube around a far part of the axis (or on it, to round-off: a circle run
@@ -173,7 +173,7 @@ def _surface_entry(
 
 
 def _deepest_entry(
-    axis: SlopeCurve, radius: float, ss: np.ndarray, pts: np.ndarray, tree: cKDTree, near: np.ndarray
+    axis: Axis, radius: float, ss: np.ndarray, pts: np.ndarray, tree: cKDTree, near: np.ndarray
 ) -> tuple[tuple[float, float, float] | None, int]:
     h = ss[1] - ss[0]
     _, r1, r2 = axis.rotation_minimising_frame(ss[near])
@@ -192,14 +192,14 @@ def _deepest_entry(
     x, target = ss[q_idx].astype(float), surf[p_idx]
     lo, hi = ss[0], ss[-1]
     for _ in range(8):  # Newton: the closest axis point near each candidate sample
-        a = axis.evaluate(x)
+        a = axis.at(x)
         r = target - a.position
         f = np.einsum("ij,ij->i", r, a.t)
-        fp = -1.0 + a.k * np.einsum("ij,ij->i", r, a.n)
+        fp = -1.0 + np.einsum("ij,ij->i", r, a.curvature_vector)
         with np.errstate(divide="ignore", invalid="ignore"):  # fp = 0 at a centre of curvature
             step = np.where(fp != 0.0, f / fp, 0.0)
         x = np.clip(x - step, np.maximum(lo, ss[q_idx] - 2 * h), np.minimum(hi, ss[q_idx] + 2 * h))
-    a = axis.evaluate(x)
+    a = axis.at(x)
     depth = radius - np.linalg.norm(target - a.position, axis=1)
     in_disc = np.abs(np.einsum("ij,ij->i", target - a.position, a.t)) < 1e-7 * radius  # not beyond an end cap
     # depth ~ 0 (to round-off) away from the ends is a surface lying on another part of
@@ -214,7 +214,7 @@ def _deepest_entry(
     return (float(depth[k]), float(circle_s[p_idx[k]]), float(x[k])), len(cand)
 
 
-def _refine_closest(axis: SlopeCurve, ss: np.ndarray, i: int, j: int, sampled: float) -> tuple[float, tuple[float, float]]:
+def _refine_closest(axis: Axis, ss: np.ndarray, i: int, j: int, sampled: float) -> tuple[float, tuple[float, float]]:
     h, lo, hi = ss[1] - ss[0], ss[0], ss[-1]
 
     def gap(x: np.ndarray) -> float:

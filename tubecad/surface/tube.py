@@ -1,12 +1,12 @@
-"""The tubular surface referred to its lines of curvature (paper eq. 7, docs/MATH.md section 2).
+"""The tubular surface referred to its lines of curvature (paper eq. 7, docs/MATH.md sections 2, 7).
 
-    phi = u - Int sigma ds            (for a slope curve Int sigma ds = psi sin b)
-    S(u, s) = c(s) + rho (cos phi n(s) + sin phi bn(s))
-            = c(s) + rho (cos u r1(s) + sin u r2(s))
+    S(u, s) = c(s) + rho (cos u r1(s) + sin u r2(s))
 
-where (t, r1, r2) is the rotation-minimising frame. The circles s = const and their
-orthogonal trajectories u = const are both lines of curvature: E = rho^2, F = 0,
-G = (1 - rho k cos phi)^2, L = -rho, M = 0, N = k cos phi (1 - rho k cos phi).
+where (t, r1, r2) is the axis' rotation-minimising frame (for a slope curve this is
+c + rho (cos phi n + sin phi bn) with phi = u - psi sin b). With the normal development
+k1, k2 of the axis and kappa_u = k1 cos u + k2 sin u (= k cos phi), the circles s = const
+and their orthogonal trajectories u = const are both lines of curvature: E = rho^2, F = 0,
+G = (1 - rho kappa_u)^2, L = -rho, M = 0, N = kappa_u (1 - rho kappa_u).
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..curves.slope_curve import SlopeCurve
+from ..curves.axis import Axis
 from ..errors import ParameterError, RegularityError
 from ..validation import bounded_length, flag
 from .forms import FundamentalForms, SurfaceDerivatives
@@ -34,9 +34,9 @@ class CurvatureLineTube:
     the measured facts are kept in :attr:`regularity` either way.
     """
 
-    def __init__(self, axis: SlopeCurve, radius: float, *, allow_irregular: bool = False) -> None:
-        if not isinstance(axis, SlopeCurve):
-            raise ParameterError(f"axis must be a tubecad SlopeCurve, got {type(axis).__name__}")
+    def __init__(self, axis: Axis, radius: float, *, allow_irregular: bool = False) -> None:
+        if not isinstance(axis, Axis):
+            raise ParameterError(f"axis must be a tubecad Axis (a SlopeCurve or another kind), got {type(axis).__name__}")
         self.axis = axis
         self.radius = bounded_length("radius", radius, 0.0)
         allow_irregular = flag("allow_irregular", allow_irregular)
@@ -71,8 +71,15 @@ class CurvatureLineTube:
 
     # --- evaluation -------------------------------------------------------------------
     def phi(self, u: ArrayLike, s: ArrayLike) -> FloatArray:
-        """phi = u - Int sigma ds: the angle from the principal normal n (paper eq. 6)."""
+        """phi = u - Int sigma ds: the angle from the principal normal n (paper eq. 6; slope curves)."""
         return np.asarray(u, dtype=float) - self.axis.twist(s)
+
+    def normal_curvature(self, u: ArrayLike, s: ArrayLike) -> FloatArray:
+        """kappa_u = k1 cos u + k2 sin u (= k cos phi): the axis curvature seen along the
+        stringer at u, so that |S_s| = 1 - rho kappa_u."""
+        u = np.asarray(u, dtype=float)
+        k1, k2 = self.axis.normal_development(s)
+        return k1 * np.cos(u) + k2 * np.sin(u)
 
     def points(self, u: ArrayLike, s: ArrayLike) -> FloatArray:
         """S(u, s) for ``u`` and ``s`` broadcast together; shape broadcast(u, s) + (3,).
@@ -102,37 +109,32 @@ class CurvatureLineTube:
         return np.cos(u)[..., None] * r1 + np.sin(u)[..., None] * r2
 
     def derivatives(self, u: ArrayLike, s: ArrayLike) -> SurfaceDerivatives:
-        """S and its partial derivatives up to second order, from the Frenet-Serret formulas
-        n' = -k t + sigma bn, bn' = -sigma n and phi_s = -sigma (paper eq. 11, corrected)."""
+        """S and its partial derivatives up to second order, from the Bishop equations
+        r1' = -k1 t, r2' = -k2 t, t' = k1 r1 + k2 r2 (docs/MATH.md section 7):
+
+            S_u = rho e_u,  S_s = (1 - rho kappa_u) t,  S_uu = -rho e,  S_us = -rho kappa_u,u t,
+            S_ss = -rho kappa_u' t + (1 - rho kappa_u) (k1 r1 + k2 r2)
+
+        with e = cos u r1 + sin u r2, e_u = -sin u r1 + cos u r2, kappa_u = k1 cos u + k2 sin u.
+        """
         u, s = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(s, dtype=float))
-        a = self.axis.evaluate(s)
+        a = self.axis.at(s)
+        dk1, dk2 = self.axis.normal_development_derivative(s)
         rho = self.radius
-        k, sig = a.k[..., None], a.torsion[..., None]
-        dk = self.axis.curvature_derivative(s)[..., None]
-        dsig = dk * math.tan(self.axis.beta)
-        phi = (u - self.axis.twist(s))[..., None]
-        cp, sp = np.cos(phi), np.sin(phi)
-        phi_s, phi_ss = -sig, -dsig
-
-        t, n, bn = a.t, a.n, a.bn
-        dn = -k * t + sig * bn
-        dbn = -sig * n
-        ddn = -dk * t - (k * k + sig * sig) * n + dsig * bn
-        ddbn = sig * k * t - dsig * n - sig * sig * bn
-
-        ring = cp * n + sp * bn  # outward radial unit vector
-        ring_u = -sp * n + cp * bn
-        ring_s = cp * dn + sp * dbn + phi_s * ring_u
-        ring_u_s = -sp * dn + cp * dbn - phi_s * ring
-        ring_ss = phi_s * (-sp * dn + cp * dbn) + cp * ddn + sp * ddbn + phi_ss * ring_u + phi_s * ring_u_s
-
+        cu, su = np.cos(u), np.sin(u)
+        kappa = (a.k1 * cu + a.k2 * su)[..., None]
+        kappa_u = (a.k2 * cu - a.k1 * su)[..., None]
+        kappa_s = (dk1 * cu + dk2 * su)[..., None]
+        cu, su = cu[..., None], su[..., None]
+        ring = cu * a.r1 + su * a.r2  # outward radial unit vector
+        speed = 1.0 - rho * kappa
         return SurfaceDerivatives(
             S=a.position + rho * ring,
-            S_u=rho * ring_u,
-            S_s=t + rho * ring_s,
+            S_u=rho * (-su * a.r1 + cu * a.r2),
+            S_s=speed * a.t,
             S_uu=-rho * ring,
-            S_us=rho * ring_u_s,
-            S_ss=k * n + rho * ring_ss,
+            S_us=-rho * kappa_u * a.t,
+            S_ss=-rho * kappa_s * a.t + speed * a.curvature_vector,
         )
 
     def fundamental_forms(self, u: ArrayLike, s: ArrayLike) -> FundamentalForms:

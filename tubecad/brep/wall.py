@@ -1,0 +1,31 @@
+"""Where a wall of given thickness lies around the tube: its inner and outer radii.
+
+Light on purpose (no OCCT): the spec checker uses it before anything is built."""
+
+from __future__ import annotations
+
+from ..errors import ParameterError
+from ..fitting.tolerance import MIN_SIZE
+from ..validation import bounded_length
+
+WALL_SIDES = ("centered", "inside", "outside")
+
+
+def wall_radii(radius: float, thickness: float, side: str) -> tuple[float, float]:
+    """(r_in, r_out) of a wall of ``thickness`` placed ``side`` of the tube of ``radius``:
+    centered (rho -+ t/2), inside (rho - t, rho) or outside (rho, rho + t)."""
+    thickness = bounded_length("thickness", thickness, 0.0)
+    if not isinstance(side, str) or side not in WALL_SIDES:
+        raise ParameterError(f"side must be one of {', '.join(WALL_SIDES)}, got {side!r:.80}")
+    if thickness < MIN_SIZE:
+        raise ParameterError(f"thickness must be >= {MIN_SIZE:g} model units (100 x OCCT's edge precision 1e-7), "
+                             f"got {thickness:g}")  # fmt: skip
+    r_in, r_out = {"centered": (radius - thickness / 2, radius + thickness / 2),
+                   "inside": (radius - thickness, radius), "outside": (radius, radius + thickness)}[side]  # fmt: skip
+    if r_in < MIN_SIZE:
+        if side == "outside":
+            raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep, got {radius:g}")
+        limit = {"centered": 2 * radius, "inside": radius}[side]
+        raise ParameterError(f"thickness must be < {limit:g} for side = {side!r} (radius {radius:g}; the inner "
+                             f"radius must stay >= {MIN_SIZE:g}), got {thickness:g}")  # fmt: skip
+    return r_in, r_out

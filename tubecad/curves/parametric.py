@@ -1,0 +1,206 @@
+"""Axes given as parametric curves x(t) (docs/MATH.md section 7): expressions, splines
+through points, CAD edges.
+
+x(t) is resolved as a piecewise Chebyshev series (panels start at ``breaks``, e.g. a
+spline's knots), so x', x'' are exact derivatives of the series. Then
+
+    s(t) = Int |x'| dt,        T = x' / |x'|,        T_t = (x'' - T (T . x'')) / |x'|
+    dr1/dt = -(r1 . T_t) T     (the Bishop equation in t; r2 = T x r1)
+
+the last solved by spectral collocation (:mod:`.bishop`), which passes through inflections
+(T_t = 0) and straight stretches with no jump: nothing divides by the curvature. The axis
+is then re-read in arc length: t(s) by Newton on s(t), k1 = T_t . r1 / |x'|,
+k2 = T_t . r2 / |x'|, and c, (T, r1) and (k1, k2) resolved once more as Chebyshev series
+in s, so that evaluating the axis costs one series evaluation, not a Newton solve.
+A zero speed |x'| = 0 anywhere (a cusp, a stop) is refused.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import ParameterError
+from ..validation import span_pair
+from .axis import Axis, FloatArray
+from .bishop import solve_linear_ode
+from .chebyshev import PiecewiseChebyshev
+from .expression import compile_expression
+from .natural import unit_vector
+
+#: the smallest speed |x'| accepted, relative to the largest on the curve
+MIN_RELATIVE_SPEED = 1e-6
+
+CurveFunction = Callable[[np.ndarray], np.ndarray]
+
+
+def expression_curve(x: str, y: str, z: str) -> CurveFunction:
+    """x(t), y(t), z(t) from three expressions in t, as one vectorised curve."""
+    parts = [compile_expression(text, name, variable="t") for text, name in ((x, "x"), (y, "y"), (z, "z"))]
+
+    def curve(t: np.ndarray) -> np.ndarray:
+        return np.stack([np.asarray(f(t), dtype=float) * np.ones_like(t) for f in parts], axis=-1)
+
+    return curve
+
+
+class ParametricAxis(Axis):
+    """The curve ``curve(t)`` (a vectorised callable t -> (..., 3)) for t in ``t_span``,
+    in arc length s from 0 at t_span[0]. ``breaks``: where the series' panels start (where
+    the curve is less smooth); ``joints``: (t, continuity of the frame) at such breaks (see
+    :attr:`Axis.joints`). ``normal``: the initial r1 (made orthogonal to the tangent;
+    default the principal normal, or any normal where the curve starts straight)."""
+
+    family = "parametric"
+
+    def __init__(
+        self,
+        curve: CurveFunction,
+        t_span: tuple[float, float],
+        *,
+        breaks: Sequence[float] | None = None,
+        joints: Sequence[tuple[float, int]] = (),
+        normal: Sequence[float] | None = None,
+        description: dict[str, Any] | None = None,
+        name: str = "the curve x(t)",
+    ) -> None:
+        self.t_span = span_pair("t", t_span)
+        t0, t1 = self.t_span
+        if not callable(curve):
+            raise ParameterError(f"curve must be a callable x(t) returning points (..., 3), got {curve!r:.80}")
+        self._x = PiecewiseChebyshev.fit(lambda t: _points(curve, t, name), t0, t1, name=name,
+                                         breaks=None if breaks is None else np.asarray(breaks, dtype=float))  # fmt: skip
+        self._dx = self._x.derivative()
+        self._ddx = self._dx.derivative()
+        self._check_speed(name)
+        self._s = PiecewiseChebyshev.fit(self._speed, t0, t1, name=f"the speed of {name}", breaks=self._x.breaks
+                                         ).antiderivative(0.0)  # fmt: skip
+        self.span = (0.0, float(self._s(np.array(t1))))
+        r1_start = self._start_normal(normal)
+
+        def bishop(t: np.ndarray) -> np.ndarray:  # dr1/dt = -(T_t . r1) T = A r1, A = -T T_t^T
+            T, T_t = self._tangent_and_rate(t)
+            return -T[..., :, None] * T_t[..., None, :]
+
+        self._r1 = solve_linear_ode(bishop, self._x.breaks, r1_start, name=f"the frame of {name}")
+        self._development = PiecewiseChebyshev.fit(self._development_in_t, t0, t1, breaks=self._r1.breaks,
+                                                   name=f"the curvature of {name}", tol=1e-13)  # fmt: skip
+        s_breaks = self._s(self._r1.breaks)
+        s_breaks[0], s_breaks[-1] = self.span
+        L = self.span[1]
+        self._c_s = PiecewiseChebyshev.fit(lambda x: self._x(self.parameter(x)), 0.0, L, breaks=s_breaks,
+                                           name=f"{name} in arc length")  # fmt: skip
+        self._frame_s = PiecewiseChebyshev.fit(lambda x: np.concatenate(self._frame_in_t(self.parameter(x))[:2], axis=-1),
+                                               0.0, L, breaks=s_breaks, name=f"the frame of {name} in arc length")  # fmt: skip
+        self._development_s = PiecewiseChebyshev.fit(lambda x: self._development(self.parameter(x)), 0.0, L,
+                                                     breaks=s_breaks, tol=1e-13, name=f"the curvature of {name}")  # fmt: skip
+        self._development_rate_s = self._development_s.derivative()
+        self._joints = tuple((float(self._s(np.array(t))), int(c)) for t, c in joints if t0 < t < t1)
+        self._description = description or {"curve": self.family, "t": list(self.t_span)}
+        self.family = self._description["curve"]  # points and edge axes are parametric curves too
+
+    # --- in t ---------------------------------------------------------------------------
+    def _speed(self, t: np.ndarray) -> np.ndarray:
+        return np.linalg.norm(self._dx(t), axis=-1)
+
+    def _tangent_and_rate(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """T and dT/dt = (x'' - T (T . x'')) / |x'|."""
+        d1, d2 = self._dx(t), self._ddx(t)
+        speed = np.linalg.norm(d1, axis=-1, keepdims=True)
+        T = d1 / speed
+        return T, (d2 - T * np.sum(T * d2, axis=-1, keepdims=True)) / speed
+
+    def _frame_in_t(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        T, _ = self._tangent_and_rate(t)
+        r1 = self._r1(t)
+        r1 = r1 - T * np.sum(T * r1, axis=-1, keepdims=True)  # ~1e-15 already; keeps the frame exact
+        r1 /= np.linalg.norm(r1, axis=-1, keepdims=True)
+        return T, r1, np.cross(T, r1)
+
+    def _development_in_t(self, t: np.ndarray) -> np.ndarray:
+        """(k1, k2) = (dT/ds . r1, dT/ds . r2), dT/ds = T_t / |x'|; shape t.shape + (2,)."""
+        T, r1, r2 = self._frame_in_t(t)
+        _, T_t = self._tangent_and_rate(t)
+        dT_ds = T_t / self._speed(t)[..., None]
+        return np.stack([np.sum(dT_ds * r1, axis=-1), np.sum(dT_ds * r2, axis=-1)], axis=-1)
+
+    def parameter(self, s: ArrayLike) -> FloatArray:
+        """t(s): Newton on s(t) - s = 0 from a table guess (s(t) is increasing)."""
+        s = self._inside(s)
+        t0, t1 = self.t_span
+        table_t = np.linspace(t0, t1, 64 * len(self._x.breaks))
+        t = np.interp(s, self._s(table_t), table_t)
+        for _ in range(6):
+            t = np.clip(t - (self._s(t) - s) / self._speed(t), t0, t1)
+        return t
+
+    def _check_speed(self, name: str) -> None:
+        """Refuse a speed |dx/dt| below MIN_RELATIVE_SPEED of its largest: sampled, then the
+        smallest sample refined (a cusp between samples is found, not stepped over)."""
+        from scipy.optimize import minimize_scalar
+
+        t = np.linspace(*self.t_span, 64 * len(self._x.breaks) + 1)
+        speed = self._speed(t)
+        i = int(np.argmin(speed))
+        lo, hi = t[max(i - 1, 0)], t[min(i + 1, len(t) - 1)]
+        best = minimize_scalar(lambda x: float(self._speed(np.array(x))), bounds=(lo, hi), method="bounded",
+                               options={"xatol": 1e-12 * (t[-1] - t[0])})  # fmt: skip
+        t_min, v_min = (float(best.x), float(best.fun)) if best.fun < speed[i] else (float(t[i]), float(speed[i]))
+        if not v_min > MIN_RELATIVE_SPEED * speed.max():
+            raise ParameterError(f"{name} is degenerate: its speed |dx/dt| is {v_min:.3g} at t = {t_min:.6g} "
+                                 f"(at most {speed.max():.3g} elsewhere); a tube needs a regular curve, |dx/dt| > 0")  # fmt: skip
+
+    def _start_normal(self, normal: Sequence[float] | None) -> np.ndarray:
+        t0 = np.array([self.t_span[0]])
+        T, T_t = (v[0] for v in self._tangent_and_rate(t0))
+        if normal is not None:
+            n = unit_vector("normal", normal)
+        elif np.linalg.norm(T_t) > 1e-9 * self._speed(t0)[0] / max(self.span[1], 1e-300):
+            n = T_t
+        else:  # starts straight: the coordinate axis least along T
+            n = np.eye(3)[int(np.argmin(np.abs(T)))]
+        n = n - float(n @ T) * T
+        if np.linalg.norm(n) < 1e-6:
+            raise ParameterError("normal must not be parallel to the curve's tangent at its start")
+        return n / np.linalg.norm(n)
+
+    # --- the Axis protocol, in s -------------------------------------------------------
+    def position(self, s: ArrayLike) -> FloatArray:
+        return self._c_s(self._inside(s))
+
+    def rotation_minimising_frame(self, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+        f = self._frame_s(self._inside(s))
+        T = f[..., :3] / np.linalg.norm(f[..., :3], axis=-1, keepdims=True)
+        r1 = f[..., 3:] - T * np.sum(T * f[..., 3:], axis=-1, keepdims=True)
+        r1 /= np.linalg.norm(r1, axis=-1, keepdims=True)
+        return T, r1, np.cross(T, r1)
+
+    def normal_development(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        k = self._development_s(self._inside(s))
+        return k[..., 0], k[..., 1]
+
+    def normal_development_derivative(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        dk = self._development_rate_s(self._inside(s))
+        return dk[..., 0], dk[..., 1]
+
+    @property
+    def joints(self) -> tuple[tuple[float, int], ...]:
+        return self._joints
+
+    def describe(self) -> dict[str, Any]:
+        return {**self._description, "s": list(self.span)}
+
+    def __repr__(self) -> str:
+        return f"ParametricAxis({self._description!r}, length={self.length:.6g})"
+
+
+def _points(curve: CurveFunction, t: np.ndarray, name: str) -> np.ndarray:
+    try:
+        out = np.asarray(curve(t), dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ParameterError(f"{name} must return real points: {exc}"[:300]) from None
+    if out.shape != t.shape + (3,):
+        raise ParameterError(f"{name} must return points of shape {t.shape + (3,)} for t of shape {t.shape}, got {out.shape}")
+    return out

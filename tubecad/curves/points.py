@@ -1,0 +1,66 @@
+"""Axes through points: a C2 cubic spline interpolating them (docs/MATH.md section 7).
+
+The points P_0..P_n are given parameters by chord length (t_{i+1} - t_i = |P_{i+1} - P_i|)
+or centripetally (|P_{i+1} - P_i|^(1/2), Lee 1989: no cusps or loops on uneven spacing),
+and interpolated by the cubic spline with not-a-knot ends (scipy CubicSpline). The spline is C2, so its
+rotation-minimising frame is C1 and the tube is G1 with continuous curvature lines; the
+panels of the axis start at the spline's knots, where x''' jumps.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from ..errors import ParameterError
+from ..validation import MAX_LENGTH
+from .parametric import ParametricAxis
+
+PARAMETERISATIONS = {"centripetal": 0.5, "chord": 1.0}
+MAX_POINTS = 100_000
+
+
+def checked_points(points: object, least: int) -> np.ndarray:
+    """``points`` as an (n, 3) array of finite coordinates, ``least`` <= n <= MAX_POINTS, each
+    point differing from the next; a ParameterError naming the point otherwise."""
+    try:
+        p = np.asarray(points, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError("points must be a list of [x, y, z] coordinates") from None
+    if p.ndim != 2 or p.shape[1] != 3:
+        raise ParameterError(f"points must be a list of [x, y, z] coordinates, got an array of shape {p.shape}")
+    if not least <= len(p) <= MAX_POINTS:
+        raise ParameterError(f"points must hold {least} to {MAX_POINTS} points, got {len(p)}")
+    if not np.isfinite(p).all() or np.abs(p).max() > MAX_LENGTH:
+        raise ParameterError(f"points must be finite coordinates within +-{MAX_LENGTH:g}")
+    steps = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    repeated = np.flatnonzero(steps <= 1e-12 * (float(np.abs(p).max()) or 1.0))
+    if repeated.size:
+        i = int(repeated[0])
+        raise ParameterError(f"points[{i + 1}] {shown(p[i + 1])} repeats points[{i}]; every point must differ from the next")
+    return p
+
+
+def shown(point: np.ndarray) -> str:
+    """A point as [x, y, z] for a message."""
+    return "[" + ", ".join(f"{v:g}" for v in point) + "]"
+
+
+def points_axis(points: Sequence[Sequence[float]], *, parameterisation: str = "centripetal",
+                normal: Sequence[float] | None = None) -> ParametricAxis:  # fmt: skip
+    """The axis through ``points`` (n x 3), interpolated by a C2 cubic spline (an open curve:
+    closed loops come with closed tubes, which are not built yet)."""
+    if parameterisation not in PARAMETERISATIONS:
+        raise ParameterError(f"parameterisation must be one of {', '.join(PARAMETERISATIONS)}, got {parameterisation!r:.80}")
+    p = checked_points(points, 3)
+    steps = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    t = np.concatenate([[0.0], np.cumsum(steps ** PARAMETERISATIONS[parameterisation])])
+    spline = CubicSpline(t, p, bc_type="not-a-knot", axis=0)
+    description = {"curve": "points", "points": len(p),
+                   "interpolation": f"cubic spline (C2), {parameterisation} parameterisation, not-a-knot ends"}  # fmt: skip
+    # the third derivative jumps at the knots: c is C2 there, k only C0, so the frame (c, r1, r2) is C1
+    joints = [(float(x), 1) for x in t[1:-1]]
+    return ParametricAxis(spline, (float(t[0]), float(t[-1])), breaks=t, joints=joints, normal=normal,
+                          description=description, name="the spline through the points")  # fmt: skip

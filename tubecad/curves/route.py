@@ -1,0 +1,241 @@
+"""A route: a polyline of points with circular bends at its inner vertices (docs/MATH.md
+section 7), the way pipes and ducts are specified (IFC IfcSweptDiskSolidPolygonal).
+
+Vertex i (0 < i < n) turns the route by theta_i = angle(d_in, d_out), d the unit leg
+directions. Its bend of radius R_i is the arc tangent to both legs: it starts and ends at
+the tangent length T_i = R_i tan(theta_i / 2) from the vertex, and each leg must hold the
+tangent lengths of the bends at both its ends. The axis is then lines and arcs, tangent
+continuous, in arc length s from 0:
+
+    line:  c = A + (s - s_a) d,                              t = d,   r1, r2 constant
+    bend:  c = O + R (cos phi e1 + sin phi e2),  phi = (s - s_a) / R,  e1 = (A - O) / R, e2 = d_in
+
+On a bend the rotation-minimising frame turns with the tangent about the bend's binormal
+b = e1 x e2 (torsion 0): every vector v of the frame becomes
+v(phi) = (v.b) b + (v.e1)(cos phi e1 + sin phi e2) + (v.e2)(-sin phi e1 + cos phi e2),
+so r1' = -k1 t with k1 = -(r1 . e1(phi)) / R constant on the bend (likewise k2) and 0 on a
+line. Each piece of the tube is an exact cylinder or torus piece; the frame (c, r1, r2) is
+only C0 at a line-bend joint (k jumps), which :attr:`joints` reports.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import ParameterError
+from ..validation import MAX_LENGTH
+from .axis import Axis, FloatArray
+from .natural import unit_vector
+from .points import checked_points, shown
+
+#: turning angles below this (radians) make no bend: the vertex is refused as collinear
+MIN_TURN = 1e-9
+#: turning angles within this of pi (a leg folding back on the previous one) are refused
+MAX_TURN = math.pi - 1e-6
+
+
+@dataclass(frozen=True)
+class Piece:
+    """One line or bend of the route over s in [s0, s1]; on a bend ``centre``, ``radius``
+    and the in-plane unit vectors e1 (from the centre to the start), e2 (the start tangent)."""
+
+    kind: str  # "line" | "bend"
+    s0: float
+    s1: float
+    start: np.ndarray
+    direction: np.ndarray  # the line's direction; a bend's start tangent e2
+    r1: np.ndarray  # the RMF at s0
+    r2: np.ndarray
+    vertex: int = -1  # a bend's vertex index
+    centre: np.ndarray | None = None
+    radius: float = math.inf
+    e1: np.ndarray | None = None
+
+    @property
+    def angle(self) -> float:
+        """A bend's turning angle (s1 - s0) / R."""
+        return (self.s1 - self.s0) / self.radius if self.kind == "bend" else 0.0
+
+    def rotate(self, v: np.ndarray, phi: np.ndarray) -> np.ndarray:
+        """v (3,) turned by phi (...,) about the bend's binormal (v unchanged on a line)."""
+        if self.kind == "line":
+            return np.broadcast_to(v, phi.shape + (3,)).copy()
+        e1, e2 = self.e1, self.direction
+        a, b = float(v @ e1), float(v @ e2)
+        c, s = np.cos(phi)[..., None], np.sin(phi)[..., None]
+        return (v - a * e1 - b * e2) + a * (c * e1 + s * e2) + b * (-s * e1 + c * e2)
+
+
+class RouteAxis(Axis):
+    """Lines and circular bends through ``points`` (n x 3, n >= 2) with ``bend_radius`` (one
+    value, or one per inner vertex); ``normal``: r1 at the start (made normal to the first
+    leg; default the first bend's inward normal, or the coordinate axis least along the
+    leg for a straight route)."""
+
+    family = "route"
+    rings_at_joints = True
+
+    def __init__(self, points: Sequence[Sequence[float]], bend_radius: float | Sequence[float], *,
+                 normal: Sequence[float] | None = None) -> None:  # fmt: skip
+        p = checked_points(points, 2)
+        radii = _checked_radii(bend_radius, len(p) - 2)
+        legs = np.diff(p, axis=0)
+        lengths = np.linalg.norm(legs, axis=1)
+        d = legs / lengths[:, None]
+        turns = np.arccos(np.clip(np.einsum("ij,ij->i", d[:-1], d[1:]), -1.0, 1.0))
+        for i, turn in enumerate(turns, 1):
+            if turn < MIN_TURN:
+                raise ParameterError(f"points[{i}] {shown(p[i])} makes no bend: points[{i - 1}], points[{i}] and "
+                                     f"points[{i + 1}] are collinear; remove it")  # fmt: skip
+            if turn > MAX_TURN:
+                raise ParameterError(f"points[{i}] {shown(p[i])} turns the route back on itself (by "
+                                     f"{math.degrees(turn):.6g} deg); a bend must turn by less than 180 deg")  # fmt: skip
+        tangent = np.concatenate([[0.0], radii * np.tan(turns / 2), [0.0]])  # per vertex
+        for j, length in enumerate(lengths):  # leg j runs from vertex j to j + 1
+            need = tangent[j] + tangent[j + 1]
+            if need > length * (1 + 1e-12):
+                at = j + 1 if tangent[j + 1] >= tangent[j] else j
+                detail = " + ".join(f"{tangent[k]:.6g} (the bend at points[{k}])" for k in (j, j + 1) if tangent[k] > 0)
+                raise ParameterError(f"bend_radius {radii[at - 1]:g} at points[{at}] {shown(p[at])} does not fit: "
+                                     f"the leg points[{j}]-points[{j + 1}] is {length:.6g} long but its bends need "
+                                     f"{detail}")  # fmt: skip
+        self.points, self.bend_radii = p, radii
+        self.pieces = self._build(p, d, lengths, turns, tangent, normal)
+        self.span = (0.0, self.pieces[-1].s1)
+        self._starts = np.array([piece.s0 for piece in self.pieces])
+
+    # --- construction -------------------------------------------------------------------
+    def _build(self, p: np.ndarray, d: np.ndarray, lengths: np.ndarray, turns: np.ndarray, tangent: np.ndarray,
+               normal: Sequence[float] | None) -> list[Piece]:  # fmt: skip
+        r1 = _start_normal(d, normal)
+        r2 = np.cross(d[0], r1)
+        pieces: list[Piece] = []
+        s = 0.0
+        for j in range(len(d)):
+            a = p[j] + tangent[j] * d[j]
+            line = lengths[j] - tangent[j] - tangent[j + 1]
+            if line > 1e-12 * max(lengths[j], 1.0):
+                pieces.append(Piece("line", s, s + line, a, d[j], r1, r2))
+                s += line
+            if j + 1 < len(d):  # the bend at vertex j + 1
+                R, turn = float(self.bend_radii[j]), float(turns[j])
+                start = p[j + 1] - tangent[j + 1] * d[j]
+                inward = d[j + 1] - float(d[j + 1] @ d[j]) * d[j]
+                inward /= np.linalg.norm(inward)
+                bend = Piece("bend", s, s + R * turn, start, d[j], r1, r2, j + 1, start + R * inward, R, -inward)
+                pieces.append(bend)
+                s += R * turn
+                r1, r2 = (bend.rotate(v, np.array(turn)) for v in (r1, r2))
+                r1 = r1 - float(r1 @ d[j + 1]) * d[j + 1]  # round-off only
+                r1 /= np.linalg.norm(r1)
+                r2 = np.cross(d[j + 1], r1)
+        return pieces
+
+    # --- evaluation ---------------------------------------------------------------------
+    def _each(self, s: ArrayLike):
+        """(piece, mask, local s - s0) for every piece the array ``s`` touches."""
+        s = self._inside(s)
+        idx = np.clip(np.searchsorted(self._starts, s, side="right") - 1, 0, len(self.pieces) - 1)
+        for k in np.unique(idx):
+            mask = idx == k
+            piece = self.pieces[k]
+            yield piece, mask, s[mask] - piece.s0
+
+    def position(self, s: ArrayLike) -> FloatArray:
+        """c(s): A + (s - s_a) d on a line, O + R (cos phi e1 + sin phi e2) on a bend."""
+        s_arr = np.asarray(s, dtype=float)
+        out = np.empty(s_arr.shape + (3,))
+        for piece, mask, x in self._each(s_arr):
+            if piece.kind == "line":
+                out[mask] = piece.start + x[:, None] * piece.direction
+            else:
+                phi = (x / piece.radius)[:, None]
+                out[mask] = piece.centre + piece.radius * (np.cos(phi) * piece.e1 + np.sin(phi) * piece.direction)
+        return out
+
+    def rotation_minimising_frame(self, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """(t, r1, r2): constant on a line, turned by phi about the binormal on a bend."""
+        s_arr = np.asarray(s, dtype=float)
+        t, r1, r2 = (np.empty(s_arr.shape + (3,)) for _ in range(3))
+        for piece, mask, x in self._each(s_arr):
+            phi = x / piece.radius if piece.kind == "bend" else np.zeros_like(x)
+            t[mask], r1[mask], r2[mask] = (piece.rotate(v, phi) for v in (piece.direction, piece.r1, piece.r2))
+        return t, r1, r2
+
+    def normal_development(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """(k1, k2) = (t' . r1, t' . r2): 0 on a line, -(e1 . r1_a, e1 . r2_a) / R on a bend
+        (t' = -e1(phi) / R and r1, e1(phi) turn together, so the products are constant)."""
+        s_arr = np.asarray(s, dtype=float)
+        k1, k2 = np.zeros(s_arr.shape), np.zeros(s_arr.shape)
+        for piece, mask, _ in self._each(s_arr):
+            if piece.kind == "bend":
+                k1[mask] = -float(piece.e1 @ piece.r1) / piece.radius
+                k2[mask] = -float(piece.e1 @ piece.r2) / piece.radius
+        return k1, k2
+
+    def normal_development_derivative(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """(0, 0): the normal development is constant on every piece."""
+        s_arr = self._inside(s)
+        return np.zeros(s_arr.shape), np.zeros(s_arr.shape)
+
+    def torsion(self, s: ArrayLike) -> FloatArray:
+        return np.zeros(self._inside(s).shape)
+
+    @property
+    def joints(self) -> tuple[tuple[float, int], ...]:
+        """Every line-bend (and bend-bend) joint inside the span, continuity 0."""
+        s0, s1 = self.span
+        slack = 1e-12 * max(self.pieces[-1].s1, 1.0)
+        return tuple((piece.s0, 0) for piece in self.pieces[1:] if s0 + slack < piece.s0 < s1 - slack)
+
+    def piece_at(self, s: float) -> Piece:
+        """The piece holding arc length ``s`` (the later one at a joint)."""
+        k = int(np.clip(np.searchsorted(self._starts, s, side="right") - 1, 0, len(self.pieces) - 1))
+        return self.pieces[k]
+
+    def describe(self) -> dict[str, Any]:
+        return {"curve": self.family, "points": self.points.tolist(), "bend_radius": self.bend_radii.tolist(),
+                "bends": sum(p.kind == "bend" for p in self.pieces), "lines": sum(p.kind == "line" for p in self.pieces),
+                "s": list(self.span)}  # fmt: skip
+
+    def __repr__(self) -> str:
+        return f"RouteAxis({len(self.points)} points, length={self.length:.6g})"
+
+
+def _checked_radii(bend_radius: object, inner: int) -> np.ndarray:
+    values = [bend_radius] if isinstance(bend_radius, (int, float, np.number)) else bend_radius
+    try:
+        radii = np.asarray(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        radii = np.zeros(0)
+    if isinstance(bend_radius, (bool, str, bytes)) or radii.size == 0:
+        raise ParameterError(f"bend_radius must be a number or a list of one number per inner vertex, got {bend_radius!r:.80}")
+    if radii.size == 1:
+        radii = np.full(inner, radii[0])
+    elif radii.size != inner:
+        raise ParameterError(f"bend_radius must be one number or {inner} (one per inner vertex points[1]..points[{inner}]), "
+                             f"got {radii.size}")  # fmt: skip
+    for i, r in enumerate(radii, 1):
+        if not (math.isfinite(r) and 0 < r <= MAX_LENGTH):
+            raise ParameterError(f"bend_radius at points[{i}] must be a finite number > 0, got {r:g}")
+    return radii
+
+
+def _start_normal(d: np.ndarray, normal: Sequence[float] | None) -> np.ndarray:
+    """r1 at the start: ``normal``, else the first bend's inward normal, else the coordinate
+    axis least along the first leg; made normal to the first leg."""
+    t = d[0]
+    if normal is not None:
+        n = unit_vector("normal", normal)
+    else:
+        bent = [k for k in range(1, len(d)) if np.linalg.norm(np.cross(d[0], d[k])) > 1e-9]
+        n = d[bent[0]] if bent else np.eye(3)[int(np.argmin(np.abs(t)))]
+    n = n - float(n @ t) * t
+    if np.linalg.norm(n) < 1e-6:
+        raise ParameterError("normal must not be parallel to the route's first leg")
+    return n / np.linalg.norm(n)
