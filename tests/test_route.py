@@ -195,8 +195,9 @@ TUBE = "[tube]\nradius = 5.0\n"
     (BASE.replace("bend_radius = 20", "bend_radius = [20, 20, 20]"), "[axis] bend_radius must be one number or 2"),
     (BASE.replace("bend_radius = 20", 'bend_radius = "20"'), "[axis] bend_radius must be a number or a non-empty list"),
     (BASE.replace("bend_radius = 20", "bend_radius = [20, -1]"), "[axis] bend_radius at points[2] must be a finite number > 0"),
-    (BASE.replace("bend_radius = 20", "bend_radius = 4"), "[tube] radius 5: tube is not regular: rho*k reaches 1.25 at s = 96.0875; it must stay below 1 (radius 5 is larger "
-     "than the axis' radius of curvature for s in [96, 102.283], [194.283, 200.566])"),  # the two bends
+    (BASE.replace("bend_radius = 20", "bend_radius = 4"), "[tube] radius 5: tube is not regular: the bend at points[1] "),
+    (BASE.replace("bend_radius = 20", "bend_radius = [20, 5]"), "the bend at points[2] [100, 100, 0] has bend_radius 5, "
+     "not above the tube radius 5 (set [tube] allow_irregular = true to build it anyway)"),
     (BASE.replace("[100, 100, 100]", "[100, 50, 0]"), "[axis] points[2] [100, 100, 0] turns the route back on itself"),
 ])  # fmt: skip
 def test_bad_routes_exit_2_in_one_line_and_write_nothing(text, says, tmp_path):

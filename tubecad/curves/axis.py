@@ -100,6 +100,11 @@ class Axis(ABC):
         """Whether the axis is a closed loop (its tube then has no caps)."""
         return False
 
+    def tube_radius_problem(self, radius: float) -> str | None:
+        """Why a tube of ``radius`` cannot be regular, said in the axis' own terms (a route
+        names the bend), or None; the general check (rho k < 1, no self-approach) follows."""
+        return None
+
     def curvature(self, s: ArrayLike) -> FloatArray:
         """k(s) = sqrt(k1^2 + k2^2) >= 0 (a slope curve gives its signed k instead)."""
         return np.hypot(*self.normal_development(s))

@@ -198,6 +198,15 @@ class RouteAxis(Axis):
         k = int(np.clip(np.searchsorted(self._starts, s, side="right") - 1, 0, len(self.pieces) - 1))
         return self.pieces[k]
 
+    def tube_radius_problem(self, radius: float) -> str | None:
+        """The first bend whose radius is not above the tube's: there rho k >= 1 (the tube folds)."""
+        for piece in self.pieces:
+            if piece.kind == "bend" and piece.radius <= radius:
+                v = piece.vertex
+                return (f"tube is not regular: the bend at points[{v}] {shown(self.points[v])} has bend_radius "
+                        f"{piece.radius:g}, not above the tube radius {radius:g}")
+        return None
+
     def describe(self) -> dict[str, Any]:
         return {"curve": self.family, "points": self.points.tolist(), "bend_radius": self.bend_radii.tolist(),
                 "bends": sum(p.kind == "bend" for p in self.pieces), "lines": sum(p.kind == "line" for p in self.pieces),

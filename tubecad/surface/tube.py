@@ -40,6 +40,9 @@ class CurvatureLineTube:
         self.axis = axis
         self.radius = bounded_length("radius", radius, 0.0)
         allow_irregular = flag("allow_irregular", allow_irregular)
+        problem = axis.tube_radius_problem(self.radius)
+        if problem is not None and not allow_irregular:
+            raise RegularityError(f"{problem} (pass allow_irregular=True to build it anyway)")
         self.regularity: RegularityReport = check_regularity(axis, self.radius)
         if not self.regularity.ok and not allow_irregular:
             raise RegularityError(self.regularity.message())
