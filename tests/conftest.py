@@ -55,3 +55,19 @@ def assert_build_refused(tmp_path, spec_text: str, says: str) -> None:
     message = result.output.strip()
     assert "\n" not in message and says in message, message
     assert not out.exists()
+
+
+#: a small stiffened wall for PAPER_SPEC: 4 x 4 layout, rings 1 and 2 and stringers 0 and 2
+#: stiffened; the profile's keys follow
+SMALL_STIFFENED_WALL = """
+[layout]
+rings = 4
+stringers = 4
+
+[wall]
+thickness = 2.0
+
+[stiffeners]
+rings = [1, 2]
+stringers = [0, 2]
+"""

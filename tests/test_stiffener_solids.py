@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from conftest import PAPER_SPEC
+from conftest import PAPER_SPEC, SMALL_STIFFENED_WALL
 from test_stiffeners import section_moments
 from tubecad import CurvatureLineTube, ParameterError, paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
@@ -138,18 +138,7 @@ def test_outside_stiffeners_beyond_the_limit_are_refused_before_fitting():
     assert props.is_valid(stringer)
 
 
-STIFFENED = """
-[layout]
-rings = 4
-stringers = 4
-
-[wall]
-thickness = 2.0
-
-[stiffeners]
-rings = [1, 2]
-stringers = [0, 2]
-profile = "T"
+STIFFENED = SMALL_STIFFENED_WALL + """profile = "T"
 height = HEIGHT
 thickness = 1.0
 flange_width = 4.0

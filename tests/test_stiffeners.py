@@ -20,6 +20,7 @@ from tubecad.stiffeners.solids import ring_stiffener, stringer_stiffener
 from tubecad.surface.checks import distance_to_axis
 
 from test_brep import edges_of
+from conftest import SMALL_STIFFENED_WALL
 
 
 @pytest.fixture(scope="module")
@@ -217,18 +218,7 @@ def test_ring_flat_pattern_is_the_annulus_of_the_ring_web(tmp_path):
     assert [p.suffix for p in paths] == [".svg", ".png"] and paths[1].read_bytes().startswith(b"\x89PNG")
 
 
-STIFFENED = """
-[layout]
-rings = 4
-stringers = 4
-
-[wall]
-thickness = 2.0
-
-[stiffeners]
-rings = [1, 2]
-stringers = [0, 2]
-profile = "flat"
+STIFFENED = SMALL_STIFFENED_WALL + """profile = "flat"
 height = 3.0
 thickness = 1.0
 side = "inside"

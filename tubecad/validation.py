@@ -95,3 +95,15 @@ def _interval(low: float, high: float, low_open: bool, high_open: bool) -> str:
     lo = "-inf" if low == -math.inf else f"{low:g}"
     hi = "inf" if high == math.inf else f"{high:g}"
     return f"{left}{lo}, {hi}{right}"
+
+
+def coordinates(name: str, value: object) -> tuple[float, float, float]:
+    """Three finite coordinates [x, y, z] within +-MAX_LENGTH, or a ParameterError naming
+    ``name`` (and the coordinate ``name[i]`` that is out of range)."""
+    try:
+        items = list(value)  # type: ignore[call-overload]
+    except TypeError:
+        items = []
+    if len(items) != 3 or isinstance(value, (str, bytes)):
+        raise ParameterError(f"{name} must be three coordinates [x, y, z], got {value!r:.80}")
+    return tuple(bounded_length(f"{name}[{i}]", v) for i, v in enumerate(items))  # type: ignore[return-value]

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import ParameterError
-from ..validation import bounded_length, finite_number
+from ..validation import coordinates, finite_number
 from .chebyshev import PiecewiseChebyshev
 from .expression import compile_expression
 from .slope_curve import FloatArray, SlopeCurve
@@ -44,13 +44,7 @@ class CustomCurvature(SlopeCurve):
             raise ParameterError(f"k must be a callable k(s) or an expression string, got {k!r}")
         self._k = func
         self.psi0_deg = finite_number("psi0_deg", psi0_deg)
-        try:
-            coordinates = list(origin)
-        except TypeError:
-            coordinates = None
-        if coordinates is None or isinstance(origin, (str, bytes)) or len(coordinates) != 3:
-            raise ParameterError(f"origin must be three coordinates [x, y, z], got {origin!r:.80}")
-        self.origin = tuple(bounded_length(f"origin[{i}]", v) for i, v in enumerate(coordinates))
+        self.origin = coordinates("origin", origin)
 
         s0, s1 = self.span
         k_series = PiecewiseChebyshev.fit(self._k_values, s0, s1, name="k(s)")

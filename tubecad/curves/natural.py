@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import ParameterError
-from ..validation import bounded_length, span_pair
+from ..validation import coordinates, span_pair
 from .axis import Axis, FloatArray
 from .bishop import solve_linear_ode
 from .chebyshev import PiecewiseChebyshev
@@ -30,12 +30,7 @@ Function = Callable[[np.ndarray], np.ndarray]
 
 def unit_vector(name: str, value: object) -> np.ndarray:
     """Three finite coordinates of a non-zero vector, normalised; ParameterError naming ``name``."""
-    try:
-        v = np.array([bounded_length(f"{name}[{i}]", x) for i, x in enumerate(value)], dtype=float)  # type: ignore[arg-type]
-    except TypeError:
-        v = np.zeros(0)
-    if v.shape != (3,) or isinstance(value, (str, bytes)):
-        raise ParameterError(f"{name} must be three coordinates [x, y, z], got {value!r:.80}")
+    v = np.array(coordinates(name, value))
     norm = float(np.linalg.norm(v))
     if norm == 0.0:
         raise ParameterError(f"{name} must not be the zero vector")
@@ -89,7 +84,7 @@ class NaturalAxis(Axis):
         self.span = span_pair("span", span)
         self._k, self.k_text = series(k, "k", self.span)
         self._tau, self.tau_text = series(tau, "tau", self.span)
-        self.origin = tuple(bounded_length(f"origin[{i}]", v) for i, v in enumerate(_three("origin", origin)))
+        self.origin = coordinates("origin", origin)
         frame0 = initial_frame(tangent, normal)
         self.tangent, self.normal = tuple(frame0[0]), tuple(frame0[1])
         self._dk = self._k.derivative()
@@ -141,14 +136,3 @@ class NaturalAxis(Axis):
 
     def __repr__(self) -> str:
         return f"NaturalAxis(k={self.k_text!r}, tau={self.tau_text!r}, span={self.span!r})"
-
-
-def _three(name: str, value: object) -> list:
-    try:
-        items = list(value)  # type: ignore[call-overload]
-    except TypeError:
-        items = []
-    if len(items) != 3 or isinstance(value, (str, bytes)):
-        raise ParameterError(f"{name} must be three coordinates [x, y, z], got {value!r:.80}")
-    return items
-

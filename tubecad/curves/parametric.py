@@ -85,8 +85,6 @@ class ParametricAxis(Axis):
             return -T[..., :, None] * T_t[..., None, :]
 
         self._r1 = solve_linear_ode(bishop, self._x.breaks, r1_start, name=f"the frame of {name}")
-        self._development = PiecewiseChebyshev.fit(self._development_in_t, t0, t1, breaks=self._r1.breaks,
-                                                   name=f"the curvature of {name}", tol=1e-13)  # fmt: skip
         s_breaks = self._s(self._r1.breaks)
         s_breaks[0], s_breaks[-1] = self.span
         L = self.span[1]
@@ -94,7 +92,7 @@ class ParametricAxis(Axis):
                                            name=f"{name} in arc length")  # fmt: skip
         self._frame_s = PiecewiseChebyshev.fit(lambda x: np.concatenate(self._frame_in_t(self.parameter(x))[:2], axis=-1),
                                                0.0, L, breaks=s_breaks, name=f"the frame of {name} in arc length")  # fmt: skip
-        self._development_s = PiecewiseChebyshev.fit(lambda x: self._development(self.parameter(x)), 0.0, L,
+        self._development_s = PiecewiseChebyshev.fit(lambda x: self._development_in_t(self.parameter(x)), 0.0, L,
                                                      breaks=s_breaks, tol=1e-13, name=f"the curvature of {name}")  # fmt: skip
         self._development_rate_s = self._development_s.derivative()
         self._joints = tuple((float(self._s(np.array(t))), int(c)) for t, c in joints if t0 < t < t1)
