@@ -64,6 +64,29 @@ def test_failed_write_leaves_no_file(tmp_path, wall, monkeypatch):
     assert target.read_text() == "previous good file" and len(list(tmp_path.iterdir())) == 1
 
 
+@pytest.mark.skipif(os.name != "posix", reason="needs POSIX signals")
+def test_interrupt_as_the_temporary_is_created_leaves_no_file(tmp_path, monkeypatch):
+    """SIGINT lands after the temporary file exists but before its name is returned (the
+    window that left a ``.part`` file in CI, then inside ``mkstemp``): the file is removed."""
+    import signal
+
+    from tubecad.export.atomic import atomic_path
+
+    real_open = os.open
+
+    def open_interrupted(*args, **kwargs):
+        made = real_open(*args, **kwargs)
+        signal.raise_signal(signal.SIGINT)  # to this thread: handled before it returns
+        return made
+
+    monkeypatch.setattr(os, "open", open_interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        with atomic_path(tmp_path / "w.step"):
+            pytest.fail("the interrupt must end the write before it starts")
+    monkeypatch.undo()
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_paper_command_writes_a_valid_wall_step_and_iges(tmp_path):
     result = CliRunner().invoke(cli, ["paper", "-o", str(tmp_path), "--nu", "32", "--ns", "201"])
     assert result.exit_code == 0, result.output

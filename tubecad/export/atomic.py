@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import contextlib
 import os
-import tempfile
+import secrets
 from pathlib import Path
 from typing import Iterator
 
@@ -35,7 +35,7 @@ def atomic_path(target: str | Path) -> Iterator[Path]:
     try:
         tmp_path = _temporary(target)
         yield tmp_path
-        os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp makes 0600; outputs get the usual mode
+        os.chmod(tmp_path, 0o666 & ~_umask())  # made 0600 (as mkstemp); outputs get the usual mode
         os.replace(tmp_path, target)
         _LIVE.discard(tmp_path)
     except BaseException:
@@ -62,22 +62,32 @@ def check_writable(target: str | Path) -> Path:
 
 
 def _temporary(target: Path) -> Path:
-    """An empty temporary file beside ``target`` (a ParameterError naming the output if impossible)."""
+    """An empty temporary file beside ``target`` (a ParameterError naming the output if impossible).
+
+    The name is recorded in ``_LIVE`` before the file is created (``O_CREAT | O_EXCL``, as
+    ``mkstemp`` does): an interrupt can land between any two bytecodes, also after the file
+    exists but before its name is returned, and must still find it.
+    """
     folder = target.parent if str(target.parent) else Path(".")
     if not folder.is_dir():
         why = "is not a folder" if folder.exists() else "does not exist"
         raise ParameterError(f"output {str(target)!r}: output folder {str(folder)!r} {why}")
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part" + target.suffix, dir=folder)
-    except OSError as exc:
-        raise ParameterError(f"output {str(target)!r}: cannot write to {str(folder)!r}: {exc.strerror}") from None
-    try:  # an interrupt (Ctrl-C, SIGTERM) from here on must not leave the file behind
-        _LIVE.add(Path(tmp))
-        os.close(fd)
-        return Path(tmp)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    for _ in range(100):
+        candidate = folder / f".{target.name}.{secrets.token_hex(6)}.part{target.suffix}"
+        _LIVE.add(candidate)
+        try:
+            os.close(os.open(candidate, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+            return candidate
+        except FileExistsError:  # another process's temporary of that name: draw again
+            _LIVE.discard(candidate)
+        except OSError as exc:
+            _LIVE.discard(candidate)
+            raise ParameterError(f"output {str(target)!r}: cannot write to {str(folder)!r}: {exc.strerror}") from None
+        except BaseException:
+            candidate.unlink(missing_ok=True)
+            _LIVE.discard(candidate)
+            raise
+    raise ParameterError(f"output {str(target)!r}: cannot make a temporary file in {str(folder)!r}")
 
 
 def _umask() -> int:
