@@ -68,9 +68,9 @@ def test_bad_axis_keys_exit_2_in_one_line_and_write_nothing(text, says, tmp_path
     assert_build_refused(tmp_path, text + TUBE, says)
 
 
-def test_a_closed_loop_is_refused_until_closed_tubes_are_built(tmp_path):
-    """The whole trefoil knot (t in [0, 2 pi]) ends where it starts: its end discs would
-    coincide, so the build refuses it in one line (closed tubes are not built yet)."""
+def test_a_loop_kept_open_is_refused_as_its_end_caps_would_coincide(tmp_path):
+    """The whole trefoil knot (t in [0, 2 pi]) ends where it starts; with ``closed = false``
+    it is an open tube whose end discs would coincide: refused in one line."""
     text = ('[axis]\ncurve = "parametric"\nx = "40 * (sin(t) + 2 * sin(2 * t))"\ny = "40 * (cos(t) - 2 * cos(2 * t))"\n'
-            'z = "-40 * sin(3 * t)"\nt = [0.0, 6.283185307179586]\n')  # fmt: skip
-    assert_build_refused(tmp_path, text + "[tube]\nradius = 8.0\n", "the axis closes on itself")
+            'z = "-40 * sin(3 * t)"\nt = [0.0, 6.283185307179586]\nclosed = false\n')  # fmt: skip
+    assert_build_refused(tmp_path, text + "[tube]\nradius = 8.0\n", "the end caps would coincide")

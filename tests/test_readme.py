@@ -55,6 +55,8 @@ QUICKSTART_BEGIN, QUICKSTART_END = "<!-- ci:quickstart:begin -->", "<!-- ci:quic
 
 #: blocks that are not code, keyed by their first line, with the reason
 NOT_RUNNABLE = {
+    "S(u, s) = c(s) + rho (cos u r1(s) + sin u r2(s))":
+        "an equation, not code: tests/test_symbolic.py proves its forms with sympy",
     "c(s) = (cos b Int cos psi ds, cos b Int sin psi ds, s sin b)":
         "equations, not code: tests/test_symbolic.py proves them with sympy",
 }  # fmt: skip

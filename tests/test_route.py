@@ -222,3 +222,36 @@ def test_iges_cannot_hold_a_route_and_is_refused_without_a_file(tmp_path):
     assert result.exit_code == 2, result.output
     assert "IGES holds the surface only to" in result.output and "use STEP or BREP" in result.output
     assert not out.exists()
+
+
+def test_stiffeners_across_the_joints_are_fit_for_booleans(wall, route):
+    """A stringer runs across every line-bend joint, where the frame is only C0: its faces
+    end there (and its edges' curves with them), so OCCT's pre-boolean check finds nothing."""
+    from tubecad.stiffeners.assembly import build_stiffeners
+    from tubecad.stiffeners.profiles import Profile
+
+    _, build = wall
+    profile = Profile("T", 8.0, 1.0, 5.0, 1.0)
+    stiffeners = build_stiffeners(build, [3], [0, 3], profile, "outside")
+    joints = sum(1 for _, continuity in route.joints if continuity == 0)
+    for st in stiffeners:
+        assert is_valid(st.solid) and analyzer_findings(st.solid) == {}, st.name
+    stringer = stiffeners[1]
+    sides = len(profile.outline())  # the outline's sides and the base under the web
+    assert len(stringer.solid.faces()) == sides * (joints + 1) + 2  # each side cut at every joint; 2 caps
+
+
+def test_a_stringers_length_on_a_route_is_exact(wall, route):
+    """Int sqrt(G) ds along u = th: per piece (1 - rho (k1 cos th + k2 sin th)) x its length,
+    k1, k2 constant on a bend and 0 on a line (the quadrature must not run across a joint)."""
+    from tubecad.stiffeners.assembly import build_stiffeners
+    from tubecad.stiffeners.profiles import Profile
+
+    tube, build = wall
+    [stringer] = build_stiffeners(build, [], [1], Profile("flat", 4.0, 1.0), "outside")
+    th = math.radians(build.layout.stringers_deg[1])
+    exact = 0.0
+    for piece in route.pieces:
+        k1, k2 = route.normal_development(np.array([0.5 * (piece.s0 + piece.s1)]))
+        exact += (piece.s1 - piece.s0) * (1.0 - 20.0 * (k1[0] * math.cos(th) + k2[0] * math.sin(th)))
+    assert stringer.length() == pytest.approx(exact, rel=1e-13)

@@ -54,3 +54,28 @@ def test_frenet_parameterisation_is_not_orthogonal():
     """Without phi = u - psi sin b the net is not orthogonal: F = rho^2 * torsion."""
     f = forms(u)
     assert sp.simplify(f["F"] - rho**2 * K * sp.tan(b)) == 0
+
+
+def test_rotation_minimising_tube_on_any_axis():
+    """docs/MATH.md section 7, for any C2 axis: vectors are written in the moving basis
+    (t, r1, r2), differentiated with c' = t, t' = k1 r1 + k2 r2, r1' = -k1 t, r2' = -k2 t
+    (k1, k2 arbitrary functions). Then S = c + rho (cos u r1 + sin u r2) has E = rho^2,
+    F = 0, G = (1 - rho (k1 cos u + k2 sin u))^2, L = -rho, M = 0."""
+    k1, k2 = (sp.Function(n, real=True)(s) for n in ("k1", "k2"))
+
+    def d_ds(v):  # v = (a, b, c) means a t + b r1 + c r2
+        a, bb, c = v
+        return sp.Matrix([sp.diff(a, s) - k1 * bb - k2 * c, sp.diff(bb, s) + k1 * a, sp.diff(c, s) + k2 * a])
+
+    radial = sp.Matrix([0, sp.cos(u), sp.sin(u)])
+    Su = rho * radial.diff(u)  # c does not depend on u
+    Ss = sp.Matrix([1, 0, 0]) + rho * d_ds(radial)
+    Suu, Sus, Sss = rho * radial.diff(u, 2), d_ds(Su), d_ds(Ss)
+    simplify = lambda e: sp.simplify(sp.trigsimp(sp.expand(e)))  # noqa: E731
+    assert simplify(Su.dot(Su) - rho**2) == 0
+    assert simplify(Su.dot(Ss)) == 0
+    assert simplify(Ss.dot(Ss) - (1 - rho * (k1 * sp.cos(u) + k2 * sp.sin(u))) ** 2) == 0
+    assert simplify(radial.dot(Su)) == 0 and simplify(radial.dot(Ss)) == 0  # the radial unit vector is the normal
+    assert simplify(Suu.dot(radial) + rho) == 0
+    assert simplify(Sus.dot(radial)) == 0
+    assert simplify(Sss.dot(radial) - (k1 * sp.cos(u) + k2 * sp.sin(u)) * (1 - rho * (k1 * sp.cos(u) + k2 * sp.sin(u)))) == 0

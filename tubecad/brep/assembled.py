@@ -128,12 +128,14 @@ def shell_of(faces: Sequence[TopoDS_Face], closed: bool) -> TopoDS_Shell:
     return shell
 
 
-def closed_solid(faces: Sequence[TopoDS_Face]) -> TopoDS_Solid:
-    """The solid bounded by ``faces`` (oriented outward by the caller), as one closed shell."""
+def closed_solid(*shells: Sequence[TopoDS_Face]) -> TopoDS_Solid:
+    """The solid bounded by closed shells of faces (oriented outward of the solid by the
+    caller): one shell, or an outer shell and the shells of its cavities."""
     builder = BRep_Builder()
     solid = TopoDS_Solid()
     builder.MakeSolid(solid)
-    builder.Add(solid, shell_of(faces, closed=True))
+    for faces in shells:
+        builder.Add(solid, shell_of(faces, closed=True))
     return solid
 
 
@@ -156,33 +158,77 @@ class CapPlane:
 
 
 def strip_solid(strips: Sequence[Strip], s0: float, s1: float, caps: tuple[CapPlane, CapPlane],
-                counter_clockwise: bool) -> tuple[TopoDS_Solid, list[TopoDS_Face]]:  # fmt: skip
+                counter_clockwise: bool, cuts: Sequence[float] = ()) -> tuple[TopoDS_Solid, list[TopoDS_Face]]:  # fmt: skip
     """The solid between s0 and s1 bounded by ``strips`` (a closed cycle, see the module) and
     planar caps in ``caps`` (at s0, s1); ``counter_clockwise``: the cycle runs counter-
-    clockwise about +S_s. Returns the solid and its strip faces (in the order of ``strips``)."""
+    clockwise about +S_s. Each strip is cut into faces at the arc lengths ``cuts`` (where
+    its surface is only C0 along s: a face must not run across). Returns the solid and its
+    strip faces (strip by strip, each from s0 to s1)."""
+    bands = [s0, *sorted(c for c in cuts if s0 < c < s1), s1]
+    faces, crosses = _strip_faces(strips, bands, counter_clockwise, closed=False)
     n = len(strips)
-    corners = [[vertex(st.surface.Value(st.u0, s)) for s in (s0, s1)] for st in strips]
-    longs = [edge(st.surface.UIso(st.u0), corners[k][0], corners[k][1], s0, s1) for k, st in enumerate(strips)]
-    crosses: list[list[TopoDS_Edge]] = []  # crosses[k][end]: strip k at s0 / s1, along +u
-    faces = []
-    for k, st in enumerate(strips):
-        nxt = (k + 1) % n
-        forward = st.u0 < st.u1
-        lo, hi = (st.u0, st.u1) if forward else (st.u1, st.u0)
-        ends = []
-        for end, s in enumerate((s0, s1)):
-            a, b = (corners[k][end], corners[nxt][end]) if forward else (corners[nxt][end], corners[k][end])
-            ends.append(edge(st.surface.VIso(s), a, b, lo, hi))
-        crosses.append(ends)
-        left, right = (longs[k], longs[nxt]) if forward else (longs[nxt], longs[k])
-        faces.append(patch_face(st.surface, lo, hi, s0, s1, ends[0], right, ends[1], left,
-                                reverse=forward != counter_clockwise))  # fmt: skip
     cap_faces = []
     for end, cap in enumerate(caps):
         outward = end == 1  # +s at s1, -s at s0
         along = counter_clockwise == outward  # traverse the cycle in order: counter-clockwise about the normal
         order = range(n) if along else range(n - 1, -1, -1)
-        loop = [(crosses[k][end], (strips[k].u0 < strips[k].u1) == along) for k in order]
+        loop = [(crosses[k][0 if end == 0 else -1], (strips[k].u0 < strips[k].u1) == along) for k in order]
         normal = cap.normal if outward else -cap.normal
         cap_faces.append(plane_face(cap.origin, normal, cap.x_dir, [loop]))
     return closed_solid(faces + cap_faces), faces
+
+
+def closed_strip_solid(strips: Sequence[Strip], s0: float, s1: float, counter_clockwise: bool,
+                       cuts: Sequence[float] = ()) -> tuple[TopoDS_Solid, list[TopoDS_Face]]:  # fmt: skip
+    """Like :func:`strip_solid` round a closed axis whose frame comes back unturned: the
+    cross-section at s1 is the one at s0, so there are no caps; the edges at s0 close the
+    strips at s1 too. A strip with no cut is cut at s_mid as well (no face meets itself
+    along an edge). Returns the solid and its strip faces."""
+    inner = sorted(c for c in cuts if s0 < c < s1) or [0.5 * (s0 + s1)]
+    faces, _ = _strip_faces(strips, [s0, *inner, s1], counter_clockwise, closed=True)
+    return closed_solid(faces), faces
+
+
+def _strip_faces(strips: Sequence[Strip], bands: list[float], counter_clockwise: bool,
+                 closed: bool) -> tuple[list[TopoDS_Face], list[list[TopoDS_Edge]]]:  # fmt: skip
+    """The faces of every strip between consecutive arc lengths ``bands`` with shared edges,
+    and crosses[k][c]: strip k's edge at bands[c] along +u (``closed``: the edges at
+    bands[0] serve at bands[-1] as well)."""
+    n = len(strips)
+    rows = len(bands) - 1 if closed else len(bands)  # cross-sections with edges of their own
+    at = [c % rows for c in range(len(bands))]  # the cross-section used at bands[c]
+    corners = [[vertex(st.surface.Value(st.u0, s)) for s in bands[:rows]] for st in strips]
+    # each long edge on its own band's piece of the surface: its curve then has no C0 knot
+    # (e.g. a route's joint) outside the edge, which OCCT's continuity check would report
+    longs = [[edge(_band(st, bands[b], bands[b + 1]).UIso(st.u0), corners[k][at[b]], corners[k][at[b + 1]], bands[b],
+                   bands[b + 1]) for b in range(len(bands) - 1)] for k, st in enumerate(strips)]  # fmt: skip
+    faces, crosses = [], []
+    for k, st in enumerate(strips):
+        nxt = (k + 1) % n
+        forward = st.u0 < st.u1
+        lo, hi = (st.u0, st.u1) if forward else (st.u1, st.u0)
+        own = []
+        for c in range(rows):
+            a, b = (corners[k][c], corners[nxt][c]) if forward else (corners[nxt][c], corners[k][c])
+            own.append(edge(st.surface.VIso(bands[c]), a, b, lo, hi))
+        crosses.append([own[at[c]] for c in range(len(bands))])
+    for k, st in enumerate(strips):
+        nxt = (k + 1) % n
+        forward = st.u0 < st.u1
+        lo, hi = (st.u0, st.u1) if forward else (st.u1, st.u0)
+        for b in range(len(bands) - 1):
+            left, right = (longs[k][b], longs[nxt][b]) if forward else (longs[nxt][b], longs[k][b])
+            faces.append(patch_face(st.surface, lo, hi, bands[b], bands[b + 1], crosses[k][b], right,
+                                    crosses[k][b + 1], left, reverse=forward != counter_clockwise))  # fmt: skip
+    return faces, crosses
+
+
+def _band(strip: Strip, s0: float, s1: float) -> Geom_BSplineSurface:
+    """The strip's surface over s in [s0, s1] only (the whole surface when that is all of it)."""
+    _, _, v0, v1 = strip.surface.Bounds()
+    if s0 <= v0 and s1 >= v1:
+        return strip.surface
+    piece = strip.surface.Copy()
+    u0, u1, _, _ = strip.surface.Bounds()
+    piece.Segment(u0, u1, s0, s1)
+    return piece

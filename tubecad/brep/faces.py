@@ -55,10 +55,12 @@ class PatchFaces:
 
 
 def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_deg: Sequence[float],
-                reverse: bool = False) -> PatchFaces:  # fmt: skip
+                reverse: bool = False, closing: float | None = None) -> PatchFaces:  # fmt: skip
     """Faces of ``tube_surface`` between rings ``s_rings`` and the stringers at angles
     ``stringers_deg`` (increasing, the first at the surface's origin); ``reverse`` flips
-    every face (for the inner wall of a solid)."""
+    every face (for the inner wall of a solid). ``closing``: on a closed axis its holonomy
+    (radians): the last ring is then the first one, reached by the stringers turned by it
+    (see :func:`_closing_ring`)."""
     builder = BRep_Builder()
     surface = tube_surface.surface
     angles = [math.radians(a - tube_surface.origin_deg) for a in stringers_deg] + [2 * math.pi]
@@ -66,18 +68,27 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
     n_cuts = len(u_cuts)
     n_stringers = n_cuts - 1
     seam = n_stringers == 1
+    own = len(s_rings) - (closing is not None)  # rings with edges of their own
 
-    vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings]
+    vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings[:own]]
     rings = []
+    bounds = []  # bounds[i][j]: the (edge, pcurve, tolerance) of ring i along face column j, in +u order
     to_u = [ring_pcurve(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
-    ring_tolerance = []
-    for i, s in enumerate(s_rings):
+    for i, s in enumerate(s_rings[:own]):
         circle, gap = ring_circle(tube_surface, s)
-        ring_tolerance.append(max(TOLERANCE, 2.0 * gap))
+        tolerance = max(TOLERANCE, 2.0 * gap)
         rings.append([
             _edge(circle, vertices[i][j], vertices[i][(j + 1) % n_stringers], angles[j], angles[j + 1])
             for j in range(n_stringers)
         ])  # fmt: skip
+        bounds.append([[(rings[i][j], to_u[j].Translated(gp_Vec2d(0.0, s)), tolerance)] for j in range(n_stringers)])
+    if closing is not None:
+        edges, first, last, end_vertices = _closing_ring(tube_surface, s_rings[0], s_rings[-1], angles, vertices[0],
+                                                         closing)  # fmt: skip
+        rings[0], bounds[0] = edges, first
+        rings.append(edges)
+        bounds.append(last)
+        vertices.append(end_vertices)
     bands = []  # the surface between two rings, cut once: patches and stringer edges copy far fewer poles
     for s0, s1 in zip(s_rings[:-1], s_rings[1:]):
         band = surface.Copy()
@@ -97,10 +108,10 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
                 piece.Segment(u0, u1, s0, s1)
             face = TopoDS_Face()
             builder.MakeFace(face, piece, TOLERANCE)
-            bottom, top = rings[i][j], rings[i + 1][j]
+            bottom, top = bounds[i][j], bounds[i + 1][j]
             left, right = stringers[j][i], stringers[(j + 1) % n_stringers][i]
-            builder.UpdateEdge(bottom, to_u[j].Translated(gp_Vec2d(0.0, s0)), face, ring_tolerance[i])
-            builder.UpdateEdge(top, to_u[j].Translated(gp_Vec2d(0.0, s1)), face, ring_tolerance[i + 1])
+            for edge, pcurve, tolerance in bottom + top:
+                builder.UpdateEdge(edge, pcurve, face, tolerance)
             if seam:  # one edge used twice: pcurve u = 2 pi for its forward use, u = 0 reversed
                 builder.UpdateEdge(right, _line(u1, 0.0, 0, 1), _line(u0, 0.0, 0, 1), face, TOLERANCE)
             else:
@@ -108,14 +119,77 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
                 builder.UpdateEdge(left, _line(u0, 0.0, 0, 1), face, TOLERANCE)
             wire = TopoDS_Wire()
             builder.MakeWire(wire)  # counter-clockwise in (u, s): outward normal S_u x S_s
-            for edge, orientation in ((bottom, TopAbs_FORWARD), (right, TopAbs_FORWARD),
-                                      (top, TopAbs_REVERSED), (left, TopAbs_REVERSED)):  # fmt: skip
+            for edge, orientation in ([(e, TopAbs_FORWARD) for e, _, _ in bottom] + [(right, TopAbs_FORWARD)]
+                                      + [(e, TopAbs_REVERSED) for e, _, _ in top[::-1]] + [(left, TopAbs_REVERSED)]):  # fmt: skip
                 builder.Add(wire, edge.Oriented(orientation))
             wire.Closed(True)
             builder.Add(face, wire)
             row.append(TopoDS_Face.Reversed(face) if reverse else face)
         faces.append(row)
     return PatchFaces(faces, rings, stringers)
+
+
+#: on the closing ring, a stringer's end within this distance of a stringer's start shares its vertex
+CLOSING_MERGE = 0.1 * TOLERANCE
+
+
+def _closing_ring(tube_surface: TubeSurface, s_first: float, s_last: float, angles: list[float],
+                  start_vertices: list[TopoDS_Vertex], holonomy: float):  # fmt: skip
+    """The ring where a closed tube closes: the circle at ``s_first`` (= the one at
+    ``s_last``), cut where stringer j starts (angle a_j) and where it ends, turned by the
+    holonomy: b_j = a_j + holonomy, since r1(L) = cos(h) r1(0) + sin(h) r2(0). Returns its
+    arcs (in +theta order from a_0), the (edge, pcurve, tolerance) lists of every face
+    column of the first band (theta in [a_j, a_j+1]) and of the last band (theta in
+    [b_j, b_j+1], with pcurves u(theta - h) at s_last), and the stringers' end vertices.
+    The stringers stay true curvature lines: the faces meet the ring shifted, not twisted."""
+    two_pi = 2.0 * math.pi
+    n = len(start_vertices)
+    rho = tube_surface.tube.radius
+    circle, gap = ring_circle(tube_surface, s_first)
+    theta = np.linspace(0.0, two_pi, 16, endpoint=False) + 0.1  # how far the s_last isoline is from that circle
+    u_last = tube_surface.circle.u_of_theta(np.mod(theta - holonomy, two_pi))
+    gap = max([gap] + [circle.Value(float(th)).Distance(tube_surface.surface.Value(float(u), s_last))
+                       for th, u in zip(theta, u_last)])  # fmt: skip
+    tolerance = max(TOLERANCE, 2.0 * gap)
+
+    cuts = list(zip(angles[:n], start_vertices))  # (angle, vertex) on the ring
+    ends = []  # stringer j's end: (the angle of its vertex on the ring, the vertex)
+    for a in angles[:n]:
+        b = float(np.mod(a + holonomy, two_pi))
+        near = [(c, v) for c, v in cuts if rho * abs(math.remainder(b - c, two_pi)) <= CLOSING_MERGE]
+        if not near:
+            near = [(b, _vertex(BRep_Builder(), circle.Value(b)))]
+            cuts.append(near[0])
+        ends.append(near[0])
+    cuts.sort(key=lambda cut: cut[0])
+    stops = [c for c, _ in cuts] + [cuts[0][0] + two_pi]
+    arcs = [(stops[k], stops[k + 1], _edge(circle, cuts[k][1], cuts[(k + 1) % len(cuts)][1], stops[k], stops[k + 1]))
+            for k in range(len(cuts))]  # fmt: skip
+
+    first, last = [], []
+    for j in range(n):
+        a0, a1 = angles[j], angles[j + 1]
+        first.append([(edge, ring_pcurve(tube_surface.circle, lo, hi).Translated(gp_Vec2d(0.0, s_first)), tolerance)
+                      for lo, hi, edge in arcs if a0 - 1e-12 <= lo and hi <= a1 + 1e-12])  # fmt: skip
+        b0 = ends[j][0]
+        shift = b0 - a0  # theta on the ring = the last band's own angle + shift
+        column = []
+        for lo, hi, edge in arcs:
+            for lift in (0.0, two_pi, -two_pi):
+                if b0 - 1e-9 <= lo + lift and hi + lift <= b0 + (a1 - a0) + 1e-9:
+                    column.append((lo + lift, edge, lift))
+        column.sort(key=lambda c: c[0])
+        covered = sum(hi - lo for lo, hi, edge in arcs if any(edge.IsSame(e) for _, e, _ in column))
+        if abs(covered - (a1 - a0)) > 1e-8 or not column:
+            raise TubecadError(f"the closing ring could not be cut for stringer {j} (holonomy {holonomy:.6g} rad)")
+        last.append([(edge, ring_pcurve(tube_surface.circle, start - shift, start - shift + _width(arcs, edge),
+                                        moved=shift - lift).Translated(gp_Vec2d(0.0, s_last)), tolerance)
+                     for start, edge, lift in column])  # fmt: skip
+    return [edge for _, _, edge in arcs], first, last, [v for _, v in ends]
+
+
+def _width(arcs, edge: TopoDS_Edge) -> float:
+    return next(hi - lo for lo, hi, e in arcs if e.IsSame(edge))
 
 
 #: u(theta) is fitted to this (radians of u; x rho, far below the edge tolerance)
@@ -125,11 +199,16 @@ ANGLE_FIT_DEGREE = 9
 ANGLE_FIT_SPAN = math.radians(15.0)
 
 
-def ring_pcurve(circle: CircleSpline, a: float, b: float) -> Geom2d_BSplineCurve:
+def ring_pcurve(circle: CircleSpline, a: float, b: float, moved: float = 0.0) -> Geom2d_BSplineCurve:
     """The pcurve (u(theta), 0) of the ring arc theta in [a, b] (radians from the surface's
     origin) on a surface of ``circle``, parameterised by the angle like the arc's Geom_Circle;
-    the arc at s uses it translated by (0, s). Cached: every ring and surface shares them."""
-    return _ring_pcurve(_angle_to_u(circle.breaks, float(a), float(b)))
+    the arc at s uses it translated by (0, s). ``moved``: the curve (u(theta - moved), 0)
+    over [a + moved, b + moved] instead, for an arc whose circle counts angles from
+    elsewhere (the closing ring). Cached: every ring and surface shares them."""
+    to_u = _angle_to_u(circle.breaks, float(a), float(b))
+    if moved:
+        to_u = BSpline(to_u.t + moved, to_u.c, to_u.k)
+    return _ring_pcurve(to_u)
 
 
 @functools.lru_cache(maxsize=1024)
@@ -140,7 +219,7 @@ def _angle_to_u(breaks: tuple[float, ...], a: float, b: float) -> BSpline:
     ANGLE_FIT_TOLERANCE of the closed form."""
     circle = CircleSpline.with_breaks(breaks)
     degree = ANGLE_FIT_DEGREE
-    joints = [arc.start for arc in circle.arcs if a < arc.start < b]
+    joints = [arc.start for arc in circle.arcs if a + 1e-12 < arc.start < b - 1e-12]  # not at an end, to round-off
     segments = np.array([a, *joints, b])
     refine = 1
     while True:

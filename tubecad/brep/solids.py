@@ -81,37 +81,42 @@ def _checked(tube: object, layout: object) -> NetLayout:
     if tube.radius < MIN_SIZE:
         raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
                              f"got {tube.radius:g}")  # fmt: skip
+    if tube.axis.closed:
+        if len(layout.s_rings) < 3:
+            raise ParameterError("a closed tube needs a ring frame besides the closing one: rings must be >= 3")
+        return layout
     ends = tube.axis.position(np.array(tube.span))
     gap = float(np.linalg.norm(ends[1] - ends[0]))
-    if gap <= 1e-6 * tube.length:  # a closed loop: its end discs would coincide; it needs a tube without caps
-        raise ParameterError(f"the axis closes on itself (its ends are {gap:.3g} apart): closed tubes without caps "
-                             "are not built yet; shorten the span")  # fmt: skip
+    if gap <= 1e-6 * tube.length:  # its end discs would coincide
+        raise ParameterError(f"the axis' ends meet ({gap:.3g} apart) but it is not a closed loop (its tangents differ "
+                             "there, or closed = false): the end caps would coincide; shorten the span")  # fmt: skip
     return layout
 
 
 def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
-    """The tube's open shell: faces between rings and stringers."""
+    """The tube's shell: faces between rings and stringers (open, or closed round a closed axis)."""
     layout = _checked(tube, layout)
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     surface, patches = _tube_faces(tube, frame, layout)
-    shell = shell_of(patches.all_faces(), closed=False)
+    shell = shell_of(patches.all_faces(), closed=tube.axis.closed)
     return TubeBuild(bd.Shell(shell), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
 
 def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE, progress: Progress | None = None) -> TubeBuild:  # fmt: skip
-    """The tube closed by planar discs in the normal planes at both ends. ``progress(step,
-    done, total)`` is called after the frame fit, the surface and the solid."""
+    """The tube closed by planar discs in the normal planes at both ends (a closed axis:
+    the closed tube, no caps). ``progress(step, done, total)`` is called after the frame
+    fit, the surface and the solid."""
     report = progress or (lambda *_: None)
     layout = _checked(tube, layout)
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     report("frame fit", 1, 3)
     surface, patches = _tube_faces(tube, frame, layout)
     report("surface", 2, 3)
-    caps = [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
-            _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True)]  # fmt: skip
-    solid = _solid(patches.all_faces() + caps, tube)
+    caps = [] if tube.axis.closed else [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
+                                        _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True)]  # fmt: skip
+    solid = _solid([patches.all_faces() + caps], tube)
     report("solid", 3, 3)
     return TubeBuild(bd.Solid(solid), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
@@ -119,8 +124,10 @@ def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
 def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered",
                      layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE,
                      progress: Progress | None = None) -> TubeBuild:  # fmt: skip
-    """The wall between the tubes of radii r_in < r_out on ``tube``'s axis, with annular caps.
-    ``progress(step, done, total)`` is called after the frame fit, each surface and the solid."""
+    """The wall between the tubes of radii r_in < r_out on ``tube``'s axis, with annular caps
+    (a closed axis: no caps; the solid is bounded by the two closed tubes, the inner one a
+    cavity). ``progress(step, done, total)`` is called after the frame fit, each surface and
+    the solid."""
     report = progress or (lambda *_: None)
     layout = _checked(tube, layout)
     r_in, r_out = wall_radii(tube.radius, thickness, side)
@@ -136,11 +143,14 @@ def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "cen
     report("outer surface", 2, 4)
     inner, inner_patches = _tube_faces(inner_tube, frame, layout, reverse=True)
     report("inner surface", 3, 4)
-    caps = [
-        _cap(tube, layout.s_rings[0], [outer_patches.rings[0], inner_patches.rings[0]], outward=False),
-        _cap(tube, layout.s_rings[-1], [outer_patches.rings[-1], inner_patches.rings[-1]], outward=True),
-    ]
-    solid = _solid(outer_patches.all_faces() + inner_patches.all_faces() + caps, tube)
+    if tube.axis.closed:
+        shells = [outer_patches.all_faces(), inner_patches.all_faces()]
+    else:
+        shells = [outer_patches.all_faces() + inner_patches.all_faces() + [
+            _cap(tube, layout.s_rings[0], [outer_patches.rings[0], inner_patches.rings[0]], outward=False),
+            _cap(tube, layout.s_rings[-1], [outer_patches.rings[-1], inner_patches.rings[-1]], outward=True),
+        ]]  # fmt: skip
+    solid = _solid(shells, tube)
     report("solid", 4, 4)
     return TubeBuild(bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, frame, tolerance,
                      [r_out, r_in])  # fmt: skip
@@ -166,7 +176,8 @@ def wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered"
 def _tube_faces(tube: CurvatureLineTube, frame: FrameSpline, layout: NetLayout,
                 reverse: bool = False) -> tuple[TubeSurface, PatchFaces]:  # fmt: skip
     surface = exact_section_surface(tube, frame, stringers_deg=layout.stringers_deg)
-    return surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=reverse)
+    closing = tube.axis.holonomy if tube.axis.closed else None
+    return surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=reverse, closing=closing)
 
 
 def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outward: bool) -> TopoDS_Face:
@@ -193,16 +204,17 @@ def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outw
     return face
 
 
-def _solid(faces: list[TopoDS_Face], tube: CurvatureLineTube) -> TopoDS_Solid:
-    """The closed shell of ``faces`` (the first an outer tube face) as a solid.
+def _solid(shells: list[list[TopoDS_Face]], tube: CurvatureLineTube) -> TopoDS_Solid:
+    """The solid bounded by closed shells of faces (the first face an outer tube face; a
+    closed wall's second shell bounds its cavity).
 
     The faces are oriented by construction (outer normal S_u x S_s points away from the
     axis); one normal is checked. OCCT's general OrientClosedSolid classifies a point by
     ray casting through every face (over half the build time of a 10,000-face wall), so
     it is only the fallback.
     """
-    solid = closed_solid(faces)
-    if not _points_away_from_axis(faces[0], tube):
+    solid = closed_solid(*shells)
+    if not _points_away_from_axis(shells[0][0], tube):
         BRepLib.OrientClosedSolid_s(solid)
     return solid
 

@@ -97,8 +97,19 @@ class Axis(ABC):
 
     @property
     def closed(self) -> bool:
-        """Whether the axis is a closed loop (its tube then has no caps)."""
-        return False
+        """Whether the axis is a closed loop: c and t at the span's end equal those at its
+        start (its tube then has no caps). Kinds set ``_closed`` with :func:`closing`."""
+        return getattr(self, "_closed", False)
+
+    @property
+    def holonomy(self) -> float:
+        """On a closed axis, the angle (radians, in (-pi, pi]) by which the rotation-minimising
+        frame comes back turned about t: r1(L) = cos a r1(0) + sin a r2(0). Its stringers
+        (u = const) meet the closing ring shifted by it. 0 on an open axis."""
+        if not self.closed:
+            return 0.0
+        _, r1, r2 = self.rotation_minimising_frame(np.array(self.span))
+        return float(math.atan2(r1[1] @ r2[0], r1[1] @ r1[0]))
 
     def tube_radius_problem(self, radius: float) -> str | None:
         """Why a tube of ``radius`` cannot be regular, said in the axis' own terms (a route
@@ -140,4 +151,36 @@ class Axis(ABC):
             raise ParameterError(f"span must lie within [{lo:g}, {hi:g}], got [{s0:g}, {s1:g}]")
         curve = copy.copy(self)
         curve.span = (max(s0, lo), min(s1, hi))
+        if curve.span != self.span:
+            curve._closed = False  # a piece of a loop is open
         return curve
+
+
+#: the ends of a closed axis agree to this, relative to its length or its coordinates (c), and in radians (t)
+CLOSING_GAP = 1e-10
+CLOSING_ANGLE = 1e-8
+
+
+def closing(axis: Axis, closed: bool | None, key: str = "closed") -> bool:
+    """Whether ``axis`` is a closed loop: ``closed`` None detects it (the ends and their
+    tangents agree to CLOSING_GAP x max(length, |c|) and CLOSING_ANGLE), True demands it (a
+    ParameterError naming ``key`` says how far the ends are apart, or by how much the
+    tangents differ: the closing rings would not lie in one plane), False keeps it open."""
+    if closed is not None and not isinstance(closed, (bool, np.bool_)):
+        raise ParameterError(f"{key} must be true or false, got {closed!r:.80}")
+    if closed is False:
+        return False
+    ends = axis.position(np.array(axis.span))
+    t = axis.rotation_minimising_frame(np.array(axis.span))[0]
+    gap = float(np.linalg.norm(ends[1] - ends[0]))
+    allowed = CLOSING_GAP * max(axis.length, float(np.abs(ends).max()))  # round-off grows with the coordinates
+    angle = float(math.atan2(np.linalg.norm(np.cross(t[0], t[1])), float(t[0] @ t[1])))
+    if gap <= allowed and angle <= CLOSING_ANGLE:
+        return True
+    if closed:
+        if gap > allowed:
+            raise ParameterError(f"{key} = true, but the axis' ends are {gap:.6g} apart (at most {allowed:.3g} for a "
+                                 "closed loop)")  # fmt: skip
+        raise ParameterError(f"{key} = true, but the tangents at the axis' ends differ by {math.degrees(angle):.6g} deg: "
+                             "the closing rings would not lie in one plane (a kink); the ends must meet tangentially")  # fmt: skip
+    return False

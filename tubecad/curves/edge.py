@@ -42,8 +42,11 @@ def _adaptor(curve: Any):
                          f"got {type(curve).__name__}")  # fmt: skip
 
 
-def edge_axis(curve: Any, *, normal: Sequence[float] | None = None, source: str | None = None) -> ParametricAxis:
-    """The axis along ``curve`` (see the module docstring), from its first parameter to its last."""
+def edge_axis(curve: Any, *, normal: Sequence[float] | None = None, source: str | None = None,
+              closed: bool | None = None) -> ParametricAxis:  # fmt: skip
+    """The axis along ``curve`` (see the module docstring), from its first parameter to its
+    last. ``closed``: a closed loop (None: detected, e.g. a periodic B-spline or a closed
+    wire meeting itself tangentially; True: demanded; False: kept open)."""
     from OCP.GeomAbs import GeomAbs_C1, GeomAbs_C2, GeomAbs_C3
     from OCP.gp import gp_Pnt
 
@@ -82,7 +85,7 @@ def edge_axis(curve: Any, *, normal: Sequence[float] | None = None, source: str 
 
     description = {"curve": "edge", "kind": kind, "source": source or type(curve).__name__, "t": [t0, t1]}
     return ParametricAxis(x, (t0, t1), breaks=breaks, joints=joints, normal=normal, description=description,
-                          name=f"the {kind}")  # fmt: skip
+                          name=f"the {kind}", closed=closed)  # fmt: skip
 
 
 def _tangent(adaptor, t: float) -> np.ndarray:

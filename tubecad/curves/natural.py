@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import ParameterError
 from ..validation import coordinates, span_pair
-from .axis import Axis, FloatArray
+from .axis import Axis, FloatArray, closing
 from .bishop import solve_linear_ode
 from .chebyshev import PiecewiseChebyshev
 from .expression import compile_expression
@@ -67,7 +67,9 @@ def series(func: Function | str, label: str, span: tuple[float, float]) -> tuple
 
 class NaturalAxis(Axis):
     """The curve with curvature ``k`` and torsion ``tau`` (callables of s or expressions in
-    s) over ``span``, starting at ``origin`` with Frenet frame (``tangent``, ``normal``)."""
+    s) over ``span``, starting at ``origin`` with Frenet frame (``tangent``, ``normal``).
+    ``closed``: a closed loop (None: detected when the ends and their tangents agree; True:
+    demanded; False: kept open, see :func:`~.axis.closing`)."""
 
     family = "natural"
 
@@ -80,6 +82,7 @@ class NaturalAxis(Axis):
         origin: Sequence[float] = (0.0, 0.0, 0.0),
         tangent: Sequence[float] = (1.0, 0.0, 0.0),
         normal: Sequence[float] = (0.0, 1.0, 0.0),
+        closed: bool | None = None,
     ) -> None:
         self.span = span_pair("span", span)
         self._k, self.k_text = series(k, "k", self.span)
@@ -100,6 +103,7 @@ class NaturalAxis(Axis):
         self._frame = solve_linear_ode(bishop, breaks, frame0, name="the natural equations' frame")
         self._position = PiecewiseChebyshev(self._frame.breaks, self._frame.coeffs[:, :, 0, :]).antiderivative(
             np.array(self.origin))
+        self._closed = closing(self, closed)
 
     def position(self, s: ArrayLike) -> FloatArray:
         return self._position(self._inside(s))
@@ -132,7 +136,7 @@ class NaturalAxis(Axis):
     def describe(self) -> dict[str, Any]:
         return {"curve": self.family, "k": self.k_text or repr(self._k), "tau": self.tau_text or repr(self._tau),
                 "s": list(self.span), "origin": list(self.origin), "tangent": list(self.tangent),
-                "normal": list(self.normal)}  # fmt: skip
+                "normal": list(self.normal), **({"closed": True} if self.closed else {})}  # fmt: skip
 
     def __repr__(self) -> str:
         return f"NaturalAxis(k={self.k_text!r}, tau={self.tau_text!r}, span={self.span!r})"

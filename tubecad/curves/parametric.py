@@ -24,7 +24,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import ParameterError
 from ..validation import span_pair
-from .axis import Axis, FloatArray
+from .axis import Axis, FloatArray, closing
 from .bishop import solve_linear_ode
 from .chebyshev import PiecewiseChebyshev
 from .expression import compile_expression
@@ -51,7 +51,9 @@ class ParametricAxis(Axis):
     in arc length s from 0 at t_span[0]. ``breaks``: where the series' panels start (where
     the curve is less smooth); ``joints``: (t, continuity of the frame) at such breaks (see
     :attr:`Axis.joints`). ``normal``: the initial r1 (made orthogonal to the tangent;
-    default the principal normal, or any normal where the curve starts straight)."""
+    default the principal normal, or any normal where the curve starts straight).
+    ``closed``: a closed loop (None: detected when the ends and their tangents agree; True:
+    demanded; False: kept open, see :func:`~.axis.closing`)."""
 
     family = "parametric"
 
@@ -65,6 +67,7 @@ class ParametricAxis(Axis):
         normal: Sequence[float] | None = None,
         description: dict[str, Any] | None = None,
         name: str = "the curve x(t)",
+        closed: bool | None = None,
     ) -> None:
         self.t_span = span_pair("t", t_span)
         t0, t1 = self.t_span
@@ -98,6 +101,7 @@ class ParametricAxis(Axis):
         self._joints = tuple((float(self._s(np.array(t))), int(c)) for t, c in joints if t0 < t < t1)
         self._description = description or {"curve": self.family, "t": list(self.t_span)}
         self.family = self._description["curve"]  # points and edge axes are parametric curves too
+        self._closed = closing(self, closed)
 
     # --- in t ---------------------------------------------------------------------------
     def _speed(self, t: np.ndarray) -> np.ndarray:
@@ -188,7 +192,7 @@ class ParametricAxis(Axis):
         return self._joints
 
     def describe(self) -> dict[str, Any]:
-        return {**self._description, "s": list(self.span)}
+        return {**self._description, "s": list(self.span), **({"closed": True} if self.closed else {})}
 
     def __repr__(self) -> str:
         return f"ParametricAxis({self._description!r}, length={self.length:.6g})"

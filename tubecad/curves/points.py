@@ -4,7 +4,9 @@ The points P_0..P_n are given parameters by chord length (t_{i+1} - t_i = |P_{i+
 or centripetally (|P_{i+1} - P_i|^(1/2), Lee 1989: no cusps or loops on uneven spacing),
 and interpolated by the cubic spline with not-a-knot ends (scipy CubicSpline). The spline is C2, so its
 rotation-minimising frame is C1 and the tube is G1 with continuous curvature lines; the
-panels of the axis start at the spline's knots, where x''' jumps.
+panels of the axis start at the spline's knots, where x''' jumps. A closed loop (the last
+point repeats the first, or ``closed=True``) is interpolated by the periodic cubic spline
+instead: C2 all round, the closing point included.
 """
 
 from __future__ import annotations
@@ -43,24 +45,48 @@ def checked_points(points: object, least: int) -> np.ndarray:
     return p
 
 
+def same_point(a: np.ndarray, b: np.ndarray, points: np.ndarray) -> bool:
+    """Whether points a and b coincide, to 1e-12 of the largest coordinate of ``points``
+    (the test by which :func:`checked_points` refuses a repeated point)."""
+    return float(np.linalg.norm(a - b)) <= 1e-12 * (float(np.abs(points).max()) or 1.0)
+
+
+def closed_loop(points: np.ndarray, closed: object) -> bool:
+    """Whether ``points`` make a closed loop: ``closed`` None when the last point repeats
+    the first, True always, False never."""
+    if closed is not None and not isinstance(closed, (bool, np.bool_)):
+        raise ParameterError(f"closed must be true or false, got {closed!r:.80}")
+    return bool(closed) if closed is not None else same_point(points[0], points[-1], points)
+
+
 def shown(point: np.ndarray) -> str:
     """A point as [x, y, z] for a message."""
     return "[" + ", ".join(f"{v:g}" for v in point) + "]"
 
 
 def points_axis(points: Sequence[Sequence[float]], *, parameterisation: str = "centripetal",
-                normal: Sequence[float] | None = None) -> ParametricAxis:  # fmt: skip
-    """The axis through ``points`` (n x 3), interpolated by a C2 cubic spline (an open curve:
-    closed loops come with closed tubes, which are not built yet)."""
+                normal: Sequence[float] | None = None, closed: bool | None = None) -> ParametricAxis:  # fmt: skip
+    """The axis through ``points`` (n x 3), interpolated by a C2 cubic spline. ``closed``: a
+    closed loop (None: when the last point repeats the first; True: the first point is
+    appended if the last differs; False: an open spline even so), interpolated by the
+    periodic cubic spline through 3 or more distinct points."""
     if parameterisation not in PARAMETERISATIONS:
         raise ParameterError(f"parameterisation must be one of {', '.join(PARAMETERISATIONS)}, got {parameterisation!r:.80}")
     p = checked_points(points, 3)
+    given = len(p)
+    loop = closed_loop(p, closed)
+    if loop:
+        distinct = p[:-1] if same_point(p[0], p[-1], p) else p
+        if len(distinct) < 3:
+            raise ParameterError(f"a closed loop of points needs 3 or more distinct points, got {len(distinct)}")
+        p = np.vstack([distinct, distinct[:1]])  # the last point exactly the first: the periodic spline's condition
     steps = np.linalg.norm(np.diff(p, axis=0), axis=1)
     t = np.concatenate([[0.0], np.cumsum(steps ** PARAMETERISATIONS[parameterisation])])
-    spline = CubicSpline(t, p, bc_type="not-a-knot", axis=0)
-    description = {"curve": "points", "points": len(p),
-                   "interpolation": f"cubic spline (C2), {parameterisation} parameterisation, not-a-knot ends"}  # fmt: skip
+    spline = CubicSpline(t, p, bc_type="periodic" if loop else "not-a-knot", axis=0)
+    interpolation = (f"periodic cubic spline (C2, closed), {parameterisation} parameterisation" if loop else
+                     f"cubic spline (C2), {parameterisation} parameterisation, not-a-knot ends")  # fmt: skip
+    description = {"curve": "points", "points": given, "interpolation": interpolation}
     # the third derivative jumps at the knots: c is C2 there, k only C0, so the frame (c, r1, r2) is C1
     joints = [(float(x), 1) for x in t[1:-1]]
     return ParametricAxis(spline, (float(t[0]), float(t[-1])), breaks=t, joints=joints, normal=normal,
-                          description=description, name="the spline through the points")  # fmt: skip
+                          description=description, name="the spline through the points", closed=loop)  # fmt: skip

@@ -16,6 +16,11 @@ v(phi) = (v.b) b + (v.e1)(cos phi e1 + sin phi e2) + (v.e2)(-sin phi e1 + cos ph
 so r1' = -k1 t with k1 = -(r1 . e1(phi)) / R constant on the bend (likewise k2) and 0 on a
 line. Each piece of the tube is an exact cylinder or torus piece; the frame (c, r1, r2) is
 only C0 at a line-bend joint (k jumps), which :attr:`joints` reports.
+
+A closed route (the last point repeats the first, or ``closed=True``) has its legs and
+bends all round, vertex 0 included (indices mod n). Its axis starts at the end of the
+bend at points[0], on the leg points[0]-points[1], and ends there after that bend: the
+closing is a joint like the others, and the frame comes back turned by the holonomy.
 """
 
 from __future__ import annotations
@@ -29,9 +34,9 @@ from numpy.typing import ArrayLike
 
 from ..errors import ParameterError
 from ..validation import MAX_LENGTH
-from .axis import Axis, FloatArray
+from .axis import Axis, FloatArray, closing
 from .natural import unit_vector
-from .points import checked_points, shown
+from .points import checked_points, closed_loop, same_point, shown
 
 #: turning angles below this (radians) make no bend: the vertex is refused as collinear
 MIN_TURN = 1e-9
@@ -75,65 +80,91 @@ class RouteAxis(Axis):
     """Lines and circular bends through ``points`` (n x 3, n >= 2) with ``bend_radius`` (one
     value, or one per inner vertex); ``normal``: r1 at the start (made normal to the first
     leg; default the first bend's inward normal, or the coordinate axis least along the
-    leg for a straight route)."""
+    leg for a straight route).
+
+    ``closed``: a closed loop (None: when the last point repeats the first; True: the first
+    point is appended if the last differs; False: an open route even so). Every vertex of a
+    loop has a bend, points[0] too (``bend_radius``: one value or one per distinct vertex,
+    points[0]..points[n-1]); the axis starts and ends at the end of the bend at points[0],
+    on the leg points[0]-points[1], so the closing is a joint like the others."""
 
     family = "route"
     rings_at_joints = True
 
     def __init__(self, points: Sequence[Sequence[float]], bend_radius: float | Sequence[float], *,
-                 normal: Sequence[float] | None = None) -> None:  # fmt: skip
+                 normal: Sequence[float] | None = None, closed: bool | None = None) -> None:  # fmt: skip
         p = checked_points(points, 2)
-        radii = _checked_radii(bend_radius, len(p) - 2)
-        legs = np.diff(p, axis=0)
+        loop = closed_loop(p, closed)
+        v = p[:-1] if loop and same_point(p[0], p[-1], p) else p  # the distinct vertices
+        n = len(v)
+        if loop and n < 3:
+            raise ParameterError(f"a closed route needs 3 or more distinct points, got {n}")
+        bent = np.ones(n, dtype=bool)  # the vertices with a bend: all but an open route's ends
+        if not loop:
+            bent[[0, -1]] = False
+        radii = _checked_radii(bend_radius, int(bent.sum()), first=0 if loop else 1)
+        radius = np.zeros(n)
+        radius[bent] = radii
+        # leg j runs from vertex j to vertex j + 1 (mod n on a loop)
+        legs = (np.roll(v, -1, axis=0) - v) if loop else np.diff(v, axis=0)
         lengths = np.linalg.norm(legs, axis=1)
         d = legs / lengths[:, None]
-        turns = np.arccos(np.clip(np.einsum("ij,ij->i", d[:-1], d[1:]), -1.0, 1.0))
-        for i, turn in enumerate(turns, 1):
-            if turn < MIN_TURN:
-                raise ParameterError(f"points[{i}] {shown(p[i])} makes no bend: points[{i - 1}], points[{i}] and "
-                                     f"points[{i + 1}] are collinear; remove it")  # fmt: skip
-            if turn > MAX_TURN:
-                raise ParameterError(f"points[{i}] {shown(p[i])} turns the route back on itself (by "
-                                     f"{math.degrees(turn):.6g} deg); a bend must turn by less than 180 deg")  # fmt: skip
-        tangent = np.concatenate([[0.0], radii * np.tan(turns / 2), [0.0]])  # per vertex
-        for j, length in enumerate(lengths):  # leg j runs from vertex j to j + 1
-            need = tangent[j] + tangent[j + 1]
+        turn = np.zeros(n)  # per vertex: the angle between its legs in and out
+        for i in np.flatnonzero(bent):
+            turn[i] = math.acos(min(max(float(d[i - 1] @ d[i]), -1.0), 1.0))  # d[-1]: a loop's last leg
+            before, after = (i - 1) % n, (i + 1) % n
+            if turn[i] < MIN_TURN:
+                raise ParameterError(f"points[{i}] {shown(v[i])} makes no bend: points[{before}], points[{i}] and "
+                                     f"points[{after}] are collinear; remove it")  # fmt: skip
+            if turn[i] > MAX_TURN:
+                raise ParameterError(f"points[{i}] {shown(v[i])} turns the route back on itself (by "
+                                     f"{math.degrees(turn[i]):.6g} deg); a bend must turn by less than 180 deg")  # fmt: skip
+        tangent = radius * np.tan(turn / 2)  # per vertex; 0 at an open route's ends
+        for j, length in enumerate(lengths):
+            k = (j + 1) % n
+            need = tangent[j] + tangent[k]
             if need > length * (1 + 1e-12):
-                at = j + 1 if tangent[j + 1] >= tangent[j] else j
-                detail = " + ".join(f"{tangent[k]:.6g} (the bend at points[{k}])" for k in (j, j + 1) if tangent[k] > 0)
-                raise ParameterError(f"bend_radius {radii[at - 1]:g} at points[{at}] {shown(p[at])} does not fit: "
-                                     f"the leg points[{j}]-points[{j + 1}] is {length:.6g} long but its bends need "
+                at = k if tangent[k] >= tangent[j] else j
+                detail = " + ".join(f"{tangent[i]:.6g} (the bend at points[{i}])" for i in (j, k) if tangent[i] > 0)
+                raise ParameterError(f"bend_radius {radius[at]:g} at points[{at}] {shown(v[at])} does not fit: "
+                                     f"the leg points[{j}]-points[{k}] is {length:.6g} long but its bends need "
                                      f"{detail}")  # fmt: skip
         self.points, self.bend_radii = p, radii
-        self.pieces = self._build(p, d, lengths, turns, tangent, normal)
+        self.pieces = self._build(v, d, lengths, turn, tangent, radius, loop, normal)
         self.span = (0.0, self.pieces[-1].s1)
         self._starts = np.array([piece.s0 for piece in self.pieces])
+        self._closed = closing(self, True) if loop else False  # the loop's ends agree to round-off
 
     # --- construction -------------------------------------------------------------------
-    def _build(self, p: np.ndarray, d: np.ndarray, lengths: np.ndarray, turns: np.ndarray, tangent: np.ndarray,
-               normal: Sequence[float] | None) -> list[Piece]:  # fmt: skip
+    def _build(self, v: np.ndarray, d: np.ndarray, lengths: np.ndarray, turn: np.ndarray, tangent: np.ndarray,
+               radius: np.ndarray, loop: bool, normal: Sequence[float] | None) -> list[Piece]:  # fmt: skip
+        """The pieces leg by leg: leg j's line, then the bend at its end vertex (if it has
+        one). A loop starts after the bend at vertex 0 and ends with it."""
+        n = len(v)
         r1 = _start_normal(d, normal)
         r2 = np.cross(d[0], r1)
         pieces: list[Piece] = []
         s = 0.0
         for j in range(len(d)):
-            a = p[j] + tangent[j] * d[j]
-            line = lengths[j] - tangent[j] - tangent[j + 1]
+            k = (j + 1) % n  # the leg's end vertex
+            a = v[j] + tangent[j] * d[j]
+            line = lengths[j] - tangent[j] - tangent[k]
             if line > 1e-12 * max(lengths[j], 1.0):
                 pieces.append(Piece("line", s, s + line, a, d[j], r1, r2))
                 s += line
-            if j + 1 < len(d):  # the bend at vertex j + 1
-                R, turn = float(self.bend_radii[j]), float(turns[j])
-                start = p[j + 1] - tangent[j + 1] * d[j]
-                inward = d[j + 1] - float(d[j + 1] @ d[j]) * d[j]
+            if radius[k] > 0:  # the bend at vertex k
+                d_out = d[k]
+                R, angle = float(radius[k]), float(turn[k])
+                start = v[k] - tangent[k] * d[j]
+                inward = d_out - float(d_out @ d[j]) * d[j]
                 inward /= np.linalg.norm(inward)
-                bend = Piece("bend", s, s + R * turn, start, d[j], r1, r2, j + 1, start + R * inward, R, -inward)
+                bend = Piece("bend", s, s + R * angle, start, d[j], r1, r2, k, start + R * inward, R, -inward)
                 pieces.append(bend)
-                s += R * turn
-                r1, r2 = (bend.rotate(v, np.array(turn)) for v in (r1, r2))
-                r1 = r1 - float(r1 @ d[j + 1]) * d[j + 1]  # round-off only
+                s += R * angle
+                r1, r2 = (bend.rotate(x, np.array(angle)) for x in (r1, r2))
+                r1 = r1 - float(r1 @ d_out) * d_out  # round-off only
                 r1 /= np.linalg.norm(r1)
-                r2 = np.cross(d[j + 1], r1)
+                r2 = np.cross(d_out, r1)
         return pieces
 
     # --- evaluation ---------------------------------------------------------------------
@@ -210,13 +241,15 @@ class RouteAxis(Axis):
     def describe(self) -> dict[str, Any]:
         return {"curve": self.family, "points": self.points.tolist(), "bend_radius": self.bend_radii.tolist(),
                 "bends": sum(p.kind == "bend" for p in self.pieces), "lines": sum(p.kind == "line" for p in self.pieces),
-                "s": list(self.span)}  # fmt: skip
+                "s": list(self.span), **({"closed": True} if self.closed else {})}  # fmt: skip
 
     def __repr__(self) -> str:
         return f"RouteAxis({len(self.points)} points, length={self.length:.6g})"
 
 
-def _checked_radii(bend_radius: object, inner: int) -> np.ndarray:
+def _checked_radii(bend_radius: object, inner: int, first: int = 1) -> np.ndarray:
+    """One radius per bent vertex points[first]..points[first + inner - 1] (first 1: an open
+    route's inner vertices; 0: every vertex of a loop)."""
     values = [bend_radius] if isinstance(bend_radius, (int, float, np.number)) else bend_radius
     try:
         radii = np.asarray(values, dtype=float).ravel()
@@ -227,9 +260,10 @@ def _checked_radii(bend_radius: object, inner: int) -> np.ndarray:
     if radii.size == 1:
         radii = np.full(inner, radii[0])
     elif radii.size != inner:
-        raise ParameterError(f"bend_radius must be one number or {inner} (one per inner vertex points[1]..points[{inner}]), "
-                             f"got {radii.size}")  # fmt: skip
-    for i, r in enumerate(radii, 1):
+        which = "inner vertex" if first else "vertex of the loop"
+        raise ParameterError(f"bend_radius must be one number or {inner} (one per {which} points[{first}].."
+                             f"points[{first + inner - 1}]), got {radii.size}")  # fmt: skip
+    for i, r in enumerate(radii, first):
         if not (math.isfinite(r) and 0 < r <= MAX_LENGTH):
             raise ParameterError(f"bend_radius at points[{i}] must be a finite number > 0, got {r:g}")
     return radii

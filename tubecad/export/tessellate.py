@@ -229,5 +229,12 @@ def mesh_deviation(axis, radii: Sequence[float], vertices: np.ndarray, triangles
     radius = radii[np.argmin(np.abs(dist[tube].mean(axis=1)[:, None] - radii[None, :]), axis=1)]
     a, b = tube, np.roll(tube, -1, axis=1)  # the three edges (a_k, b_k) of each triangle
     midpoints = 0.5 * (vertices[a] + vertices[b]).reshape(-1, 3)
-    d, _ = distance_to_axis(axis, midpoints, 0.5 * (s[a] + s[b]).reshape(-1), iters=4)  # from a close guess
+    step = s[b] - s[a]
+    if axis.closed:  # an edge across the closing ring: its ends are near s0 and s1, its middle at either
+        step = np.where(np.abs(step) > 0.5 * axis.length, step - np.sign(step) * axis.length, step)
+    guess = s[a] + 0.5 * step
+    if axis.closed:
+        guess = axis.span[0] + np.mod(guess - axis.span[0], axis.length)
+    guess = np.clip(guess, *axis.span).reshape(-1)
+    d, _ = distance_to_axis(axis, midpoints, guess, iters=4)  # from a close guess
     return vertex, float(np.abs(d - np.repeat(radius, 3)).max())

@@ -32,22 +32,23 @@ def build_axis(curve: str, values: dict[str, Any], base: Path | None = None, len
         from ..curves.natural import NaturalAxis
 
         frame = {key: values[key] for key in ("origin", "tangent", "normal") if key in values}
-        return NaturalAxis(values["k"], values["tau"], span_pair("s", values["s"]), **frame)
+        return NaturalAxis(values["k"], values["tau"], span_pair("s", values["s"]), **frame, closed=values.get("closed"))
     if curve == "parametric":
         from ..curves.parametric import ParametricAxis, expression_curve
 
         description = {"curve": "parametric", **{key: values[key] for key in ("x", "y", "z")}, "t": list(values["t"])}
         return ParametricAxis(expression_curve(values["x"], values["y"], values["z"]), span_pair("t", values["t"]),
-                              normal=values.get("normal"), description=description)  # fmt: skip
+                              normal=values.get("normal"), description=description, closed=values.get("closed"))  # fmt: skip
     if curve == "points":
         from ..curves.points import points_axis
 
         return points_axis(_points(values, base), parameterisation=values.get("parameterisation", "centripetal"),
-                           normal=values.get("normal"))  # fmt: skip
+                           normal=values.get("normal"), closed=values.get("closed"))  # fmt: skip
     if curve == "route":
         from ..curves.route import RouteAxis
 
-        return RouteAxis(_points(values, base), values["bend_radius"], normal=values.get("normal"))
+        return RouteAxis(_points(values, base), values["bend_radius"], normal=values.get("normal"),
+                         closed=values.get("closed"))  # fmt: skip
     if curve == "edge":
         from ..curves.edge import edge_axis
 
@@ -55,7 +56,7 @@ def build_axis(curve: str, values: dict[str, Any], base: Path | None = None, len
             raise ParameterError(f"index must be >= 0 (wires first, then edges), got {values['index']}")
         path = _file(values["file"], base)
         shape, what = read_centreline(path, values.get("name"), values.get("index"), length_unit)
-        return edge_axis(shape, normal=values.get("normal"), source=f"{path.name}: {what}")
+        return edge_axis(shape, normal=values.get("normal"), source=f"{path.name}: {what}", closed=values.get("closed"))
     raise ParameterError(f"curve {curve!r} is not a kind of axis")  # the key table keeps this unreachable
 
 

@@ -87,8 +87,11 @@ def stiffener_selection(spec: TubeSpec, build: TubeBuild) -> StiffenerSelection 
     density = section.get("density", steel_density(spec.length_unit))  # kg per cubic [units] length
     if not density > 0:
         raise SpecError(f"{spec.source}: [stiffeners] density must be > 0, got {density}")
-    return StiffenerSelection(chosen("rings", len(build.layout.s_rings)), chosen("stringers", len(build.layout.stringers_deg)),
-                              profile, side, section.get("fuse", False), density)  # fmt: skip
+    from ..stiffeners.assembly import distinct_rings
+
+    rings = distinct_rings(build, chosen("rings", len(build.layout.s_rings)))
+    return StiffenerSelection(rings, chosen("stringers", len(build.layout.stringers_deg)), profile, side,
+                              section.get("fuse", False), density)  # fmt: skip
 
 
 def stiffeners_from_spec(spec: TubeSpec, build: TubeBuild, progress: ProgressCallback | None = None

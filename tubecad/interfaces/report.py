@@ -42,6 +42,8 @@ def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT
         "closest_axis_return": reg.closest_approach,
         "closest_axis_return_s": list(reg.closest_pair) if reg.closest_pair else None,
         "regular": reg.ok,
+        "closed": tube.axis.closed,
+        "holonomy_deg": float(np.degrees(tube.axis.holonomy)) if tube.axis.closed else None,
         "max_axis_distance_error": dist_err,
         "max_closest_axis_point_s_error": s_err,
         "grid": {"nu": net.nu, "ns": net.ns, "points": net.nu * net.ns},
@@ -51,6 +53,8 @@ def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT
             "in the isoline frame relative to its norm",
             "area_numeric": "Gauss-Legendre (s) x periodic trapezoid (u) quadrature of |S_u x S_s|",
             "max_axis_distance_error": "max |distance to the closest axis point - rho| on a 32 x 201 grid",
+            "holonomy_deg": "on a closed axis, the angle the rotation-minimising frame comes back turned by "
+            "(r1(L) = cos h r1(0) + sin h r2(0)): the stringers meet the closing ring shifted by it",
         },
     }
 

@@ -47,6 +47,9 @@ SLOPE_KEYS = {
 #: an axis' optional start normal r1 (the stringers' u = 0)
 NORMAL_KEY = Key("triple", required=False, help="the first stringer's direction r1 at the start, [x, y, z] "
                                                 "(made normal to the tangent; default the principal normal)")  # fmt: skip
+#: whether an axis is a closed loop (not a slope curve's: those never close)
+CLOSED_KEY = Key("bool", required=False, help="a closed loop (true: demand, false: keep open; default: detected "
+                                              "when the ends and tangents agree)")  # fmt: skip
 
 #: curve -> its [axis] keys (besides curve)
 FAMILY_KEYS: dict[str, dict[str, Key]] = {
@@ -67,6 +70,7 @@ FAMILY_KEYS: dict[str, dict[str, Key]] = {
         "origin": Key("triple", required=False, help="axis point at the start, [x, y, z] (default [0, 0, 0])"),
         "tangent": Key("triple", required=False, help="unit tangent at the start (default [1, 0, 0])"),
         "normal": Key("triple", required=False, help="principal normal at the start (default [0, 1, 0])"),
+        "closed": CLOSED_KEY,
     },
     "parametric": {
         "x": Key("string", help="x(t) as an expression in t"),
@@ -74,6 +78,7 @@ FAMILY_KEYS: dict[str, dict[str, Key]] = {
         "z": Key("string", help="z(t) as an expression in t"),
         "t": Key("pair", help="parameter span [start, end]"),
         "normal": NORMAL_KEY,
+        "closed": CLOSED_KEY,
     },
     "points": {
         "points": Key("points", required=False, help="the points [[x, y, z], ...], 3 or more (or file)"),
@@ -81,6 +86,7 @@ FAMILY_KEYS: dict[str, dict[str, Key]] = {
         "parameterisation": Key("string", required=False, help="centripetal | chord (default centripetal)",
                                 choices=("centripetal", "chord"), default="centripetal"),
         "normal": NORMAL_KEY,
+        "closed": CLOSED_KEY,
     },
     "route": {
         "points": Key("points", required=False, help="the route's vertices [[x, y, z], ...], 3 or more (or file)"),
@@ -88,6 +94,7 @@ FAMILY_KEYS: dict[str, dict[str, Key]] = {
         "bend_radius": Key("number_or_numbers", help="the bends' radius (of the axis): one number, or one per inner "
                                                      "vertex; each bend must fit its legs and exceed the tube radius"),
         "normal": NORMAL_KEY,
+        "closed": CLOSED_KEY,
     },
     "edge": {
         "file": Key("string", help="a STEP or BREP file holding the centreline, relative to the spec"),
@@ -95,6 +102,7 @@ FAMILY_KEYS: dict[str, dict[str, Key]] = {
         "index": Key("integer", required=False, help="which edge or wire (0-based, wires first) if several",
                      low=0, low_open=False),
         "normal": NORMAL_KEY,
+        "closed": CLOSED_KEY,
     },
 }  # fmt: skip
 AXIS_COMMON = {

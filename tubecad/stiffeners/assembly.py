@@ -40,6 +40,7 @@ def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence
         bad = [i for i in chosen if not (isinstance(i, int) and 0 <= i < count)]
         if bad:
             raise ParameterError(f"stiffener {name} must be indices in [0, {count - 1}], got {bad}")
+    rings = distinct_rings(build, rings)
     makers = [lambda i=i: ring_stiffener(base, layout.s_rings[i], profile, side, tolerance, f"ring_{i:02d}")
               for i in rings]  # fmt: skip
     makers += [lambda j=j: stringer_stiffener(base, layout.stringers_deg[j], profile, side, tolerance=tolerance,
@@ -50,6 +51,14 @@ def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence
         if progress is not None:
             progress(out[-1].name, len(out), len(makers))
     return out
+
+
+def distinct_rings(build: TubeBuild, rings: Sequence[int]) -> list[int]:
+    """The ring indices ``rings``, each ring once: on a closed tube the last ring of the
+    layout is the first one (the closing ring), so its index becomes 0."""
+    last = len(build.layout.s_rings) - 1
+    closed = build.surfaces[0].tube.axis.closed
+    return list(dict.fromkeys(0 if closed and i == last else i for i in rings))
 
 
 def named_assembly(build: TubeBuild, stiffeners: Sequence[Stiffener], lines: Sequence[CurvatureLine] = (),

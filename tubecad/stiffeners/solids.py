@@ -27,7 +27,7 @@ import numpy as np
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 from OCP.Geom import Geom_BSplineSurface
 
-from ..brep.assembled import CapPlane, Strip, strip_solid
+from ..brep.assembled import CapPlane, Strip, closed_strip_solid, strip_solid
 from ..fitting.tolerance import orthogonality_for
 from ..errors import ParameterError
 from ..fitting import FitError, exact_section_surface, fit_frame
@@ -56,30 +56,49 @@ class Stiffener:
 
     def length(self) -> float:
         """Length of its line on the wall: 2 pi R for a ring; Int sqrt(G) ds along u = angle
-        for a stringer (Gauss-Legendre on the exact G = (1 - R k cos phi)^2)."""
+        for a stringer (Gauss-Legendre on the exact G = (1 - R k cos phi)^2, on 32 panels
+        also cut at the axis' joints, where k may jump: a route's line-bend joints)."""
         if self.kind == "ring":
             return 2 * math.pi * self.base.radius
         x, w = np.polynomial.legendre.leggauss(32)
-        edges = np.linspace(*self.base.span, 33)
+        s0, s1 = self.base.span
+        edges = np.unique(np.concatenate([np.linspace(s0, s1, 33), [s for s, _ in self.base.axis.joints if s0 < s < s1]]))
         s = (0.5 * (edges[1:] + edges[:-1])[:, None] + 0.5 * np.diff(edges)[:, None] * x).ravel()
         g = self.base.fundamental_forms(math.radians(self.value), s).G
-        return float((np.sqrt(g) * np.tile(w, 32) * np.repeat(0.5 * np.diff(edges), 32)).sum())
+        return float((np.sqrt(g) * np.tile(w, len(edges) - 1) * np.repeat(0.5 * np.diff(edges), 32)).sum())
 
 
 def ring_stiffener(tube: CurvatureLineTube, s: float, profile: Profile, side: str = "outside",
                    tolerance: float = 1e-8, name: str = "ring") -> Stiffener:  # fmt: skip
     """The ring frame at ``s`` on the tube of radius R = tube.radius (the wall's face it stands on):
-    its cross-section swept round the tube as one solid (:mod:`.rings`), clipped to the span."""
+    its cross-section swept round the tube as one solid (:mod:`.rings`), clipped to the span.
+    On a closed axis the ring at either end of the span is the closing ring: its halves
+    at both ends, fused into one solid."""
     _check_side(side)
-    section = ring_section(profile, s, tube.radius, side, tube.span)
-    sub = tube.axis.restricted((min(p[0] for p in section), max(p[0] for p in section)))
-    reach = checked_reach(sub, profile, tube.radius, side, "ring")  # before anything is fitted
-    try:
-        solid = bd.Solid(ring_solid(tube.axis, section, tolerance))
-    except FitError as exc:
-        raise fit_failure(exc, name, sub, reach) from None
+    s0, s1 = tube.span
+    closing = tube.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0)
+    ends = (s0, s1) if closing else (s,)  # the closing ring of a closed tube stands on both ends of the span
+    halves = []
+    for at in ends:
+        section = ring_section(profile, at, tube.radius, side, tube.span)
+        sub = tube.axis.restricted((min(p[0] for p in section), max(p[0] for p in section)))
+        reach = checked_reach(sub, profile, tube.radius, side, "ring")  # before anything is fitted
+        try:
+            halves.append(bd.Solid(ring_solid(tube.axis, section, tolerance)))
+        except FitError as exc:
+            raise fit_failure(exc, name, sub, reach) from None
+    solid = halves[0] if len(halves) == 1 else _fused(halves, name)
     base = CurvatureLineTube(tube.axis, tube.radius, allow_irregular=True)
-    return Stiffener(name, "ring", float(s), solid, profile, side, base)
+    return Stiffener(name, "ring", float(ends[0]), solid, profile, side, base)
+
+
+def _fused(halves: list[bd.Solid], name: str) -> bd.Solid:
+    """The two halves of the closing ring (they meet in its plane) as one solid."""
+    fused = halves[0].fuse(halves[1]).clean()
+    solids = fused.solids()
+    if len(solids) != 1:
+        raise ParameterError(f"{name}: the halves of the closing ring did not fuse into one solid")
+    return solids[0]
 
 
 def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profile, side: str = "outside",
@@ -115,8 +134,36 @@ def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profi
     # the outline runs counter-clockwise in (w, v), i.e. clockwise about +t (E x N = -t),
     # when the stiffener stands outside; mirrored (inside) it runs counter-clockwise
     ccw = _shoelace(corners) < 0
-    solid, _ = strip_solid(strips, s0, s1, (cap_plane(frame, s0), cap_plane(frame, s1)), counter_clockwise=ccw)
+    cuts = [s for s, continuity in axis.joints if continuity == 0]  # e.g. a route's line-bend joints: faces end there
+    if _closes_on_itself(axis, corners, name):
+        solid, _ = closed_strip_solid(strips, s0, s1, ccw, cuts)
+    else:
+        solid, _ = strip_solid(strips, s0, s1, (cap_plane(frame, s0), cap_plane(frame, s1)), ccw, cuts)
     return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, base_tube)
+
+
+#: a stringer round a closed axis closes on itself when its section comes back within this
+CLOSING_GAP = 1e-8
+
+
+def _closes_on_itself(axis, corners: list[tuple[float, float]], name: str) -> bool:
+    """Round a closed axis a stringer's section comes back turned by the holonomy h (its
+    end at angle th + h on the closing ring, where it started at th). h = 0 (a planar loop):
+    it closes on itself, no caps. Otherwise its end cap must clear its start cap: |h| must
+    exceed the section's angular width as seen from the axis (else refused, named)."""
+    if not axis.closed:
+        return False
+    turn = math.remainder(axis.holonomy, 2 * math.pi)
+    reach = max(r for _, r in corners)
+    if reach * abs(turn) <= CLOSING_GAP:
+        return True
+    angles = [math.atan2(w, r) for w, r in corners]
+    width = max(angles) - min(angles)
+    if abs(turn) <= width + 1e-9:
+        raise ParameterError(f"{name} would touch its own start where the closed tube closes: the rotation-minimising "
+                             f"frame comes back turned by the holonomy {math.degrees(turn):.6g} deg, less than the "
+                             f"stringer's angular width {math.degrees(width):.6g} deg; leave it out or narrow the profile")  # fmt: skip
+    return False
 
 
 def cap_plane(frame, s: float) -> CapPlane:

@@ -10,7 +10,7 @@ rho |k| < 1 cannot bring its points closer than 2 rho, by Schur's comparison the
 
 Surface points are sampled every rho / 8 along the axis and 32 around it, and each
 candidate is refined by Newton's method; a penetration shallower than about
-rho / 500 can be missed.
+rho / 500 can be missed. On a closed axis "along it" is the shorter way round the loop.
 """
 
 from __future__ import annotations
@@ -139,7 +139,7 @@ def _closest_return(
         tree = cKDTree(pts)
     pairs = tree.query_pairs(REPORT_RETURNS_WITHIN * radius, output_type="ndarray")
     if len(pairs):
-        pairs = pairs[np.abs(ss[pairs[:, 0]] - ss[pairs[:, 1]]) >= math.pi * radius]
+        pairs = pairs[_apart(axis, ss[pairs[:, 0]], ss[pairs[:, 1]]) >= math.pi * radius]
     if len(pairs) == 0:
         return None, None, None
     dist = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
@@ -182,7 +182,7 @@ def _deepest_entry(
     circle_s = np.repeat(ss[near], len(u))
     surf = surf.reshape(-1, 3)
     cand = cKDTree(surf).sparse_distance_matrix(tree, radius + h, output_type="ndarray")
-    far = np.abs(ss[cand["j"]] - circle_s[cand["i"]]) >= math.pi * radius
+    far = _apart(axis, ss[cand["j"]], circle_s[cand["i"]]) >= math.pi * radius
     cand = cand[far]
     if len(cand) == 0:
         return None, 0
@@ -205,13 +205,20 @@ def _deepest_entry(
     # depth ~ 0 (to round-off) away from the ends is a surface lying on another part of
     # itself (a circle run round more than once): refused too; a ring closed end to end is not
     c_s = circle_s[p_idx]
-    interior = (np.minimum(c_s - lo, hi - c_s) > h) & (np.minimum(x - lo, hi - x) > h)
+    interior = (np.minimum(c_s - lo, hi - c_s) > h) & (np.minimum(x - lo, hi - x) > h) | axis.closed
     touching = (np.abs(depth) <= 1e-9 * radius) & interior
-    inside = ((depth > 1e-9 * radius) | touching) & in_disc & (np.abs(x - c_s) >= math.pi * radius)
+    inside = ((depth > 1e-9 * radius) | touching) & in_disc & (_apart(axis, x, c_s) >= math.pi * radius)
     if not inside.any():
         return None, len(cand)
     k = np.flatnonzero(inside)[np.argmax(depth[inside])]
     return (float(depth[k]), float(circle_s[p_idx[k]]), float(x[k])), len(cand)
+
+
+def _apart(axis: Axis, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """How far apart arc lengths a and b lie along the axis: |a - b|, or the shorter way
+    round a closed loop, min(|a - b|, L - |a - b|)."""
+    d = np.abs(a - b)
+    return np.minimum(d, axis.length - d) if axis.closed else d
 
 
 def _refine_closest(axis: Axis, ss: np.ndarray, i: int, j: int, sampled: float) -> tuple[float, tuple[float, float]]:
