@@ -6,8 +6,11 @@ build and STEP time, validity. Ratios are tubecad / best peer: below 1 tubecad i
 ``python benchmarks/axes.py [--quick]`` (also ``benchmarks/run.py --only axes``). Cases:
 
 - trefoil: ParametricAxis of expression_curve("40*(sin(t)+2*sin(2*t))",
-  "40*(cos(t)-2*cos(2*t))", "-40*sin(3*t)") for t in [0, 5.5], rho 8 (samples/trefoil.toml):
-  an open piece of the knot, as the closed loop is not supported yet (--quick: t in [0, 2]);
+  "40*(cos(t)-2*cos(2*t))", "-40*sin(3*t)") for t in [0, 2 pi], rho 8
+  (samples/trefoil_closed.toml): the whole knot, a closed loop (detected: axis.closed), so
+  the tube is closed, without caps (tubecad: two faces, the fewest a closed tube takes);
+  its rotation-minimising frame comes back turned by the holonomy (axis.holonomy, in the
+  case's notes), which tubecad's stringers take up at the closing ring;
 - spline edge: edge_axis of the build123d Spline through (0,0,0), (60,25,10), (120,10,45),
   (180,-30,40), (230,-20,0), rho 6 (samples/build123d_spline_wall.py's centreline);
 - route: RouteAxis through (0,0,0), (300,0,0), (300,250,0), (300,250,200), (450,400,200)
@@ -20,10 +23,19 @@ against it too:
 
 - spline edge: the edge itself, and the same edge with 9 knots inserted in every span;
 - route: its lines and arcs as a wire (the same curve exactly);
-- trefoil: a cubic through 2001 points with exact tangents at arc-length parameters
-  (peers.spine, compare.py's recipe; --quick 501), a degree-8 B-spline approximating 1001
-  exact points to 1e-11 (GeomAPI_PointsToBSpline), and that B-spline with 9 knots inserted
-  in every span.
+- trefoil: closed periodic curves (the sweeps along a closed spine): a periodic cubic
+  through 2000 points with exact tangents at arc-length parameters (compare.py's recipe,
+  GeomAPI_Interpolate with PeriodicFlag; --quick 1000), a periodic degree-8 B-spline on
+  uniform knots fitted by least squares to within 1e-11 of 1000 exact points (the fewest
+  spans, in steps of 50, that reach it; GeomAPI_PointsToBSpline, the open cases' recipe,
+  makes no periodic curve), and that B-spline with 9 knots inserted in every span.
+
+The Frenet frame is the curve's own, so it closes round the loop; a sweep whose frame does
+not (CorrectedFrenet, which build123d's is_frenet=False uses too, and DiscreteTrihedron:
+they turn by the holonomy, as a rotation-minimising frame does) cannot close its surface on
+itself: its solid is invalid by BRepCheck and not counted. A method that raises is
+reported as failed (its error in the table and the JSON), not a crash. On the closed axis
+the closest-point search runs across the closing (tubecad.surface.checks.distance_to_axis).
 
 Knot insertion leaves the curve as it is; it is there for DiscreteTrihedron, which samples
 its frame at 10 points per knot span (GeomFill_DiscreteTrihedron::Init), turns it by the
@@ -41,17 +53,20 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import time
 from typing import Callable
 
 import build123d as bd
 import numpy as np
-from compare import method_table, ratios, run_methods
-from measure import Measured
-from peers import DEFAULT_TOLERANCE, SWEEPS, spine, spine_deviation, tubecad_at, tubecad_solid
+from compare import method_table, ratios, timed_build
+from measure import Measured, measure
+from peers import DEFAULT_TOLERANCE, SWEEPS, spine_deviation
+from peers import tubecad_at as open_tubecad_at
 
 from tubecad import CurvatureLineTube, ParametricAxis, edge_axis, expression_curve
+from tubecad.brep import NetLayout, build_tube_solid
 from tubecad.curves.route import RouteAxis
 from tubecad.surface.checks import net_errors
 
@@ -67,6 +82,8 @@ REFINE = 10
 FAILED = 1e-3
 #: a spine further than this from the exact axis is refused (a failed approximation, not a spine)
 SPINE_LIMIT = 1e-6
+#: the closed trefoil's degree-8 periodic spine: degree, exact points, tolerance, spans tried
+PERIODIC_DEGREE, PERIODIC_POINTS, PERIODIC_TOLERANCE, PERIODIC_SPANS = 8, 1000, 1e-11, range(100, 1001, 50)
 
 
 def timed(make: Callable, *args):
@@ -76,32 +93,70 @@ def timed(make: Callable, *args):
     return value, time.perf_counter() - start
 
 
+def tubecad_at(tolerance: float) -> Callable:
+    """peers.tubecad_at (one face), but round a closed axis the closed tube, which takes a
+    ring besides the closing one: two faces (3 rings, 1 stringer), no caps."""
+    open_tube = open_tubecad_at(tolerance)
+
+    def make(tube: CurvatureLineTube, path):
+        if not tube.axis.closed:
+            return open_tube(tube, path)
+        return build_tube_solid(tube, NetLayout.equal(tube, 3, 1), tolerance).shape, True
+
+    return make
+
+
+tubecad_solid = tubecad_at(DEFAULT_TOLERANCE)
+
+
 def edge_of(curve) -> bd.Edge:
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 
     return bd.Edge(BRepBuilderAPI_MakeEdge(curve).Edge())
 
 
-def approximated_spine(tube: CurvatureLineTube, points: int = 1001, degree: int = 8, tolerance: float = 1e-11) -> bd.Edge:
-    """A smooth B-spline (degree <= ``degree``, C3) within ``tolerance`` of ``points`` exact
-    axis points at their arc lengths (GeomAPI_PointsToBSpline)."""
-    from OCP.GeomAbs import GeomAbs_C3
-    from OCP.GeomAPI import GeomAPI_PointsToBSpline
-    from OCP.gp import gp_Pnt
+def periodic_cubic(tube: CurvatureLineTube, points: int) -> bd.Edge:
+    """The closed axis as a periodic cubic (GeomAPI_Interpolate, PeriodicFlag) through
+    ``points`` exact points (the closing one not repeated) with their exact unit tangents,
+    parameterised by arc length: peers.spine's recipe, closed."""
+    s = np.linspace(*tube.span, points + 1)
+    a = tube.axis.at(s[:-1])
+    return bd.Edge.make_spline([bd.Vector(*p) for p in a.position], tangents=[bd.Vector(*t) for t in a.t],
+                               periodic=True, parameters=list(s), scale=False)  # fmt: skip
 
-    from tubecad.occ_compat import Array1OfPnt, Array1OfReal
 
-    s = np.linspace(*tube.span, points)
+def periodic_fit(tube: CurvatureLineTube, points: int = PERIODIC_POINTS, degree: int = PERIODIC_DEGREE,
+                 tolerance: float = PERIODIC_TOLERANCE) -> tuple[bd.Edge, int]:  # fmt: skip
+    """The closed axis as a periodic B-spline of ``degree`` on uniform knots (C^(degree-1)
+    everywhere, the closing point too), fitted by least squares to ``points`` exact points at
+    their arc lengths: the fewest spans of PERIODIC_SPANS within ``tolerance`` of them."""
+    from scipy.interpolate import BSpline
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.linalg import splu
+
+    s0, s1 = tube.span
+    s = np.linspace(s0, s1, points + 1)[:-1]
     xyz = tube.axis.position(s)
-    pts, params = Array1OfPnt(1, points), Array1OfReal(1, points)
-    for i in range(points):
-        pts.SetValue(i + 1, gp_Pnt(*xyz[i]))
-        params.SetValue(i + 1, float(s[i]))
-    return edge_of(GeomAPI_PointsToBSpline(pts, params, 3, degree, GeomAbs_C3, tolerance).Curve())
+    for spans in PERIODIC_SPANS:
+        h = (s1 - s0) / spans
+        basis = BSpline.design_matrix(s, s0 + h * np.arange(-degree, spans + degree + 1), degree).tocoo()
+        # the basis functions that wrap round the loop are one (duplicates are summed)
+        periodic = csr_matrix((basis.data, (basis.row, basis.col % spans)), shape=(points, spans))
+        gram = splu((periodic.T @ periodic).tocsc())  # sparse normal equations (B is well conditioned)
+        poles = gram.solve(periodic.T @ xyz)
+        poles += gram.solve(periodic.T @ (xyz - periodic @ poles))  # one step of refinement
+        if np.linalg.norm(periodic @ poles - xyz, axis=1).max() <= tolerance:
+            break
+    else:
+        raise RuntimeError(f"no periodic degree-{degree} fit within {tolerance:g} with up to {spans} spans")
+    knots = list(s0 + h * np.arange(spans + 1))
+    knots[-1] = s1
+    return bd.Edge.make_bspline([tuple(p) for p in poles], knots, degree, periodic=True), spans
 
 
 def refined(edge: bd.Edge, per_span: int = REFINE) -> bd.Edge:
-    """The same B-spline curve (a copy) with ``per_span - 1`` knots inserted in every span."""
+    """The same B-spline curve (a copy; periodic if it is) with ``per_span - 1`` knots
+    inserted in every span."""
     from OCP.BRepAdaptor import BRepAdaptor_Curve
     from OCP.GeomConvert import GeomConvert
 
@@ -128,18 +183,28 @@ def route_wire(axis: RouteAxis) -> bd.Wire:
 
 
 def trefoil(quick: bool):
-    """The trefoil-knot piece (t in [0, 5.5]; --quick [0, 2]) and its three spines."""
-    t1 = 2.0 if quick else 5.5
-    axis = ParametricAxis(expression_curve(*TREFOIL), (0.0, t1))
+    """The whole trefoil knot (t in [0, 2 pi], closed) and its three closed spines."""
+    axis = ParametricAxis(expression_curve(*TREFOIL), (0.0, 2.0 * math.pi))
+    if not axis.closed:
+        raise RuntimeError("the trefoil knot over t in [0, 2 pi] is not detected closed")
     tube = CurvatureLineTube(axis, 8.0)
-    cubic = 501 if quick else 2001
-    spines = {f"cubic {cubic}": (lambda built: spine(tube, cubic),
-                                 f"cubic through {cubic} points with exact tangents at arc-length parameters"),
-              "degree 8": (lambda built: approximated_spine(tube), "degree 8, C3, within 1e-11 of 1001 points (PointsToBSpline)"),
-              "degree 8 refined": (lambda built: refined(built["degree 8"]),
-                                   f"the degree-8 spine with {REFINE - 1} knots inserted per span")}  # fmt: skip
-    return tube, spines, (f"ParametricAxis x(t) = {TREFOIL[0]}, y(t) = {TREFOIL[1]}, z(t) = {TREFOIL[2]}, t in [0, {t1:g}]"
-                          " (an open piece: the closed knot is not supported yet)")  # fmt: skip
+    cubic = 1000 if quick else 2000
+    fits: dict = {}
+
+    def degree_8(built):
+        edge, fits["spans"] = periodic_fit(tube)
+        return edge
+
+    spines = {f"periodic cubic {cubic}": (lambda built: periodic_cubic(tube, cubic),
+                                          f"periodic cubic through {cubic} points with exact tangents at arc-length parameters"),
+              "periodic degree 8": (degree_8, lambda: f"periodic degree 8 on {fits['spans']} uniform spans (C7), least squares "
+                                              f"within {PERIODIC_TOLERANCE:g} of {PERIODIC_POINTS} points"),
+              "periodic degree 8 refined": (lambda built: refined(built["periodic degree 8"]),
+                                            f"the periodic degree-8 spine with {REFINE - 1} knots inserted per span")}  # fmt: skip
+    turn = axis.holonomy
+    return tube, spines, (f"ParametricAxis x(t) = {TREFOIL[0]}, y(t) = {TREFOIL[1]}, z(t) = {TREFOIL[2]}, t in [0, 2 pi]: "
+                          f"the whole knot, closed (holonomy {turn:.4f} rad = {math.degrees(turn):.2f} deg: the "
+                          "rotation-minimising frame comes back turned by it; no caps)")  # fmt: skip
 
 
 def spline_edge(quick: bool):
@@ -173,6 +238,31 @@ def at_equal_accuracy(variants: list[Measured], peer: Measured) -> tuple[Measure
     return min(variants, key=lambda m: m.max_deviation), False
 
 
+def run_methods(name: str, tube: CurvatureLineTube, runs, samples: int, repeats: int,
+                log=print) -> tuple[list[Measured], dict[str, str]]:  # fmt: skip
+    """compare.run_methods, where a method that raises (building or measuring) is reported,
+    not fatal: the measured methods, and {method: error} of the others."""
+    results: list[Measured] = []
+    errors: dict[str, str] = {}
+    for method, make, path in runs:
+        try:
+            shape, solid, build_s = timed_build(make, tube, path, repeats)
+            results.append(measure(method, shape, tube, build_s, samples, solid=solid))
+        except Exception as exc:  # noqa: BLE001 - a peer failing on this axis is a result
+            errors[method] = f"{type(exc).__name__}: {str(exc).strip() or 'no message'}"[:200]
+            log(f"  {name}: {method}: FAILED ({errors[method]})")
+            continue
+        log(f"  {name}: {method}: {results[-1].max_deviation:.2e} deviation, {build_s * 1e3:.0f} ms"
+            f"{'' if results[-1].valid else ', INVALID'}")  # fmt: skip
+    return results, errors
+
+
+def not_counted(m: Measured, radius: float) -> str | None:
+    """Why a peer's shape is not the tube (None if it is): invalid (BRepCheck), or off it."""
+    why = ([] if m.valid else ["invalid"]) + ([] if m.max_deviation < FAILED * radius else [f"{m.max_deviation:.1e} off"])
+    return ", ".join(why) or None
+
+
 def run_case(name: str, setup: Callable, quick: bool, samples: int, repeats: int, log=print) -> dict:
     (tube, spines, description), axis_s = timed(setup, quick)
     grid = net_errors(tube, *((64, 501) if quick else (256, 2001)))
@@ -183,15 +273,20 @@ def run_case(name: str, setup: Callable, quick: bool, samples: int, repeats: int
         deviation = spine_deviation(tube, paths[label], 20_000)
         if not deviation < SPINE_LIMIT:
             raise RuntimeError(f"{name}: the spine '{label}' is {deviation:.2g} from the axis (limit {SPINE_LIMIT:g})")
-        spine_info[label] = {"description": text, "deviation": deviation, "seconds": seconds}
+        spine_info[label] = {"description": text() if callable(text) else text, "deviation": deviation,
+                             "seconds": seconds, "closed": bool(paths[label].is_closed)}  # fmt: skip
     named = (lambda sweep, label: f"{sweep} [{label}]") if len(paths) > 1 else (lambda sweep, label: sweep)
     runs = [("tubecad", tubecad_solid, None)] + [(f"tubecad, tol {t:.0e}".replace("e-0", "e-"), tubecad_at(t), None)
                                              for t in TUBECAD_TOLERANCES]  # fmt: skip
     runs += [(named(sweep, label), make, path) for label, path in paths.items() for sweep, make in SWEEPS.items()]
-    results = run_methods(name, tube, runs, samples, repeats, log)
-    variants, peers = results[: 1 + len(TUBECAD_TOLERANCES)], results[1 + len(TUBECAD_TOLERANCES) :]
-    made = [m.valid and m.max_deviation < FAILED * tube.radius for m in peers]
-    counted = [m for m, ok in zip(peers, made) if ok]
+    results, errors = run_methods(name, tube, runs, samples, repeats, log)
+    own = [run[0] for run in runs[: 1 + len(TUBECAD_TOLERANCES)]]
+    if own[0] in errors:
+        raise RuntimeError(f"{name}: tubecad failed: {errors[own[0]]}")
+    variants = [m for m in results if m.method in own]
+    peers = [m for m in results if m.method not in own]
+    why = {m.method: not_counted(m, tube.radius) for m in peers}
+    counted = [m for m in peers if why[m.method] is None]
     equal = []
     for peer in counted:
         ours, matched = at_equal_accuracy(variants, peer)
@@ -199,11 +294,14 @@ def run_case(name: str, setup: Callable, quick: bool, samples: int, repeats: int
                       "tubecad_deviation": ours.max_deviation, "matched": matched,
                       "poles_ratio": ours.poles / peer.poles, "build_ratio": ours.build_s / peer.build_s})  # fmt: skip
     return {"axis": description, "kind": tube.axis.family, "length": tube.length, "radius": tube.radius,
+            "closed": tube.axis.closed, "holonomy": tube.axis.holonomy,
             "axis_s": axis_s, "exact_grid": {"F": grid.max_orthogonality_error, "M": grid.max_M_error,
                                              "nu": grid.nu, "ns": grid.ns},
-            "spines": spine_info, "methods": [m.as_dict() for m in results],
-            "failed": [m.method for m, ok in zip(peers, made) if not ok],
-            "ratios": ratios(results[0], counted), "equal_accuracy": equal}  # fmt: skip
+            "spines": spine_info, "methods": [m.as_dict() for m in results], "errors": errors,
+            "failed": [m for m, reason in why.items() if reason is not None] + list(errors),
+            "not_counted": {**{m: reason for m, reason in why.items() if reason is not None},
+                            **{m: "failed" for m in errors}},
+            "ratios": ratios(results[0], counted) if counted else None, "equal_accuracy": equal}  # fmt: skip
 
 
 def run(quick: bool = False, samples: int = 60_000, repeats: int = 3, log=print) -> dict:
@@ -236,6 +334,9 @@ def table(result: dict) -> str:
               "| poles / its | build / its |", "|" + "---|" * 8]  # fmt: skip
     for name, case in result["cases"].items():
         equal = case["equal_accuracy"]
+        if not equal:
+            lines.append(f"| {name} | no peer made the tube | | | | | | |")
+            continue
         poles, build = (max(equal, key=lambda e: e[key]) for key in ("poles_ratio", "build_ratio"))
         best = min(equal, key=lambda e: e["peer_deviation"])
         mark = "" if best["matched"] else " (less accurate)"
@@ -245,16 +346,25 @@ def table(result: dict) -> str:
     for name, case in result["cases"].items():
         spines = "; ".join(f"[{label}] {s['description']}, {s['deviation']:.1e} from the axis, made in {s['seconds']:.2g} s"
                            for label, s in case["spines"].items())  # fmt: skip
-        failed = f"; not counted (not the tube): {', '.join(case['failed'])}" if case["failed"] else ""
+        grouped: dict[str, list[str]] = {}
+        for method, why in case["not_counted"].items():
+            grouped.setdefault(why, []).append(method)
+        groups = "; ".join(f"{why}: {', '.join(methods)}" for why, methods in grouped.items())
+        failed = f"; not counted (not the tube): {groups}" if groups else ""
         lines += ["", f"**{name}** ({case['axis']}; L = {case['length']:.6g}, rho = {case['radius']:g}; "
                       f"spines: {spines}{failed})", ""]  # fmt: skip
-        lines += method_table(case["methods"], [("tubecad / best peer", case["ratios"])])
+        rows = method_table(case["methods"], [("tubecad / best peer", case["ratios"])] if case["ratios"] else [])
+        errors = case.get("errors", {})
+        at = 2 + len(case["methods"])  # after the header and the measured methods, before the ratio row
+        rows[at:at] = [f"| {method} | failed: {error.replace('|', '/')} |" + " |" * 7 + " NO |"
+                       for method, error in errors.items()]  # fmt: skip
+        lines += rows
     return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="a shorter trefoil, fewer samples, one build each")
+    parser.add_argument("--quick", action="store_true", help="a coarser trefoil spine, fewer samples, one build each")
     parser.add_argument("--json", type=str, default=None, help="also write the numbers to this file")
     args = parser.parse_args(argv)
     log = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731

@@ -23,6 +23,8 @@ _PUBLIC = {
     "NaturalAxis": ".curves.natural", "ParametricAxis": ".curves.parametric", "expression_curve": ".curves.parametric",
     "points_axis": ".curves.points", "edge_axis": ".curves.edge",
     "CurvatureLineTube": ".surface", "FundamentalForms": ".surface", "paper_tube": ".examples",
+    "CanalSurface": ".surface.canal", "tube_or_canal": ".surface.canal", "radius_law": ".curves.radius_law",
+    "RadiusLaw": ".curves.radius_law",
     "TubecadError": ".errors", "ParameterError": ".errors", "ExpressionError": ".errors",
     "RegularityError": ".errors", "SpecError": ".errors",
     "show": ".interfaces.viewer",

@@ -14,7 +14,7 @@ out of multi-face tubes; a single face around the tube uses a seam edge instead.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Sequence
 
 import functools
@@ -49,6 +49,10 @@ class PatchFaces:
     faces: list[list[TopoDS_Face]]
     rings: list[list[TopoDS_Edge]]  # rings[i][j]: arc of ring i from stringer j to j+1, along +u
     stringers: list[list[TopoDS_Edge]]  # stringers[j][i]: stringer j from ring i to i+1, along +s
+    #: a closed tube's closing ring (rings[0] and rings[-1] then hold its arcs): (theta_a,
+    #: theta_b, arc) from the origin stringer, and the angle where each stringer ends on it
+    closing_arcs: list[tuple[float, float, TopoDS_Edge]] = field(default_factory=list)
+    closing_ends: list[float] = field(default_factory=list)
 
     def all_faces(self) -> list[TopoDS_Face]:
         return [f for row in self.faces for f in row]
@@ -83,8 +87,8 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
         ])  # fmt: skip
         bounds.append([[(rings[i][j], to_u[j].Translated(gp_Vec2d(0.0, s)), tolerance)] for j in range(n_stringers)])
     if closing is not None:
-        edges, first, last, end_vertices = _closing_ring(tube_surface, s_rings[0], s_rings[-1], angles, vertices[0],
-                                                         closing)  # fmt: skip
+        arcs, first, last, ends = _closing_ring(tube_surface, s_rings[0], s_rings[-1], angles, vertices[0], closing)
+        edges, end_vertices = [edge for _, _, edge in arcs], [v for _, v in ends]
         rings[0], bounds[0] = edges, first
         rings.append(edges)
         bounds.append(last)
@@ -126,7 +130,9 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
             builder.Add(face, wire)
             row.append(TopoDS_Face.Reversed(face) if reverse else face)
         faces.append(row)
-    return PatchFaces(faces, rings, stringers)
+    if closing is None:
+        return PatchFaces(faces, rings, stringers)
+    return PatchFaces(faces, rings, stringers, arcs, [angle for angle, _ in ends])
 
 
 #: on the closing ring, a stringer's end within this distance of a stringer's start shares its vertex
@@ -138,9 +144,10 @@ def _closing_ring(tube_surface: TubeSurface, s_first: float, s_last: float, angl
     """The ring where a closed tube closes: the circle at ``s_first`` (= the one at
     ``s_last``), cut where stringer j starts (angle a_j) and where it ends, turned by the
     holonomy: b_j = a_j + holonomy, since r1(L) = cos(h) r1(0) + sin(h) r2(0). Returns its
-    arcs (in +theta order from a_0), the (edge, pcurve, tolerance) lists of every face
-    column of the first band (theta in [a_j, a_j+1]) and of the last band (theta in
-    [b_j, b_j+1], with pcurves u(theta - h) at s_last), and the stringers' end vertices.
+    arcs (theta_a, theta_b, edge) in +theta order from a_0, the (edge, pcurve, tolerance)
+    lists of every face column of the first band (theta in [a_j, a_j+1]) and of the last
+    band (theta in [b_j, b_j+1], with pcurves u(theta - h) at s_last), and the stringers'
+    ends (angle b_j, vertex).
     The stringers stay true curvature lines: the faces meet the ring shifted, not twisted."""
     two_pi = 2.0 * math.pi
     n = len(start_vertices)
@@ -185,7 +192,7 @@ def _closing_ring(tube_surface: TubeSurface, s_first: float, s_last: float, angl
         last.append([(edge, ring_pcurve(tube_surface.circle, start - shift, start - shift + _width(arcs, edge),
                                         moved=shift - lift).Translated(gp_Vec2d(0.0, s_last)), tolerance)
                      for start, edge, lift in column])  # fmt: skip
-    return [edge for _, _, edge in arcs], first, last, [v for _, v in ends]
+    return arcs, first, last, ends
 
 
 def _width(arcs, edge: TopoDS_Edge) -> float:

@@ -5,6 +5,7 @@ slope curves from a natural equation k(s) and an elevation angle (section 1).
 from .axis import Axis, AxisFrame
 from .custom import CustomCurvature
 from .families import CircleInvolute, Clothoid, Helix, LogSpiral
+from .radius_law import RadiusLaw, radius_law
 from .slope_curve import AxisSample, SlopeCurve
 
 #: spec-file name -> class
@@ -12,4 +13,5 @@ FAMILIES: dict[str, type[SlopeCurve]] = {
     cls.family: cls for cls in (LogSpiral, Helix, Clothoid, CircleInvolute, CustomCurvature)
 }
 
-__all__ = ["Axis", "AxisFrame", "AxisSample", "SlopeCurve", "LogSpiral", "Helix", "Clothoid", "CircleInvolute", "CustomCurvature", "FAMILIES"]
+__all__ = ["Axis", "AxisFrame", "AxisSample", "SlopeCurve", "LogSpiral", "Helix", "Clothoid", "CircleInvolute", "CustomCurvature", "FAMILIES",
+           "RadiusLaw", "radius_law"]

@@ -3,5 +3,7 @@
 from .forms import FundamentalForms, SurfaceDerivatives
 from .regularity import RegularityReport, check_regularity
 from .tube import CurvatureLineTube
+from .canal import CanalRegularity, CanalSurface, tube_or_canal
 
-__all__ = ["CurvatureLineTube", "FundamentalForms", "SurfaceDerivatives", "RegularityReport", "check_regularity"]
+__all__ = ["CurvatureLineTube", "FundamentalForms", "SurfaceDerivatives", "RegularityReport", "check_regularity",
+           "CanalSurface", "CanalRegularity", "tube_or_canal"]

@@ -57,22 +57,28 @@ def distance_to_axis(
     """(distance, s*) from each point to its closest axis point, near ``s_guess`` or, if it is
     None, near the closest of 4001 axis samples.
 
-    Newton on f(x) = (P - c(x)).t(x), f' = -1 + k (P - c(x)).n(x), kept inside the span.
+    Newton on f(x) = (P - c(x)).t(x), f' = -1 + k (P - c(x)).n(x), kept inside the span;
+    round a closed axis it runs on across the closing (s taken mod the length), so a point
+    near the closing ring finds its closest point on either side.
     """
     p = np.asarray(points, dtype=float)
     lo, hi = axis.span
+
+    def inside(x: np.ndarray) -> np.ndarray:
+        return lo + np.mod(x - lo, hi - lo) if axis.closed else np.clip(x, lo, hi)
+
     if s_guess is None:
         from scipy.spatial import cKDTree
 
         samples = np.linspace(lo, hi, 4001)
         s_guess = samples[cKDTree(axis.position(samples)).query(p)[1]]
-    x = np.clip(np.asarray(s_guess, dtype=float), lo, hi)
+    x = inside(np.asarray(s_guess, dtype=float))
     for _ in range(iters):
         a = axis.at(x)
         r = p - a.position
         f = np.einsum("...i,...i", r, a.t)
         fp = -1.0 + np.einsum("...i,...i", r, a.curvature_vector)
-        x = np.clip(x - f / fp, lo, hi)
+        x = inside(x - f / fp)
     return np.linalg.norm(p - axis.position(x), axis=-1), x
 
 

@@ -1,0 +1,250 @@
+"""Radius laws r(s) for canal surfaces (docs/MATH.md section 8).
+
+A canal surface is the envelope of spheres of radius r(s) centred on the axis c(s); it
+exists where |r'| < 1 and r > 0. A law is given as
+
+- a number: a constant radius (r' = r'' = 0 exactly; the canal surface is today's tube);
+- an expression in s (a string, parsed safely by :mod:`.expression`) or a Python callable
+  of s: resolved as a piecewise Chebyshev series on the span, so r', r'', r''' are the
+  series' exact derivatives;
+- a table [[s0, r0], [s1, r1], ...] (s strictly increasing, covering the span): the cubic
+  spline through the points with not-a-knot ends (C2; 2 points give a straight line,
+  3 a parabola).
+
+Every law is checked on its span: r > 0 and |r'| < 1, each sampled densely and its worst
+sample refined, else a one-line ParameterError naming the key and the s where it fails.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import minimize_scalar
+
+from ..errors import ParameterError
+from ..validation import bounded_length, finite_number, span_pair
+from .chebyshev import PiecewiseChebyshev
+from .expression import compile_expression
+
+FloatArray = np.ndarray
+RadiusValue = float | str | Callable[[np.ndarray], np.ndarray] | Sequence[Sequence[float]]
+
+TABLE_INTERPOLATION = "cubic spline through the points, C2, not-a-knot ends (2 points: a straight line, 3: a parabola)"
+#: samples per series panel or table interval when checking r > 0 and |r'| < 1
+SAMPLES_PER_PIECE = 64
+
+
+class RadiusLaw:
+    """r(s) on ``span`` with its derivatives, all vectorised over arrays of s.
+
+    ``kind`` is "constant", "expression", "callable" or "table"; ``breaks`` are the interior
+    s where r is less smooth (a table's knots: r''' jumps there), for solvers to start
+    panels at. Construct with :func:`radius_law`.
+    """
+
+    def __init__(self, kind: str, span: tuple[float, float], name: str, source: Any,
+                 pieces: tuple[Callable[[np.ndarray], np.ndarray], ...] | None, *, breaks: Sequence[float] = (),
+                 resolution: int = 1, offset: float = 0.0) -> None:  # fmt: skip
+        self.kind, self.span, self.name, self.source, self.offset = kind, span, name, source, offset
+        self._pieces = pieces  # (r, r', r'', r''') or None for a constant
+        self.breaks = np.asarray(sorted(b for b in breaks if span[0] < b < span[1]), dtype=float)
+        self._resolution = max(resolution, len(self.breaks) + 1)  # pieces to sample SAMPLES_PER_PIECE times
+        self._check()
+
+    # --- evaluation --------------------------------------------------------------------
+    @property
+    def constant(self) -> bool:
+        return self._pieces is None
+
+    @property
+    def value(self) -> float | None:
+        """The radius of a constant law, else None."""
+        return float(self.source) if self.constant else None
+
+    def _eval(self, order: int, s: ArrayLike) -> FloatArray:
+        s = np.asarray(s, dtype=float)
+        if self._pieces is None:
+            return np.full(s.shape, float(self.source) if order == 0 else 0.0)
+        return np.asarray(self._pieces[order](s), dtype=float) * np.ones(s.shape)
+
+    def r(self, s: ArrayLike) -> FloatArray:
+        """r(s)."""
+        return self._eval(0, s)
+
+    def dr(self, s: ArrayLike) -> FloatArray:
+        """r'(s)."""
+        return self._eval(1, s)
+
+    def ddr(self, s: ArrayLike) -> FloatArray:
+        """r''(s)."""
+        return self._eval(2, s)
+
+    def dddr(self, s: ArrayLike) -> FloatArray:
+        """r'''(s) (a table's is piecewise constant)."""
+        return self._eval(3, s)
+
+    def shifted(self, distance: float) -> RadiusLaw:
+        """r + ``distance`` (the law of the normal offset: same r', r'', same curvature-line net)."""
+        d = finite_number("distance", distance)
+        if self._pieces is None:
+            return radius_law(float(self.source) + d, self.span, self.name)
+        r, dr, ddr, dddr = self._pieces
+        return RadiusLaw(self.kind, self.span, self.name, self.source, (lambda s: r(s) + d, dr, ddr, dddr),
+                         breaks=self.breaks, resolution=self._resolution, offset=self.offset + d)  # fmt: skip
+
+    # --- checks ------------------------------------------------------------------------
+    def _samples(self) -> np.ndarray:
+        s0, s1 = self.span
+        return np.union1d(np.linspace(s0, s1, max(2001, SAMPLES_PER_PIECE * self._resolution + 1)), self.breaks)
+
+    def extreme(self, f: Callable[[np.ndarray], np.ndarray], largest: bool) -> tuple[float, float]:
+        """(s, f(s)) at the smallest (or largest) value of ``f`` on the span (see :func:`refined_extreme`)."""
+        return refined_extreme(f, self._samples(), largest, f"{self.name}: r(s)")
+
+    def _check(self) -> None:
+        if self.constant:
+            self.min_radius, self.s_at_min_radius = float(self.source), self.span[0]
+            self.max_radius, self.s_at_max_radius = float(self.source), self.span[0]
+            self.max_slope, self.s_at_max_slope = 0.0, self.span[0]
+            return
+        s0, s1 = self.span
+        self.s_at_min_radius, self.min_radius = self.extreme(self.r, largest=False)
+        if not self.min_radius > 0.0:
+            raise ParameterError(f"{self.name}: r reaches {self.min_radius:.6g} at s = {self.s_at_min_radius:.6g}; "
+                                 f"the radius must stay > 0 over the span [{s0:g}, {s1:g}]")  # fmt: skip
+        self.s_at_max_radius, self.max_radius = self.extreme(self.r, largest=True)
+        self.s_at_max_slope, self.max_slope = self.extreme(lambda x: np.abs(self.dr(x)), largest=True)
+        if not self.max_slope < 1.0:
+            raise ParameterError(f"{self.name}: |r'| reaches {self.max_slope:.6g} at s = {self.s_at_max_slope:.6g}; "
+                                 "a canal surface needs |r'| < 1 (the spheres would not have an envelope)")  # fmt: skip
+
+    # --- report ------------------------------------------------------------------------
+    def describe(self) -> dict[str, Any]:
+        """The law for a report: kind, its input, interpolation (tables), extremes and where."""
+        source = self.source
+        if self.kind == "callable":
+            source = repr(source)
+        elif self.kind == "table":
+            source = [[float(a), float(b)] for a, b in np.asarray(source)]
+        out: dict[str, Any] = {"kind": self.kind, self.name: source, "s": list(self.span)}
+        if self.kind == "table":
+            out["interpolation"] = TABLE_INTERPOLATION
+        if self.offset:
+            out["offset"] = self.offset
+        out.update({"min": self.min_radius, "s_at_min": self.s_at_min_radius, "max": self.max_radius,
+                    "s_at_max": self.s_at_max_radius, "max_abs_slope": self.max_slope,
+                    "s_at_max_abs_slope": self.s_at_max_slope})  # fmt: skip
+        return out
+
+    def __repr__(self) -> str:
+        shown = self.source if self.kind != "table" else f"{len(self.source)} points"
+        return f"RadiusLaw({self.kind}: {shown!r:.80}, span={self.span!r})"
+
+
+def refined_extreme(f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, largest: bool, name: str = "f"
+                    ) -> tuple[float, float]:  # fmt: skip
+    """(s*, f(s*)) at the smallest (or largest) value of ``f`` over the sorted samples ``s``:
+    the best sample, refined by a bounded scalar search between its neighbours (an extreme
+    between two samples is found, not stepped over). A non-finite value is a ParameterError."""
+    sign = -1.0 if largest else 1.0
+    with np.errstate(all="ignore"):
+        v = sign * np.asarray(f(s), dtype=float)
+    bad = ~np.isfinite(v)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ParameterError(f"{name} is not finite at s = {s[i]:.6g}")
+    i = int(np.argmin(v))
+    best = (float(s[i]), float(v[i]))
+    if 0 < i < len(s) - 1:
+        res = minimize_scalar(lambda x: sign * float(f(np.array(x))), bounds=(s[i - 1], s[i + 1]), method="bounded",
+                              options={"xatol": 1e-12 * (s[-1] - s[0])})  # fmt: skip
+        if res.fun < best[1]:
+            best = (float(res.x), float(res.fun))
+    return best[0], sign * best[1]
+
+
+def radius_law(value: RadiusValue | RadiusLaw, span: tuple[float, float], name: str = "radius") -> RadiusLaw:
+    """The radius law ``value`` (a number, an expression in s, a callable of s, or a table
+    [[s, r], ...]) on ``span``, checked there; ParameterError naming ``name`` otherwise."""
+    span = span_pair("span", span)
+    if isinstance(value, RadiusLaw):
+        if value.span != span:
+            raise ParameterError(f"{name}: the law is given on [{value.span[0]:g}, {value.span[1]:g}], "
+                                 f"the axis' span is [{span[0]:g}, {span[1]:g}]")  # fmt: skip
+        return value
+    if isinstance(value, str):
+        try:
+            value = float(value)  # "3": a constant written as text
+        except ValueError:
+            pass
+    if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
+        return RadiusLaw("constant", span, name, bounded_length(name, value, 0.0), None)
+    if isinstance(value, str) or callable(value):
+        return _series_law(value, span, name)
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return _table_law(value, span, name)
+    raise ParameterError(f"{name} must be a number, an expression in s, a callable r(s) or a table [[s, r], ...], "
+                         f"got {value!r:.80}")  # fmt: skip
+
+
+def _series_law(value: str | Callable[[np.ndarray], np.ndarray], span: tuple[float, float], name: str) -> RadiusLaw:
+    """An expression or a callable, resolved as a Chebyshev series with exact derivatives."""
+    text = value if isinstance(value, str) else None
+    func = compile_expression(value, name) if text is not None else value
+
+    def values(s: np.ndarray) -> np.ndarray:
+        try:
+            out = np.asarray(func(s))
+        except Exception as exc:
+            raise ParameterError(f"{name}(s) raised {type(exc).__name__}: {exc}"[:300]) from exc
+        if out.dtype.kind not in "iuf":
+            raise ParameterError(f"{name}(s) must return real numbers, got {out.dtype} values")
+        try:
+            return out.astype(float) * np.ones_like(s)
+        except ValueError:
+            raise ParameterError(f"{name}(s) must return an array shaped like s {np.shape(s)} or a scalar, "
+                                 f"got shape {out.shape}") from None  # fmt: skip
+
+    r = PiecewiseChebyshev.fit(values, *span, name=f"{name}(s)")
+    dr = r.derivative()
+    ddr = dr.derivative()
+    return RadiusLaw("expression" if text is not None else "callable", span, name, value,
+                     (r, dr, ddr, ddr.derivative()), resolution=len(r.coeffs))  # fmt: skip
+
+
+def _table_law(value: Sequence[Sequence[float]], span: tuple[float, float], name: str) -> RadiusLaw:
+    """The not-a-knot cubic spline through the rows [s, r] (strictly increasing s, r > 0)."""
+    rows = list(value)
+    if len(rows) < 2:
+        raise ParameterError(f"{name}: a table needs at least 2 rows [s, r], got {len(rows)}")
+    table = []
+    for i, row in enumerate(rows):
+        try:
+            s_i, r_i = row  # type: ignore[misc]
+        except (TypeError, ValueError):
+            raise ParameterError(f"{name}: table row {i} must be a pair [s, r], got {row!r:.80}") from None
+        s_i = finite_number(f"{name} row {i} s", s_i)
+        r_i = finite_number(f"{name} row {i} r", r_i)
+        if not r_i > 0.0:
+            raise ParameterError(f"{name}: r = {r_i:g} at s = {s_i:g} (row {i}); the radius must be > 0")
+        if table and s_i <= table[-1][0]:
+            what = "appears twice" if s_i == table[-1][0] else f"follows s = {table[-1][0]:g} (row {i - 1})"
+            raise ParameterError(f"{name}: s = {s_i:g} (row {i}) {what}; the table's s must increase strictly")
+        table.append((s_i, r_i))
+    data = np.array(table)
+    s0, s1 = span
+    slack = 1e-9 * (s1 - s0)
+    if data[0, 0] > s0 + slack or data[-1, 0] < s1 - slack:
+        end = s0 if data[0, 0] > s0 + slack else s1
+        raise ParameterError(f"{name}: the table covers s in [{data[0, 0]:g}, {data[-1, 0]:g}], which misses "
+                             f"s = {end:g} of the span [{s0:g}, {s1:g}]; its rows must reach both ends "
+                             "(no extrapolation)")  # fmt: skip
+    # only tables need it: importing tubecad.curves stays light
+    from scipy.interpolate import CubicSpline
+
+    spline = CubicSpline(data[:, 0], data[:, 1], bc_type="not-a-knot")
+    pieces = tuple((lambda s, n=n: spline(s, n)) for n in range(4))
+    return RadiusLaw("table", span, name, data, pieces, breaks=data[1:-1, 0])  # type: ignore[arg-type]

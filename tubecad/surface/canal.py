@@ -1,0 +1,428 @@
+"""Canal surfaces referred to their lines of curvature (docs/MATH.md section 8).
+
+The envelope of the spheres of radius r(s) centred on the axis c(s), |r'| < 1, is, with
+q = sqrt(1 - r'^2), the axis' rotation-minimising frame (t, r1, r2) and e = cos chi r1 +
+sin chi r2, ebar = -sin chi r1 + cos chi r2,
+
+    X(chi, s) = c + r ( -r' t + q e )                       (outward normal n = -r' t + q e)
+
+The characteristic circles s = const are one family of curvature lines; the other, the
+stringers, are their orthogonal trajectories chi(s):
+
+    d chi / ds = (r' / q) kbar,      kbar = k2 cos chi - k1 sin chi
+
+With w = tan(chi / 2) this is a Riccati equation, so chi(s) is a Moebius image of chi0 = chi(s0).
+Written on the half-angle vector (sin(chi/2), cos(chi/2)) it is the linear system
+
+    (a, b)' = [[-beta/2, alpha], [alpha, beta/2]] (a, b),   alpha = r' k2 / 2q,  beta = r' k1 / q
+
+solved once for the 2 x 2 fundamental matrix Mb(s) (Mb(s0) = I) by spectral collocation
+(:mod:`..curves.bishop`). Then (a, b) = Mb (sin(chi0/2), cos(chi0/2)) and, with no pole,
+
+    cos chi = (b^2 - a^2) / (a^2 + b^2),   sin chi = 2 a b / (a^2 + b^2)
+
+The surface is parameterised by (chi0, s): chi0 is the stringer's angle at the span's start.
+Its derivatives are exact derivatives of the evaluated net (Mb's series differentiated term
+by term), so F = M = 0 measured on them tests the net, not a formula. Along a stringer
+X_s + X_chi chi' = sqrt(G) m, m = q t + r' e, with
+
+    sqrt(G) = q - r r'' / q - r (k1 cos chi + k2 sin chi)
+
+which is smallest where k1 cos chi + k2 sin chi = k: the surface does not fold iff
+fold(s) = r (k q + r'') / q^2 < 1 on the whole span (r' = 0: rho k < 1, the tube's condition).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import brentq
+
+from ..curves.axis import Axis
+from ..curves.bishop import solve_linear_ode
+from ..curves.radius_law import RadiusLaw, RadiusValue, refined_extreme
+from ..curves.radius_law import radius_law as radius_law_of
+from ..errors import ParameterError, RegularityError
+from ..validation import flag
+from .forms import FundamentalForms, SurfaceDerivatives
+from .regularity import RegularityReport, check_regularity
+from .tube import CurvatureLineTube
+
+FloatArray = np.ndarray
+MAX_FOLD_SAMPLES = 40_000
+
+
+@dataclass(frozen=True)
+class CanalRegularity:
+    """What was measured: the largest |r'| (< 1 by the law's own check) and where; the fold
+    ratio r (k q + r'') / q^2 (must stay < 1), its largest value, where, and the runs of s
+    where it is >= 1; the smallest stringer speed sqrt(G) = q (1 - fold) over the surface and
+    where; and the global self-approach check of a tube of the largest radius (conservative)."""
+
+    max_slope: float
+    s_at_max_slope: float
+    max_fold: float
+    s_at_max_fold: float
+    min_speed: float
+    s_at_min_speed: float
+    folded_intervals: list[tuple[float, float]] = field(default_factory=list)
+    tube: RegularityReport | None = None
+
+    @property
+    def locally_regular(self) -> bool:
+        return self.max_slope < 1.0 and self.max_fold < 1.0
+
+    @property
+    def self_intersecting(self) -> bool:
+        return self.tube is not None and self.tube.self_intersecting
+
+    @property
+    def ok(self) -> bool:
+        return self.locally_regular and not self.self_intersecting
+
+    def message(self) -> str:
+        """Why the canal surface is refused, in one line naming the key and where."""
+        parts = []
+        if not self.locally_regular:
+            where = ", ".join(f"[{a:.6g}, {b:.6g}]" for a, b in self.folded_intervals)
+            parts.append(f"r (k q + r'') / q^2 reaches {self.max_fold:.6g} at s = {self.s_at_max_fold:.6g}; it must "
+                         f"stay below 1 (the surface folds: the stringers stop for s in {where})")  # fmt: skip
+        if self.tube is not None and self.tube.self_intersecting:
+            s1, s2 = self.tube.closest_pair  # type: ignore[misc]
+            parts.append(f"the axis comes back within {self.tube.closest_approach:.6g} of itself (between "
+                         f"s = {s1:.6g} and s = {s2:.6g}): a tube of the largest radius {self.tube.radius:g} "
+                         "self-intersects there")  # fmt: skip
+        return ("radius: canal surface is not regular: " + "; ".join(parts)
+                + " (pass allow_irregular=True to build it anyway)")  # fmt: skip
+
+    def describe(self) -> dict[str, Any]:
+        return {"max_abs_slope": self.max_slope, "s_at_max_abs_slope": self.s_at_max_slope,
+                "max_fold": self.max_fold, "s_at_max_fold": self.s_at_max_fold, "min_stringer_speed": self.min_speed,
+                "s_at_min_stringer_speed": self.s_at_min_speed, "ok": self.ok}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class _Angles:
+    """cos chi, sin chi along stringers and chi's derivatives in (chi0, s)."""
+
+    cos: FloatArray
+    sin: FloatArray
+    u: FloatArray | None = None
+    s: FloatArray | None = None
+    uu: FloatArray | None = None
+    us: FloatArray | None = None
+    ss: FloatArray | None = None
+
+
+class CanalSurface:
+    """The canal surface about ``axis`` with the radius law ``radius_law`` (a
+    :class:`~tubecad.curves.radius_law.RadiusLaw` or anything :func:`radius_law` takes), in
+    curvature-line coordinates (chi0, s): chi0 (period 2 pi) names the stringer by its angle
+    from r1 at the span's start, s is the axis arc length.
+
+    A surface that folds (r (k q + r'') / q^2 >= 1 somewhere) or whose axis comes back so
+    close that a tube of the largest radius self-intersects raises :class:`RegularityError`
+    unless ``allow_irregular=True``; the measured facts are in :attr:`regularity` either way.
+    """
+
+    def __init__(self, axis: Axis, radius_law: RadiusLaw | RadiusValue, *, allow_irregular: bool = False) -> None:
+        if not isinstance(axis, Axis):
+            raise ParameterError(f"axis must be a tubecad Axis (a SlopeCurve or another kind), got {type(axis).__name__}")
+        self.axis = axis
+        self.radius_law = radius_law_of(radius_law, axis.span)
+        allow_irregular = flag("allow_irregular", allow_irregular)
+        self._moebius = None if self.radius_law.constant else self._solve_moebius()
+        self.regularity = self._check_regularity()
+        if not self.regularity.ok and not allow_irregular:
+            raise RegularityError(self.regularity.message())
+
+    # --- the net -----------------------------------------------------------------------
+    def _solve_moebius(self) -> tuple[Any, Any, Any]:
+        """Mb(s), Mb'(s), Mb''(s): the half-angle system's fundamental matrix and its derivatives."""
+        law, axis = self.radius_law, self.axis
+
+        def matrix(s: np.ndarray) -> np.ndarray:
+            dr = law.dr(s)
+            k1, k2 = axis.normal_development(s)
+            q = np.sqrt(1.0 - dr * dr)
+            alpha, half_beta = 0.5 * dr * k2 / q, 0.5 * dr * k1 / q
+            return np.stack([np.stack([-half_beta, alpha], -1), np.stack([alpha, half_beta], -1)], -2)
+
+        m = solve_linear_ode(matrix, self._breaks(), np.eye(2), name="radius: the stringers' equation")
+        dm = m.derivative()
+        return m, dm, dm.derivative()
+
+    def _angles(self, chi0: FloatArray, s: FloatArray, order: int = 0) -> _Angles:
+        """cos, sin of chi(chi0, s) and (for ``order`` 2) chi_u, chi_s, chi_uu, chi_us, chi_ss,
+        from (a, b) = Mb v, v = (sin h, cos h), h = chi0 / 2, chi = 2 atan2(a, b)."""
+        if self._moebius is None:  # r' = 0: chi = chi0
+            zero = np.zeros(np.broadcast_shapes(np.shape(chi0), np.shape(s)))
+            return _Angles(np.cos(chi0) + zero, np.sin(chi0) + zero, 1.0 + zero, zero, zero, zero, zero)
+        h = 0.5 * chi0
+        sh, ch = np.sin(h), np.cos(h)
+        mats = [m(s) for m in (self._moebius if order else self._moebius[:1])]
+
+        def apply(mat: FloatArray, x: FloatArray, y: FloatArray) -> tuple[FloatArray, FloatArray]:
+            return mat[..., 0, 0] * x + mat[..., 0, 1] * y, mat[..., 1, 0] * x + mat[..., 1, 1] * y
+
+        a, b = apply(mats[0], sh, ch)
+        rr = a * a + b * b
+        cos, sin = (b * b - a * a) / rr, 2.0 * a * b / rr
+        if not order:
+            return _Angles(cos, sin)
+        da, db = apply(mats[1], sh, ch)
+        dda, ddb = apply(mats[2], sh, ch)
+        wa, wb = apply(mats[0], ch, -sh)  # Mb w, w = dv/dh
+        dwa, dwb = apply(mats[1], ch, -sh)
+        cross = b * da - a * db  # chi_s = 2 cross / rr
+        dot = a * da + b * db  # (rr)' = 2 dot
+        n1 = b * wa - a * wb  # chi_u = n1 / rr (= det Mb / rr)
+        dn1 = db * wa + b * dwa - da * wb - a * dwb
+        chi_s = 2.0 * cross / rr
+        chi_ss = 2.0 * ((b * dda - a * ddb) / rr - 2.0 * cross * dot / rr**2)
+        chi_u = n1 / rr
+        chi_uu = -n1 * (a * wa + b * wb) / rr**2
+        chi_us = dn1 / rr - 2.0 * n1 * dot / rr**2
+        return _Angles(cos, sin, chi_u, chi_s, chi_uu, chi_us, chi_ss)
+
+    def stringer_angle(self, chi0: ArrayLike, s: ArrayLike) -> FloatArray:
+        """chi(s) on the stringer that starts at angle ``chi0``: chi0 plus twice the turn of the
+        half-angle vector (a turn in (-pi, pi]), so continuous while |chi - chi0| < 2 pi."""
+        chi0, s = np.asarray(chi0, dtype=float), self._inside(s)
+        if self._moebius is None:
+            return chi0 + np.zeros(np.shape(s))
+        h = 0.5 * chi0
+        sh, ch = np.sin(h), np.cos(h)
+        m = self._moebius[0](s)
+        a, b = m[..., 0, 0] * sh + m[..., 0, 1] * ch, m[..., 1, 0] * sh + m[..., 1, 1] * ch
+        return chi0 + 2.0 * np.arctan2(a * ch - b * sh, b * ch + a * sh)
+
+    # --- measures and the circles -------------------------------------------------------
+    @property
+    def span(self) -> tuple[float, float]:
+        return self.axis.span
+
+    @property
+    def length(self) -> float:
+        """L, the axis length over the span."""
+        return self.axis.length
+
+    def _inside(self, s: ArrayLike) -> FloatArray:
+        return self.axis._inside(s)
+
+    def _breaks(self) -> FloatArray:
+        """The span's ends, the law's breaks (a table's knots) and the axis' joints, sorted."""
+        s0, s1 = self.span
+        joints = [s for s, _ in self.axis.joints if s0 < s < s1]
+        return np.unique(np.concatenate([[s0, s1], self.radius_law.breaks, joints]))
+
+    def circle(self, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The characteristic circle at ``s``: (centre c - r r' t, radius r q, plane normal t)."""
+        s = self._inside(s)
+        law = self.radius_law
+        r, dr = law.r(s), law.dr(s)
+        t = self.axis.rotation_minimising_frame(s)[0]
+        return self.axis.position(s) - (r * dr)[..., None] * t, r * np.sqrt(1.0 - dr * dr), t
+
+    def offset(self, distance: float, *, allow_irregular: bool = False) -> CanalSurface:
+        """The normal offset by ``distance`` (outward > 0): the canal surface of r + distance,
+        with the same characteristic circles' planes and the same stringers chi(chi0, s)."""
+        return CanalSurface(self.axis, self.radius_law.shifted(distance), allow_irregular=allow_irregular)
+
+    # --- evaluation -------------------------------------------------------------------
+    def points(self, chi0: ArrayLike, s: ArrayLike) -> FloatArray:
+        """X(chi(chi0, s), s) for ``chi0`` and ``s`` broadcast together; shape broadcast + (3,).
+
+        Pass ``chi0[:, None]`` and ``s[None, :]`` for a grid. A constant law gives exactly
+        :meth:`CurvatureLineTube.points` (the same operations in the same order)."""
+        chi0 = np.asarray(chi0, dtype=float)
+        s = self._inside(s)
+        law = self.radius_law
+        c = self.axis.position(s)
+        t, r1, r2 = self.axis.rotation_minimising_frame(s)
+        ang = self._angles(chi0, s)
+        if law.constant:
+            rc, rs = (law.value * ang.cos)[..., None], (law.value * ang.sin)[..., None]
+        else:
+            r, dr = law.r(s), law.dr(s)
+            rq = r * np.sqrt(1.0 - dr * dr)
+            rc, rs = (rq * ang.cos)[..., None], (rq * ang.sin)[..., None]
+        out = rc * r1
+        out += rs * r2
+        if not law.constant:
+            out += (-law.r(s) * law.dr(s))[..., None] * t
+        out += c
+        return out
+
+    def grid(self, chi0: ArrayLike, s: ArrayLike) -> FloatArray:
+        """X on the grid chi0 x s: shape (len(chi0), len(s), 3)."""
+        return self.points(np.asarray(chi0, dtype=float)[:, None], np.asarray(s, dtype=float)[None, :])
+
+    def normal(self, chi0: ArrayLike, s: ArrayLike) -> FloatArray:
+        """Outward unit normal -r' t + q e (the sphere's)."""
+        chi0, s = np.broadcast_arrays(np.asarray(chi0, dtype=float), self._inside(s))
+        t, r1, r2 = self.axis.rotation_minimising_frame(s)
+        ang = self._angles(chi0, s)
+        dr = self.radius_law.dr(s)
+        e = ang.cos[..., None] * r1 + ang.sin[..., None] * r2
+        return (-dr)[..., None] * t + np.sqrt(1.0 - dr * dr)[..., None] * e
+
+    def _sphere_derivatives(self, cos: FloatArray, sin: FloatArray, s: FloatArray) -> dict[str, FloatArray]:
+        """X and its partial derivatives in (chi, s) with chi held fixed (docs/MATH.md section 8).
+
+        With g = -r r', h = r q, kappa = k1 cos + k2 sin, kbar = k2 cos - k1 sin:
+            X = c + g t + h e,  X_chi = h ebar,  X_chichi = -h e,  X_chis = h' ebar - h kbar t,
+            X_s = A t + B e + C ebar,   A = 1 + g' - h kappa,  B = h' + g kappa,  C = g kbar,
+            X_ss = (A' - B kappa - C kbar) t + (A kappa + B') e + (A kbar + C') ebar.
+        """
+        law, a = self.radius_law, self.axis.at(s)
+        dk1, dk2 = self.axis.normal_development_derivative(s)
+        r, dr, ddr, dddr = law.r(s), law.dr(s), law.ddr(s), law.dddr(s)
+        q = np.sqrt(1.0 - dr * dr)
+        dq = -dr * ddr / q
+        ddq = -(ddr * ddr + dr * dddr) / q - (dr * ddr) ** 2 / q**3
+        g, dg, ddg = -r * dr, -(dr * dr + r * ddr), -(3.0 * dr * ddr + r * dddr)
+        h, dh, ddh = r * q, dr * q + r * dq, ddr * q + 2.0 * dr * dq + r * ddq
+        kappa, kbar = a.k1 * cos + a.k2 * sin, a.k2 * cos - a.k1 * sin
+        dkappa, dkbar = dk1 * cos + dk2 * sin, dk2 * cos - dk1 * sin
+        A, B, C = 1.0 + dg - h * kappa, dh + g * kappa, g * kbar
+        dA, dB, dC = ddg - dh * kappa - h * dkappa, ddh + dg * kappa + g * dkappa, dg * kbar + g * dkbar
+        cos_, sin_ = cos[..., None], sin[..., None]
+        e, ebar = cos_ * a.r1 + sin_ * a.r2, -sin_ * a.r1 + cos_ * a.r2
+
+        def v(x: FloatArray) -> FloatArray:
+            return x[..., None]
+
+        return {
+            "X": a.position + v(g) * a.t + v(h) * e,
+            "X_chi": v(h) * ebar,
+            "X_s": v(A) * a.t + v(B) * e + v(C) * ebar,
+            "X_chichi": -v(h) * e,
+            "X_chis": v(dh) * ebar - v(h * kbar) * a.t,
+            "X_ss": v(dA - B * kappa - C * kbar) * a.t + v(A * kappa + dB) * e + v(A * kbar + dC) * ebar,
+        }
+
+    def derivatives(self, chi0: ArrayLike, s: ArrayLike) -> SurfaceDerivatives:
+        """Y(chi0, s) = X(chi(chi0, s), s) and its partial derivatives up to second order
+        (S_u means d/d chi0), by the chain rule:
+
+            Y_u = X_chi chi_u,   Y_s = X_s + X_chi chi_s,   Y_uu = X_chichi chi_u^2 + X_chi chi_uu,
+            Y_us = X_chichi chi_u chi_s + X_chis chi_u + X_chi chi_us,
+            Y_ss = X_ss + 2 X_chis chi_s + X_chichi chi_s^2 + X_chi chi_ss.
+        """
+        chi0, s = np.broadcast_arrays(np.asarray(chi0, dtype=float), self._inside(s))
+        ang = self._angles(chi0, s, order=2)
+        x = self._sphere_derivatives(ang.cos, ang.sin, s)
+
+        def v(y: FloatArray) -> FloatArray:
+            return y[..., None]
+
+        return SurfaceDerivatives(
+            S=x["X"],
+            S_u=x["X_chi"] * v(ang.u),
+            S_s=x["X_s"] + x["X_chi"] * v(ang.s),
+            S_uu=x["X_chichi"] * v(ang.u**2) + x["X_chi"] * v(ang.uu),
+            S_us=x["X_chichi"] * v(ang.u * ang.s) + x["X_chis"] * v(ang.u) + x["X_chi"] * v(ang.us),
+            S_ss=x["X_ss"] + 2.0 * x["X_chis"] * v(ang.s) + x["X_chichi"] * v(ang.s**2) + x["X_chi"] * v(ang.ss),
+        )
+
+    def fundamental_forms(self, chi0: ArrayLike, s: ArrayLike) -> FundamentalForms:
+        """E, F, G, L, M, N at (chi0, s), computed from the derivative vectors."""
+        return FundamentalForms.from_derivatives(self.derivatives(chi0, s))
+
+    # --- regularity ------------------------------------------------------------------------
+    def fold_ratio(self, s: ArrayLike) -> FloatArray:
+        """r (k q + r'') / q^2 with k = sqrt(k1^2 + k2^2): sqrt(G) = q (1 - fold) on the
+        stringer where the axis bends most; the surface is regular where it is < 1."""
+        s = self._inside(s)
+        law = self.radius_law
+        r, dr, ddr = law.r(s), law.dr(s), law.ddr(s)
+        q2 = 1.0 - dr * dr
+        return r * (np.hypot(*self.axis.normal_development(s)) * np.sqrt(q2) + ddr) / q2
+
+    def _check_regularity(self) -> CanalRegularity:
+        law, (s0, s1) = self.radius_law, self.span
+        n = int(min(MAX_FOLD_SAMPLES, max(2001, math.ceil(8 * self.length / law.min_radius) + 1)))
+        s = np.union1d(np.linspace(s0, s1, n), law.breaks)
+        s_fold, fold = refined_extreme(self.fold_ratio, s, largest=True, name="radius: the fold ratio")
+
+        def speed(x: np.ndarray) -> np.ndarray:
+            return np.sqrt(1.0 - law.dr(x) ** 2) * (1.0 - self.fold_ratio(x))
+
+        s_speed, min_speed = refined_extreme(speed, s, largest=False, name="radius: the stringer speed")
+        intervals = _runs(lambda x: float(self.fold_ratio(np.array(x))) - 1.0, s, self.fold_ratio(s) >= 1.0)
+        tube = check_regularity(self.axis, law.max_radius)
+        return CanalRegularity(law.max_slope, law.s_at_max_slope, fold, s_fold, min_speed, s_speed, intervals, tube)
+
+    # --- measures ----------------------------------------------------------------------------
+    def _quadrature(self, n_chi: int, panels: int, order: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """(chi, s, weights (s), d chi): Gauss-Legendre panels in s (starting at the law's and
+        the axis' breaks), the periodic trapezoid rule in chi."""
+        breaks = self._breaks()
+        edges = np.concatenate([np.linspace(a, b, max(1, math.ceil(panels * (b - a) / self.length)) + 1)[:-1]
+                                for a, b in itertools.pairwise(breaks)] + [breaks[-1:]])  # fmt: skip
+        x, w = np.polynomial.legendre.leggauss(order)
+        mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * np.diff(edges)
+        chi = np.linspace(0.0, 2.0 * math.pi, n_chi, endpoint=False)
+        return chi, (mid[:, None] + half[:, None] * x).ravel(), (half[:, None] * w).ravel(), 2.0 * math.pi / n_chi
+
+    def measures(self, n_chi: int = 32, panels: int = 64, order: int = 16) -> tuple[float, float]:
+        """(area, volume) by quadrature in the (chi, s) coordinates (chi uniform: the integrands
+        are trigonometric polynomials of low degree in chi, so the trapezoid rule is exact).
+
+        area = Int Int |X_chi x X_s| dchi ds; volume of the solid bounded by the surface and the
+        discs of the first and last characteristic circles, by the divergence theorem:
+        V = 1/3 (Int Int (X - p) . (X_chi x X_s) dchi ds + pi R1^2 (C1 - p) . t1), p = C0 the
+        first circle's centre (so its disc, normal -t0, adds nothing) and R1, C1, t1 the last's."""
+        chi, s, ws, dchi = self._quadrature(n_chi, panels, order)
+        x = self._sphere_derivatives(np.cos(chi)[:, None], np.sin(chi)[:, None], s[None, :])
+        cross = np.cross(x["X_chi"], x["X_s"])  # = h sqrt(G) n, outward where the surface is regular
+        c, radius, t = self.circle(np.array(self.span))
+        area = float((np.linalg.norm(cross, axis=-1) * ws).sum() * dchi)
+        flux = float((np.einsum("...i,...i", x["X"] - c[0], cross) * ws).sum() * dchi)
+        volume = (flux + math.pi * float(radius[1]) ** 2 * float((c[1] - c[0]) @ t[1])) / 3.0
+        return area, volume
+
+    @property
+    def area(self) -> float:
+        """The surface's area between the first and last characteristic circles (quadrature)."""
+        return self.measures()[0]
+
+    @property
+    def volume(self) -> float:
+        """The volume enclosed with the discs of the first and last characteristic circles."""
+        return self.measures()[1]
+
+    def describe(self) -> dict[str, Any]:
+        return {"radius": self.radius_law.describe(), "regularity": self.regularity.describe()}
+
+    def __repr__(self) -> str:
+        return f"CanalSurface({self.axis!r}, {self.radius_law!r})"
+
+
+def _runs(excess: Any, s: np.ndarray, bad: np.ndarray) -> list[tuple[float, float]]:
+    """Maximal runs of samples where ``bad``, their ends refined by root finding on ``excess``."""
+    runs = []
+    edges = np.flatnonzero(np.diff(bad.astype(np.int8)))
+    starts = ([0] if bad[0] else []) + [e + 1 for e in edges if not bad[e]]
+    ends = [e for e in edges if bad[e]] + ([len(s) - 1] if bad[-1] else [])
+    for a, b in zip(starts, ends):
+        left = s[a] if a == 0 else brentq(excess, s[a - 1], s[a])
+        right = s[b] if b == len(s) - 1 else brentq(excess, s[b], s[b + 1])
+        runs.append((float(left), float(right)))
+    return runs
+
+
+def tube_or_canal(axis: Axis, radius: RadiusLaw | RadiusValue, allow_irregular: bool = False
+                  ) -> CurvatureLineTube | CanalSurface:  # fmt: skip
+    """A constant radius (a number) gives today's :class:`CurvatureLineTube`; any other law
+    (an expression, a callable, a table) the :class:`CanalSurface`."""
+    law = radius_law_of(radius, axis.span)
+    if law.constant:
+        return CurvatureLineTube(axis, law.value, allow_irregular=allow_irregular)  # type: ignore[arg-type]
+    return CanalSurface(axis, law, allow_irregular=allow_irregular)
