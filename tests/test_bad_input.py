@@ -140,7 +140,7 @@ BAD_VALUES = {
     "radius_minus_zero": (replace("radius = 15.0", "radius = -0.0"), ("[tube] radius must be in (0, inf)",)),
     "radius_too_small": (replace("radius = 15.0", "radius = 1e-300"), ("[tube] radius must be >= 1e-05",)),
     "radius_too_large": (replace("radius = 15.0", "radius = 1e200"), ("[tube] radius must be at most 1e+09",)),
-    "radius_string": (replace("radius = 15.0", 'radius = "15"'), ("[tube] radius must be a number", "got a string '15'")),
+    "radius_string": (replace("radius = 15.0", 'radius = "15 * t"'), ("[tube] radius: unknown name 't'", "allowed are s")),
     "radius_array": (replace("radius = 15.0", "radius = [15.0]"), ("[tube] radius must be a number", "got an array")),
     "radius_date": (replace("radius = 15.0", "radius = 1979-05-27"), ("[tube] radius must be a number",)),
     "beta_boolean": (replace("beta_deg = 10.0", "beta_deg = false"), ("[axis] beta_deg must be a number", "got a boolean")),

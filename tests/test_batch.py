@@ -130,7 +130,7 @@ def test_swept_values_the_spec_refuses_fail_their_jobs_naming_the_value(tmp_path
     result = run("build", spec(tmp_path, "paper", 5.0), "--sweep", "tube.radius=-1,\"big\"", "-d", out, "-j", 1)
     assert result.exit_code == 2, result.output
     assert "paper.toml[tube.radius=-1]: [tube] radius must be in (0, inf)" in result.stderr
-    assert 'paper.toml[tube.radius="big"]: [tube] radius must be a number' in result.stderr
+    assert 'paper.toml[tube.radius="big"]: [tube] radius: unknown name \'big\'' in result.stderr
     record = json.loads((out / "batch.json").read_text())
     assert [j["status"] for j in record["jobs"]] == ["failed", "failed"]
     assert sorted(p.name for p in out.iterdir()) == ["batch.json"]

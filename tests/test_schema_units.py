@@ -156,7 +156,7 @@ BAD = {
     "missing_section": (FULL, lambda d: d.pop("tube"), "missing section [tube]"),
     "unknown_key": (FULL, lambda d: d["tube"].update(radus=1.0), "unknown key [tube] radus"),
     "unknown_units_key": (FULL, lambda d: d["units"].update(angle="deg"), "unknown key [units] angle"),
-    "wrong_type": (FULL, lambda d: d["tube"].update(radius="15"), "[tube] radius must be a number"),
+    "wrong_type": (FULL, lambda d: d["tube"].update(radius=True), "[tube] radius must be a number"),
     "bool_as_number": (FULL, lambda d: d["tube"].update(allow_irregular=1), "[tube] allow_irregular must be true or false"),
     "three_numbers_for_a_pair": (FULL, lambda d: d["axis"].update(s=[1.0, 2.0, 3.0]), "[axis] s must be a list of two"),
     "selection_word": (FULL, lambda d: d["stiffeners"].update(rings="some"), "[stiffeners] rings must be a list"),

@@ -163,13 +163,14 @@ def mesh_tolerance_for(spec: TubeSpec, linear: float | None = None, angle_deg: f
     """(linear deflection, angular deflection in radians) of the spec's mesh outputs, checked
     before anything is built (tubecad.export.meshing: the defaults, and the ranges relative
     to the spec's smallest tube radius); a SpecError names the option and the range."""
-    from ..brep.wall import wall_radii
+    from ..brep.wall import wall_offsets
     from ..export.meshing import checked_tolerance
 
-    radius, wall = spec.tube.radius, spec.sections.get("wall")
+    tube, wall = spec.tube, spec.sections.get("wall")
+    radius = tube.radius if isinstance(tube, CurvatureLineTube) else tube.radius_law.min_radius  # a canal surface's law
     if wall is not None:
         try:
-            radius = min(wall_radii(radius, wall["thickness"], wall.get("side", "centered")))
+            radius += wall_offsets(wall["thickness"], wall.get("side", "centered"))[0]
         except (ParameterError, KeyError):
             pass  # the build says what is wrong with [wall]
     try:

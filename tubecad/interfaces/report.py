@@ -8,18 +8,20 @@ from typing import Any
 
 import numpy as np
 
-from ..surface import CurvatureLineTube
+from ..surface import CanalSurface, CurvatureLineTube
 from ..surface.checks import area_by_quadrature, axis_distance_errors, net_errors
 from ..units import DEFAULT_LENGTH_UNIT, density_unit
 
 from .grid import DEFAULT_NS, DEFAULT_NU  # noqa: E402  (re-exported)
 
 
-def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT_NS,
+def tube_report(tube: CurvatureLineTube | CanalSurface, nu: int = DEFAULT_NU, ns: int = DEFAULT_NS,
                 length_unit: str = DEFAULT_LENGTH_UNIT) -> dict[str, Any]:  # fmt: skip
     """Exact measures (docs/MATH.md section 4) and what was measured on an ``nu`` x ``ns`` grid;
     lengths, areas and volumes are in ``length_unit`` (the spec's [units] length), as the
-    report states."""
+    report states. A canal surface (a radius law) gets :func:`canal_report`."""
+    if isinstance(tube, CanalSurface):
+        return canal_report(tube, nu, ns, length_unit)
     net = net_errors(tube, nu, ns)
     area = area_by_quadrature(tube)
     u = np.linspace(0.0, 2.0 * np.pi, 32, endpoint=False)[:, None]
@@ -55,6 +57,48 @@ def tube_report(tube: CurvatureLineTube, nu: int = DEFAULT_NU, ns: int = DEFAULT
             "max_axis_distance_error": "max |distance to the closest axis point - rho| on a 32 x 201 grid",
             "holonomy_deg": "on a closed axis, the angle the rotation-minimising frame comes back turned by "
             "(r1(L) = cos h r1(0) + sin h r2(0)): the stringers meet the closing ring shifted by it",
+        },
+    }
+
+
+def canal_report(surface: CanalSurface, nu: int = DEFAULT_NU, ns: int = DEFAULT_NS,
+                 length_unit: str = DEFAULT_LENGTH_UNIT) -> dict[str, Any]:  # fmt: skip
+    """The canal surface's report (docs/MATH.md section 8): its radius law (range, largest
+    |r'|, where), regularity (the fold ratio, the smallest stringer speed, where), the net
+    measured on an ``nu`` x ``ns`` grid, and area and volume two ways: by quadrature over
+    the surface (divergence theorem for the volume) and from one-dimensional integrals of
+    r(s), which share nothing but the law."""
+    net = net_errors(surface, nu, ns)
+    area, volume = surface.measures()
+    area_swept, volume_swept = surface.swept_measures()
+    reg = surface.regularity
+    return {
+        "tubecad_version": _version(),
+        "units": {"length": length_unit},
+        "parameters": {"axis": surface.axis.describe(), "tube": {"radius": surface.radius_law.describe()}},
+        "surface": "canal",
+        "length": surface.length,
+        "area_numeric": area,
+        "area_swept": area_swept,
+        "area_relative_error": abs(area / area_swept - 1.0),
+        "volume_numeric": volume,
+        "volume_swept": volume_swept,
+        "volume_relative_error": abs(volume / volume_swept - 1.0),
+        "max_orthogonality_error": net.max_orthogonality_error,
+        "max_M_error": net.max_M_error,
+        "regularity": reg.describe(),
+        "regular": reg.ok,
+        "closed": surface.axis.closed,
+        "grid": {"nu": net.nu, "ns": net.ns, "points": net.nu * net.ns},
+        "definitions": {
+            "max_orthogonality_error": "max |F|/sqrt(EG) over the grid: |cos| of the angle between isolines",
+            "max_M_error": "max |M|/sqrt(EG) / sqrt((L/E)^2 + (N/G)^2): off-diagonal of the shape operator "
+            "in the isoline frame relative to its norm",
+            "area_numeric": "Gauss-Legendre (s) x periodic trapezoid (chi) quadrature of |X_chi x X_s|",
+            "area_swept": "2 pi Int r (1 - r'^2 - r r'') ds",
+            "volume_numeric": "1/3 of the flux of X through the surface and its two end discs",
+            "volume_swept": "pi Int r^2 (1 - r'^2) (1 - r'^2 - r r'') ds: the characteristic discs swept along t",
+            "max_fold": "max of r (k q + r'') / q^2, q = sqrt(1 - r'^2): the surface folds where it reaches 1",
         },
     }
 

@@ -33,7 +33,7 @@ from typing import Any, Callable
 
 from ..curves import Axis
 from ..errors import ParameterError, RegularityError, SpecError
-from ..surface import CurvatureLineTube
+from ..surface import CanalSurface, CurvatureLineTube, tube_or_canal
 from .axis_section import build_axis
 # the key tables live in a light module (no numpy, no OCCT) that ``tubecad schema`` reads too
 from .spec_keys import (  # noqa: F401  (re-exported: tubecad.interfaces.spec.Key, ...)
@@ -48,7 +48,7 @@ MAX_SPEC_BYTES = 1_000_000
 class TubeSpec:
     """A checked spec: the tube it describes and the raw sections, for later stages."""
 
-    tube: CurvatureLineTube
+    tube: CurvatureLineTube | CanalSurface  # a constant radius, or a radius law
     sections: dict[str, dict[str, Any]]
     source: str
 
@@ -118,12 +118,14 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
     length_unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
     axis = _with_section("axis", fail, lambda: build_axis(curve, sections["axis"], base, length_unit))
     tube_data = sections["tube"]
-    try:
-        tube = CurvatureLineTube(axis, tube_data["radius"], allow_irregular=tube_data.get("allow_irregular", False))
+    radius = tube_data["radius"]
+    try:  # a number: the tube; an expression or a table: the canal surface of that radius law
+        tube = tube_or_canal(axis, radius, allow_irregular=tube_data.get("allow_irregular", False))
     except ParameterError as exc:
         raise fail(f"[tube] {exc}") from None
     except RegularityError as exc:
-        raise fail(f"[tube] radius {tube_data['radius']:g}: {_irregular(exc)}") from None
+        shown = f"{radius:g}" if isinstance(radius, (int, float)) else _short(repr(radius), 40)
+        raise fail(f"[tube] radius {shown}: {_irregular(exc)}") from None
     layout = sections.get("layout", {})
     for count, listed in (("rings", "s_rings"), ("stringers", "u_stringers_deg")):
         if count in layout and listed in layout:
@@ -132,25 +134,31 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
     return TubeSpec(tube, sections, source)
 
 
-def _check_build_sections(tube: CurvatureLineTube, sections: dict[str, dict[str, Any]],
+def _check_build_sections(tube: CurvatureLineTube | CanalSurface, sections: dict[str, dict[str, Any]],
                           fail: Callable[[str], SpecError]) -> None:  # fmt: skip
     """Check what the B-rep needs ([tube] sizes, [layout], [wall], [fit]) against the tube now,
     so that a bad value is refused before anything is built, by ``report`` as by ``build``.
     The rules themselves live with the B-rep code."""
-    from ..brep.wall import wall_radii
     from ..fitting.tolerance import MIN_SIZE, check_tolerance
     from .layout_section import layout_from_section
 
-    if tube.radius < MIN_SIZE:
-        raise fail(f"[tube] radius must be >= {MIN_SIZE:g} model units for a B-rep, got {tube.radius:g}")
+    canal = isinstance(tube, CanalSurface)
+    smallest = tube.radius_law.min_radius if canal else tube.radius
+    if smallest < MIN_SIZE:
+        where = f"; r reaches {smallest:g} at s = {tube.radius_law.s_at_min_radius:.6g}" if canal else f", got {smallest:g}"
+        raise fail(f"[tube] radius must be >= {MIN_SIZE:g} model units for a B-rep{where}")
     if tube.length < MIN_SIZE:
         raise fail(f"[axis] s must span at least {MIN_SIZE:g} model units for a B-rep, got {tube.length:g}")
     fit = sections.get("fit", {})
     if "tolerance" in fit:
         _with_section("fit", fail, lambda: check_tolerance("tolerance", fit["tolerance"]))
     _with_section("layout", fail, lambda: layout_from_section(tube, sections.get("layout", {})))
+    if canal:
+        return _check_canal_sections(tube, sections, fail)
     wall = sections.get("wall")
     if wall is not None:
+        from ..brep.wall import wall_radii
+
         r_in, r_out = _with_section("wall", fail, lambda: wall_radii(tube.radius, wall["thickness"],
                                                                       wall.get("side", "centered")))  # fmt: skip
         try:
@@ -166,6 +174,31 @@ def _check_build_sections(tube: CurvatureLineTube, sections: dict[str, dict[str,
             layout = layout_from_section(tube, sections.get("layout", {}))
             _with_section("stiffeners", fail, lambda: check_spec_heights(tube.axis, layout, (r_in, r_out),
                                                                          sections["stiffeners"]))  # fmt: skip
+
+
+def _check_canal_sections(surface: CanalSurface, sections: dict[str, dict[str, Any]],
+                          fail: Callable[[str], SpecError]) -> None:  # fmt: skip
+    """A radius law's [wall]: the offsets of the law, the inner one above MIN_SIZE, the outer
+    one regular; [stiffeners] and [panels] are not built on canal surfaces yet."""
+    from ..brep.wall import wall_offsets
+    from ..fitting.tolerance import MIN_SIZE
+
+    law, wall = surface.radius_law, sections.get("wall")
+    if wall is not None:
+        side = wall.get("side", "centered")
+        d_in, d_out = _with_section("wall", fail, lambda: wall_offsets(wall["thickness"], side))
+        if law.min_radius + d_in < MIN_SIZE:
+            raise fail(f"[wall] thickness {wall['thickness']:g} (side = {side!r}) is too thick for the smallest radius "
+                       f"{law.min_radius:g} at s = {law.s_at_min_radius:.6g}: the inner surface must stay at radius "
+                       f">= {MIN_SIZE:g}")  # fmt: skip
+        try:
+            surface.offset(d_out)
+        except (ParameterError, RegularityError) as exc:
+            raise fail(f"[wall] the wall's outer surface (the radius law + {d_out:g}) is not regular: "
+                       f"{_irregular(exc)}") from None  # fmt: skip
+    for name in ("stiffeners", "panels"):
+        if name in sections:
+            raise fail(f"[{name}] on a canal surface (a radius law) are not built yet; a constant radius takes them")
 
 
 def _irregular(exc: RegularityError) -> str:
@@ -217,6 +250,8 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[s
                                                                          for v in value)),
         "points": isinstance(value, list) and len(value) >= 3 and all(
             isinstance(p, list) and len(p) == 3 and all(number(v) for v in p) for p in value),
+        "radius": number(value) or isinstance(value, str) or (isinstance(value, list) and len(value) >= 2 and all(
+            isinstance(p, list) and len(p) == 2 and all(number(v) for v in p) for p in value)),
     }[spec.kind]
     if not ok:
         wanted = {"number": "a number", "string": "a string", "bool": "true or false", "integer": "a whole number",
@@ -224,9 +259,10 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[s
                   "numbers": "a non-empty list of numbers",
                   "number_or_numbers": "a number or a non-empty list of numbers",
                   "selection": 'a list of whole-number indices or "all"',
-                  "points": "a list of three or more [x, y, z] points"}[spec.kind]  # fmt: skip
+                  "points": "a list of three or more [x, y, z] points",
+                  "radius": "a number, an expression in s or a table of two or more [s, r] rows"}[spec.kind]  # fmt: skip
         raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}")
-    if spec.kind == "number" and not math.isfinite(value):
+    if spec.kind in ("number", "radius") and number(value) and not math.isfinite(value):
         raise fail(f"{where} must be finite ({spec.help}), got {value}")
     if spec.kind == "number_or_numbers" and not all(math.isfinite(v) for v in (value if isinstance(value, list) else [value])):
         raise fail(f"{where} must be finite ({spec.help}), got {_short(repr(value))}")

@@ -28,7 +28,8 @@ class Key:
     hold the two together). ``default``: what an absent key means, for the schema.
     """
 
-    kind: str  # "number", "string", "bool", "pair", "triple", "numbers", "number_or_numbers", "integer", "selection", "points"
+    kind: str  # "number", "string", "bool", "pair", "triple", "numbers", "number_or_numbers", "integer", "selection",
+    #            "points", "radius" (a number, an expression or a table of [s, r] rows)
     required: bool = True
     help: str = ""
     choices: tuple[str, ...] = ()
@@ -109,8 +110,9 @@ AXIS_COMMON = {
     "curve": Key("string", help=" | ".join(FAMILY_KEYS), choices=tuple(FAMILY_KEYS)),
 }
 TUBE_KEYS = {
-    "radius": Key("number", help="radius rho > 0 of the generating circle", low=MIN_SIZE, high=MAX_LENGTH,
-                  low_open=False, high_open=False),
+    "radius": Key("radius", help="radius rho > 0 of the generating circle; or a radius law r(s), a canal surface: an "
+                  "expression in s, or a table [[s, r], ...] (C2 cubic spline), with |r'| < 1", low=MIN_SIZE,
+                  high=MAX_LENGTH, low_open=False, high_open=False),
     "allow_irregular": Key("bool", required=False, help="build even if rho*k >= 1 or the axis comes back within 2 rho"),
 }  # fmt: skip
 

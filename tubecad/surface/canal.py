@@ -393,6 +393,18 @@ class CanalSurface:
         """The surface's area between the first and last characteristic circles (quadrature)."""
         return self.measures()[0]
 
+    def swept_measures(self, panels: int = 64, order: int = 16) -> tuple[float, float]:
+        """(area, volume) from one-dimensional integrals, independent of the surface's
+        parameterisation: A = 2 pi Int r (q^2 - r r'') ds (the stringer speed averaged round
+        the circle) and V = pi Int (r q)^2 (q^2 - r r'') ds (the characteristic discs, whose
+        centres advance by q^2 - r r'' per unit s along t); Gauss-Legendre panels in s."""
+        _, s, ws, _ = self._quadrature(1, panels, order)
+        law = self.radius_law
+        r, dr, ddr = law.r(s), law.dr(s), law.ddr(s)
+        advance = 1.0 - dr**2 - r * ddr
+        return (float((2 * math.pi * r * advance * ws).sum()),
+                float((math.pi * r**2 * (1.0 - dr**2) * advance * ws).sum()))  # fmt: skip
+
     @property
     def volume(self) -> float:
         """The volume enclosed with the discs of the first and last characteristic circles."""
