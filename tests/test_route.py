@@ -255,3 +255,19 @@ def test_a_stringers_length_on_a_route_is_exact(wall, route):
         k1, k2 = route.normal_development(np.array([0.5 * (piece.s0 + piece.s1)]))
         exact += (piece.s1 - piece.s0) * (1.0 - 20.0 * (k1[0] * math.cos(th) + k2[0] * math.sin(th)))
     assert stringer.length() == pytest.approx(exact, rel=1e-13)
+
+
+def test_a_ring_on_a_joint_is_fit_for_booleans(wall, route):
+    """A ring frame centred on a line-bend joint straddles it: its tube faces end at the
+    joint, so OCCT's pre-boolean check (FreeCAD's) finds no C0 face or edge."""
+    from tubecad.stiffeners.assembly import build_stiffeners
+    from tubecad.stiffeners.profiles import Profile
+
+    _, build = wall
+    on_joint = [i for i, s in enumerate(build.layout.s_rings) if any(abs(s - j) < 1e-9 for j, _ in route.joints)]
+    assert on_joint
+    [ring] = build_stiffeners(build, on_joint[:1], [], Profile("T", 8.0, 1.0, 5.0, 1.0), "outside")
+    assert is_valid(ring.solid) and analyzer_findings(ring.solid) == {}
+    R, h, tw, bf, tf = 20.0, 8.0, 1.0, 5.0, 1.0  # web R..R+h-tf wide tw, flange R+h-tf..R+h wide bf
+    exact = math.pi * (((R + h - tf) ** 2 - R**2) * tw + ((R + h) ** 2 - (R + h - tf) ** 2) * bf)
+    assert volume(ring.solid) == pytest.approx(exact, rel=1e-9)

@@ -109,14 +109,17 @@ def swept_section(axis: Axis, section: Section, tolerance: float,
     returns the solid and its tube faces by radius."""
     s_values, radii = [p[0] for p in section], [p[1] for p in section]
     sub = axis.restricted(fit_span(axis, min(s_values), max(s_values), max(radii)))
+    # where the frame is only C0 (a route's line-bend joint) inside the ring: its tube faces end there
+    joints = [s for s, continuity in sub.joints if continuity == 0 and min(s_values) < s < max(s_values)]
     frame = fit_frame(sub, max(radii), tolerance, orthogonality_for(tolerance))
     surfaces: dict[float, TubeSurface] = {}
     for r in radii:
         if r not in surfaces:
             # a route's exact frame has v = s only at its breaks: per radius, the s of its corners
-            # (breaks at other radii' corners would be C0 knots inside this radius' faces)
+            # and joints (breaks at other radii' corners would be C0 knots inside this radius' faces)
             on = frame if not sub.rings_at_joints else fit_frame(
-                sub, max(radii), tolerance, orthogonality_for(tolerance), rings=[p[0] for p in section if p[1] == r])
+                sub, max(radii), tolerance, orthogonality_for(tolerance),
+                rings=[p[0] for p in section if p[1] == r] + joints)  # fmt: skip
             surfaces[r] = exact_section_surface(CurvatureLineTube(sub, r, allow_irregular=True), on, origin_deg)
     arcs = {r: _Arcs(ts) for r, ts in surfaces.items()}
     circles = [_circle(arcs[r], s) for s, r in section]
@@ -128,11 +131,14 @@ def swept_section(axis: Axis, section: Section, tolerance: float,
     for i in range(n):
         j = (i + 1) % n
         (sa, ra), (sb, rb) = section[i], section[j]
-        if ra == rb:  # a tube face; the solid lies at larger r when the edge runs along +s
+        if ra == rb:  # tube faces; the solid lies at larger r when the edge runs along +s
             lo, hi = (i, j) if sa < sb else (j, i)
-            band = _band(arcs[ra], circles[lo], circles[hi], edge_tolerance, reverse=sa < sb)
-            tube_faces.setdefault(ra, []).extend(band)
-            faces += band
+            rings = ([circles[lo]] + [_circle(arcs[ra], x) for x in joints if circles[lo].s < x < circles[hi].s]
+                     + [circles[hi]])  # fmt: skip
+            for bottom, top in zip(rings[:-1], rings[1:]):
+                band = _band(arcs[ra], bottom, top, edge_tolerance, reverse=sa < sb)
+                tube_faces.setdefault(ra, []).extend(band)
+                faces += band
         else:  # an annulus; the solid lies at smaller s when the edge runs along +r
             outer, inner = (j, i) if rb > ra else (i, j)
             faces.append(_annulus(circles[outer], circles[inner], outward=rb > ra))
