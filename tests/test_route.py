@@ -271,3 +271,19 @@ def test_a_ring_on_a_joint_is_fit_for_booleans(wall, route):
     R, h, tw, bf, tf = 20.0, 8.0, 1.0, 5.0, 1.0  # web R..R+h-tf wide tw, flange R+h-tf..R+h wide bf
     exact = math.pi * (((R + h - tf) ** 2 - R**2) * tw + ((R + h) ** 2 - (R + h - tf) ** 2) * bf)
     assert volume(ring.solid) == pytest.approx(exact, rel=1e-9)
+
+
+def test_panels_across_joints_are_fit_for_booleans(wall, route):
+    """Panels between rings 0 and the last (every joint inside them): faces end at the joints."""
+    from tubecad.stiffeners.panels import split_into_panels
+
+    tube, build = wall
+    panels = split_into_panels(build, [0, 4], [0, len(build.layout.s_rings) - 1])
+    assert len(panels) == 2
+    for panel in panels:
+        assert is_valid(panel.solid) and analyzer_findings(panel.solid, ANALYZER_MODES[2:]) == {}, panel.name
+    total = sum(volume(p.solid) for p in panels)
+    assert total == pytest.approx(math.pi * (20.0**2 - 18.0**2) * route.length, rel=1e-9)
+    # each panel's outer area: half the outer tube's, 2 pi R L / 2 (the stringers at 0 and 180 deg halve it
+    # only on average: the bends' inner and outer halves differ), so their sum is the whole
+    assert sum(p.outer_area for p in panels) == pytest.approx(2 * math.pi * 20.0 * route.length, rel=1e-9)

@@ -110,11 +110,15 @@ def plane_face(origin: np.ndarray, normal: np.ndarray, x_dir: np.ndarray,
     return face
 
 
-def c0_knots(surface: Geom_BSplineSurface) -> list[float]:
-    """The u-knots where ``surface`` is only C0 (multiplicity >= its u-degree): a face
-    should end there (OCCT's pre-boolean check reports a face or edge across one)."""
-    degree = surface.UDegree()
-    return [surface.UKnot(i) for i in range(1, surface.NbUKnots() + 1) if surface.UMultiplicity(i) >= degree]
+def c0_knots(surface: Geom_BSplineSurface, direction: str = "u") -> list[float]:
+    """The u-knots (or v-knots) where ``surface`` is only C0 (multiplicity >= its degree in
+    that direction): a face should end there (OCCT's pre-boolean check reports a face or
+    edge across one)."""
+    if direction == "u":
+        degree, count, knot, multiplicity = surface.UDegree(), surface.NbUKnots(), surface.UKnot, surface.UMultiplicity
+    else:
+        degree, count, knot, multiplicity = surface.VDegree(), surface.NbVKnots(), surface.VKnot, surface.VMultiplicity
+    return [knot(i) for i in range(1, count + 1) if multiplicity(i) >= degree]
 
 
 def shell_of(faces: Sequence[TopoDS_Face], closed: bool) -> TopoDS_Shell:

@@ -81,5 +81,8 @@ def panel(build: TubeBuild, axis, r_in: float, r_out: float, a_deg: float, b_deg
     strips.append(Strip(ruled_surface(frame, math.radians(b_deg), (0.0, r_in), (0.0, r_out)), 1.0, 0.0))
     strips += [Strip(surface_part(inner.surface, p, q), q, p) for p, q in pieces[::-1]]
     strips.append(Strip(ruled_surface(frame, math.radians(a_deg), (0.0, r_in), (0.0, r_out)), 0.0, 1.0))
-    solid, faces = strip_solid(strips, s0, s1, (cap_plane(frame, s0), cap_plane(frame, s1)), counter_clockwise=True)
-    return Panel(name, (s0, s1), (a_deg, b_deg), bd.Solid(solid), props.faces_area(faces[: len(pieces)]))
+    # faces end where the frame is only C0 (a route's rational frame: at its joints and rings)
+    cuts = [v for v in c0_knots(outer.surface, "v") if s0 + 1e-9 * (s1 - s0) < v < s1 - 1e-9 * (s1 - s0)]
+    solid, faces = strip_solid(strips, s0, s1, (cap_plane(frame, s0), cap_plane(frame, s1)), True, cuts)
+    outer = faces[: len(pieces) * (len(cuts) + 1)]  # strip by strip, each cut at the joints
+    return Panel(name, (s0, s1), (a_deg, b_deg), bd.Solid(solid), props.faces_area(outer))
