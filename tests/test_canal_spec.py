@@ -106,3 +106,35 @@ def test_a_constant_radius_is_the_tube_of_today(tmp_path):
     spec = tmp_path / "tube.toml"
     spec.write_text(NOZZLE.replace('radius = "40 - 25 * (s / 200)**2 * (3 - 2 * s / 200)"', "radius = 12.5"))
     assert type(load_spec(spec).tube) is CurvatureLineTube
+
+
+DUPIN = """
+[axis]
+curve = "parametric"
+x = "100 * cos(t)"
+y = "80 * sin(t)"
+z = "0"
+t = [0.0, 6.283185307179586]
+
+[tube]
+radius = "80 - 0.6 * x"
+"""
+
+
+def test_a_radius_expression_may_use_the_axis_point(tmp_path):
+    """The ring Dupin cyclide: spheres on the ellipse x^2/100^2 + y^2/80^2 = 1 with radius
+    mu - (c/a) x, c = 60, mu = 80: r is given through the axis point's x."""
+    import numpy as np
+
+    from tubecad.interfaces.spec import load_spec
+
+    spec = tmp_path / "dupin.toml"
+    spec.write_text(DUPIN)
+    surface = load_spec(spec).tube
+    s = np.linspace(*surface.span, 97)
+    assert np.abs(surface.radius_law.r(s) - (80 - 0.6 * surface.axis.position(s)[:, 0])).max() < 1e-11
+    assert surface.axis.closed and surface.regularity.ok
+    bad = tmp_path / "bad.toml"
+    bad.write_text(DUPIN.replace("0.6 * x", "0.6 * w"))
+    result = run("report", bad)
+    assert result.exit_code == 2 and "[tube] radius: unknown name 'w'; the names allowed are s, x, y, z, pi, e" in result.output

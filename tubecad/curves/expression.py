@@ -38,11 +38,15 @@ UNARY = {ast.USub: operator.neg, ast.UAdd: operator.pos}
 Compiled = Callable[[np.ndarray], np.ndarray]
 
 
-def compile_expression(text: str, name: str = "k", variable: str = "s") -> Compiled:
+def compile_expression(text: str, name: str = "k", variable: str = "s",
+                       derived: dict[str, Compiled] | None = None) -> Compiled:  # fmt: skip
     """Turn ``text`` (e.g. ``"10 / s"``, ``"0.02 + 1e-5 * s"``) into a vectorised f(s).
 
-    Raises :class:`ExpressionError` naming ``name`` and the offending part.
+    ``derived``: further names, each a function of the variable (e.g. the axis point's x,
+    y, z at s for a radius law). Raises :class:`ExpressionError` naming ``name`` and the
+    offending part.
     """
+    derived = derived or {}
     if not isinstance(text, str):
         raise ExpressionError(f"{name} must be a string expression in {variable}, got {text!r}")
     if len(text) > MAX_LENGTH:
@@ -58,12 +62,12 @@ def compile_expression(text: str, name: str = "k", variable: str = "s") -> Compi
         raise ExpressionError(f"{name} has {nodes} syntax nodes; at most {MAX_NODES} are allowed")
     _check_numbers(tree, text.strip(), name)
     try:
-        return _compile(tree.body, name, variable)
+        return _compile(tree.body, name, variable, derived)
     except RecursionError:
         raise ExpressionError(f"{name} = {text!r} is nested too deeply") from None
 
 
-def _compile(node: ast.AST, name: str, variable: str) -> Compiled:
+def _compile(node: ast.AST, name: str, variable: str, derived: dict[str, Compiled]) -> Compiled:
     where = f"{name}: "
     if isinstance(node, ast.Constant):
         value = node.value
@@ -74,10 +78,12 @@ def _compile(node: ast.AST, name: str, variable: str) -> Compiled:
     if isinstance(node, ast.Name):
         if node.id == variable:
             return lambda s: np.asarray(s, dtype=float)
+        if node.id in derived:
+            return derived[node.id]
         if node.id in CONSTANTS:
             const = CONSTANTS[node.id]
             return lambda s: np.full(np.shape(s), const)
-        allowed = ", ".join([variable, *CONSTANTS])
+        allowed = ", ".join([variable, *derived, *CONSTANTS])
         raise ExpressionError(f"{where}unknown name {node.id!r}; the names allowed are {allowed}")
     if isinstance(node, ast.BinOp):
         if isinstance(node.op, ast.BitXor):
@@ -87,13 +93,13 @@ def _compile(node: ast.AST, name: str, variable: str) -> Compiled:
             raise ExpressionError(f"{where}operator {type(node.op).__name__} is not allowed; use + - * / **")
         if op is operator.pow:
             _check_exponent(node.right, where)
-        left, right = _compile(node.left, name, variable), _compile(node.right, name, variable)
+        left, right = _compile(node.left, name, variable, derived), _compile(node.right, name, variable, derived)
         return lambda s: op(left(s), right(s))
     if isinstance(node, ast.UnaryOp):
         unary = UNARY.get(type(node.op))
         if unary is None:
             raise ExpressionError(f"{where}operator {type(node.op).__name__} is not allowed")
-        operand = _compile(node.operand, name, variable)
+        operand = _compile(node.operand, name, variable, derived)
         return lambda s: unary(operand(s))
     if isinstance(node, ast.Call):
         if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
@@ -101,7 +107,7 @@ def _compile(node: ast.AST, name: str, variable: str) -> Compiled:
             raise ExpressionError(f"{where}function {shown!r} is not allowed; use one of {', '.join(FUNCTIONS)}")
         if node.keywords or len(node.args) != 1:
             raise ExpressionError(f"{where}{node.func.id}() takes exactly one argument")
-        func, arg = FUNCTIONS[node.func.id], _compile(node.args[0], name, variable)
+        func, arg = FUNCTIONS[node.func.id], _compile(node.args[0], name, variable, derived)
         return lambda s: func(arg(s))
     if isinstance(node, ast.Attribute):
         raise ExpressionError(f"{where}attribute access ({ast.unparse(node)}) is not allowed")

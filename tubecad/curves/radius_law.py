@@ -166,9 +166,12 @@ def refined_extreme(f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, larges
     return best[0], sign * best[1]
 
 
-def radius_law(value: RadiusValue | RadiusLaw, span: tuple[float, float], name: str = "radius") -> RadiusLaw:
+def radius_law(value: RadiusValue | RadiusLaw, span: tuple[float, float], name: str = "radius",
+               axis: Any = None) -> RadiusLaw:  # fmt: skip
     """The radius law ``value`` (a number, an expression in s, a callable of s, or a table
-    [[s, r], ...]) on ``span``, checked there; ParameterError naming ``name`` otherwise."""
+    [[s, r], ...]) on ``span``, checked there; ParameterError naming ``name`` otherwise.
+    With the ``axis``, an expression may also use x, y, z: the axis point c(s) (a Dupin
+    cyclide's spheres have r = mu - (c/a) x)."""
     span = span_pair("span", span)
     if isinstance(value, RadiusLaw):
         if value.span != span:
@@ -183,17 +186,21 @@ def radius_law(value: RadiusValue | RadiusLaw, span: tuple[float, float], name: 
     if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
         return RadiusLaw("constant", span, name, bounded_length(name, value, 0.0), None)
     if isinstance(value, str) or callable(value):
-        return _series_law(value, span, name)
+        return _series_law(value, span, name, axis)
     if isinstance(value, (list, tuple, np.ndarray)):
         return _table_law(value, span, name)
     raise ParameterError(f"{name} must be a number, an expression in s, a callable r(s) or a table [[s, r], ...], "
                          f"got {value!r:.80}")  # fmt: skip
 
 
-def _series_law(value: str | Callable[[np.ndarray], np.ndarray], span: tuple[float, float], name: str) -> RadiusLaw:
-    """An expression or a callable, resolved as a Chebyshev series with exact derivatives."""
+def _series_law(value: str | Callable[[np.ndarray], np.ndarray], span: tuple[float, float], name: str,
+                axis: Any = None) -> RadiusLaw:  # fmt: skip
+    """An expression (in s, and x, y, z of the axis point if the ``axis`` is given) or a
+    callable, resolved as a Chebyshev series with exact derivatives."""
     text = value if isinstance(value, str) else None
-    func = compile_expression(value, name) if text is not None else value
+    derived = None if axis is None else {
+        coordinate: (lambda s, k=k: axis.position(s)[..., k]) for k, coordinate in enumerate("xyz")}  # fmt: skip
+    func = compile_expression(value, name, derived=derived) if text is not None else value
 
     def values(s: np.ndarray) -> np.ndarray:
         try:

@@ -134,7 +134,7 @@ class CanalSurface:
         if not isinstance(axis, Axis):
             raise ParameterError(f"axis must be a tubecad Axis (a SlopeCurve or another kind), got {type(axis).__name__}")
         self.axis = axis
-        self.radius_law = radius_law_of(radius_law, axis.span)
+        self.radius_law = radius_law_of(radius_law, axis.span, axis=axis)
         allow_irregular = flag("allow_irregular", allow_irregular)
         self._moebius = None if self.radius_law.constant else self._solve_moebius()
         self.regularity = self._check_regularity()
@@ -434,7 +434,7 @@ def tube_or_canal(axis: Axis, radius: RadiusLaw | RadiusValue, allow_irregular: 
                   ) -> CurvatureLineTube | CanalSurface:  # fmt: skip
     """A constant radius (a number) gives today's :class:`CurvatureLineTube`; any other law
     (an expression, a callable, a table) the :class:`CanalSurface`."""
-    law = radius_law_of(radius, axis.span)
+    law = radius_law_of(radius, axis.span, axis=axis)
     if law.constant:
         return CurvatureLineTube(axis, law.value, allow_irregular=allow_irregular)  # type: ignore[arg-type]
     return CanalSurface(axis, law, allow_irregular=allow_irregular)
