@@ -111,7 +111,7 @@ AXIS_COMMON = {
 }
 TUBE_KEYS = {
     "radius": Key("radius", help="radius rho > 0 of the generating circle; or a radius law r(s), a canal surface: an "
-                  "expression in s, or a table [[s, r], ...] (C2 cubic spline), with |r'| < 1", low=MIN_SIZE,
+                  "expression in s (and x, y, z, the axis point), or a table [[s, r], ...] (C2 cubic spline), with |r'| < 1", low=MIN_SIZE,
                   high=MAX_LENGTH, low_open=False, high_open=False),
     "allow_irregular": Key("bool", required=False, help="build even if rho*k >= 1 or the axis comes back within 2 rho"),
 }  # fmt: skip
