@@ -287,3 +287,17 @@ def test_panels_across_joints_are_fit_for_booleans(wall, route):
     # each panel's outer area: half the outer tube's, 2 pi R L / 2 (the stringers at 0 and 180 deg halve it
     # only on average: the bends' inner and outer halves differ), so their sum is the whole
     assert sum(p.outer_area for p in panels) == pytest.approx(2 * math.pi * 20.0 * route.length, rel=1e-9)
+
+
+def test_a_straight_bay_of_a_route_is_meshed_as_straight(wall, route):
+    """A line's ring bay needs one row of triangles along s whatever the bends beside it
+    (the bend's curvature at the joint must not refine it)."""
+    from tubecad.export.tessellate import grid_arcs
+
+    tube, build = wall
+    rings = build.layout.s_rings
+    lines = [(p.s0, p.s1) for p in route.pieces if p.kind == "line"]
+    rows = grid_arcs(route, rings, 20.0, 0.02, math.radians(5.0))
+    for (a, b), bay in zip(zip(rings[:-1], rings[1:]), rows):
+        if any(lo - 1e-9 <= a and b <= hi + 1e-9 for lo, hi in lines):
+            assert len(bay) == 2, (a, b)

@@ -68,10 +68,7 @@ def tessellate(parts: list, deflection: float, angular: float, build=None) -> No
 
     from .tessellate import triangulate_build
 
-    # a closed tube's stringers meet its closing ring shifted by the holonomy: the grid's nodes
-    # would not match there, so BRepMesh meshes it (watertight along the shared edges)
-    on_grid = build is not None and not build.surfaces[0].tube.axis.closed
-    if on_grid and any(p.wrapped.IsSame(build.shape.wrapped) for p in parts):
+    if build is not None and any(p.wrapped.IsSame(build.shape.wrapped) for p in parts):
         triangulate_build(build, deflection, angular)
     rest = [p for p in parts if not BRepTools.Triangulation_s(p.wrapped, deflection)]
     if rest:

@@ -16,11 +16,20 @@ deflection; the grid here is anisotropic, and its bound is checked on every file
 (tubecad.interfaces.readback). The triangulations are attached to the build's faces, with
 the polygons of their edges, so the STL, 3MF and glTF writers use them as they are; caps are
 triangulated between the same ring points, so the mesh is closed.
+
+A closed tube has no caps: its ring at s = L is its ring at s = 0, reached by the grid column
+at angle c at c + h, h the holonomy (the rotation-minimising frame comes back turned by it).
+The closing ring's nodes are the columns and the columns + h (among them the B-rep's cuts
+there, a_j and b_j = a_j + h), their points computed once per surface; the first band's
+bottom row and the last band's top row are those very points (the last band's at its own
+angles, theta - h), each joined to its regular neighbour row by fans: the mesh closes there
+too, with a triangle more per extra node.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
@@ -33,8 +42,9 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 
+from ..brep.faces import CLOSING_MERGE
 from ..brep.layout import stringer_parameters
-from ..errors import ParameterError
+from ..errors import ParameterError, TubecadError
 from ..occ_compat import as_face
 
 #: the share of the linear tolerance given to each grid direction (around, along)
@@ -70,10 +80,14 @@ def grid_angles(stringers_deg: Sequence[float], step: float) -> list[np.ndarray]
 
 
 def grid_arcs(axis, s_rings: Sequence[float], radius: float, tolerance: float, angular: float) -> list[np.ndarray]:
-    """Per ring bay: the arc lengths (both ends) of its grid rows, equally spaced."""
+    """Per ring bay: the arc lengths (both ends) of its grid rows, equally spaced. The bay's
+    curvature is sampled up to its ends from inside: at a route's line-bend joint k jumps,
+    and the bend's k must not refine the straight bay beside it."""
     rows = []
     for s0, s1 in zip(s_rings[:-1], s_rings[1:]):
-        k = float(np.max(np.abs(axis.curvature(np.linspace(s0, s1, CURVATURE_SAMPLES)))))
+        samples = np.linspace(s0, s1, CURVATURE_SAMPLES)
+        samples[[0, -1]] += np.array([1.0, -1.0]) * 1e-9 * (s1 - s0)
+        k = float(np.max(np.abs(axis.curvature(samples))))
         count = (s1 - s0) / arc_step(k, radius, tolerance, angular)
         rows.append(np.linspace(s0, s1, max(1, math.ceil(count)) + 1))
     return rows
@@ -81,43 +95,146 @@ def grid_arcs(axis, s_rings: Sequence[float], radius: float, tolerance: float, a
 
 def triangulate_build(build, tolerance: float, angular: float) -> int:
     """Attach a triangulation to every face of ``build.shape`` (a TubeBuild's tube or wall):
-    its tube faces on the curvature-line grid, its planar caps between the end rings.
+    its tube faces on the curvature-line grid, its planar caps between the end rings (a
+    closed axis has none: its first and last bands share the closing ring's nodes).
     Returns the number of triangles; refuses (ParameterError) more than MAX_TRIANGLES.
     Remove them with ``BRepTools.Clean_s``."""
     radius = max(build.radii)  # the outer tube needs the finest angle step; the inner one shares it
+    axis = build.surfaces[0].tube.axis
     angles = grid_angles(build.layout.stringers_deg, angle_step(radius, tolerance, angular))
-    arcs = grid_arcs(build.surfaces[0].tube.axis, build.layout.s_rings, radius, tolerance, angular)
-    total = 2 * sum(len(a) - 1 for a in angles) * sum(len(s) - 1 for s in arcs) * len(build.surfaces)
-    if total > MAX_TRIANGLES:
-        raise ParameterError(f"a mesh tolerance of {tolerance:g} needs {total:,} triangles for this "
-                             f"{'wall' if len(build.surfaces) > 1 else 'tube'}; at most {MAX_TRIANGLES:,} are "
-                             f"allowed: use a larger tolerance")  # fmt: skip
+    arcs = grid_arcs(axis, build.layout.s_rings, radius, tolerance, angular)
     # every node once per surface, so that neighbouring faces and the caps share them bit for bit
     columns = np.radians(np.concatenate([a[:-1] for a in angles]))
     first_column = np.cumsum([0] + [len(a) - 1 for a in angles])
     rows = np.concatenate([s[:-1] for s in arcs] + [arcs[-1][-1:]])
     first_row = np.cumsum([0] + [len(s) - 1 for s in arcs])
+    # a closed axis: the closing ring's nodes on each surface (angles from the origin stringer)
+    rings = [closing_angles(columns - columns[0], axis.holonomy, rho) for rho in build.radii] if axis.closed else []
+    total = 2 * sum(len(a) - 1 for a in angles) * sum(len(s) - 1 for s in arcs) * len(build.surfaces)
+    total += sum(2 * (len(ring) - len(columns)) for ring, _ in rings)  # a fan triangle per extra node, in both bands
+    if total > MAX_TRIANGLES:
+        raise ParameterError(f"a mesh tolerance of {tolerance:g} needs {total:,} triangles for this "
+                             f"{'wall' if len(build.surfaces) > 1 else 'tube'}; at most {MAX_TRIANGLES:,} are "
+                             f"allowed: use a larger tolerance")  # fmt: skip
     builder = BRep_Builder()
     grids = []
-    for surface, patches in zip(build.surfaces, build.patches):
+    for k, (surface, patches) in enumerate(zip(build.surfaces, build.patches)):
         grid = surface.tube.points(columns[:, None], rows[None, :])
         grid = np.concatenate([grid, grid[:1]])  # the first column again: the last sector closes on it
         grids.append(grid)
         u_cuts = stringer_parameters(build.layout.stringers_deg, surface.u_at)
+        closing = _ClosingRing(surface, patches, grid, rows[0], columns, first_column, build.radii[k],
+                               *rings[k]) if rings else None  # fmt: skip
+        last = len(patches.faces) - 1
         for i, row in enumerate(patches.faces):
             for j, face in enumerate(row):
                 block = grid[first_column[j] : first_column[j + 1] + 1, first_row[i] : first_row[i + 1] + 1]
-                _tube_face(builder, surface, patches, face, (i, j), block, angles[j], arcs[i], u_cuts, tolerance)
+                bottom = closing.first(j) if closing is not None and i == 0 else None
+                top = closing.last(j) if closing is not None and i == last else None
+                _tube_face(builder, surface, patches, face, (i, j), block, angles[j], arcs[i], u_cuts, tolerance,
+                           bottom, top)  # fmt: skip
     for face, end in _caps(build):
         rings = [grid[:-1, 0 if end == 0 else -1] for grid in grids]
         total += _cap_face(builder, build, face, end, rings, first_column, tolerance)
     return total
 
 
+def closing_angles(columns: np.ndarray, holonomy: float, radius: float) -> tuple[np.ndarray, np.ndarray]:
+    """The nodes of a closed tube's closing ring: the grid ``columns`` (radians from the origin
+    stringer, increasing in [0, 2 pi)), where they start, and the same + ``holonomy`` mod 2 pi,
+    where they end; an added angle within CLOSING_MERGE / ``radius`` of a column is dropped
+    (the B-rep merges a stringer's end onto a stringer's start as near). Returns (the angles,
+    increasing in [0, 2 pi); the column of each, -1 for an added one)."""
+    two_pi = 2.0 * math.pi
+    added = np.mod(columns + holonomy, two_pi)
+    added[added >= two_pi] = 0.0
+    at = np.searchsorted(columns, added)
+    gap = np.minimum(*(np.abs(np.remainder(added - columns[k] + math.pi, two_pi) - math.pi)
+                       for k in (at - 1, at % len(columns))))  # fmt: skip
+    added = added[radius * gap > CLOSING_MERGE]
+    ring = np.concatenate([columns, added])
+    order = np.argsort(ring, kind="stable")
+    return ring[order], np.concatenate([np.arange(len(columns)), np.full(len(added), -1)])[order]
+
+
+@dataclass
+class _Row:
+    """A face's row of nodes on the closing ring, in +u order: their points, u, angles on the
+    ring (from the origin stringer, lifted to increase), and the row node of each of the
+    face's regular columns."""
+
+    points: np.ndarray
+    u: np.ndarray
+    ring: np.ndarray
+    match: np.ndarray
+
+
+class _ClosingRing:
+    """The closing ring of one surface of a closed tube: its nodes (:func:`closing_angles`),
+    their points computed once (a grid column's at s0 bit for bit, the others the exact tube
+    point at s0), and the rows they make on the first band's faces (at the ring's angles,
+    s0) and on the last band's (at the faces' own angles theta - (b_j - a_j), s = L)."""
+
+    def __init__(self, surface, patches, grid: np.ndarray, s0: float, columns: np.ndarray, first_column: np.ndarray,
+                 rho: float, angles: np.ndarray, column: np.ndarray) -> None:  # fmt: skip
+        self.surface, self.patches, self.first_column, self.angles = surface, patches, first_column, angles
+        self.columns = np.append(columns - columns[0], 2.0 * math.pi)  # from the origin; the last sector ends at 2 pi
+        own = column >= 0
+        self.points = np.empty((len(angles), 3))
+        self.points[own] = grid[column[own], 0]
+        if not own.all():
+            self.points[~own] = surface.tube.points((angles[~own] + columns[0])[:, None], np.array([[s0]]))[:, 0]
+        self.node = np.empty(len(columns), dtype=int)  # the ring node of each column
+        self.node[column[own]] = np.flatnonzero(own)
+        self.rho = float(rho)
+
+    def first(self, j: int) -> _Row:
+        """Face j of the first band: the nodes from stringer j's start a_j to a_j+1."""
+        c0, c1 = self.first_column[j], self.first_column[j + 1]
+        nodes, ring = self._run(self.node[c0], self.node[c1 % len(self.node)])
+        return self._row(j, nodes, ring, ring)
+
+    def last(self, j: int) -> _Row:
+        """Face j of the last band: the nodes from stringer j's end b_j to stringer j+1's end
+        (round the whole ring for a seam), at the face's own angles theta - (b_j - a_j)."""
+        ends = self.patches.closing_ends
+        b = float(ends[j])
+        nodes, ring = self._run(self._nearest(b), self._nearest(float(ends[(j + 1) % len(ends)])))
+        own = self.columns[self.first_column[j]] + (ring - ring[0]) + math.remainder(ring[0] - b, 2.0 * math.pi)
+        return self._row(j, nodes, ring, own)
+
+    def _nearest(self, theta: float) -> int:
+        return int(np.argmin(np.abs(np.remainder(self.angles - theta + math.pi, 2.0 * math.pi) - math.pi)))
+
+    def _run(self, start: int, stop: int) -> tuple[np.ndarray, np.ndarray]:
+        """The ring nodes from ``start`` to ``stop`` in +theta order (once round when they are
+        the same), and their angles lifted to increase from the start's."""
+        count = len(self.angles)
+        k = np.arange(start, stop + (count if stop <= start else 0) + 1)
+        return k % count, self.angles[k % count] + 2.0 * math.pi * (k // count)
+
+    def _row(self, j: int, nodes: np.ndarray, ring: np.ndarray, own: np.ndarray) -> _Row:
+        regular = self.columns[self.first_column[j] : self.first_column[j + 1] + 1]
+        match = np.abs(own[None, :] - regular[:, None]).argmin(axis=1)
+        off = np.abs(own[match] - regular).max()  # round-off, or a stringer's end merged onto a start
+        ordered = match[0] == 0 and match[-1] == len(own) - 1 and np.all(np.diff(match) > 0)
+        if not ordered or off > 2.0 * CLOSING_MERGE / self.rho + 1e-9:
+            raise TubecadError(f"the closing ring's mesh nodes do not match the grid columns of face {j} (off by "
+                               f"{off:.3g} rad)")  # fmt: skip
+        u = np.asarray(self.surface.circle.u_of_theta(np.clip(own, regular[0], regular[-1])), dtype=float)
+        return _Row(self.points[nodes], u, ring, match)
+
+
 def _tube_face(builder, surface, patches, face, where: tuple[int, int], points: np.ndarray, angles: np.ndarray,
-               arcs: np.ndarray, u_cuts: list[float], tolerance: float) -> None:  # fmt: skip
+               arcs: np.ndarray, u_cuts: list[float], tolerance: float, bottom: _Row | None = None,
+               top: _Row | None = None) -> None:  # fmt: skip
     """Face [i][j] = ``where``: its ``points`` (angles x arcs x 3), nodes (a, b) -> 1 + a m + b,
-    UV (u, s), two triangles per grid cell."""
+    UV (u, s), two triangles per grid cell. On a closed tube the first band's ``bottom`` row
+    and the last band's ``top`` row are the closing ring's (a superset of the columns), joined
+    to their neighbour rows by fans."""
+    if bottom is not None or top is not None:
+        return _closing_face(builder, surface, patches, face, where, points, angles, arcs, u_cuts, tolerance,
+                             bottom, top)  # fmt: skip
     i, j = where
     n, m = len(angles), len(arcs)
     u = np.asarray(surface.u_at(angles), dtype=float)
@@ -138,6 +255,92 @@ def _tube_face(builder, surface, patches, face, where: tuple[int, int], points: 
     else:
         _polygon(builder, left, [index[0, :]], tri)
         _polygon(builder, right, [index[-1, :]], tri)
+
+
+def _closing_face(builder, surface, patches, face, where: tuple[int, int], points: np.ndarray, angles: np.ndarray,
+                  arcs: np.ndarray, u_cuts: list[float], tolerance: float, bottom: _Row | None,
+                  top: _Row | None) -> None:  # fmt: skip
+    """:func:`_tube_face` for a face on the closing ring: the regular rows' nodes first
+    (column-major), then the ``bottom`` and ``top`` rows'. Each regular interval [c_k, c_k+1]
+    of an irregular row with its nodes p_0 = c_k, ..., p_m = c_k+1 is joined to the regular
+    row's nodes R_k, R_k+1 by the triangles (p_t, p_t+1, R_k) and (p_m, R_k+1, R_k) below it,
+    (R_k, p_t+1, p_t) and (R_k, R_k+1, p_m) above it: counter-clockwise in (u, s)."""
+    i, j = where
+    n, m = len(angles), len(arcs)
+    lo, hi = int(bottom is not None), m - int(top is not None)  # the regular rows lo .. hi - 1
+    if hi <= lo:
+        raise TubecadError(f"face [{i}][{j}] would have no regular grid row between its closing rows")
+    u = np.asarray(surface.u_at(angles), dtype=float)
+    u[0], u[-1] = u_cuts[j], u_cuts[j + 1]
+    index = np.zeros((n, m), dtype=int)
+    index[:, lo:hi] = np.arange(1, n * (hi - lo) + 1).reshape(n, hi - lo)
+    nodes = [points[:, lo:hi].reshape(-1, 3)]
+    uv = [np.stack(np.broadcast_arrays(u[:, None], arcs[None, lo:hi]), axis=-1).reshape(-1, 2)]
+    p, q, r, t = index[:-1, lo : hi - 1], index[1:, lo : hi - 1], index[1:, lo + 1 : hi], index[:-1, lo + 1 : hi]
+    triangles = [np.stack([p, q, r], -1).reshape(-1, 3), np.stack([p, r, t], -1).reshape(-1, 3)]
+    count = n * (hi - lo)
+    rows = {}
+    for b, row in ((0, bottom), (m - 1, top)):
+        if row is None:
+            continue
+        ids = np.arange(count + 1, count + 1 + len(row.points))
+        count += len(row.points)
+        row_u = row.u.copy()
+        row_u[row.match] = u  # the columns' own u, exact at the stringers
+        nodes.append(row.points)
+        uv.append(np.stack([row_u, np.full(len(row_u), arcs[b])], axis=-1))
+        triangles.append(_fans(ids, row.match, index[:, 1 if b == 0 else m - 2], below=b == 0))
+        index[:, b] = ids[row.match]
+        rows[b] = (ids, row)
+    tri = _triangulation(np.concatenate(nodes), np.concatenate(uv), np.concatenate(triangles), tolerance)
+    builder.UpdateFace(as_face(face), tri)
+    n_stringers = len(patches.stringers)
+    for b, ring in ((0, i), (m - 1, i + 1)):
+        if b in rows:
+            _closing_polygons(builder, patches.closing_arcs, *rows[b], tri)
+        else:
+            _polygon(builder, patches.rings[ring][j], [index[:, b]], tri)
+    left, right = patches.stringers[j][i], patches.stringers[(j + 1) % n_stringers][i]
+    if n_stringers == 1:
+        _polygon(builder, right, [index[-1, :], index[0, :]], tri)
+    else:
+        _polygon(builder, left, [index[0, :]], tri)
+        _polygon(builder, right, [index[-1, :]], tri)
+
+
+def _fans(row: np.ndarray, match: np.ndarray, regular: np.ndarray, below: bool) -> np.ndarray:
+    """The triangles between an irregular row's nodes ``row`` (``match``: where the regular
+    columns are among them) and the regular row's ``regular`` nodes, the irregular row
+    ``below`` it or above."""
+    triangles = []
+    for k in range(len(regular) - 1):
+        a, b, r0, r1 = match[k], match[k + 1], regular[k], regular[k + 1]
+        if below:
+            triangles += [(row[t], row[t + 1], r0) for t in range(a, b)] + [(row[b], r1, r0)]
+        else:
+            triangles += [(r0, row[t + 1], row[t]) for t in range(a, b)] + [(r0, r1, row[b])]
+    return np.array(triangles, dtype=int).reshape(-1, 3)
+
+
+def _closing_polygons(builder, arcs, ids: np.ndarray, row: _Row, tri) -> None:
+    """The polygon of each closing arc on a face's closing row: the row's nodes between the
+    arc's ends (the arcs whose middle, lifted by 2 pi k, falls within the row)."""
+    two_pi = 2.0 * math.pi
+    x0, x1 = row.ring[0], row.ring[-1]
+    mine = []
+    for a, b, edge in arcs:
+        lift = x0 + (0.5 * (a + b) - x0) % two_pi - 0.5 * (a + b)
+        if 0.5 * (a + b) + lift < x1:
+            mine.append((a + lift, b + lift, edge))
+    at = 0
+    for a, b, edge in sorted(mine, key=lambda arc: arc[0]):
+        start, stop = (int(np.argmin(np.abs(row.ring - x))) for x in (a, b))
+        if start != at or stop <= start:
+            break
+        _polygon(builder, edge, [ids[start : stop + 1]], tri)
+        at = stop
+    if at != len(ids) - 1 or not mine:
+        raise TubecadError("the closing ring's arcs do not match its mesh nodes")
 
 
 def _caps(build):
@@ -226,15 +429,19 @@ def mesh_deviation(axis, radii: Sequence[float], vertices: np.ndarray, triangles
     tube = triangles[~cap]
     if not len(tube):
         return vertex, 0.0
-    radius = radii[np.argmin(np.abs(dist[tube].mean(axis=1)[:, None] - radii[None, :]), axis=1)]
-    a, b = tube, np.roll(tube, -1, axis=1)  # the three edges (a_k, b_k) of each triangle
-    midpoints = 0.5 * (vertices[a] + vertices[b]).reshape(-1, 3)
+    which = np.argmin(np.abs(dist[tube].mean(axis=1)[:, None] - radii[None, :]), axis=1)
+    a, b = tube.reshape(-1), np.roll(tube, -1, axis=1).reshape(-1)  # the three edges (a_k, b_k) of each triangle
+    # an edge shared by two triangles of one tube once: a closed mesh's midpoints halved
+    key = (np.minimum(a, b) * len(vertices) + np.maximum(a, b)) * len(radii) + np.repeat(which, 3)
+    _, first = np.unique(key, return_index=True)
+    a, b, radius = a[first], b[first], radii[np.repeat(which, 3)[first]]
+    midpoints = 0.5 * (vertices[a] + vertices[b])
     step = s[b] - s[a]
     if axis.closed:  # an edge across the closing ring: its ends are near s0 and s1, its middle at either
         step = np.where(np.abs(step) > 0.5 * axis.length, step - np.sign(step) * axis.length, step)
     guess = s[a] + 0.5 * step
     if axis.closed:
         guess = axis.span[0] + np.mod(guess - axis.span[0], axis.length)
-    guess = np.clip(guess, *axis.span).reshape(-1)
+    guess = np.clip(guess, *axis.span)
     d, _ = distance_to_axis(axis, midpoints, guess, iters=4)  # from a close guess
-    return vertex, float(np.abs(d - np.repeat(radius, 3)).max())
+    return vertex, float(np.abs(d - radius).max())
