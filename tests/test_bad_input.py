@@ -448,7 +448,7 @@ API_CASES = {
     "tube_rho_k_1": (lambda: CurvatureLineTube(TUBE.axis, 20.0), RegularityError, "rho*k reaches 1 at s = 200"),
     "tube_circle_twice": (lambda: CurvatureLineTube(Helix(0.05, 0.0, (0.0, 300.0)), 10.0), RegularityError,
                           "self-intersects"),
-    "wall_tube_none": (lambda: wall_solid(None, 2.0), ParameterError, "tube must be a CurvatureLineTube, got NoneType"),
+    "wall_tube_none": (lambda: wall_solid(None, 2.0), ParameterError, "tube must be a CurvatureLineTube or a CanalSurface, got NoneType"),
     "wall_thickness_string": (lambda: wall_solid(TUBE, "2"), ParameterError, "thickness must be a real number"),
     "wall_thickness_zero": (lambda: wall_solid(TUBE, 0.0), ParameterError, "thickness must be in (0, inf), got 0"),
     "wall_thickness_tiny": (lambda: wall_solid(TUBE, 1e-9), ParameterError, "thickness must be >= 1e-05"),

@@ -10,12 +10,17 @@ theta (:func:`ring_pcurve`, C1 like the circle, fitted once per stringer interva
 shared by every ring), and the edge tolerance covers what the fit deviates from the exact
 circle. Each face lies on its own Segment()-ed copy of the surface, which keeps seams
 out of multi-face tubes; a single face around the tube uses a seam edge instead.
+
+On a canal surface (:class:`~tubecad.fitting.canal_section.CanalSectionSurface`) a ring is
+its exact characteristic circle, angles counted from where the origin stringer crosses it;
+the stringers cross it at angles that change with s (the Moebius map of docs/MATH.md
+section 8), so each ring arc gets its own pcurve u(theta) (:func:`canal_ring`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Sequence
+from typing import Callable, Sequence
 
 import functools
 import math
@@ -31,8 +36,9 @@ from scipy.interpolate import BSpline, make_lsq_spline
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
-from ..errors import TubecadError
+from ..errors import ParameterError, TubecadError
 from ..fitting import TubeSurface
+from ..fitting.canal_section import CanalSectionSurface
 from ..fitting.circle import CircleSpline
 from ..fitting.occ_arrays import integers, knots_and_multiplicities, reals
 from ..fitting.tolerance import EDGE_TOLERANCE
@@ -74,18 +80,27 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
     seam = n_stringers == 1
     own = len(s_rings) - (closing is not None)  # rings with edges of their own
 
+    canal = isinstance(tube_surface, CanalSectionSurface)
+    if canal and closing is not None:
+        raise ParameterError("a canal surface (a radius law) on a closed axis cannot be built yet: "
+                             "give a constant radius or open the axis (closed = false)")  # fmt: skip
     vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings[:own]]
     rings = []
     bounds = []  # bounds[i][j]: the (edge, pcurve, tolerance) of ring i along face column j, in +u order
-    to_u = [ring_pcurve(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
+    if not canal:
+        to_u = [ring_pcurve(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
     for i, s in enumerate(s_rings[:own]):
-        circle, gap = ring_circle(tube_surface, s)
-        tolerance = max(TOLERANCE, 2.0 * gap)
+        if canal:  # the stringers cross each circle at angles that change with s (the Moebius map)
+            circle, cuts, pcurves, tolerance = canal_ring(tube_surface, s, angles)
+        else:
+            circle, gap = ring_circle(tube_surface, s)
+            tolerance = max(TOLERANCE, 2.0 * gap)
+            cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
         rings.append([
-            _edge(circle, vertices[i][j], vertices[i][(j + 1) % n_stringers], angles[j], angles[j + 1])
+            _edge(circle, vertices[i][j], vertices[i][(j + 1) % n_stringers], cuts[j], cuts[j + 1])
             for j in range(n_stringers)
         ])  # fmt: skip
-        bounds.append([[(rings[i][j], to_u[j].Translated(gp_Vec2d(0.0, s)), tolerance)] for j in range(n_stringers)])
+        bounds.append([[(rings[i][j], pcurves[j], tolerance)] for j in range(n_stringers)])
     if closing is not None:
         arcs, first, last, ends = _closing_ring(tube_surface, s_rings[0], s_rings[-1], angles, vertices[0], closing)
         edges, end_vertices = [edge for _, _, edge in arcs], [v for _, v in ends]
@@ -225,8 +240,15 @@ def _angle_to_u(breaks: tuple[float, ...], a: float, b: float) -> BSpline:
     most ANGLE_FIT_SPAN, halved until a least-squares fit on Chebyshev points is within
     ANGLE_FIT_TOLERANCE of the closed form."""
     circle = CircleSpline.with_breaks(breaks)
-    degree = ANGLE_FIT_DEGREE
     joints = [arc.start for arc in circle.arcs if a + 1e-12 < arc.start < b - 1e-12]  # not at an end, to round-off
+    return fit_angle_map(circle.u_of_theta, a, b, joints)
+
+
+def fit_angle_map(to_u: Callable[[np.ndarray], np.ndarray], a: float, b: float, joints: Sequence[float]) -> BSpline:
+    """The map ``to_u`` (theta -> u) on [a, b] as a degree ANGLE_FIT_DEGREE B-spline, C1 at
+    ``joints`` (inside (a, b), increasing), spans of at most ANGLE_FIT_SPAN, halved until a
+    least-squares fit on Chebyshev points is within ANGLE_FIT_TOLERANCE (or 8 halvings)."""
+    degree = ANGLE_FIT_DEGREE
     segments = np.array([a, *joints, b])
     refine = 1
     while True:
@@ -237,9 +259,9 @@ def _angle_to_u(breaks: tuple[float, ...], a: float, b: float) -> BSpline:
             samples.append(lo + (hi - lo) * 0.5 * (1 - np.cos(np.linspace(0, math.pi, 4 * spans + degree + 4))))
         knots += [b] * (degree + 1)
         x = np.unique(np.concatenate(samples))
-        spline = make_lsq_spline(x, circle.u_of_theta(x), np.array(knots), k=degree)
+        spline = make_lsq_spline(x, to_u(x), np.array(knots), k=degree)
         check = np.linspace(a, b, 200 * refine * len(segments))
-        if np.abs(spline(check) - circle.u_of_theta(check)).max() <= ANGLE_FIT_TOLERANCE or refine >= 8:
+        if np.abs(spline(check) - to_u(check)).max() <= ANGLE_FIT_TOLERANCE or refine >= 8:
             return spline
         refine *= 2
 
@@ -270,6 +292,51 @@ def ring_circle(tube_surface: TubeSurface, s: float, samples: int = 16) -> tuple
     for th, u in zip(theta, tube_surface.circle.u_of_theta(theta)):
         gap = max(gap, circle.Value(float(th)).Distance(tube_surface.surface.Value(float(u), s)))
     return circle, gap
+
+
+#: samples per ring arc at which a canal ring's circle is compared with the surface through its pcurve
+CANAL_GAP_SAMPLES = 6
+
+
+def canal_ring(tube_surface: CanalSectionSurface, s: float, angles: list[float]
+               ) -> tuple[Geom_Circle, np.ndarray, list[Geom2d_BSplineCurve], float]:  # fmt: skip
+    """A canal surface's ring at ``s``: the exact characteristic circle (parameter: the angle
+    from the origin stringer's point), the angles where the stringers ``angles`` (chi0 -
+    origin, radians, the last 2 pi) cross it, the pcurve (u(theta), s) of each arc between
+    them and the edge tolerance covering the largest measured distance of the circle from
+    the surface through those pcurves. u(theta) composes the inverse Moebius map
+    theta -> chi0 with the circle spline's u(chi0), fitted per arc (C1 where the spline's
+    sub-arcs join)."""
+    centre, radius, t, x_dir, chi_o = tube_surface.ring(s)
+    circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+                         radius)  # fmt: skip
+    cuts = tube_surface.ring_angles(s, angles)
+    origin = math.radians(tube_surface.origin_deg)
+    spline_circle, surface = tube_surface.circle, tube_surface.surface
+    pcurves, gap = [], 0.0
+    for j in range(len(angles) - 1):
+        lo, hi = float(cuts[j]), float(cuts[j + 1])
+        mid = 0.5 * (lo + hi)
+
+        def to_u(theta: np.ndarray, j: int = j, lo: float = lo, mid: float = mid) -> np.ndarray:
+            chi0 = tube_surface.ring_chi0(s, chi_o, lo, origin + angles[j], theta, mid)
+            return spline_circle.u_of_theta(np.clip(chi0 - origin, angles[j], angles[j + 1]))
+
+        starts = [arc.start for arc in spline_circle.arcs if angles[j] + 1e-12 < arc.start < angles[j + 1] - 1e-12]
+        if starts:  # where the sub-arcs join, in theta: the forward map of chi0
+            chi = tube_surface.tube.stringer_angle(origin + np.array(starts), np.full(len(starts), s))
+            joints = list(lo + np.mod(chi - chi_o - lo, 2.0 * math.pi))
+        else:
+            joints = []
+        spline = fit_angle_map(to_u, lo, hi, joints)
+        poles = Array1OfPnt2d(1, len(spline.c))
+        for k, u in enumerate(spline.c):
+            poles.SetValue(k + 1, gp_Pnt2d(float(u), float(s)))
+        knots, mults = knots_and_multiplicities(spline.t)
+        pcurves.append(Geom2d_BSplineCurve(poles, reals(knots), integers(mults), int(spline.k)))
+        for theta in np.linspace(lo, hi, CANAL_GAP_SAMPLES + 2):
+            gap = max(gap, circle.Value(float(theta)).Distance(surface.Value(float(spline(theta)), s)))
+    return circle, cuts, pcurves, max(TOLERANCE, 2.0 * gap)
 
 
 def _vertex(builder: BRep_Builder, point) -> TopoDS_Vertex:

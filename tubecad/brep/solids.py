@@ -5,6 +5,14 @@
 - wall solid: outer and inner tubes (exact normal offsets rho +- d on one frame fit, so
   every inner edge has its outer twin) and annular end caps.
 
+Each also takes a :class:`~tubecad.surface.CanalSurface` (a radius law r(s); docs/MATH.md
+section 8) on an open axis: its surfaces are fitted by :mod:`..fitting.canal_section` (one
+spline for the surface and all its offsets r + d), its rings are the exact characteristic
+circles, the tube solid's caps are planar discs in the end circles' planes, and the wall's
+caps are pieces of the cones through the end circles of r + d_in and r + d_out (the sphere
+normals along an end circle meet at the axis point c(s_end); a plane annulus where r' = 0
+there). A CanalSurface whose law is constant is built as the tube of that radius.
+
 Each returns a :class:`TubeBuild` whose ``shape`` is a build123d Shell or Solid.
 """
 
@@ -16,23 +24,26 @@ from typing import Callable
 
 import build123d as bd
 import numpy as np
-from OCP.BRep import BRep_Builder
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepLib import BRepLib
-from OCP.Geom import Geom_Plane
+from OCP.Geom import Geom_ConicalSurface, Geom_Plane
+from OCP.Geom2d import Geom2d_Line
 from OCP.BRepGProp import BRepGProp_Face
 from OCP.BRepTools import BRepTools
-from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt, gp_Vec
+from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
+from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Wire
 
 from ..errors import ParameterError, RegularityError
 from ..fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
+from ..fitting.canal_section import CanalSpline, canal_section_surface, fit_canal
 from ..fitting.tolerance import DEFAULT_TOLERANCE, MIN_SIZE, orthogonality_for  # noqa: F401  (re-exported)
-from ..surface import CurvatureLineTube
+from ..surface import CanalSurface, CurvatureLineTube
 from .assembled import closed_solid, shell_of
-from .faces import TOLERANCE, PatchFaces, patch_faces
+from .faces import TOLERANCE, PatchFaces, _edge, patch_faces
 from .layout import NetLayout
-from .wall import WALL_SIDES, wall_radii  # noqa: F401  (re-exported)
+from .wall import WALL_SIDES, wall_offsets, wall_radii  # noqa: F401  (re-exported)
 
 #: progress(step, done, total), called as a build advances (the library never prints)
 Progress = Callable[[str, int, int], None]
@@ -40,13 +51,18 @@ Progress = Callable[[str, int, int], None]
 
 @dataclass
 class TubeBuild:
-    """A built shape and what it was built from."""
+    """A built shape and what it was built from.
+
+    For a canal surface ``frame`` is its :class:`~tubecad.fitting.canal_section.CanalSpline`,
+    each of ``surfaces`` a :class:`~tubecad.fitting.canal_section.CanalSectionSurface` whose
+    ``tube`` is the exact canal surface it approximates (r + d), and ``radii`` holds the mean
+    radius over the span (arc-length average of r + d) of each surface, outer first."""
 
     shape: bd.Shape
     surfaces: list[TubeSurface]  # outer first
     patches: list[PatchFaces]
     layout: NetLayout
-    frame: FrameSpline
+    frame: FrameSpline | CanalSpline
     tolerance: float
     radii: list[float] = field(default_factory=list)
 
@@ -63,12 +79,21 @@ class TubeBuild:
         return [[bd.Face(f) for f in row] for row in self.patches[surface].faces]
 
 
+def _as_tube(tube: object) -> object:
+    """A CanalSurface of a constant law as the tube of that radius (today's path), else ``tube``."""
+    if isinstance(tube, CanalSurface) and tube.radius_law.constant:
+        return CurvatureLineTube(tube.axis, tube.radius_law.value, allow_irregular=True)  # checked as a canal surface
+    return tube
+
+
 def _checked(tube: object, layout: object) -> NetLayout:
-    """The arguments every builder shares: a tube, a layout (default equal), a buildable radius."""
-    if not isinstance(tube, CurvatureLineTube):
-        raise ParameterError(f"tube must be a CurvatureLineTube, got {type(tube).__name__}")
+    """The arguments every builder shares: a tube (or a canal surface on an open axis), a
+    layout (default equal), a buildable radius."""
+    canal = isinstance(tube, CanalSurface)
+    if not canal and not isinstance(tube, CurvatureLineTube):
+        raise ParameterError(f"tube must be a CurvatureLineTube or a CanalSurface, got {type(tube).__name__}")
     if layout is None:
-        layout = NetLayout.equal(tube)
+        layout = NetLayout.equal(tube)  # type: ignore[arg-type]
     elif not isinstance(layout, NetLayout):
         raise ParameterError(f"layout must be a NetLayout (NetLayout.equal or NetLayout.explicit), got {type(layout).__name__}")
     s0, s1 = tube.span
@@ -78,7 +103,15 @@ def _checked(tube: object, layout: object) -> NetLayout:
                              f"[{layout.s_rings[0]:g}, {layout.s_rings[-1]:g}] (a layout made for another tube?)")  # fmt: skip
     if tube.length < MIN_SIZE:
         raise ParameterError(f"the span must be at least {MIN_SIZE:g} model units long for a B-rep, got {tube.length:g}")
-    if tube.radius < MIN_SIZE:
+    if canal:
+        law = tube.radius_law
+        if law.min_radius < MIN_SIZE:
+            raise ParameterError(f"radius: r must stay >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge "
+                                 f"precision 1e-7), got {law.min_radius:g} at s = {law.s_at_min_radius:g}")  # fmt: skip
+        if tube.axis.closed:
+            raise ParameterError("radius: a canal surface (a radius law) on a closed axis cannot be built yet; give a "
+                                 "constant radius, or open the axis (closed = false, or a shorter span)")  # fmt: skip
+    elif tube.radius < MIN_SIZE:
         raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
                              f"got {tube.radius:g}")  # fmt: skip
     if tube.axis.closed:
@@ -93,23 +126,38 @@ def _checked(tube: object, layout: object) -> NetLayout:
     return layout
 
 
-def build_tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None,
+def build_tube_shell(tube: CurvatureLineTube | CanalSurface, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
     """The tube's shell: faces between rings and stringers (open, or closed round a closed axis)."""
+    tube = _as_tube(tube)
     layout = _checked(tube, layout)
+    if isinstance(tube, CanalSurface):
+        fit, built = _canal_surfaces(tube, (0.0,), layout, tolerance)
+        (surface, patches), = built
+        return TubeBuild(bd.Shell(shell_of(patches.all_faces(), closed=False)), [surface], [patches], layout, fit,
+                         tolerance, [_mean_radius(surface.tube)])  # fmt: skip
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     surface, patches = _tube_faces(tube, frame, layout)
     shell = shell_of(patches.all_faces(), closed=tube.axis.closed)
     return TubeBuild(bd.Shell(shell), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
 
-def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
+def build_tube_solid(tube: CurvatureLineTube | CanalSurface, layout: NetLayout | None = None,
                      tolerance: float = DEFAULT_TOLERANCE, progress: Progress | None = None) -> TubeBuild:  # fmt: skip
     """The tube closed by planar discs in the normal planes at both ends (a closed axis:
     the closed tube, no caps). ``progress(step, done, total)`` is called after the frame
     fit, the surface and the solid."""
     report = progress or (lambda *_: None)
+    tube = _as_tube(tube)
     layout = _checked(tube, layout)
+    if isinstance(tube, CanalSurface):
+        done = iter(range(1, 3))
+        fit, built = _canal_surfaces(tube, (0.0,), layout, tolerance, step=lambda step: report(step, next(done), 3))
+        (surface, patches), = built
+        caps = [_canal_cap(surface, layout.s_rings[k], patches.rings[k], None, outward=k == -1) for k in (0, -1)]
+        solid = _solid([patches.all_faces() + caps], tube)
+        report("solid", 3, 3)
+        return TubeBuild(bd.Solid(solid), [surface], [patches], layout, fit, tolerance, [_mean_radius(surface.tube)])
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     report("frame fit", 1, 3)
     surface, patches = _tube_faces(tube, frame, layout)
@@ -121,15 +169,19 @@ def build_tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None,
     return TubeBuild(bd.Solid(solid), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
 
-def build_wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered",
+def build_wall_solid(tube: CurvatureLineTube | CanalSurface, thickness: float, side: str = "centered",
                      layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE,
                      progress: Progress | None = None) -> TubeBuild:  # fmt: skip
     """The wall between the tubes of radii r_in < r_out on ``tube``'s axis, with annular caps
     (a closed axis: no caps; the solid is bounded by the two closed tubes, the inner one a
     cavity). ``progress(step, done, total)`` is called after the frame fit, each surface and
-    the solid."""
+    the solid. A canal surface's wall lies between the canal surfaces of r + d_in and
+    r + d_out (:func:`~.wall.wall_offsets`), with conical caps (see the module)."""
     report = progress or (lambda *_: None)
+    tube = _as_tube(tube)
     layout = _checked(tube, layout)
+    if isinstance(tube, CanalSurface):
+        return _canal_wall(tube, thickness, side, layout, tolerance, report)
     r_in, r_out = wall_radii(tube.radius, thickness, side)
     try:
         outer_tube, inner_tube = CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)
@@ -228,7 +280,148 @@ def _points_away_from_axis(face: TopoDS_Face, tube: CurvatureLineTube) -> bool:
     return normal.Dot(gp_Vec(*(np.array([point.X(), point.Y(), point.Z()]) - centre))) > 0
 
 
-def exact_volume(build: TubeBuild, tube: CurvatureLineTube) -> float:
-    """pi (r_out^2 - r_in^2) L for a wall, pi rho^2 L for a tube solid (docs/MATH.md section 4)."""
+def exact_volume(build: TubeBuild, tube: CurvatureLineTube | CanalSurface) -> float:
+    """pi (r_out^2 - r_in^2) L for a wall, pi rho^2 L for a tube solid (docs/MATH.md section 4).
+
+    A canal surface: the volume its surface encloses with the discs of its end circles
+    (:attr:`CanalSurface.volume`, a quadrature); a wall's is the outer's minus the inner's,
+    corrected at each end by the cone frustum between the two end circles that the conical
+    cap adds (r' > 0 at the last end: the outer disc lies behind the inner one) or cuts off."""
+    if isinstance(tube, CanalSurface) and not tube.radius_law.constant:
+        exact = [surface.tube for surface in build.surfaces]
+        volume = exact[0].volume - (exact[1].volume if len(exact) > 1 else 0.0)
+        if len(exact) > 1:
+            for k, sign in ((0, -1.0), (1, 1.0)):
+                s = np.array([tube.span[k]])
+                (_, r_out, _), (_, r_in, _) = exact[0].circle(s), exact[1].circle(s)
+                offset = float(exact[0].radius_law.r(s)[0] - exact[1].radius_law.r(s)[0])
+                dr = float(tube.radius_law.dr(s)[0])
+                h = abs(dr) * offset  # the distance of the end circles' planes
+                R1, R2 = float(r_out[0]), float(r_in[0])
+                volume += sign * math.copysign(1.0, dr) * math.pi * h * (R1 * R1 + R1 * R2 + R2 * R2) / 3.0
+        return volume
     radii = build.radii
     return math.pi * (radii[0] ** 2 - (radii[1] ** 2 if len(radii) > 1 else 0.0)) * tube.length
+
+
+# --- canal surfaces ----------------------------------------------------------------------
+def _mean_radius(canal: CanalSurface) -> float:
+    """The arc-length mean of r(s) over the span (Gauss-Legendre panels)."""
+    s0, s1 = canal.span
+    x, w = np.polynomial.legendre.leggauss(16)
+    edges = np.linspace(s0, s1, 65)
+    mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * np.diff(edges)
+    s = (mid[:, None] + half[:, None] * x).ravel()
+    return float((canal.radius_law.r(s) * (half[:, None] * w).ravel()).sum() / (s1 - s0))
+
+
+def _canal_surfaces(canal: CanalSurface, offsets: tuple[float, ...], layout: NetLayout, tolerance: float,
+                    exact: list[CanalSurface] | None = None, step: Callable[[str], None] = lambda _: None
+                    ) -> tuple[CanalSpline, list[tuple[TubeSurface, PatchFaces]]]:  # fmt: skip
+    """Fit ``canal`` once for all ``offsets`` (``exact``: those offset surfaces, if made) and
+    build the patch faces of each (outer first; the second reversed, the inner wall of a
+    solid), calling ``step(name)`` after the fit and each surface."""
+    fit = fit_canal(canal, offsets, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
+    step("frame fit")
+    names = ("surface",) if len(offsets) == 1 else ("outer surface", "inner surface")
+    built = []
+    for k, d in enumerate(offsets):
+        surface = canal_section_surface(canal, fit, d, layout.stringers_deg, exact[k] if exact else None)
+        built.append((surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=k > 0)))
+        step(names[k])
+    return fit, built
+
+
+def _canal_wall(canal: CanalSurface, thickness: float, side: str, layout: NetLayout, tolerance: float,
+                report: Progress) -> TubeBuild:  # fmt: skip
+    d_in, d_out = wall_offsets(thickness, side)
+    law = canal.radius_law
+    if law.min_radius + d_in < MIN_SIZE:  # (side centered or inside)
+        limit = 2 * law.min_radius if side == "centered" else law.min_radius
+        raise ParameterError(f"thickness must be < {limit:g} for side = {side!r} (the radius law's smallest r is "
+                             f"{law.min_radius:g} at s = {law.s_at_min_radius:g}; the inner surface's r must stay >= "
+                             f"{MIN_SIZE:g}), got {float(thickness):g}")  # fmt: skip
+    try:  # a surface built with allow_irregular=True has its offsets allowed too
+        exact = [canal if d == 0.0 else canal.offset(d, allow_irregular=not canal.regularity.ok) for d in (d_out, d_in)]
+    except RegularityError as exc:
+        raise RegularityError(f"thickness {float(thickness):g} (side = {side!r}) gives a wall between the canal "
+                              f"surfaces of r {d_in:+g} and r {d_out:+g}: {exc}") from None  # fmt: skip
+    done = iter(range(1, 4))
+    fit, built = _canal_surfaces(canal, (d_out, d_in), layout, tolerance, exact,
+                                 lambda step: report(step, next(done), 4))  # fmt: skip
+    (outer, outer_patches), (inner, inner_patches) = built
+    caps = [_canal_cap(outer, layout.s_rings[k], outer_patches.rings[k], (inner, inner_patches.rings[k]),
+                       outward=k == -1) for k in (0, -1)]  # fmt: skip
+    solid = _solid([outer_patches.all_faces() + inner_patches.all_faces() + caps], canal)
+    report("solid", 4, 4)
+    return TubeBuild(bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, fit, tolerance,
+                     [_mean_radius(outer.tube), _mean_radius(inner.tube)])  # fmt: skip
+
+
+#: below this |r'| at an end a wall's cap is the plane annulus (the cone would be within
+#: |r'| thickness of it, far below the edge tolerance)
+FLAT_CAP_SLOPE = 1e-12
+
+
+def _canal_cap(outer, s: float, outer_ring: list[TopoDS_Edge], inner: tuple | None, outward: bool) -> TopoDS_Face:
+    """The cap at ``s`` of a canal surface's solid: the planar disc of the end circle of
+    ``outer`` (a CanalSectionSurface), or with ``inner`` (its inner surface and ring edges)
+    the piece of the cone through both end circles (the plane annulus where r' = 0).
+
+    The cone has its apex at c(s): an end circle of r + d lies on it at distance r + d from
+    the apex along the generator n = -r' t + q e (the sphere normal). Placed at the inner
+    circle (centre C_in, radius R_in, axis +t, x direction the origin stringer's, so its u is
+    the rings' angle theta) with semi-angle a = k atan2(q, |r'|) and v = k (r_out - r_in),
+    k = -sign(r'), its v-isolines are the two end circles exactly."""
+    centre, _, t, x_dir, _ = outer.ring(s)
+    dr = float(outer.tube.radius_law.dr(np.array([s]))[0])
+    builder = BRep_Builder()
+    face = TopoDS_Face()
+    if inner is None or abs(dr) <= FLAT_CAP_SLOPE:
+        normal = t if outward else -t
+        plane = Geom_Plane(gp_Ax3(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, normal)), gp_Dir(*map(float, x_dir))))
+        builder.MakeFace(face, plane, TOLERANCE)
+        rings = [outer_ring] + ([] if inner is None else [inner[1]])
+        for k, edges in enumerate(rings):
+            forward = outward == (k == 0)  # as in _cap: outer wire counter-clockwise about the normal, hole clockwise
+            wire = TopoDS_Wire()
+            builder.MakeWire(wire)
+            for edge in edges if forward else edges[::-1]:
+                builder.Add(wire, edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
+                BRepLib.BuildPCurveForEdgeOnPlane_s(edge, face)
+            wire.Closed(True)
+            builder.Add(face, wire)
+        return face
+    inner_surface, inner_ring = inner
+    c_in, radius_in, _, _, _ = inner_surface.ring(s)
+    r_out = float(outer.tube.radius_law.r(np.array([s]))[0])
+    r_in = float(inner_surface.tube.radius_law.r(np.array([s]))[0])
+    q = math.sqrt(1.0 - dr * dr)
+    k = -math.copysign(1.0, dr)
+    cone = Geom_ConicalSurface(gp_Ax3(gp_Pnt(*map(float, c_in)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+                               k * math.atan2(q, abs(dr)), radius_in)  # fmt: skip
+    builder.MakeFace(face, cone, TOLERANCE)
+    v_out = k * (r_out - r_in)
+    (low, v_low), (high, v_high) = ((inner_ring, 0.0), (outer_ring, v_out)) if v_out > 0 else (
+        (outer_ring, v_out), (inner_ring, 0.0))  # fmt: skip
+    # a seam along the generator u = 0 (OCCT wants one on a closed surface): from the lower
+    # circle's point at theta = 0 (the origin stringer's vertex) to the upper one's
+    seam = _edge(cone.UIso(0.0), TopExp.FirstVertex_s(low[0]), TopExp.FirstVertex_s(high[0]), v_low, v_high)
+    wire = TopoDS_Wire()
+    builder.MakeWire(wire)  # counter-clockwise in (u, v): the lower circle along +u, the seam up, the upper back
+    for edge in low:
+        builder.UpdateEdge(edge, Geom2d_Line(gp_Pnt2d(0.0, v_low), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge))
+        builder.Add(wire, edge.Oriented(TopAbs_FORWARD))
+    builder.UpdateEdge(seam, Geom2d_Line(gp_Pnt2d(2.0 * math.pi, 0.0), gp_Dir2d(0.0, 1.0)),
+                       Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(0.0, 1.0)), face, TOLERANCE)  # fmt: skip
+    builder.Add(wire, seam.Oriented(TopAbs_FORWARD))
+    for edge in high[::-1]:
+        builder.UpdateEdge(edge, Geom2d_Line(gp_Pnt2d(0.0, v_high), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge))
+        builder.Add(wire, edge.Oriented(TopAbs_REVERSED))
+    builder.Add(wire, seam.Oriented(TopAbs_REVERSED))
+    wire.Closed(True)
+    builder.Add(face, wire)
+    point, normal = gp_Pnt(), gp_Vec()  # the cone's own normal is sign(r') m, m = q t + r' e the stringers'
+    BRepGProp_Face(face).Normal(0.5 * math.pi, 0.5 * v_out, point, normal)
+    pointing_out = normal.Dot(gp_Vec(*map(float, t))) > 0
+    return face if pointing_out == outward else TopoDS_Face.Reversed(face)

@@ -65,9 +65,11 @@ class CircleSpline:
     arcs: tuple[_Arc, ...] = field(repr=False)
 
     @classmethod
-    def with_breaks(cls, breaks: np.ndarray | list[float] | tuple[float, ...]) -> "CircleSpline":
+    def with_breaks(cls, breaks: np.ndarray | list[float] | tuple[float, ...],
+                    max_sub_arc: float = MAX_SUB_ARC) -> "CircleSpline":  # fmt: skip
         """The circle with double knots at the angles ``breaks`` (radians, relative to the
-        first, which becomes angle and parameter 0)."""
+        first, which becomes angle and parameter 0), its C1 sub-arcs at most ``max_sub_arc``
+        (a canal surface's Moebius map needs shorter ones, :mod:`.canal_section`)."""
         b = np.unique(np.mod(np.asarray(breaks, dtype=float) - float(np.asarray(breaks).flat[0]), TWO_PI))
         ends = np.append(b, TWO_PI)
         long = np.diff(ends) > MAX_ARC  # (a single break always: no closed C1 circle exists)
@@ -76,7 +78,7 @@ class CircleSpline:
         x, y, w, knots, mults, arcs = [], [], [], [], [], []
         for start, stop in zip(ends[:-1], ends[1:]):
             theta = stop - start
-            n = max(1, math.ceil(theta / MAX_SUB_ARC - 1e-12))
+            n = max(1, math.ceil(theta / max_sub_arc - 1e-12))
             a = theta / n
             J = math.cos(theta / 4) ** 2 / np.cos(np.arange(n + 1) * a / 2 - theta / 4) ** 2
             J[0] = J[-1] = 1.0
@@ -97,13 +99,14 @@ class CircleSpline:
                    np.array(mults), tuple(arcs))  # fmt: skip
 
     @classmethod
-    def for_stringers(cls, angles: np.ndarray | list[float] | tuple[float, ...]) -> "CircleSpline":
+    def for_stringers(cls, angles: np.ndarray | list[float] | tuple[float, ...],
+                      max_sub_arc: float = MAX_SUB_ARC) -> "CircleSpline":  # fmt: skip
         """The circle with the fewest poles whose C0 knots are stringers (face boundaries):
         breaks at the first angle and at the one nearest the opposite side, so each arc is
         at most about 180 deg + the stringer spacing (6 poles for evenly spaced stringers)."""
         rel = np.mod(np.asarray(angles, dtype=float) - float(np.asarray(angles).flat[0]), TWO_PI)
         opposite = rel[np.argmin(np.abs(rel - math.pi))]
-        return cls.with_breaks([0.0] if opposite == 0.0 else [0.0, float(opposite)])
+        return cls.with_breaks([0.0] if opposite == 0.0 else [0.0, float(opposite)], max_sub_arc)
 
     @classmethod
     def quarters(cls) -> "CircleSpline":

@@ -119,15 +119,34 @@ def fit_frame(
     joints = _joint_multiplicities(axis, degree)
     breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([np.asarray(rings, dtype=float), list(joints)]))
     radii = tuple(float(r) for r in radii) or (float(radius_bound),)
+    spline, pos, orth = refine_spline(
+        lambda s: exact_frame(axis, s)[0], breaks, degree, joints,
+        lambda spline, breaks: _span_errors(axis, spline, breaks, radius_bound, radii, 0.5 * orthogonality),
+        tolerance, orthogonality, max_spans, "the frame spline",
+    )  # fmt: skip
+    return FrameSpline(spline, pos, orth, radius_bound)
+
+
+def refine_spline(values: Callable[[np.ndarray], np.ndarray], breaks: np.ndarray, degree: int,
+                  joints: dict[float, int], span_errors: Callable[[BSpline, np.ndarray], tuple[np.ndarray, np.ndarray]],
+                  tolerance: float, orthogonality: float, max_spans: int = 4096, what: str = "the spline",
+                  ) -> tuple[BSpline, float, float]:  # fmt: skip
+    """Interpolate the vector function ``values`` (s -> (len(s), m)) at the Greville
+    abscissae of the clamped knot vector of ``degree`` on ``breaks`` (inner breaks in
+    ``joints`` repeated to their multiplicity), and halve every span where
+    ``span_errors(spline, breaks)`` (per span: a position error and an orthogonality error)
+    exceeds half of ``tolerance`` / ``orthogonality``, until none does: (spline, largest
+    position error, largest orthogonality error). A FitError (naming ``what``) when more than
+    ``max_spans`` spans would be needed."""
     best = (math.inf, math.inf)
     worst: list[float] = []  # per refinement: the largest error in units of its target
     while True:
-        spline = _interpolate(axis, breaks, degree, joints)
-        pos, orth = _span_errors(axis, spline, breaks, radius_bound, radii, 0.5 * orthogonality)
+        spline = _interpolate(values, breaks, degree, joints)
+        pos, orth = span_errors(spline, breaks)
         best = (min(best[0], float(pos.max())), min(best[1], float(orth.max())))
         bad = (pos > 0.5 * tolerance) | (orth > 0.5 * orthogonality)
         if not bad.any():
-            return FrameSpline(spline, float(pos.max()), float(orth.max()), radius_bound)
+            return spline, float(pos.max()), float(orth.max())
         worst.append(max(pos.max() / (0.5 * tolerance), orth.max() / (0.5 * orthogonality)))
         if len(breaks) - 1 + bad.sum() > max_spans:
             stalled = len(worst) > STALLED_ROUNDS and min(worst[-STALLED_ROUNDS:]) > 0.5 * worst[-STALLED_ROUNDS - 1]
@@ -136,7 +155,7 @@ def fit_frame(
                    "the error was still decreasing: try a looser tolerance or split the span")  # fmt: skip
             raise FitError(
                 f"fit tolerance {tolerance:g} / orthogonality {orthogonality:g} not reached with {max_spans} "
-                f"spans of degree {degree} (the frame spline must meet half of each, {0.5 * tolerance:g} / "
+                f"spans of degree {degree} ({what} must meet half of each, {0.5 * tolerance:g} / "
                 f"{0.5 * orthogonality:g}); the best reached was {best[0]:.3g} / {best[1]:.3g} ({why})"
             )
         mids = 0.5 * (breaks[:-1] + breaks[1:])[bad]
@@ -177,14 +196,14 @@ def _joint_multiplicities(axis: Axis, degree: int) -> dict[float, int]:
     return {float(s): degree - int(c) for s, c in axis.joints if s0 < s < s1 and 0 <= c < degree}
 
 
-def _interpolate(axis: Axis, breaks: np.ndarray, p: int, joints: dict[float, int]) -> BSpline:
+def _interpolate(values: Callable[[np.ndarray], np.ndarray], breaks: np.ndarray, p: int,
+                 joints: dict[float, int]) -> BSpline:  # fmt: skip
     inner = [b for b in breaks[1:-1] for _ in range(joints.get(float(b), 1))]
     knots = np.concatenate([[breaks[0]] * (p + 1), inner, [breaks[-1]] * (p + 1)])
     n = len(knots) - p - 1
     greville = np.array([knots[i + 1 : i + p + 1].mean() for i in range(n)])
     greville = np.clip(greville, breaks[0], breaks[-1])  # a mean of equal knots can round past them
-    F, _ = exact_frame(axis, greville)
-    return make_interp_spline(greville, F, k=p, t=knots)
+    return make_interp_spline(greville, values(greville), k=p, t=knots)
 
 
 def _span_errors(axis: Axis, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float],

@@ -1,0 +1,320 @@
+"""Exact-section NURBS of a canal surface (docs/MATH.md section 8): every s-isoline an exact
+rational quadratic circle, only twelve functions of s approximated.
+
+With (sigma, gamma) = (sin(chi0/2), cos(chi0/2)) and (a, b) = Mb(s) (sigma, gamma) (the
+half-angle system of :mod:`..surface.canal`), the quadratic forms a^2 + b^2, b^2 - a^2 and 2ab
+are affine in (1, cos chi0, sin chi0), since sigma^2 = (1 - cos chi0)/2, gamma^2 = (1 +
+cos chi0)/2 and sigma gamma = sin(chi0)/2. Multiplying X = c - r r' t + r q (cos chi r1 +
+sin chi r2) by D = a^2 + b^2 therefore gives the homogeneous point
+
+    X_h(chi0, s) = A0(s) + cos(chi0) A1(s) + sin(chi0) A2(s)    (4-vectors (D X, D))
+
+    A_k = (D_k c + r N_k, D_k),   N_k = -r' D_k t + q (B_k r1 + C_k r2)
+
+with D_k, B_k, C_k the coefficients of a^2 + b^2, b^2 - a^2 and 2ab (quadratic in Mb's
+entries). N = N0 + cos N1 + sin N2 is D times the unit normal -r' t + q e, and the offset
+by d (the canal surface of r + d, same Mb) is A_k + d (N_k, 0): one B-spline in s of the
+21-vector (A0, A1, A2, N0, N1, N2) serves every wall surface, as the tube's frame spline
+does. Substituting the exact rational unit circle (X_i, Y_i, w_i) of :mod:`.circle` for
+(cos chi0, sin chi0), the homogeneous poles are
+
+    H_ij = w_i (A0_j + X_i A1_j + Y_i A2_j)
+
+(A_kj the spline's poles), so every s-isoline is exactly the characteristic circle, and the
+u-isolines are the stringers chi0 = const. The weights w_i (D0_j + X_i D1_j + Y_i D2_j) are
+positive when each C1 sub-arc of the circle is short enough for the condition number
+kappa of Mb: a sub-arc alpha is used with cot(alpha / 4) >= sqrt(3) kappa (then the image
+of a sub-arc under the Moebius map stays below 120 deg), and the weights are checked.
+
+The spline is fitted like the frame spline (:func:`.frame_spline.refine_spline`: Greville
+interpolation, knots at the rings, the axis' joints and a radius table's knots, spans
+halved) until, sampled densely at every offset built, the distance of the fitted surface
+from the exact canal surface (:meth:`CanalSurface.points` + d :meth:`CanalSurface.normal`,
+parameter-matched) is <= tolerance / 2 and |cos| between its isolines <= orthogonality / 2.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from OCP.Geom import Geom_BSplineSurface
+from scipy.interpolate import BSpline
+
+from ..errors import ParameterError
+from ..surface.canal import CanalSurface
+from .circle import MAX_SUB_ARC, CircleSpline
+from .exact_section import TubeSurface
+from .frame_spline import (
+    SAMPLES_PER_SPAN,
+    FitError,
+    _initial_breaks,
+    _joint_multiplicities,
+    _with_rings,
+    refine_spline,
+)
+from .occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
+from .tolerance import check_tolerance
+
+#: angles chi0 around the surface at which the fit is measured (per s sample)
+MEASURE_ANGLES = 24
+#: a C1 sub-arc alpha of the circle is used with cot(alpha / 4) >= WEIGHT_MARGIN kappa(Mb):
+#: its image under the Moebius map then stays below 120 deg (below 180 deg the weights are
+#: positive; the margin keeps the middle poles near the circle)
+WEIGHT_MARGIN = math.sqrt(3.0)
+#: per component group: A0 (x, y, z, w), A1, A2, then N0, N1, N2 (x, y, z)
+COMPONENTS = 21
+
+
+def moebius_matrix(canal: CanalSurface, s: np.ndarray) -> np.ndarray:
+    """Mb(s), shape s.shape + (2, 2): the half-angle system's fundamental matrix (the
+    identity for a constant law)."""
+    s = np.asarray(s, dtype=float)
+    if canal._moebius is None:
+        return np.broadcast_to(np.eye(2), s.shape + (2, 2)).copy()
+    return canal._moebius[0](s)
+
+
+def _quadratic_coefficients(m: np.ndarray) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray]]:
+    """The coefficients on (1, cos chi0, sin chi0) of a^2 + b^2, b^2 - a^2 and 2ab, (a, b) = m v."""
+    m00, m01, m10, m11 = m[..., 0, 0], m[..., 0, 1], m[..., 1, 0], m[..., 1, 1]
+    D = [0.5 * (m00**2 + m01**2 + m10**2 + m11**2), 0.5 * (m01**2 - m00**2 + m11**2 - m10**2), m00 * m01 + m10 * m11]
+    B = [0.5 * (m10**2 + m11**2 - m00**2 - m01**2), 0.5 * (m11**2 - m10**2 - m01**2 + m00**2), m10 * m11 - m00 * m01]
+    C = [m00 * m10 + m01 * m11, m01 * m11 - m00 * m10, m00 * m11 + m01 * m10]
+    return D, B, C
+
+
+def canal_functions(canal: CanalSurface, s: np.ndarray) -> np.ndarray:
+    """The exact 21-vector (A0, A1, A2 as (xyz, w); N0, N1, N2 as xyz) at ``s``, shape (len(s), 21)."""
+    s = np.asarray(s, dtype=float)
+    D, B, C = _quadratic_coefficients(moebius_matrix(canal, s))
+    c = canal.axis.position(s)
+    t, r1, r2 = canal.axis.rotation_minimising_frame(s)
+    law = canal.radius_law
+    r, dr = law.r(s), law.dr(s)
+    q = np.sqrt(1.0 - dr * dr)
+    A, N = [], []
+    for k in range(3):
+        n = (-dr * D[k])[:, None] * t + q[:, None] * (B[k][:, None] * r1 + C[k][:, None] * r2)
+        A.append(np.hstack([D[k][:, None] * c + r[:, None] * n, D[k][:, None]]))
+        N.append(n)
+    return np.hstack(A + N)
+
+
+def homogeneous(F: np.ndarray, offset: float = 0.0) -> np.ndarray:
+    """(A0, A1, A2) of the offset by ``offset`` from rows of the 21-vector: shape (..., 3, 4)."""
+    A = F[..., :12].reshape(F.shape[:-1] + (3, 4)).copy()
+    if offset:
+        A[..., :3] += offset * F[..., 12:].reshape(F.shape[:-1] + (3, 3))
+    return A
+
+
+def condition_number(F: np.ndarray) -> float:
+    """The largest condition number of Mb over rows of the 21-vector: sqrt(D_max / D_min)
+    with D = D0 + cos D1 + sin D2 = |Mb v|^2."""
+    D = F[..., [3, 7, 11]]
+    rho = np.hypot(D[..., 1], D[..., 2])
+    return float(np.sqrt((D[..., 0] + rho) / (D[..., 0] - rho)).max())
+
+
+def sub_arc_for(kappa: float) -> float:
+    """The longest C1 sub-arc of the circle for a Moebius map of condition number ``kappa``:
+    cot(alpha / 4) = WEIGHT_MARGIN kappa, at most the tube's 90 deg."""
+    return min(MAX_SUB_ARC, 4.0 * math.atan(1.0 / (WEIGHT_MARGIN * kappa)))
+
+
+def _points_and_derivatives(A: np.ndarray, dA: np.ndarray, chi0: np.ndarray) -> tuple[np.ndarray, ...]:
+    """X, X_chi0, X_s of X = H_xyz / H_w, H = A0 + cos A1 + sin A2, at rows of A (n, 3, 4) x angles."""
+    cos, sin = np.cos(chi0)[None, :, None], np.sin(chi0)[None, :, None]
+    H = A[:, None, 0] + cos * A[:, None, 1] + sin * A[:, None, 2]
+    H_chi = -sin * A[:, None, 1] + cos * A[:, None, 2]
+    H_s = dA[:, None, 0] + cos * dA[:, None, 1] + sin * dA[:, None, 2]
+    w = H[..., 3:]
+    X = H[..., :3] / w
+    return X, (H_chi[..., :3] - X * H_chi[..., 3:]) / w, (H_s[..., :3] - X * H_s[..., 3:]) / w
+
+
+@dataclass(frozen=True)
+class CanalSpline:
+    """The B-spline in s of the 21-vector (A0, A1, A2, N0, N1, N2) of a canal surface, with
+    the bounds it was measured to meet at every offset in ``offsets`` (``radius_bound``: the
+    largest radius r + d built on it). Duck-types :class:`.frame_spline.FrameSpline` where a
+    build reports it (degree, poles, spans)."""
+
+    spline: BSpline
+    position_bound: float
+    orthogonality_bound: float
+    radius_bound: float
+    offsets: tuple[float, ...]
+    #: the longest C1 sub-arc of the circle spline the surfaces use (weights positive)
+    max_sub_arc: float
+    condition: float
+    weights = None
+    arc_length = None
+    parameter = None
+
+    @property
+    def rational(self) -> bool:
+        return False
+
+    @property
+    def degree(self) -> int:
+        return int(self.spline.k)
+
+    @property
+    def poles(self) -> int:
+        return len(self.spline.c)
+
+    @property
+    def spans(self) -> int:
+        return len(np.unique(self.spline.t)) - 1
+
+    def values(self, s: np.ndarray | float) -> np.ndarray:
+        return self.spline(s)
+
+    def points(self, chi0: np.ndarray, s: np.ndarray, offset: float = 0.0) -> np.ndarray:
+        """The fitted surface (before OCCT) at the offset: shape (len(s), len(chi0), 3)."""
+        A = homogeneous(self.spline(np.asarray(s, dtype=float)), offset)
+        chi0 = np.asarray(chi0, dtype=float)
+        H = A[:, None, 0] + np.cos(chi0)[None, :, None] * A[:, None, 1] + np.sin(chi0)[None, :, None] * A[:, None, 2]
+        return H[..., :3] / H[..., 3:]
+
+
+def fit_canal(canal: CanalSurface, offsets: Sequence[float] = (0.0,), tolerance: float = 1e-8,
+              orthogonality: float = 1e-9, degree: int = 7, max_spans: int = 4096,
+              rings: Sequence[float] = ()) -> CanalSpline:  # fmt: skip
+    """Fit the 21-vector of ``canal`` adaptively until, at each of the ``offsets`` (the
+    normal offsets d of the surfaces that will be built on it: r + d), the fitted surface is
+    within ``tolerance`` / 2 of the exact one and its isolines within ``orthogonality`` / 2
+    of orthogonal (measured at SAMPLES_PER_SPAN x MEASURE_ANGLES points per span).
+
+    ``rings`` (arc lengths inside the span) become knots, like the axis' joints (reduced
+    continuity as in :func:`.frame_spline.fit_frame`) and a radius table's knots (C1: r' is
+    only C1 there)."""
+    if not isinstance(canal, CanalSurface):
+        raise ParameterError(f"canal must be a CanalSurface, got {type(canal).__name__}")
+    if isinstance(degree, bool) or not (isinstance(degree, int) and 3 <= degree <= 9):
+        raise ParameterError(f"degree must be a whole number in [3, 9], got {degree!r}")
+    tolerance = check_tolerance("tolerance", tolerance)
+    orthogonality = check_tolerance("orthogonality", orthogonality)
+    offsets = tuple(float(d) for d in offsets) or (0.0,)
+    axis, law = canal.axis, canal.radius_law
+    joints = _joint_multiplicities(axis, degree)
+    for b in law.breaks:  # a table's knots: the functions are C1 there
+        joints[float(b)] = max(joints.get(float(b), 1), degree - 1)
+    breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([np.asarray(rings, dtype=float), list(joints)]))
+    chi0 = np.linspace(0.0, 2.0 * math.pi, MEASURE_ANGLES, endpoint=False) + 0.05
+
+    def span_errors(spline: BSpline, breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        m = len(breaks) - 1
+        frac = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)
+        s = (breaks[:-1, None] + np.diff(breaks)[:, None] * frac).ravel()
+        exact, normal = canal.points(chi0[None, :], s[:, None]), canal.normal(chi0[None, :], s[:, None])
+        F, dF = spline(s), spline.derivative()(s)
+        pos = np.zeros(len(s))
+        orth = np.zeros(len(s))
+        for d in offsets:
+            X, X_chi, X_s = _points_and_derivatives(homogeneous(F, d), homogeneous(dF, d), chi0)
+            pos = np.maximum(pos, np.linalg.norm(X - (exact + d * normal), axis=-1).max(axis=1))
+            cos = np.abs(np.einsum("ijk,ijk->ij", X_chi, X_s)) / (np.linalg.norm(X_chi, axis=-1)
+                                                                 * np.linalg.norm(X_s, axis=-1))  # fmt: skip
+            orth = np.maximum(orth, cos.max(axis=1))
+        return pos.reshape(m, -1).max(axis=1), orth.reshape(m, -1).max(axis=1)
+
+    spline, pos, orth = refine_spline(lambda s: canal_functions(canal, s), breaks, degree, joints, span_errors,
+                                      tolerance, orthogonality, max_spans, "the canal section spline")  # fmt: skip
+    s_check = np.linspace(*canal.span, 4001)
+    kappa = max(condition_number(spline(s_check)), condition_number(spline.c))
+    radius_bound = max(law.max_radius + d for d in offsets)
+    return CanalSpline(spline, pos, orth, radius_bound, offsets, sub_arc_for(kappa), kappa)
+
+
+@dataclass(frozen=True)
+class CanalSectionSurface(TubeSurface):
+    """An OCCT surface of a canal surface: u = 0 is the stringer chi0 = ``origin_deg`` (its
+    angle from r1 at the span's start), u = const the stringers, s = const the exact
+    characteristic circles. ``tube`` is the exact :class:`CanalSurface` it approximates
+    (of r + ``offset``), ``fit`` the spline it was built from. :meth:`u_at` and
+    :meth:`theta_at` convert stringer angles chi0, as for a tube."""
+
+    fit: CanalSpline | None = None
+    offset: float = 0.0
+
+    def ring(self, s: float) -> tuple[np.ndarray, float, np.ndarray, np.ndarray, float]:
+        """The characteristic circle at ``s``: (centre c - r r' t, radius r q, normal t, the
+        direction e of the origin stringer, chi of the origin stringer)."""
+        exact = self.tube
+        centre, radius, t = exact.circle(np.array([s]))
+        chi_o = float(exact.stringer_angle(math.radians(self.origin_deg), np.array([s]))[0])
+        _, r1, r2 = exact.axis.rotation_minimising_frame(np.array([s]))
+        x_dir = math.cos(chi_o) * r1[0] + math.sin(chi_o) * r2[0]
+        return centre[0], float(radius[0]), t[0], x_dir, chi_o
+
+    def ring_angles(self, s: float, angles: Sequence[float]) -> np.ndarray:
+        """Where the stringers at ``angles`` (chi0 - origin, radians, increasing from 0, the
+        last 2 pi) cross the circle at ``s``: the angles theta from the origin stringer there
+        (increasing: the Moebius map keeps the order; the last 2 pi)."""
+        o = math.radians(self.origin_deg)
+        chi = self.tube.stringer_angle(o + np.asarray(angles[:-1], dtype=float), np.full(len(angles) - 1, s))
+        theta = np.mod(chi - chi[0], 2.0 * math.pi)
+        theta[0] = 0.0
+        return np.append(theta, 2.0 * math.pi)
+
+    def ring_chi0(self, s: float, chi_o: float, theta_a: float, chi0_a: float, theta: np.ndarray,
+                  theta_mid: float) -> np.ndarray:  # fmt: skip
+        """chi0 (radians, absolute) of the points at angles ``theta`` from the origin stringer
+        on the circle at ``s``, on the arc that starts at theta_a on the stringer chi0_a: the
+        exact inverse Moebius map, continued from the arc's start through its middle (each
+        step turns the half-angle vector by less than pi)."""
+        m = moebius_matrix(self.tube, np.array([s]))[0]
+        inverse = np.array([[m[1, 1], -m[0, 1]], [-m[1, 0], m[0, 0]]])
+
+        def half(angle: np.ndarray) -> np.ndarray:
+            h = 0.5 * (chi_o + np.asarray(angle, dtype=float))
+            return np.stack([np.sin(h), np.cos(h)], axis=-1) @ inverse.T
+
+        def turn(v0: np.ndarray, v1: np.ndarray) -> np.ndarray:
+            return np.arctan2(v0[..., 1] * v1[..., 0] - v0[..., 0] * v1[..., 1], np.einsum("...i,...i", v0, v1))
+
+        v_a = np.array([math.sin(0.5 * chi0_a), math.cos(0.5 * chi0_a)])
+        v_mid = half(np.array(theta_mid))
+        # the start's half-angle vector is +- v_a (chi_o + theta_a is chi_a only mod 2 pi): the
+        # turn to the middle is in (0, pi), so taken mod pi
+        return chi0_a + 2.0 * (np.mod(turn(v_a, v_mid), math.pi) + turn(v_mid, half(theta)))
+
+
+def canal_section_surface(canal: CanalSurface, fit: CanalSpline, offset: float = 0.0,
+                          stringers_deg: Sequence[float] | None = None,
+                          exact: CanalSurface | None = None) -> CanalSectionSurface:  # fmt: skip
+    """The periodic-in-u rational surface of the offset by ``offset`` of ``canal`` on ``fit``
+    (``exact``: that offset surface, if already made). With ``stringers_deg`` (angles chi0
+    from r1 at the span's start, the face boundaries) the circle's C0 knots are chosen among
+    them and the first is u = 0; without, u = 0 is chi0 = 0 and the only C0 knot."""
+    angles = np.zeros(1) if stringers_deg is None else np.asarray(stringers_deg, dtype=float)
+    origin_deg = float(angles[0])
+    F = fit.spline.c
+    A = homogeneous(F, offset)  # (poles, 3, 4)
+    a = math.radians(origin_deg)
+    A1, A2 = math.cos(a) * A[:, 1] + math.sin(a) * A[:, 2], -math.sin(a) * A[:, 1] + math.cos(a) * A[:, 2]
+    sub_arc = fit.max_sub_arc
+    while True:
+        circle = CircleSpline.for_stringers(np.radians(angles - origin_deg), max_sub_arc=sub_arc)
+        H = circle.weights[:, None, None] * (A[None, :, 0] + circle.x[:, None, None] * A1[None]
+                                             + circle.y[:, None, None] * A2[None])  # fmt: skip
+        weights = H[..., 3]
+        if weights.min() > 1e-6 * weights.max():
+            break
+        if sub_arc < math.radians(5.0):
+            raise FitError(f"the canal surface's Moebius map is too far from a rotation (condition number "
+                           f"{fit.condition:.3g}): its NURBS weights are not positive")  # fmt: skip
+        sub_arc *= 0.5
+    s_knots, s_mults = knots_and_multiplicities(fit.spline.t)
+    surface = Geom_BSplineSurface(
+        points_2d(H[..., :3] / weights[..., None]), reals_2d(weights),
+        reals(circle.knots), reals(s_knots), integers(circle.multiplicities), integers(s_mults),
+        2, fit.degree, True, False,
+    )  # fmt: skip
+    exact = exact if exact is not None else (canal if offset == 0.0 else canal.offset(offset, allow_irregular=True))
+    return CanalSectionSurface(surface, exact, origin_deg, circle, None, fit, offset)
