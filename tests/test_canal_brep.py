@@ -211,8 +211,9 @@ def test_a_tapered_helix_wall_is_accurate_and_orthogonal(helical):
     assert props.analyzer_findings(shape, CHEAP_MODES) == {}
     assert props.volume(shape) == pytest.approx(exact_volume(build, helical), rel=1e-9)
     worst = {0.25: [0.0, 0.0], -0.25: [0.0, 0.0]}
-    kinds = [(face, BRepAdaptor_Surface(face).GetType()) for face in tube_faces(shape)]
+    kinds = [(face.wrapped, BRepAdaptor_Surface(face.wrapped).GetType()) for face in shape.faces()]
     assert sum(kind == GeomAbs_Cone for _, kind in kinds) == 2  # the caps: r' = 0.025 and 0.025 cos 10 at the ends
+    assert len(list(tube_faces(shape))) == 2 * 5 * 8  # the measure's tube faces: not the conical caps
     faces = [face for face, kind in kinds if kind == GeomAbs_BSplineSurface]
     assert len(faces) == 2 * 5 * 8
     for face in faces:

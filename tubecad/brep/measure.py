@@ -19,12 +19,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterator, Sequence
+from typing import Callable, Iterator, Sequence
 
 import numpy as np
 from OCP.BRep import BRep_Tool
 from OCP.BRepTools import BRepTools
-from OCP.GeomAbs import GeomAbs_Plane
+from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Plane
 from OCP.GeomAdaptor import GeomAdaptor_Surface
 from OCP.GeomLib import GeomLib_IsPlanarSurface
 from OCP.gp import gp_Pnt, gp_Vec
@@ -38,13 +38,15 @@ from .properties import topods
 
 
 def tube_faces(shape) -> Iterator[TopoDS_Face]:
-    """The non-planar faces of ``shape`` (a tube's end caps are planar; a file may hold a
-    plane as a B-spline, which is recognised as planar too)."""
+    """The faces of ``shape`` on its tubes: not its end caps, which are planar (a file may
+    hold a plane as a B-spline, which is recognised as planar too), or conical between the
+    end circles of a canal surface's wall."""
     explorer = TopExp_Explorer(topods(shape), TopAbs_FACE)
     while explorer.More():
         face = as_face(explorer.Current())
         surface = BRep_Tool.Surface_s(face)
-        if GeomAdaptor_Surface(surface).GetType() != GeomAbs_Plane and not GeomLib_IsPlanarSurface(surface, 1e-7).IsPlanar():
+        kind = GeomAdaptor_Surface(surface).GetType()
+        if kind not in (GeomAbs_Plane, GeomAbs_Cone) and not GeomLib_IsPlanarSurface(surface, 1e-7).IsPlanar():
             yield face
         explorer.Next()
 
@@ -107,10 +109,29 @@ class TubeFacesMeasure:
     per_radius: dict[float, tuple[int, float, float]]  # radius -> (faces, max deviation, max |cos|)
 
 
+def surface_levels(build) -> tuple[Callable, list[float]]:
+    """How a build's faces are measured: (level(points, s_guess=None, iters=12) -> (values,
+    s*), the level of each of its surfaces). For tubes the level is the distance from the
+    axis and the surfaces' levels their radii; for a canal surface's build it is the
+    distance outside the first surface's sphere envelope (:func:`envelope_distance`) and the
+    levels are each surface's offset from it (0 and -thickness for a wall)."""
+    from ..surface import CanalSurface
+    from ..surface.checks import envelope_distance
+
+    first = build.surfaces[0].tube
+    if not isinstance(first, CanalSurface):
+        return (lambda p, g=None, iters=12: distance_to_axis(first.axis, p, g, iters)), list(build.radii)
+    base = first.radius_law.offset
+    levels = [ts.tube.radius_law.offset - base for ts in build.surfaces]
+    return (lambda p, g=None, iters=12: envelope_distance(first, p, g, iters)), levels
+
+
 def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
-                       every_face: bool = True) -> TubeFacesMeasure:  # fmt: skip
+                       every_face: bool = True, level: Callable | None = None) -> TubeFacesMeasure:  # fmt: skip
     """Sample every tube face of ``shape`` (about ``samples`` points in all, at least one per
-    face) and measure it against the exact tube of the radius in ``radii`` it lies on.
+    face) and measure it against the exact tube of the radius in ``radii`` it lies on
+    (``level``: measured otherwise, e.g. a canal surface's, with ``radii`` its levels: see
+    :func:`surface_levels`).
 
     With ``every_face`` (a wall or tube solid) each non-planar face is measured against the
     nearest radius. Otherwise (an assembly) a face is measured only if its median distance
@@ -130,7 +151,7 @@ def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
         nu, nv = 1, max(per_face, 1)
     grids = [sample_face(face, nu, nv) for face in faces]
     points = np.concatenate([g[0] for g in grids])
-    dist, _ = distance_to_axis(axis, points)
+    dist, _ = distance_to_axis(axis, points) if level is None else level(points)
     dist = dist.reshape(len(faces), nu * nv)
     cos = orthogonality(np.concatenate([g[1] for g in grids]), np.concatenate([g[2] for g in grids]))
     cos = cos.reshape(len(faces), nu * nv)

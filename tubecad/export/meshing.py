@@ -68,7 +68,11 @@ def tessellate(parts: list, deflection: float, angular: float, build=None) -> No
 
     from .tessellate import triangulate_build
 
-    if build is not None and any(p.wrapped.IsSame(build.shape.wrapped) for p in parts):
+    from ..surface import CurvatureLineTube
+
+    # a canal surface's grid would need its own step rules (its curvatures are not a tube's): BRepMesh meshes it
+    on_grid = build is not None and isinstance(build.surfaces[0].tube, CurvatureLineTube)
+    if on_grid and any(p.wrapped.IsSame(build.shape.wrapped) for p in parts):
         triangulate_build(build, deflection, angular)
     rest = [p for p in parts if not BRepTools.Triangulation_s(p.wrapped, deflection)]
     if rest:

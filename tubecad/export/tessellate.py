@@ -412,23 +412,29 @@ def _polygon(builder, edge, node_lists: list[np.ndarray], tri: Poly_Triangulatio
     builder.UpdateEdge(edge, *polygons, tri, TopLoc_Location())
 
 
-def mesh_deviation(axis, radii: Sequence[float], vertices: np.ndarray, triangles: np.ndarray) -> tuple[float, float]:
+def mesh_deviation(axis, radii: Sequence[float], vertices: np.ndarray, triangles: np.ndarray,
+                   level=None, scale: float | None = None) -> tuple[float, float]:  # fmt: skip
     """(max vertex deviation, max triangle deviation) of a mesh of tubes of ``radii`` about
     ``axis``: how far its vertices, and its triangles, lie from the exact tube each triangle
     belongs to. A triangle is sampled at its edge midpoints, where a chord of a surface whose
     second fundamental form is diagonal on the grid leaves it farthest (its centroid lies
-    8/9 as far). Planar end caps (every vertex at the same end of the span) are not measured."""
+    8/9 as far). End caps (every vertex at the same end of the span) are not measured.
+    ``level`` and ``scale``: a canal surface's measure (tubecad.brep.measure.surface_levels,
+    ``radii`` then its levels) and its smallest radius."""
     from ..surface.checks import distance_to_axis
 
+    if level is None:
+        level = lambda p, g=None, iters=12: distance_to_axis(axis, p, g, iters)  # noqa: E731
     radii = np.asarray(radii, dtype=float)
-    dist, s = distance_to_axis(axis, vertices)
-    vertex = float(np.min(np.abs(dist[:, None] - radii[None, :]), axis=1).max())
+    dist, s = level(vertices)
     ends = np.array(axis.span)
-    at_end = np.abs(s[:, None] - ends[None, :]) <= 1e-3 * radii.min()  # (n, 2)
+    at_end = np.abs(s[:, None] - ends[None, :]) <= 1e-3 * (radii.min() if scale is None else scale)  # (n, 2)
     cap = (at_end[triangles].all(axis=1)).any(axis=1)
     tube = triangles[~cap]
     if not len(tube):
-        return vertex, 0.0
+        return 0.0, 0.0
+    # the tube triangles' vertices (a canal wall's conical caps have nodes between the tubes)
+    vertex = float(np.min(np.abs(dist[np.unique(tube)][:, None] - radii[None, :]), axis=1).max())
     which = np.argmin(np.abs(dist[tube].mean(axis=1)[:, None] - radii[None, :]), axis=1)
     a, b = tube.reshape(-1), np.roll(tube, -1, axis=1).reshape(-1)  # the three edges (a_k, b_k) of each triangle
     # an edge shared by two triangles of one tube once: a closed mesh's midpoints halved
@@ -443,5 +449,5 @@ def mesh_deviation(axis, radii: Sequence[float], vertices: np.ndarray, triangles
     if axis.closed:
         guess = axis.span[0] + np.mod(guess - axis.span[0], axis.length)
     guess = np.clip(guess, *axis.span)
-    d, _ = distance_to_axis(axis, midpoints, guess, iters=4)  # from a close guess
+    d, _ = level(midpoints, guess, 4)  # from a close guess
     return vertex, float(np.abs(d - radius).max())

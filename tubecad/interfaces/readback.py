@@ -69,7 +69,7 @@ def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> 
     """The file's tube faces against the exact tubes (build.radii on build's axis); raises
     FileAccuracyError when the file does not meet the build's tolerance or orthogonality.
     ``wall_solids``: see :func:`readback_report`."""
-    from ..brep.measure import measure_tube_faces, tube_faces
+    from ..brep.measure import measure_tube_faces, surface_levels, tube_faces
     from ..fitting.tolerance import orthogonality_for
     from ..export.cad import cad_format
 
@@ -77,7 +77,8 @@ def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> 
     named = wall_solids is not None
     if named:  # the wall's solids come first in the file, in the order they were written
         shape = _first_solids(shape, wall_solids)
-    m = measure_tube_faces(shape, axis, build.radii, READBACK_SAMPLES, every_face=not named)
+    level, levels = surface_levels(build)
+    m = measure_tube_faces(shape, axis, levels, READBACK_SAMPLES, every_face=not named, level=level)
     expected = None if named else sum(1 for _ in tube_faces(build.shape))
     limit_dev, limit_orth = build.tolerance, orthogonality_for(build.tolerance)
     out = {"measured_faces": m.faces, "samples": m.samples, "max_deviation": m.max_deviation,
@@ -86,7 +87,7 @@ def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> 
     fmt = cad_format(target)
     name, what = target.name, fmt.upper()
     better = f"{ALTERNATIVES[fmt]}, or a looser [fit] tolerance" if fmt in ALTERNATIVES else "use a looser [fit] tolerance"
-    if (expected is not None and m.faces < expected) or len(m.per_radius) < len(set(build.radii)):
+    if (expected is not None and m.faces < expected) or len(m.per_radius) < len(set(levels)):
         raise FileAccuracyError(f"{name}: {what} read back without the wall's tube faces ({m.faces} found on the "
                                 f"radii {', '.join(f'{r:g}' for r in build.radii)})")  # fmt: skip
     if m.max_deviation > limit_dev:
@@ -122,7 +123,10 @@ def mesh_report(path: str | Path, fmt: str, build=None, deflection: float | None
                            "triangles": int(len(triangles)), "vertices": int(len(vertices)), "deflection": deflection,
                            "angular_deflection_deg": None if angular is None else math.degrees(angular)}  # fmt: skip
     if build is not None and wall_solids is None:
-        off, sag = mesh_deviation(build.surfaces[0].tube.axis, build.radii, vertices, triangles)
+        from ..brep.measure import surface_levels
+
+        level, levels = surface_levels(build)
+        off, sag = mesh_deviation(build.surfaces[0].tube.axis, levels, vertices, triangles, level, min(build.radii))
         out["max_vertex_deviation"], out["max_triangle_deviation"] = off, sag
         if deflection is not None and off > deflection:
             raise FileAccuracyError(f"{target.name}: {fmt.upper()} holds the vertices only to {off:.2g} at this size, "

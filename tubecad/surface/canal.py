@@ -50,7 +50,6 @@ from ..curves.radius_law import radius_law as radius_law_of
 from ..errors import ParameterError, RegularityError
 from ..validation import flag
 from .forms import FundamentalForms, SurfaceDerivatives
-from .regularity import RegularityReport, check_regularity
 from .tube import CurvatureLineTube
 
 FloatArray = np.ndarray
@@ -71,7 +70,9 @@ class CanalRegularity:
     min_speed: float
     s_at_min_speed: float
     folded_intervals: list[tuple[float, float]] = field(default_factory=list)
-    tube: RegularityReport | None = None
+    #: (s of a surface point, s of a sphere it lies inside, how deep) where the surface
+    #: passes inside itself, or None
+    entry: tuple[float, float, float] | None = None
 
     @property
     def locally_regular(self) -> bool:
@@ -79,7 +80,7 @@ class CanalRegularity:
 
     @property
     def self_intersecting(self) -> bool:
-        return self.tube is not None and self.tube.self_intersecting
+        return self.entry is not None
 
     @property
     def ok(self) -> bool:
@@ -92,11 +93,10 @@ class CanalRegularity:
             where = ", ".join(f"[{a:.6g}, {b:.6g}]" for a, b in self.folded_intervals)
             parts.append(f"r (k q + r'') / q^2 reaches {self.max_fold:.6g} at s = {self.s_at_max_fold:.6g}; it must "
                          f"stay below 1 (the surface folds: the stringers stop for s in {where})")  # fmt: skip
-        if self.tube is not None and self.tube.self_intersecting:
-            s1, s2 = self.tube.closest_pair  # type: ignore[misc]
-            parts.append(f"the axis comes back within {self.tube.closest_approach:.6g} of itself (between "
-                         f"s = {s1:.6g} and s = {s2:.6g}): a tube of the largest radius {self.tube.radius:g} "
-                         "self-intersects there")  # fmt: skip
+        if self.entry is not None:
+            s1, s2, depth = self.entry
+            parts.append(f"the surface self-intersects: at s = {s1:.6g} it passes {depth:.3g} inside the sphere of "
+                         f"the surface at s = {s2:.6g}")  # fmt: skip
         return ("radius: canal surface is not regular: " + "; ".join(parts)
                 + " (pass allow_irregular=True to build it anyway)")  # fmt: skip
 
@@ -356,8 +356,39 @@ class CanalSurface:
 
         s_speed, min_speed = refined_extreme(speed, s, largest=False, name="radius: the stringer speed")
         intervals = _runs(lambda x: float(self.fold_ratio(np.array(x))) - 1.0, s, self.fold_ratio(s) >= 1.0)
-        tube = check_regularity(self.axis, law.max_radius)
-        return CanalRegularity(law.max_slope, law.s_at_max_slope, fold, s_fold, min_speed, s_speed, intervals, tube)
+        entry = self._sphere_entry() if not intervals else None  # a folded surface is refused anyway
+        return CanalRegularity(law.max_slope, law.s_at_max_slope, fold, s_fold, min_speed, s_speed, intervals, entry)
+
+    def _sphere_entry(self) -> tuple[float, float, float] | None:
+        """Where the surface passes inside one of its own spheres: a regular canal surface is
+        the boundary of the union of its spheres, so no point X(chi, s) lies strictly inside
+        the sphere at any other s' (near s' = s it touches them from outside, to second
+        order); a point inside one (deeper than round-off) is a self-intersection. Points
+        every r_min / 8 along and 32 around (a penetration much shallower than that
+        spacing can be missed), tested against the spheres at the same samples, a chunk of
+        rings at a time. Returns the deepest found: (s of the point, s' of the sphere, depth)."""
+        from scipy.spatial import cKDTree
+
+        law, (s0, s1) = self.radius_law, self.span
+        count = int(min(MAX_FOLD_SAMPLES, max(257, math.ceil(8 * self.length / law.min_radius) + 1)))
+        s = np.linspace(s0, s1, count)
+        centres, radii = self.axis.position(s), law.r(s)
+        tree = cKDTree(centres)
+        chi = np.linspace(0.0, 2.0 * math.pi, 32, endpoint=False)
+        apart = 0.5 * (s[1] - s[0])
+        best: tuple[float, float, float] | None = None
+        for rows in np.array_split(np.arange(count), max(1, math.ceil(count / 128))):
+            points = self.points(chi[None, :], s[rows][:, None]).reshape(-1, 3)
+            at = np.repeat(s[rows], len(chi))
+            near = cKDTree(points).sparse_distance_matrix(tree, law.max_radius, output_type="ndarray")
+            i, j, d = near["i"], near["j"], near["v"]
+            depth = radii[j] - d
+            inside = (depth > 1e-9 * radii[j]) & (np.abs(at[i] - s[j]) > apart)
+            if inside.any():
+                k = int(np.argmax(np.where(inside, depth, -np.inf)))
+                if best is None or depth[k] > best[2]:
+                    best = (float(at[i[k]]), float(s[j[k]]), float(depth[k]))
+        return best
 
     # --- measures ----------------------------------------------------------------------------
     def _quadrature(self, n_chi: int, panels: int, order: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:

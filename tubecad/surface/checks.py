@@ -82,6 +82,43 @@ def distance_to_axis(
     return np.linalg.norm(p - axis.position(x), axis=-1), x
 
 
+def envelope_distance(surface, points: np.ndarray, s_guess: np.ndarray | None = None,
+                      iters: int = 12) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """(e, s*): how far each point lies outside the canal surface ``surface`` (a CanalSurface,
+    the envelope of the spheres of radius r(s) about c(s)), e = min_s |P - c(s)| - r(s), and
+    the s* where the minimum is (near the surface: the sphere the point's normal comes from).
+
+    Newton on g(s) = |P - c| - r: g' = -(P - c).t / D - r', g'' = (1 - (P - c).k) / D -
+    ((P - c).t)^2 / D^3 - r'' (D = |P - c|, k the curvature vector), from the best of 2001
+    samples of g (not the closest axis point: a large sphere's points may lie nearer another
+    part of the axis) or ``s_guess``, kept inside the span.
+    """
+    p = np.asarray(points, dtype=float)
+    axis, law = surface.axis, surface.radius_law
+    lo, hi = axis.span
+    if s_guess is None:
+        samples = np.linspace(lo, hi, 2001)
+        centres, radii = axis.position(samples), law.r(samples)
+        flat = p.reshape(-1, 3)
+        best = np.empty(len(flat), dtype=int)
+        for rows in np.array_split(np.arange(len(flat)), max(1, math.ceil(len(flat) / 256))):
+            g = np.linalg.norm(flat[rows, None, :] - centres[None, :, :], axis=-1) - radii[None, :]
+            best[rows] = np.argmin(g, axis=1)
+        s_guess = samples[best].reshape(p.shape[:-1])
+    x = np.clip(np.asarray(s_guess, dtype=float), lo, hi)
+    for _ in range(iters):
+        a = axis.at(x)
+        r = p - a.position
+        d = np.linalg.norm(r, axis=-1)
+        along = np.einsum("...i,...i", r, a.t)
+        slope = -along / d - law.dr(x)
+        bend = (1.0 - np.einsum("...i,...i", r, a.curvature_vector)) / d - along**2 / d**3 - law.ddr(x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(bend > 0.0, slope / bend, 0.0)
+        x = np.clip(x - step, lo, hi)
+    return np.linalg.norm(p - axis.position(x), axis=-1) - law.r(x), x
+
+
 def axis_distance_errors(tube: CurvatureLineTube, u: np.ndarray, s: np.ndarray) -> tuple[float, float]:
     """For points S(u, s): max |distance to the closest axis point - rho| and max |s* - s|,
     s* the closest axis point's arc length, found from s + rho/2 (so converging back to s
