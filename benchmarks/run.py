@@ -1,4 +1,4 @@
-"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|axes|scaling|stiffened|startup] [--out DIR]``.
+"""Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|axes|canal|scaling|stiffened|startup] [--out DIR]``.
 
 Prints the tables and writes DIR/benchmarks.json (every number) and DIR/benchmarks.md
 (the tables, as pasted into README.md). Default DIR: benchmarks/results (the published
@@ -19,6 +19,7 @@ from pathlib import Path
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 import axes  # noqa: E402
+import canal  # noqa: E402
 import compare  # noqa: E402
 import scaling  # noqa: E402
 import startup  # noqa: E402
@@ -63,7 +64,7 @@ def scaling_tables(result: dict) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes and fewer samples (a smoke run)")
-    parser.add_argument("--only", choices=["compare", "axes", "scaling", "stiffened", "startup"], help="run one part only")
+    parser.add_argument("--only", choices=["compare", "axes", "canal", "scaling", "stiffened", "startup"], help="run one part only")
     parser.add_argument("--out", type=Path, default=None,
                         help="folder for the results (default benchmarks/results; with --quick benchmarks/results/quick)")
     args = parser.parse_args(argv)
@@ -86,6 +87,11 @@ def main(argv: list[str] | None = None) -> int:
         result["axes"] = axes.run(quick=args.quick, samples=12_000 if args.quick else 60_000,
                                   repeats=1 if args.quick else 3, log=log)  # fmt: skip
         tables.append(axes.table(result["axes"]))
+    if args.only in (None, "canal"):
+        log("canal surfaces (radius laws) against the sweeps with a radius law:")
+        result["canal"] = canal.run(quick=args.quick, samples=12_000 if args.quick else 60_000,
+                                    repeats=1 if args.quick else 3, log=log)  # fmt: skip
+        tables.append(canal.table(result["canal"]))
     if args.only in (None, "scaling"):
         log("scaling:")
         result["scaling"] = {

@@ -235,11 +235,17 @@ def _tube_faces(tube: CurvatureLineTube, frame: FrameSpline, layout: NetLayout,
 def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outward: bool) -> TopoDS_Face:
     """Planar face in the normal plane at ``s`` bounded by ``rings`` (outer first, then the hole);
     its normal is +t at the end of the tube (``outward``) and -t at the start."""
-    builder = BRep_Builder()
     a = tube.axis.at(np.array([s]))
-    centre, t, n = a.position[0], a.t[0], a.r1[0]
+    return _plane_cap(a.position[0], a.t[0], a.r1[0], rings, outward)
+
+
+def _plane_cap(centre: np.ndarray, t: np.ndarray, x_dir: np.ndarray, rings: list[list[TopoDS_Edge]],
+               outward: bool) -> TopoDS_Face:  # fmt: skip
+    """The planar face through ``centre`` normal to ``t`` bounded by ``rings`` (outer first, then
+    the hole), its normal +t (``outward``) or -t."""
+    builder = BRep_Builder()
     normal = t if outward else -t
-    plane = Geom_Plane(gp_Ax3(gp_Pnt(*centre), gp_Dir(*normal), gp_Dir(*n)))
+    plane = Geom_Plane(gp_Ax3(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, normal)), gp_Dir(*map(float, x_dir))))
     face = TopoDS_Face()
     builder.MakeFace(face, plane, TOLERANCE)
     for k, edges in enumerate(rings):
@@ -375,23 +381,10 @@ def _canal_cap(outer, s: float, outer_ring: list[TopoDS_Edge], inner: tuple | No
     k = -sign(r'), its v-isolines are the two end circles exactly."""
     centre, _, t, x_dir, _ = outer.ring(s)
     dr = float(outer.tube.radius_law.dr(np.array([s]))[0])
+    if inner is None or abs(dr) <= FLAT_CAP_SLOPE:
+        return _plane_cap(centre, t, x_dir, [outer_ring] + ([] if inner is None else [inner[1]]), outward)
     builder = BRep_Builder()
     face = TopoDS_Face()
-    if inner is None or abs(dr) <= FLAT_CAP_SLOPE:
-        normal = t if outward else -t
-        plane = Geom_Plane(gp_Ax3(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, normal)), gp_Dir(*map(float, x_dir))))
-        builder.MakeFace(face, plane, TOLERANCE)
-        rings = [outer_ring] + ([] if inner is None else [inner[1]])
-        for k, edges in enumerate(rings):
-            forward = outward == (k == 0)  # as in _cap: outer wire counter-clockwise about the normal, hole clockwise
-            wire = TopoDS_Wire()
-            builder.MakeWire(wire)
-            for edge in edges if forward else edges[::-1]:
-                builder.Add(wire, edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
-                BRepLib.BuildPCurveForEdgeOnPlane_s(edge, face)
-            wire.Closed(True)
-            builder.Add(face, wire)
-        return face
     inner_surface, inner_ring = inner
     c_in, radius_in, _, _, _ = inner_surface.ring(s)
     r_out = float(outer.tube.radius_law.r(np.array([s]))[0])

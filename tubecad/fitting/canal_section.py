@@ -50,6 +50,7 @@ from .exact_section import TubeSurface
 from .frame_spline import (
     SAMPLES_PER_SPAN,
     FitError,
+    SplineSize,
     _initial_breaks,
     _joint_multiplicities,
     _with_rings,
@@ -137,11 +138,11 @@ def _points_and_derivatives(A: np.ndarray, dA: np.ndarray, chi0: np.ndarray) -> 
 
 
 @dataclass(frozen=True)
-class CanalSpline:
+class CanalSpline(SplineSize):
     """The B-spline in s of the 21-vector (A0, A1, A2, N0, N1, N2) of a canal surface, with
     the bounds it was measured to meet at every offset in ``offsets`` (``radius_bound``: the
-    largest radius r + d built on it). Duck-types :class:`.frame_spline.FrameSpline` where a
-    build reports it (degree, poles, spans)."""
+    largest radius r + d built on it). Stands in for a :class:`.frame_spline.FrameSpline`
+    where a build reports it (degree, poles, spans)."""
 
     spline: BSpline
     position_bound: float
@@ -158,18 +159,6 @@ class CanalSpline:
     @property
     def rational(self) -> bool:
         return False
-
-    @property
-    def degree(self) -> int:
-        return int(self.spline.k)
-
-    @property
-    def poles(self) -> int:
-        return len(self.spline.c)
-
-    @property
-    def spans(self) -> int:
-        return len(np.unique(self.spline.t)) - 1
 
     def values(self, s: np.ndarray | float) -> np.ndarray:
         return self.spline(s)

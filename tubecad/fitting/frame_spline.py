@@ -42,8 +42,26 @@ class FitError(TubecadError, ValueError):
     """The requested tolerance could not be reached."""
 
 
+class SplineSize:
+    """The size of a fit's ``spline`` (a scipy BSpline), as a build reports it."""
+
+    spline: BSpline
+
+    @property
+    def degree(self) -> int:
+        return int(self.spline.k)
+
+    @property
+    def poles(self) -> int:
+        return len(self.spline.c)
+
+    @property
+    def spans(self) -> int:
+        return len(np.unique(self.spline.t)) - 1
+
+
 @dataclass(frozen=True)
-class FrameSpline:
+class FrameSpline(SplineSize):
     """F(s) = (c, r1, r2) as a scipy BSpline, with the bounds it was measured to meet.
 
     A route's exact frame (:mod:`.route_frame`) is rational: ``spline`` then holds its
@@ -69,18 +87,6 @@ class FrameSpline:
         H = BSpline(self.spline.t, self.spline.c * self.weights[:, None], self.spline.k)
         W = BSpline(self.spline.t, self.weights, self.spline.k)
         return H(v) / np.asarray(W(v))[..., None]
-
-    @property
-    def degree(self) -> int:
-        return int(self.spline.k)
-
-    @property
-    def poles(self) -> int:
-        return len(self.spline.c)
-
-    @property
-    def spans(self) -> int:
-        return len(np.unique(self.spline.t)) - 1
 
 
 def exact_frame(axis: Axis, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
