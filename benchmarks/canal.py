@@ -81,7 +81,7 @@ from OCP.BRepAdaptor import BRepAdaptor_CompCurve
 from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
 from OCP.gp import gp_Pnt2d
 from OCP.Law import Law_Interpol
-from OCP.TColgp import TColgp_Array1OfPnt2d
+from tubecad.occ_compat import Array1OfPnt2d  # OCP 7.9 and 8 name it differently
 from peers import DEFAULT_TOLERANCE, PIPE_MODES, spine_deviation
 
 from tubecad.brep import NetLayout, build_tube_solid, properties
@@ -171,7 +171,7 @@ def radius_law(surface: CanalSurface, path: bd.Edge | bd.Wire, samples: int = LA
     s0, s1 = surface.span
     s = np.linspace(s0, s1, samples)
     values = surface.radius_law.r(s) / float(surface.radius_law.r(np.array([s0]))[0])
-    table = TColgp_Array1OfPnt2d(1, samples)
+    table = Array1OfPnt2d(1, samples)
     for i, (x, y) in enumerate(zip(u0 + (s - s0) * (u1 - u0) / (s1 - s0), values), start=1):
         table.SetValue(i, gp_Pnt2d(float(x), float(y)))
     law = Law_Interpol()
