@@ -51,8 +51,6 @@ its axis and tube; the peers' spines are timed too (neither is in the build time
 
 from __future__ import annotations
 
-import argparse
-import json
 import math
 import sys
 import time
@@ -60,7 +58,7 @@ from typing import Callable
 
 import build123d as bd
 import numpy as np
-from compare import method_table, ratios, timed_build
+from compare import case_main, method_table, ratios, timed_build
 from measure import Measured, measure
 from peers import DEFAULT_TOLERANCE, SWEEPS, spine_deviation
 from peers import tubecad_at as open_tubecad_at
@@ -363,17 +361,7 @@ def table(result: dict) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="a coarser trefoil spine, fewer samples, one build each")
-    parser.add_argument("--json", type=str, default=None, help="also write the numbers to this file")
-    args = parser.parse_args(argv)
-    log = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
-    result = run(args.quick, samples=12_000 if args.quick else 60_000, repeats=1 if args.quick else 3, log=log)
-    if args.json:
-        with open(args.json, "w") as handle:
-            json.dump(result, handle, indent=2)
-    print(table(result))
-    return 0
+    return case_main(argv, __doc__, run, table, "a coarser trefoil spine, fewer samples, one build each")
 
 
 if __name__ == "__main__":

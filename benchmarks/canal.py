@@ -62,8 +62,6 @@ comparison is one of accuracy first, then poles and time at equal or better accu
 
 from __future__ import annotations
 
-import argparse
-import json
 import math
 import sys
 import tempfile
@@ -75,7 +73,7 @@ from typing import Callable
 import build123d as bd
 import numpy as np
 from axes import at_equal_accuracy, route_wire
-from compare import timed_build
+from compare import case_main, ratios, timed_build
 from measure import Measured, poles
 from OCP.BRepAdaptor import BRepAdaptor_CompCurve
 from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
@@ -289,17 +287,6 @@ def measure_canal(method: str, shape, surface: CanalSurface, exact: tuple[float,
 
 
 # --- the run ------------------------------------------------------------------------------------
-def ratios(ours: Measured, peers: list[Measured]) -> dict:
-    """Per column of RATIO_METRICS: the best of ``peers`` and tubecad / it."""
-    out = {}
-    for metric in RATIO_METRICS:
-        best = min(peers, key=lambda m: getattr(m, metric))
-        value = getattr(best, metric)
-        out[metric] = {"best_peer": best.method, "best_peer_value": value, "tubecad": getattr(ours, metric),
-                       "ratio": getattr(ours, metric) / value if value else None}  # fmt: skip
-    return out
-
-
 def model_error(surface: CanalSurface, samples: int = 4001) -> dict:
     """The largest |r'| and r r'^2 / 2 (about how far inside the envelope a normal circle of
     radius r lies, on a straight axis), largest over s."""
@@ -371,7 +358,7 @@ def run_case(name: str, spec: Path, make_spine: Callable, samples: int, repeats:
             "spine": {"description": spine_text, "deviation": spine_dev, "seconds": spine_s},
             "methods": [m.as_dict() for m in results], "errors": errors, "not_counted": not_counted,
             "peers_within_1e-6": [m.method for m in counted if m.max_deviation <= 1e-6],
-            "ratios": ratios(results[0], counted) if counted else None, "equal_accuracy": equal,
+            "ratios": ratios(results[0], counted, RATIO_METRICS) if counted else None, "equal_accuracy": equal,
             "summary": summary}  # fmt: skip
 
 
@@ -441,17 +428,7 @@ def table(result: dict) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="fewer samples, one build each")
-    parser.add_argument("--json", type=str, default=None, help="also write the numbers to this file")
-    args = parser.parse_args(argv)
-    log = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
-    result = run(args.quick, samples=12_000 if args.quick else 60_000, repeats=1 if args.quick else 3, log=log)
-    if args.json:
-        with open(args.json, "w") as handle:
-            json.dump(result, handle, indent=2)
-    print(table(result))
-    return 0
+    return case_main(argv, __doc__, run, table, "fewer samples, one build each")
 
 
 if __name__ == "__main__":

@@ -46,10 +46,10 @@ def run_methods(name: str, tube, runs, samples: int, repeats: int, log=print) ->
     return results
 
 
-def ratios(ours: Measured, peers: list[Measured]) -> dict:
-    """Per column of RATIO_METRICS: the best of ``peers`` and tubecad / it."""
+def ratios(ours: Measured, peers: list[Measured], metrics: tuple[str, ...] = RATIO_METRICS) -> dict:
+    """Per column of ``metrics``: the best of ``peers`` and tubecad / it."""
     out = {}
-    for metric in RATIO_METRICS:
+    for metric in metrics:
         best = min(peers, key=lambda m: getattr(m, metric))
         value = getattr(best, metric)
         out[metric] = {"best_peer": best.method, "best_peer_value": value, "tubecad": getattr(ours, metric),
@@ -96,3 +96,24 @@ def table(result: dict) -> str:
         lines += method_table(spec["methods"], [("tubecad / best peer", spec["ratios"])])
         lines.append("")
     return "\n".join(lines)
+
+
+def case_main(argv: list[str] | None, doc: str, run, table, quick_help: str) -> int:
+    """The command line of a benchmark of cases (axes.py, canal.py): ``--quick`` (fewer samples,
+    one build each), ``--json FILE``; the progress goes to stderr, the table to stdout."""
+    import argparse
+    import json
+    import sys
+
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help=quick_help)
+    parser.add_argument("--json", type=str, default=None, help="also write the numbers to this file")
+    args = parser.parse_args(argv)
+    log = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
+    result = run(args.quick, samples=12_000 if args.quick else 60_000, repeats=1 if args.quick else 3, log=log)
+    if args.json:
+        with open(args.json, "w") as handle:
+            json.dump(result, handle, indent=2)
+    print(table(result))
+    return 0
+

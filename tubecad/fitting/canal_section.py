@@ -69,15 +69,6 @@ WEIGHT_MARGIN = math.sqrt(3.0)
 COMPONENTS = 21
 
 
-def moebius_matrix(canal: CanalSurface, s: np.ndarray) -> np.ndarray:
-    """Mb(s), shape s.shape + (2, 2): the half-angle system's fundamental matrix (the
-    identity for a constant law)."""
-    s = np.asarray(s, dtype=float)
-    if canal._moebius is None:
-        return np.broadcast_to(np.eye(2), s.shape + (2, 2)).copy()
-    return canal._moebius[0](s)
-
-
 def _quadratic_coefficients(m: np.ndarray) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray]]:
     """The coefficients on (1, cos chi0, sin chi0) of a^2 + b^2, b^2 - a^2 and 2ab, (a, b) = m v."""
     m00, m01, m10, m11 = m[..., 0, 0], m[..., 0, 1], m[..., 1, 0], m[..., 1, 1]
@@ -90,7 +81,7 @@ def _quadratic_coefficients(m: np.ndarray) -> tuple[list[np.ndarray], list[np.nd
 def canal_functions(canal: CanalSurface, s: np.ndarray) -> np.ndarray:
     """The exact 21-vector (A0, A1, A2 as (xyz, w); N0, N1, N2 as xyz) at ``s``, shape (len(s), 21)."""
     s = np.asarray(s, dtype=float)
-    D, B, C = _quadratic_coefficients(moebius_matrix(canal, s))
+    D, B, C = _quadratic_coefficients(canal.moebius_matrix(s))
     c = canal.axis.position(s)
     t, r1, r2 = canal.axis.rotation_minimising_frame(s)
     law = canal.radius_law
@@ -257,7 +248,7 @@ class CanalSectionSurface(TubeSurface):
         on the circle at ``s``, on the arc that starts at theta_a on the stringer chi0_a: the
         exact inverse Moebius map, continued from the arc's start through its middle (each
         step turns the half-angle vector by less than pi)."""
-        m = moebius_matrix(self.tube, np.array([s]))[0]
+        m = self.tube.moebius_matrix(np.array([s]))[0]
         inverse = np.array([[m[1, 1], -m[0, 1]], [-m[1, 0], m[0, 0]]])
 
         def half(angle: np.ndarray) -> np.ndarray:

@@ -190,6 +190,15 @@ class CanalSurface:
         chi_us = dn1 / rr - 2.0 * n1 * dot / rr**2
         return _Angles(cos, sin, chi_u, chi_s, chi_uu, chi_us, chi_ss)
 
+    def moebius_matrix(self, s: ArrayLike) -> FloatArray:
+        """Mb(s), shape s.shape + (2, 2): the half-angle system's fundamental matrix, which maps
+        (sin(chi0/2), cos(chi0/2)) to a multiple of (sin(chi/2), cos(chi/2)) (the identity for
+        a constant law)."""
+        s = np.asarray(s, dtype=float)
+        if self._moebius is None:
+            return np.broadcast_to(np.eye(2), s.shape + (2, 2)).copy()
+        return self._moebius[0](s)
+
     def stringer_angle(self, chi0: ArrayLike, s: ArrayLike) -> FloatArray:
         """chi(s) on the stringer that starts at angle ``chi0``: chi0 plus twice the turn of the
         half-angle vector (a turn in (-pi, pi]), so continuous while |chi - chi0| < 2 pi."""
