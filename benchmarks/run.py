@@ -105,6 +105,10 @@ def main(argv: list[str] | None = None) -> int:
         log("stiffened wall against the plain wall:")
         result["stiffened"] = stiffened.run(repeats=1 if args.quick else 3, log=log)
         tables.append(stiffened.table(result["stiffened"]))
+        log("stiffened canal wall (the nozzle) against the plain one:")
+        result["stiffened_canal"] = stiffened.run(repeats=1 if args.quick else 3, log=log,
+                                                  spec=stiffened.ROOT / "samples" / "nozzle.toml")  # fmt: skip
+        tables.append(stiffened.table(result["stiffened_canal"]))
     if args.only in (None, "startup"):
         log("start-up times:")
         result["startup"] = startup.run(repeats=2 if args.quick else 5, log=log)

@@ -1,9 +1,10 @@
 """A stiffened wall beside the same wall without stiffeners, in one process (issue 9).
 
-``python benchmarks/stiffened.py [--repeats N] [--json FILE]`` runs what ``tubecad build
-SPEC.toml -o OUT.step`` runs (tubecad.interfaces.build.build_and_export: build, report,
-named STEP, read back and check) for ``samples/helix_stiffened.toml`` and for the same spec
-without its [stiffeners] section (the plain helix wall), alternately, after one warm-up
+``python benchmarks/stiffened.py [--spec SPEC.toml] [--repeats N] [--json FILE]`` runs what
+``tubecad build SPEC.toml -o OUT.step`` runs (tubecad.interfaces.build.build_and_export:
+build, report, named STEP, read back and check) for a stiffened sample (default
+``samples/helix_stiffened.toml``; ``samples/nozzle.toml`` is a canal wall) and for the same
+spec without its [stiffeners] section (the plain wall), alternately, after one warm-up
 build, and prints for each the best wall-clock and CPU time and the peak resident memory
 above the level before the build (Linux VmHWM after clear_refs), and their ratios (target:
 stiffened / plain time <= 1.6). The stiffener solids alone are timed too.
@@ -26,13 +27,13 @@ SPEC = ROOT / "samples" / "helix_stiffened.toml"
 TARGET_RATIO = 1.6
 
 
-def specs() -> dict[str, object]:
+def specs(path: Path = SPEC) -> dict[str, object]:
     """The plain wall (the sample without [stiffeners]) and the stiffened sample, checked."""
     from tubecad.interfaces.spec import parse_spec
 
-    data = tomllib.loads(SPEC.read_text())
+    data = tomllib.loads(path.read_text())
     plain = {key: value for key, value in data.items() if key != "stiffeners"}
-    return {"plain": parse_spec(plain, f"{SPEC.name} without [stiffeners]"), "stiffened": parse_spec(data, SPEC.name)}
+    return {"plain": parse_spec(plain, f"{path.name} without [stiffeners]"), "stiffened": parse_spec(data, path.name)}
 
 
 def one_build(spec, out: Path) -> dict[str, float]:
@@ -56,9 +57,9 @@ def stiffeners_only(spec) -> float:
     return time.perf_counter() - start
 
 
-def run(repeats: int = 3, log=print) -> dict:
-    cases = specs()
-    result: dict = {"spec": str(SPEC.relative_to(ROOT)), "repeats": repeats, "target_ratio": TARGET_RATIO}
+def run(repeats: int = 3, log=print, spec: Path = SPEC) -> dict:
+    cases = specs(spec)
+    result: dict = {"spec": str(spec.resolve().relative_to(ROOT)), "repeats": repeats, "target_ratio": TARGET_RATIO}
     with tempfile.TemporaryDirectory() as tmp:
         one_build(cases["plain"], Path(tmp) / "warm-up.step")  # imports, OCCT's first-use set-up
         runs: dict[str, list[dict]] = {name: [] for name in cases}
@@ -84,8 +85,8 @@ def run(repeats: int = 3, log=print) -> dict:
 
 def table(result: dict) -> str:
     """The markdown table of :func:`run`'s result."""
-    rows = ["**Stiffened wall** (`samples/helix_stiffened.toml`: 5 T ring frames, 4 T stringers; `tubecad build "
-            "-o x.step` in one process, best of %d)" % result["repeats"], "",
+    rows = [f"**Stiffened wall** (`{result['spec']}`; `tubecad build -o x.step` in one process, best of "
+            f"{result['repeats']})", "",
             "| build | seconds | CPU seconds | peak MB | STEP MB |", "|---|---|---|---|---|"]  # fmt: skip
     for name in ("plain", "stiffened"):
         r = result[name]
@@ -97,10 +98,11 @@ def table(result: dict) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--spec", type=Path, default=SPEC, help="a sample with a [stiffeners] section")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--json", type=Path, help="also write the numbers here")
     args = parser.parse_args(argv)
-    result = run(args.repeats)
+    result = run(args.repeats, spec=args.spec)
     print(table(result))
     if args.json:
         args.json.write_text(json.dumps(result, indent=2))

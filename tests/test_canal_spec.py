@@ -84,8 +84,10 @@ def test_a_table_law_on_a_helix_has_a_curvature_line_net(tmp_path):
         ('radius = "20 - 0.2 * s"', "", "[tube] radius: r reaches -20 at s = 200"),
         ('radius = "10 + log(s - 100)"', "", "[tube] radius"),
         ('radius = "40 - 0.1 * s"', "[wall]\nthickness = 41\n", "[wall] thickness 41 (side = 'centered') is too thick for the smallest radius 20 at s = 200"),
-        ('radius = "40 - 0.1 * s"', '[wall]\nthickness = 2\n[stiffeners]\nrings = "all"\nheight = 5\nthickness = 1\n',
-         "[stiffeners] on a canal surface (a radius law) are not built yet"),
+        ('radius = "40 - 0.1 * s"', '[wall]\nthickness = 2\n[stiffeners]\nstringers = [0]\nheight = 25\nthickness = 1\n'
+         'side = "inside"\n', "[stiffeners] height: a stringer reaches in to r -26, and the radius law's r is 20 at s = 200"),
+        ('radius = "40 - 0.1 * s"', '[wall]\nthickness = 2\n[stiffeners]\nrings = [3]\nheight = 39\nthickness = 1\n'
+         'side = "inside"\n', "[stiffeners] height: the ring at s = 60 reaches in to r -40, and the radius law's r is 33.95"),
         ('radius = [40]', "", "[tube] radius must be a number, an expression in s or a table of two or more [s, r] rows"),
     ],
 )
@@ -138,3 +140,20 @@ def test_a_radius_expression_may_use_the_axis_point(tmp_path):
     bad.write_text(DUPIN.replace("0.6 * x", "0.6 * w"))
     result = run("report", bad)
     assert result.exit_code == 2 and "[tube] radius: unknown name 'w'; the names allowed are s, x, y, z, pi, e" in result.output
+
+
+def test_a_canal_wall_splits_into_named_panels_from_the_cli(tmp_path):
+    from tubecad.export.cad import step_names
+
+    spec = tmp_path / "nozzle.toml"
+    spec.write_text(NOZZLE + '[layout]\nrings = 5\nstringers = 4\n[wall]\nthickness = 2.0\n'
+                    '[panels]\nseams = [0, 2]\nrings = [0, 2, 4]\n')  # fmt: skip
+    out, report = tmp_path / "panels.step", tmp_path / "r.json"
+    result = run("build", spec, "-o", out, "--report", report)
+    assert result.exit_code == 0, result.output
+    data = json.loads(report.read_text())
+    panels = [p["name"] for p in data["panels"]]
+    assert panels == ["panel_r0_s0", "panel_r0_s1", "panel_r1_s0", "panel_r1_s1"]
+    assert set(panels) <= {name for _, name in step_names(out)}
+    # the panels fill the wall: their volumes add up to its volume
+    assert sum(p["volume"] for p in data["panels"]) == pytest.approx(data["brep"]["volume"], rel=1e-10)

@@ -14,7 +14,10 @@ out of multi-face tubes; a single face around the tube uses a seam edge instead.
 On a canal surface (:class:`~tubecad.fitting.canal_section.CanalSectionSurface`) a ring is
 its exact characteristic circle, angles counted from where the origin stringer crosses it;
 the stringers cross it at angles that change with s (the Moebius map of docs/MATH.md
-section 8), so each ring arc gets its own pcurve u(theta) (:func:`canal_ring`).
+section 8), so each ring arc gets its own pcurve u(theta) (:func:`canal_ring`). On a closed
+axis the stringers come back to the closing ring moved by a Moebius map of the circle (not
+turned by the holonomy), and the closing ring's arcs get such pcurves on the first and the
+last band alike (:func:`_canal_closing_ring`, :func:`canal_arc_pcurve`).
 """
 
 from __future__ import annotations
@@ -36,7 +39,7 @@ from scipy.interpolate import BSpline, make_lsq_spline
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
-from ..errors import ParameterError, TubecadError
+from ..errors import TubecadError
 from ..fitting import TubeSurface
 from ..fitting.canal_section import CanalSectionSurface
 from ..fitting.circle import CircleSpline
@@ -81,9 +84,6 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
     own = len(s_rings) - (closing is not None)  # rings with edges of their own
 
     canal = isinstance(tube_surface, CanalSectionSurface)
-    if canal and closing is not None:
-        raise ParameterError("a canal surface (a radius law) on a closed axis cannot be built yet: "
-                             "give a constant radius or open the axis (closed = false)")  # fmt: skip
     vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings[:own]]
     rings = []
     bounds = []  # bounds[i][j]: the (edge, pcurve, tolerance) of ring i along face column j, in +u order
@@ -163,7 +163,12 @@ def _closing_ring(tube_surface: TubeSurface, s_first: float, s_last: float, angl
     lists of every face column of the first band (theta in [a_j, a_j+1]) and of the last
     band (theta in [b_j, b_j+1], with pcurves u(theta - h) at s_last), and the stringers'
     ends (angle b_j, vertex).
-    The stringers stay true curvature lines: the faces meet the ring shifted, not twisted."""
+    The stringers stay true curvature lines: the faces meet the ring shifted, not twisted.
+
+    On a canal surface (:func:`_canal_closing_ring`) the stringers come back moved by a
+    Moebius map of the circle rather than turned: b_j = phi(a_j)."""
+    if isinstance(tube_surface, CanalSectionSurface):
+        return _canal_closing_ring(tube_surface, s_first, s_last, angles, start_vertices)
     two_pi = 2.0 * math.pi
     n = len(start_vertices)
     rho = tube_surface.tube.radius
@@ -173,12 +178,83 @@ def _closing_ring(tube_surface: TubeSurface, s_first: float, s_last: float, angl
     gap = max([gap] + [circle.Value(float(th)).Distance(tube_surface.surface.Value(float(u), s_last))
                        for th, u in zip(theta, u_last)])  # fmt: skip
     tolerance = max(TOLERANCE, 2.0 * gap)
+    arcs, ends = _cut_closing_ring(circle, rho, angles[:n], [float(np.mod(a + holonomy, two_pi)) for a in angles[:n]],
+                                   start_vertices)  # fmt: skip
 
-    cuts = list(zip(angles[:n], start_vertices))  # (angle, vertex) on the ring
+    first, last = [], []
+    for j in range(n):
+        a0, a1 = angles[j], angles[j + 1]
+        first.append([(edge, ring_pcurve(tube_surface.circle, lo, hi).Translated(gp_Vec2d(0.0, s_first)), tolerance)
+                      for lo, hi, edge in _first_column(arcs, a0, a1)])  # fmt: skip
+        b0 = ends[j][0]
+        shift = b0 - a0  # theta on the ring = the last band's own angle + shift
+        column = _last_column(arcs, b0, a1 - a0, j, holonomy)
+        last.append([(edge, ring_pcurve(tube_surface.circle, start - shift, start - shift + _width(arcs, edge),
+                                        moved=shift - lift).Translated(gp_Vec2d(0.0, s_last)), tolerance)
+                     for start, edge, lift in column])  # fmt: skip
+    return arcs, first, last, ends
+
+
+def _canal_closing_ring(tube_surface: CanalSectionSurface, s_first: float, s_last: float, angles: list[float],
+                        start_vertices: list[TopoDS_Vertex]):  # fmt: skip
+    """:func:`_closing_ring` of a canal surface on a closed axis (its law closes: the circle
+    at ``s_last`` is the circle at ``s_first``). The ring's circle counts theta from the
+    origin stringer's start; stringer j starts at a_j and ends at b_j = phi(o + a_j) - o
+    (o the origin stringer's chi0, phi :meth:`CanalSurface.closing_angle`), in the same
+    cyclic order (phi is a Moebius map of the circle). The last band's own angle (from the
+    origin stringer's end, where it crosses the circle at s_last) is the ring's theta less
+    phi(o) - o; its column j runs between the stringers' ends, as wide as the ring at
+    s_last between them. Every arc's pcurve on the first and on the last band is fitted
+    with the exact inverse Moebius map at s_first and at s_last (:func:`canal_arc_pcurve`),
+    and the one edge tolerance covers the largest measured gap of either."""
+    two_pi = 2.0 * math.pi
+    n = len(start_vertices)
+    exact = tube_surface.tube
+    origin = math.radians(tube_surface.origin_deg)
+    centre, radius, t, x_dir, chi_first = tube_surface.ring(s_first)
+    circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+                         radius)  # fmt: skip
+    phi = exact.closing_angle(origin + np.asarray(angles[:n], dtype=float)) - origin
+    arcs, ends = _cut_closing_ring(circle, radius, angles[:n], [float(b) for b in np.mod(phi, two_pi)], start_vertices)
+    crossings = tube_surface.ring_angles(s_last, angles)  # the stringers' ends in the last band's own angle
+    widths = np.diff(crossings)
+    chi_last = tube_surface.ring(s_last)[4]
+    m_first, m_last = exact.moebius_matrix(np.array([s_first, s_last]))
+
+    first, last, gap = [], [], 0.0
+    for j in range(n):
+        column = []
+        for lo, hi, edge in _first_column(arcs, angles[j], angles[j + 1]):
+            pcurve, arc_gap = canal_arc_pcurve(tube_surface, s_first, angles, j, lo, hi, circle, chi_first, m_first)
+            column.append((edge, pcurve))
+            gap = max(gap, arc_gap)
+        first.append(column)
+        b0 = ends[j][0]
+        shift = b0 - float(crossings[j])  # theta on the ring = the last band's own angle + shift
+        column = []
+        for start, edge, lift in _last_column(arcs, b0, float(widths[j]), j, None):
+            lo, hi = start - lift, start - lift + _width(arcs, edge)  # the edge's own parameters
+            pcurve, arc_gap = canal_arc_pcurve(tube_surface, s_last, angles, j, lo, hi, circle, chi_last, m_last,
+                                               moved=shift - lift)  # fmt: skip
+            column.append((edge, pcurve))
+            gap = max(gap, arc_gap)
+        last.append(column)
+    tolerance = max(TOLERANCE, 2.0 * gap)
+    return (arcs, [[(e, p, tolerance) for e, p in col] for col in first],
+            [[(e, p, tolerance) for e, p in col] for col in last], ends)  # fmt: skip
+
+
+def _cut_closing_ring(circle: Geom_Circle, radius: float, starts: Sequence[float], ends_at: Sequence[float],
+                      start_vertices: list[TopoDS_Vertex]):  # fmt: skip
+    """The closing ring's arcs (theta_a, theta_b, edge) in +theta order, cut at the stringers'
+    starts ``starts`` (with their vertices) and their ends ``ends_at`` (in [0, 2 pi)); an end
+    within CLOSING_MERGE of a cut shares its vertex. Returns the arcs and each stringer's
+    end (angle, vertex)."""
+    two_pi = 2.0 * math.pi
+    cuts = list(zip(starts, start_vertices))  # (angle, vertex) on the ring
     ends = []  # stringer j's end: (the angle of its vertex on the ring, the vertex)
-    for a in angles[:n]:
-        b = float(np.mod(a + holonomy, two_pi))
-        near = [(c, v) for c, v in cuts if rho * abs(math.remainder(b - c, two_pi)) <= CLOSING_MERGE]
+    for b in ends_at:
+        near = [(c, v) for c, v in cuts if radius * abs(math.remainder(b - c, two_pi)) <= CLOSING_MERGE]
         if not near:
             near = [(b, _vertex(BRep_Builder(), circle.Value(b)))]
             cuts.append(near[0])
@@ -187,27 +263,30 @@ def _closing_ring(tube_surface: TubeSurface, s_first: float, s_last: float, angl
     stops = [c for c, _ in cuts] + [cuts[0][0] + two_pi]
     arcs = [(stops[k], stops[k + 1], _edge(circle, cuts[k][1], cuts[(k + 1) % len(cuts)][1], stops[k], stops[k + 1]))
             for k in range(len(cuts))]  # fmt: skip
+    return arcs, ends
 
-    first, last = [], []
-    for j in range(n):
-        a0, a1 = angles[j], angles[j + 1]
-        first.append([(edge, ring_pcurve(tube_surface.circle, lo, hi).Translated(gp_Vec2d(0.0, s_first)), tolerance)
-                      for lo, hi, edge in arcs if a0 - 1e-12 <= lo and hi <= a1 + 1e-12])  # fmt: skip
-        b0 = ends[j][0]
-        shift = b0 - a0  # theta on the ring = the last band's own angle + shift
-        column = []
-        for lo, hi, edge in arcs:
-            for lift in (0.0, two_pi, -two_pi):
-                if b0 - 1e-9 <= lo + lift and hi + lift <= b0 + (a1 - a0) + 1e-9:
-                    column.append((lo + lift, edge, lift))
-        column.sort(key=lambda c: c[0])
-        covered = sum(hi - lo for lo, hi, edge in arcs if any(edge.IsSame(e) for _, e, _ in column))
-        if abs(covered - (a1 - a0)) > 1e-8 or not column:
-            raise TubecadError(f"the closing ring could not be cut for stringer {j} (holonomy {holonomy:.6g} rad)")
-        last.append([(edge, ring_pcurve(tube_surface.circle, start - shift, start - shift + _width(arcs, edge),
-                                        moved=shift - lift).Translated(gp_Vec2d(0.0, s_last)), tolerance)
-                     for start, edge, lift in column])  # fmt: skip
-    return arcs, first, last, ends
+
+def _first_column(arcs, a0: float, a1: float) -> list:
+    """The arcs (lo, hi, edge) of the closing ring between the angles a0 < a1 (the first band's column)."""
+    return [(lo, hi, edge) for lo, hi, edge in arcs if a0 - 1e-12 <= lo and hi <= a1 + 1e-12]
+
+
+def _last_column(arcs, b0: float, width: float, j: int, holonomy: float | None) -> list:
+    """The arcs of the closing ring covering [b0, b0 + width] (the last band's column j, where
+    the stringers j and j + 1 end), each as (its start lifted into that range, edge, the
+    lift: 0 or +- 2 pi), in +theta order."""
+    two_pi = 2.0 * math.pi
+    column = []
+    for lo, hi, edge in arcs:
+        for lift in (0.0, two_pi, -two_pi):
+            if b0 - 1e-9 <= lo + lift and hi + lift <= b0 + width + 1e-9:
+                column.append((lo + lift, edge, lift))
+    column.sort(key=lambda c: c[0])
+    covered = sum(hi - lo for lo, hi, edge in arcs if any(edge.IsSame(e) for _, e, _ in column))
+    if abs(covered - width) > 1e-8 or not column:
+        turned = "" if holonomy is None else f" (holonomy {holonomy:.6g} rad)"
+        raise TubecadError(f"the closing ring could not be cut for stringer {j}{turned}")
+    return column
 
 
 def _width(arcs, edge: TopoDS_Edge) -> float:
@@ -311,32 +390,54 @@ def canal_ring(tube_surface: CanalSectionSurface, s: float, angles: list[float]
     circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
                          radius)  # fmt: skip
     cuts = tube_surface.ring_angles(s, angles)
+    pcurves, gap = [], 0.0
+    moebius = tube_surface.tube.moebius_matrix(np.array([s]))[0]
+    for j in range(len(angles) - 1):
+        pcurve, arc_gap = canal_arc_pcurve(tube_surface, s, angles, j, float(cuts[j]), float(cuts[j + 1]), circle,
+                                           chi_o, moebius)  # fmt: skip
+        pcurves.append(pcurve)
+        gap = max(gap, arc_gap)
+    return circle, cuts, pcurves, max(TOLERANCE, 2.0 * gap)
+
+
+def canal_arc_pcurve(tube_surface: CanalSectionSurface, s: float, angles: Sequence[float], column: int, lo: float,
+                     hi: float, circle: Geom_Circle, chi_o: float, moebius: np.ndarray, moved: float = 0.0
+                     ) -> tuple[Geom2d_BSplineCurve, float]:  # fmt: skip
+    """The pcurve (u(theta), s) on ``tube_surface`` of the arc theta in [lo, hi] of ``circle``
+    (its 3-D curve, parameterised by theta), which lies on the surface's ring at ``s`` in face
+    column ``column`` (between the stringers ``angles[column]`` and ``angles[column + 1]``,
+    chi0 - origin, radians), and the largest measured distance of the circle from the
+    surface through it. The ring's own angle from the origin stringer at s (``chi_o`` its
+    chi there, ``moebius`` Mb(s)) is theta - ``moved`` (0 on the ring's own circle; on a
+    closed tube's closing ring, the shift between where the stringers start and end).
+    u(theta) composes the exact inverse Moebius map theta -> chi0 (continued from the
+    column's first stringer through the arc's middle) with the circle spline's u(chi0),
+    fitted by :func:`fit_angle_map` (C1 where the spline's sub-arcs join)."""
     origin = math.radians(tube_surface.origin_deg)
     spline_circle, surface = tube_surface.circle, tube_surface.surface
-    pcurves, gap = [], 0.0
-    for j in range(len(angles) - 1):
-        lo, hi = float(cuts[j]), float(cuts[j + 1])
-        mid = 0.5 * (lo + hi)
+    a0, a1 = angles[column], angles[column + 1]
+    band_lo, band_mid = lo - moved, 0.5 * (lo + hi) - moved
 
-        def to_u(theta: np.ndarray, j: int = j, lo: float = lo, mid: float = mid) -> np.ndarray:
-            chi0 = tube_surface.ring_chi0(s, chi_o, lo, origin + angles[j], theta, mid)
-            return spline_circle.u_of_theta(np.clip(chi0 - origin, angles[j], angles[j + 1]))
+    def to_u(theta: np.ndarray) -> np.ndarray:
+        chi0 = tube_surface.ring_chi0(s, chi_o, band_lo, origin + a0, theta - moved, band_mid, moebius)
+        return spline_circle.u_of_theta(np.clip(chi0 - origin, a0, a1))
 
-        starts = [arc.start for arc in spline_circle.arcs if angles[j] + 1e-12 < arc.start < angles[j + 1] - 1e-12]
-        if starts:  # where the sub-arcs join, in theta: the forward map of chi0
-            chi = tube_surface.tube.stringer_angle(origin + np.array(starts), np.full(len(starts), s))
-            joints = list(lo + np.mod(chi - chi_o - lo, 2.0 * math.pi))
-        else:
-            joints = []
-        spline = fit_angle_map(to_u, lo, hi, joints)
-        poles = Array1OfPnt2d(1, len(spline.c))
-        for k, u in enumerate(spline.c):
-            poles.SetValue(k + 1, gp_Pnt2d(float(u), float(s)))
-        knots, mults = knots_and_multiplicities(spline.t)
-        pcurves.append(Geom2d_BSplineCurve(poles, reals(knots), integers(mults), int(spline.k)))
-        for theta in np.linspace(lo, hi, CANAL_GAP_SAMPLES + 2):
-            gap = max(gap, circle.Value(float(theta)).Distance(surface.Value(float(spline(theta)), s)))
-    return circle, cuts, pcurves, max(TOLERANCE, 2.0 * gap)
+    starts = [arc.start for arc in spline_circle.arcs if a0 + 1e-12 < arc.start < a1 - 1e-12]
+    if starts:  # where the sub-arcs join, in theta: the forward map of chi0
+        chi = tube_surface.tube.stringer_angle(origin + np.array(starts), np.full(len(starts), s))
+        joints = [float(x) for x in band_lo + np.mod(chi - chi_o - band_lo, 2.0 * math.pi) + moved
+                  if lo + 1e-12 < x < hi - 1e-12]  # fmt: skip
+    else:
+        joints = []
+    spline = fit_angle_map(to_u, lo, hi, joints)
+    poles = Array1OfPnt2d(1, len(spline.c))
+    for k, u in enumerate(spline.c):
+        poles.SetValue(k + 1, gp_Pnt2d(float(u), float(s)))
+    knots, mults = knots_and_multiplicities(spline.t)
+    pcurve = Geom2d_BSplineCurve(poles, reals(knots), integers(mults), int(spline.k))
+    gap = max(circle.Value(float(theta)).Distance(surface.Value(float(spline(theta)), s))
+              for theta in np.linspace(lo, hi, CANAL_GAP_SAMPLES + 2))  # fmt: skip
+    return pcurve, gap
 
 
 def _vertex(builder: BRep_Builder, point) -> TopoDS_Vertex:

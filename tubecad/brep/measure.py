@@ -127,7 +127,8 @@ def surface_levels(build) -> tuple[Callable, list[float]]:
 
 
 def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
-                       every_face: bool = True, level: Callable | None = None) -> TubeFacesMeasure:  # fmt: skip
+                       every_face: bool = True, level: Callable | None = None,
+                       size: float | None = None) -> TubeFacesMeasure:  # fmt: skip
     """Sample every tube face of ``shape`` (about ``samples`` points in all, at least one per
     face) and measure it against the exact tube of the radius in ``radii`` it lies on
     (``level``: measured otherwise, e.g. a canal surface's, with ``radii`` its levels: see
@@ -135,8 +136,9 @@ def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
 
     With ``every_face`` (a wall or tube solid) each non-planar face is measured against the
     nearest radius. Otherwise (an assembly) a face is measured only if its median distance
-    from ``axis`` is within 1e-3 r of a radius r, and within a quarter of the gap to the next
-    one; other faces (a stiffener's web or flange) are counted as ``skipped``.
+    from ``axis`` is within 1e-3 r of a radius r (1e-3 ``size`` for levels that are offsets,
+    a canal surface's), and within a quarter of the gap to the next one; other faces (a
+    stiffener's web or flange) are counted as ``skipped``.
     """
     radii = sorted(float(r) for r in radii)
     gaps = [b - a for a, b in zip(radii[:-1], radii[1:])]
@@ -162,7 +164,7 @@ def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
         k = int(np.argmin([abs(median - r) for r in radii]))
         r = radii[k]
         near = [g for g in (gaps[k - 1] if k > 0 else None, gaps[k] if k < len(gaps) else None) if g is not None]
-        if not every_face and abs(median - r) > min([1e-3 * r] + [0.25 * g for g in near]):
+        if not every_face and abs(median - r) > min([1e-3 * (r if size is None else size)] + [0.25 * g for g in near]):
             continue
         measured += 1
         entry = per_radius.setdefault(r, [0, 0.0, 0.0])

@@ -6,12 +6,17 @@
   every inner edge has its outer twin) and annular end caps.
 
 Each also takes a :class:`~tubecad.surface.CanalSurface` (a radius law r(s); docs/MATH.md
-section 8) on an open axis: its surfaces are fitted by :mod:`..fitting.canal_section` (one
+section 8): its surfaces are fitted by :mod:`..fitting.canal_section` (one
 spline for the surface and all its offsets r + d), its rings are the exact characteristic
 circles, the tube solid's caps are planar discs in the end circles' planes, and the wall's
 caps are pieces of the cones through the end circles of r + d_in and r + d_out (the sphere
 normals along an end circle meet at the axis point c(s_end); a plane annulus where r' = 0
-there). A CanalSurface whose law is constant is built as the tube of that radius.
+there). On a closed axis (the law closes: r and r' at the end equal those at the start)
+there are no caps, as for the tube: the shell is closed, the solid bounded by it and the
+wall by two closed shells, the inner one its cavity; the stringers come back to the closing
+ring moved by a Moebius map (:meth:`CanalSurface.closing_angle`), and the closing ring is
+cut at their starts and their ends (:func:`.faces._closing_ring`). A CanalSurface whose law
+is constant is built as the tube of that radius.
 
 Each returns a :class:`TubeBuild` whose ``shape`` is a build123d Shell or Solid.
 """
@@ -87,8 +92,8 @@ def _as_tube(tube: object) -> object:
 
 
 def _checked(tube: object, layout: object) -> NetLayout:
-    """The arguments every builder shares: a tube (or a canal surface on an open axis), a
-    layout (default equal), a buildable radius."""
+    """The arguments every builder shares: a tube (or a canal surface), a layout (default
+    equal), a buildable radius."""
     canal = isinstance(tube, CanalSurface)
     if not canal and not isinstance(tube, CurvatureLineTube):
         raise ParameterError(f"tube must be a CurvatureLineTube or a CanalSurface, got {type(tube).__name__}")
@@ -108,9 +113,8 @@ def _checked(tube: object, layout: object) -> NetLayout:
         if law.min_radius < MIN_SIZE:
             raise ParameterError(f"radius: r must stay >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge "
                                  f"precision 1e-7), got {law.min_radius:g} at s = {law.s_at_min_radius:g}")  # fmt: skip
-        if tube.axis.closed:
-            raise ParameterError("radius: a canal surface (a radius law) on a closed axis cannot be built yet; give a "
-                                 "constant radius, or open the axis (closed = false, or a shorter span)")  # fmt: skip
+        if tube.axis.closed:  # (checked when the CanalSurface was made; a law made elsewhere is checked here)
+            law.check_closes()
     elif tube.radius < MIN_SIZE:
         raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
                              f"got {tube.radius:g}")  # fmt: skip
@@ -134,8 +138,8 @@ def build_tube_shell(tube: CurvatureLineTube | CanalSurface, layout: NetLayout |
     if isinstance(tube, CanalSurface):
         fit, built = _canal_surfaces(tube, (0.0,), layout, tolerance)
         (surface, patches), = built
-        return TubeBuild(bd.Shell(shell_of(patches.all_faces(), closed=False)), [surface], [patches], layout, fit,
-                         tolerance, [_mean_radius(surface.tube)])  # fmt: skip
+        return TubeBuild(bd.Shell(shell_of(patches.all_faces(), closed=tube.axis.closed)), [surface], [patches],
+                         layout, fit, tolerance, [_mean_radius(surface.tube)])  # fmt: skip
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     surface, patches = _tube_faces(tube, frame, layout)
     shell = shell_of(patches.all_faces(), closed=tube.axis.closed)
@@ -154,7 +158,8 @@ def build_tube_solid(tube: CurvatureLineTube | CanalSurface, layout: NetLayout |
         done = iter(range(1, 3))
         fit, built = _canal_surfaces(tube, (0.0,), layout, tolerance, step=lambda step: report(step, next(done), 3))
         (surface, patches), = built
-        caps = [_canal_cap(surface, layout.s_rings[k], patches.rings[k], None, outward=k == -1) for k in (0, -1)]
+        caps = [] if tube.axis.closed else [_canal_cap(surface, layout.s_rings[k], patches.rings[k], None,
+                                                       outward=k == -1) for k in (0, -1)]  # fmt: skip
         solid = _solid([patches.all_faces() + caps], tube)
         report("solid", 3, 3)
         return TubeBuild(bd.Solid(solid), [surface], [patches], layout, fit, tolerance, [_mean_radius(surface.tube)])
@@ -292,9 +297,14 @@ def exact_volume(build: TubeBuild, tube: CurvatureLineTube | CanalSurface) -> fl
     A canal surface: the volume its surface encloses with the discs of its end circles
     (:attr:`CanalSurface.volume`, a quadrature); a wall's is the outer's minus the inner's,
     corrected at each end by the cone frustum between the two end circles that the conical
-    cap adds (r' > 0 at the last end: the outer disc lies behind the inner one) or cuts off."""
+    cap adds (r' > 0 at the last end: the outer disc lies behind the inner one) or cuts off.
+    On a closed axis (no caps, the end discs coincide) a canal surface encloses
+    V = pi Int (r q)^2 (q^2 - r r'') ds round the loop (:meth:`CanalSurface.swept_measures`:
+    the characteristic discs swept), and a wall V(r + d_out) - V(r + d_in)."""
     if isinstance(tube, CanalSurface) and not tube.radius_law.constant:
         exact = [surface.tube for surface in build.surfaces]
+        if tube.axis.closed:
+            return exact[0].swept_measures()[1] - (exact[1].swept_measures()[1] if len(exact) > 1 else 0.0)
         volume = exact[0].volume - (exact[1].volume if len(exact) > 1 else 0.0)
         if len(exact) > 1:
             for k, sign in ((0, -1.0), (1, 1.0)):
@@ -331,9 +341,11 @@ def _canal_surfaces(canal: CanalSurface, offsets: tuple[float, ...], layout: Net
     step("frame fit")
     names = ("surface",) if len(offsets) == 1 else ("outer surface", "inner surface")
     built = []
+    closing = canal.axis.holonomy if canal.axis.closed else None
     for k, d in enumerate(offsets):
         surface = canal_section_surface(canal, fit, d, layout.stringers_deg, exact[k] if exact else None)
-        built.append((surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=k > 0)))
+        built.append((surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=k > 0,
+                                           closing=closing)))  # fmt: skip
         step(names[k])
     return fit, built
 
@@ -356,9 +368,13 @@ def _canal_wall(canal: CanalSurface, thickness: float, side: str, layout: NetLay
     fit, built = _canal_surfaces(canal, (d_out, d_in), layout, tolerance, exact,
                                  lambda step: report(step, next(done), 4))  # fmt: skip
     (outer, outer_patches), (inner, inner_patches) = built
-    caps = [_canal_cap(outer, layout.s_rings[k], outer_patches.rings[k], (inner, inner_patches.rings[k]),
-                       outward=k == -1) for k in (0, -1)]  # fmt: skip
-    solid = _solid([outer_patches.all_faces() + inner_patches.all_faces() + caps], canal)
+    if canal.axis.closed:  # no caps: the outer closed shell and the inner one, its cavity
+        shells = [outer_patches.all_faces(), inner_patches.all_faces()]
+    else:
+        caps = [_canal_cap(outer, layout.s_rings[k], outer_patches.rings[k], (inner, inner_patches.rings[k]),
+                           outward=k == -1) for k in (0, -1)]  # fmt: skip
+        shells = [outer_patches.all_faces() + inner_patches.all_faces() + caps]
+    solid = _solid(shells, canal)
     report("solid", 4, 4)
     return TubeBuild(bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, fit, tolerance,
                      [_mean_radius(outer.tube), _mean_radius(inner.tube)])  # fmt: skip
@@ -372,49 +388,60 @@ FLAT_CAP_SLOPE = 1e-12
 def _canal_cap(outer, s: float, outer_ring: list[TopoDS_Edge], inner: tuple | None, outward: bool) -> TopoDS_Face:
     """The cap at ``s`` of a canal surface's solid: the planar disc of the end circle of
     ``outer`` (a CanalSectionSurface), or with ``inner`` (its inner surface and ring edges)
-    the piece of the cone through both end circles (the plane annulus where r' = 0).
+    the piece of the normal cone through both end circles (:func:`normal_cone_face`)."""
+    if inner is None:
+        centre, _, t, x_dir, _ = outer.ring(s)
+        return _plane_cap(centre, t, x_dir, [outer_ring], outward)
+    return normal_cone_face(s, inner[0], inner[1], outer, outer_ring, outward)
 
-    The cone has its apex at c(s): an end circle of r + d lies on it at distance r + d from
-    the apex along the generator n = -r' t + q e (the sphere normal). Placed at the inner
-    circle (centre C_in, radius R_in, axis +t, x direction the origin stringer's, so its u is
-    the rings' angle theta) with semi-angle a = k atan2(q, |r'|) and v = k (r_out - r_in),
-    k = -sign(r'), its v-isolines are the two end circles exactly."""
-    centre, _, t, x_dir, _ = outer.ring(s)
-    dr = float(outer.tube.radius_law.dr(np.array([s]))[0])
-    if inner is None or abs(dr) <= FLAT_CAP_SLOPE:
-        return _plane_cap(centre, t, x_dir, [outer_ring] + ([] if inner is None else [inner[1]]), outward)
+
+def normal_cone_face(s: float, low, low_ring: list[TopoDS_Edge], high, high_ring: list[TopoDS_Edge],
+                     outward: bool) -> TopoDS_Face:  # fmt: skip
+    """The face between the circles at ``s`` of two offsets of one canal surface, ``low`` of
+    the smaller law and ``high`` (CanalSectionSurfaces with the same origin stringer, their
+    ring edges ``low_ring``/``high_ring`` from it along +theta): the piece of the normal cone
+    through both (the plane annulus where r' = 0), its normal along +t when ``outward``.
+
+    The cone has its apex at c(s): a circle of r + d lies on it at distance r + d from
+    the apex along the generator n = -r' t + q e (the sphere normal). Placed at the low
+    circle (centre C_lo, radius R_lo, axis +t, x direction the origin stringer's, so its u is
+    the rings' angle theta) with semi-angle a = k atan2(q, |r'|) and v = k (r_high - r_low),
+    k = -sign(r'), its v-isolines are the two circles exactly."""
+    centre, _, t, x_dir, _ = high.ring(s)
+    dr = float(high.tube.radius_law.dr(np.array([s]))[0])
+    if abs(dr) <= FLAT_CAP_SLOPE:
+        return _plane_cap(centre, t, x_dir, [high_ring, low_ring], outward)
     builder = BRep_Builder()
     face = TopoDS_Face()
-    inner_surface, inner_ring = inner
-    c_in, radius_in, _, _, _ = inner_surface.ring(s)
-    r_out = float(outer.tube.radius_law.r(np.array([s]))[0])
-    r_in = float(inner_surface.tube.radius_law.r(np.array([s]))[0])
+    c_lo, radius_lo, _, _, _ = low.ring(s)
+    r_high = float(high.tube.radius_law.r(np.array([s]))[0])
+    r_low = float(low.tube.radius_law.r(np.array([s]))[0])
     q = math.sqrt(1.0 - dr * dr)
     k = -math.copysign(1.0, dr)
-    cone = Geom_ConicalSurface(gp_Ax3(gp_Pnt(*map(float, c_in)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
-                               k * math.atan2(q, abs(dr)), radius_in)  # fmt: skip
+    cone = Geom_ConicalSurface(gp_Ax3(gp_Pnt(*map(float, c_lo)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+                               k * math.atan2(q, abs(dr)), radius_lo)  # fmt: skip
     builder.MakeFace(face, cone, TOLERANCE)
-    v_out = k * (r_out - r_in)
-    (low, v_low), (high, v_high) = ((inner_ring, 0.0), (outer_ring, v_out)) if v_out > 0 else (
-        (outer_ring, v_out), (inner_ring, 0.0))  # fmt: skip
+    v_high = k * (r_high - r_low)
+    (first, v_first), (second, v_second) = ((low_ring, 0.0), (high_ring, v_high)) if v_high > 0 else (
+        (high_ring, v_high), (low_ring, 0.0))  # fmt: skip
     # a seam along the generator u = 0 (OCCT wants one on a closed surface): from the lower
     # circle's point at theta = 0 (the origin stringer's vertex) to the upper one's
-    seam = _edge(cone.UIso(0.0), TopExp.FirstVertex_s(low[0]), TopExp.FirstVertex_s(high[0]), v_low, v_high)
+    seam = _edge(cone.UIso(0.0), TopExp.FirstVertex_s(first[0]), TopExp.FirstVertex_s(second[0]), v_first, v_second)
     wire = TopoDS_Wire()
     builder.MakeWire(wire)  # counter-clockwise in (u, v): the lower circle along +u, the seam up, the upper back
-    for edge in low:
-        builder.UpdateEdge(edge, Geom2d_Line(gp_Pnt2d(0.0, v_low), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge))
+    for edge in first:
+        builder.UpdateEdge(edge, Geom2d_Line(gp_Pnt2d(0.0, v_first), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge))
         builder.Add(wire, edge.Oriented(TopAbs_FORWARD))
     builder.UpdateEdge(seam, Geom2d_Line(gp_Pnt2d(2.0 * math.pi, 0.0), gp_Dir2d(0.0, 1.0)),
                        Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(0.0, 1.0)), face, TOLERANCE)  # fmt: skip
     builder.Add(wire, seam.Oriented(TopAbs_FORWARD))
-    for edge in high[::-1]:
-        builder.UpdateEdge(edge, Geom2d_Line(gp_Pnt2d(0.0, v_high), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge))
+    for edge in second[::-1]:
+        builder.UpdateEdge(edge, Geom2d_Line(gp_Pnt2d(0.0, v_second), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge))
         builder.Add(wire, edge.Oriented(TopAbs_REVERSED))
     builder.Add(wire, seam.Oriented(TopAbs_REVERSED))
     wire.Closed(True)
     builder.Add(face, wire)
     point, normal = gp_Pnt(), gp_Vec()  # the cone's own normal is sign(r') m, m = q t + r' e the stringers'
-    BRepGProp_Face(face).Normal(0.5 * math.pi, 0.5 * v_out, point, normal)
+    BRepGProp_Face(face).Normal(0.5 * math.pi, 0.5 * v_high, point, normal)
     pointing_out = normal.Dot(gp_Vec(*map(float, t))) > 0
     return face if pointing_out == outward else TopoDS_Face.Reversed(face)

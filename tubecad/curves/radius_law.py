@@ -9,7 +9,11 @@ exists where |r'| < 1 and r > 0. A law is given as
   series' exact derivatives;
 - a table [[s0, r0], [s1, r1], ...] (s strictly increasing, covering the span): the cubic
   spline through the points with not-a-knot ends (C2; 2 points give a straight line,
-  3 a parabola).
+  3 a parabola); on a closed axis a table whose last r repeats the first is the periodic
+  cubic spline (C2 all round the loop, the closing point included).
+
+On a closed axis the law must close: r(s1) = r(s0) and r'(s1) = r'(s0), so that the
+characteristic circle at s1 is the one at s0 (:meth:`RadiusLaw.check_closes`).
 
 Every law is checked on its span: r > 0 and |r'| < 1, each sampled densely and its worst
 sample refined, else a one-line ParameterError naming the key and the s where it fails.
@@ -33,6 +37,11 @@ FloatArray = np.ndarray
 RadiusValue = float | str | Callable[[np.ndarray], np.ndarray] | Sequence[Sequence[float]]
 
 TABLE_INTERPOLATION = "cubic spline through the points, C2, not-a-knot ends (2 points: a straight line, 3: a parabola)"
+PERIODIC_TABLE_INTERPOLATION = ("periodic cubic spline through the points (a closed axis: the last r repeats the "
+                                "first), C2 all round the loop, the closing point included")
+#: on a closed axis r(s1) must equal r(s0) to this relative difference, and r'(s1) r'(s0) to CLOSING_SLOPE
+CLOSING_RADIUS = 1e-9
+CLOSING_SLOPE = 1e-8
 #: samples per series panel or table interval when checking r > 0 and |r'| < 1
 SAMPLES_PER_PIECE = 64
 
@@ -47,8 +56,10 @@ class RadiusLaw:
 
     def __init__(self, kind: str, span: tuple[float, float], name: str, source: Any,
                  pieces: tuple[Callable[[np.ndarray], np.ndarray], ...] | None, *, breaks: Sequence[float] = (),
-                 resolution: int = 1, offset: float = 0.0) -> None:  # fmt: skip
+                 resolution: int = 1, offset: float = 0.0, periodic: bool = False) -> None:  # fmt: skip
         self.kind, self.span, self.name, self.source, self.offset = kind, span, name, source, offset
+        #: set once the law is known to close round a closed axis (a periodic table, or checked by check_closes)
+        self.periodic = periodic
         self._pieces = pieces  # (r, r', r'', r''') or None for a constant
         self.breaks = np.asarray(sorted(b for b in breaks if span[0] < b < span[1]), dtype=float)
         self._resolution = max(resolution, len(self.breaks) + 1)  # pieces to sample SAMPLES_PER_PIECE times
@@ -93,9 +104,35 @@ class RadiusLaw:
             return radius_law(float(self.source) + d, self.span, self.name)
         r, dr, ddr, dddr = self._pieces
         return RadiusLaw(self.kind, self.span, self.name, self.source, (lambda s: r(s) + d, dr, ddr, dddr),
-                         breaks=self.breaks, resolution=self._resolution, offset=self.offset + d)  # fmt: skip
+                         breaks=self.breaks, resolution=self._resolution, offset=self.offset + d,
+                         periodic=self.periodic)  # fmt: skip
+
+    def restricted(self, span: tuple[float, float]) -> RadiusLaw:
+        """The same law on a sub-span (e.g. one stiffener's): the same r(s), checked there."""
+        if self._pieces is None:
+            return radius_law(float(self.source), span, self.name)
+        return RadiusLaw(self.kind, span, self.name, self.source, self._pieces, breaks=self.breaks,
+                         resolution=self._resolution, offset=self.offset)  # fmt: skip
 
     # --- checks ------------------------------------------------------------------------
+    def check_closes(self) -> None:
+        """On a closed axis the circle at s1 must be the circle at s0: r(s1) = r(s0) (to
+        CLOSING_RADIUS relative) and r'(s1) = r'(s0) (to CLOSING_SLOPE), else a one-line
+        ParameterError naming the law, the mismatch and where. A constant law closes."""
+        if self.constant:
+            return
+        s0, s1 = self.span
+        ends = np.array([s0, s1])
+        (r0, r1), (d0, d1) = self.r(ends), self.dr(ends)
+        dr_gap, slope_gap = abs(r1 - r0), abs(d1 - d0)
+        if dr_gap > CLOSING_RADIUS * max(abs(r0), abs(r1)) or slope_gap > CLOSING_SLOPE:
+            raise ParameterError(f"{self.name}: on a closed axis the law must close (r and r' at s = {s1:g} equal to "
+                                 f"those at s = {s0:g}), but r = {r0:.10g}, r' = {d0:.6g} at s = {s0:g} and r = "
+                                 f"{r1:.10g}, r' = {d1:.6g} at s = {s1:g} (they differ by {dr_gap:.3g} in r, "
+                                 f"{slope_gap:.3g} in r'); give a periodic law, e.g. in cos(2 * pi * s / "
+                                 f"{s1 - s0:.12g}), or open the axis (closed = false)")  # fmt: skip
+        self.periodic = True
+
     def _samples(self) -> np.ndarray:
         s0, s1 = self.span
         return np.union1d(np.linspace(s0, s1, max(2001, SAMPLES_PER_PIECE * self._resolution + 1)), self.breaks)
@@ -131,7 +168,9 @@ class RadiusLaw:
             source = [[float(a), float(b)] for a, b in np.asarray(source)]
         out: dict[str, Any] = {"kind": self.kind, self.name: source, "s": list(self.span)}
         if self.kind == "table":
-            out["interpolation"] = TABLE_INTERPOLATION
+            out["interpolation"] = PERIODIC_TABLE_INTERPOLATION if self.periodic else TABLE_INTERPOLATION
+        if self.periodic:
+            out["periodic"] = "r(s1) = r(s0) and r'(s1) = r'(s0): the law closes round the closed axis"
         if self.offset:
             out["offset"] = self.offset
         out.update({"min": self.min_radius, "s_at_min": self.s_at_min_radius, "max": self.max_radius,
@@ -188,7 +227,7 @@ def radius_law(value: RadiusValue | RadiusLaw, span: tuple[float, float], name: 
     if isinstance(value, str) or callable(value):
         return _series_law(value, span, name, axis)
     if isinstance(value, (list, tuple, np.ndarray)):
-        return _table_law(value, span, name)
+        return _table_law(value, span, name, periodic=bool(getattr(axis, "closed", False)))
     raise ParameterError(f"{name} must be a number, an expression in s, a callable r(s) or a table [[s, r], ...], "
                          f"got {value!r:.80}")  # fmt: skip
 
@@ -222,8 +261,11 @@ def _series_law(value: str | Callable[[np.ndarray], np.ndarray], span: tuple[flo
                      (r, dr, ddr, ddr.derivative()), resolution=len(r.coeffs))  # fmt: skip
 
 
-def _table_law(value: Sequence[Sequence[float]], span: tuple[float, float], name: str) -> RadiusLaw:
-    """The not-a-knot cubic spline through the rows [s, r] (strictly increasing s, r > 0)."""
+def _table_law(value: Sequence[Sequence[float]], span: tuple[float, float], name: str,
+               periodic: bool = False) -> RadiusLaw:  # fmt: skip
+    """The not-a-knot cubic spline through the rows [s, r] (strictly increasing s, r > 0);
+    ``periodic`` (a closed axis): the periodic cubic spline, the rows running from the
+    span's start to its end and the last r repeating the first (else refused, naming them)."""
     rows = list(value)
     if len(rows) < 2:
         raise ParameterError(f"{name}: a table needs at least 2 rows [s, r], got {len(rows)}")
@@ -252,6 +294,23 @@ def _table_law(value: Sequence[Sequence[float]], span: tuple[float, float], name
     # only tables need it: importing tubecad.curves stays light
     from scipy.interpolate import CubicSpline
 
-    spline = CubicSpline(data[:, 0], data[:, 1], bc_type="not-a-knot")
+    if periodic:
+        last = len(data) - 1
+        if abs(data[0, 0] - s0) > slack or abs(data[-1, 0] - s1) > slack:
+            raise ParameterError(f"{name}: on a closed axis the table must run from the span's start to its end (one "
+                                 f"loop, [{s0:g}, {s1:g}]), but row 0 is at s = {data[0, 0]:g} and row {last} at s = "
+                                 f"{data[-1, 0]:g}")  # fmt: skip
+        r0, r1 = data[0, 1], data[-1, 1]
+        if len(data) < 3 or abs(r1 - r0) > CLOSING_RADIUS * max(r0, r1):
+            why = ("it needs at least 3 rows" if len(data) < 3 else
+                   f"row 0 has r = {r0:.10g} at s = {data[0, 0]:g} but row {last} has r = {r1:.10g} at s = "
+                   f"{data[-1, 0]:g}")  # fmt: skip
+            raise ParameterError(f"{name}: on a closed axis a table must close ({why}); make the last row's r "
+                                 "equal the first's (the law is then the periodic cubic spline through the rows), "
+                                 "or open the axis (closed = false)")  # fmt: skip
+        data[-1, 1] = r0  # exactly, as the periodic spline demands
+        spline = CubicSpline(data[:, 0], data[:, 1], bc_type="periodic")
+    else:
+        spline = CubicSpline(data[:, 0], data[:, 1], bc_type="not-a-knot")
     pieces = tuple((lambda s, n=n: spline(s, n)) for n in range(4))
-    return RadiusLaw("table", span, name, data, pieces, breaks=data[1:-1, 0])  # type: ignore[arg-type]
+    return RadiusLaw("table", span, name, data, pieces, breaks=data[1:-1, 0], periodic=periodic)  # type: ignore[arg-type]

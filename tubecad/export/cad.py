@@ -11,6 +11,9 @@ schema is one of OCCT's global settings (``write.step.schema``); :func:`step_set
 sets it for one write only, after the STEP controllers exist (their first initialisation
 would reset it), and restores the previous value afterwards.
 
+IGES is written through OCCT's IGES writer with its numbers to 13 significant digits
+(:data:`IGES_REAL`; the writer's own 9 decimals would lose a canal surface's weights).
+
 Length units (tubecad.units): the coordinates are written as they are, in the model's
 unit (``length_unit``, default mm), and the file says which unit that is: STEP's
 SI_UNIT / CONVERSION_BASED_UNIT (the XCAF document's length unit and ``write.step.unit``
@@ -31,6 +34,8 @@ from OCP.BRep import BRep_Builder
 from OCP.BRepTools import BRepTools
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.IGESControl import IGESControl_Controller, IGESControl_Reader, IGESControl_Writer
+from OCP.IGESData import IGESData_IGESWriter
+from OCP.IGESSelect import IGESSelect_WorkLibrary
 from OCP.Interface import Interface_Static
 from OCP.Message import Message, Message_PrinterOStream
 from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Reader, STEPCAFControl_Writer
@@ -49,6 +54,16 @@ from ..units import DEFAULT_LENGTH_UNIT, length_unit as unit_of
 
 FORMATS = {".step": "step", ".stp": "step", ".iges": "iges", ".igs": "iges", ".brep": "brep"}
 STEP_SCHEMAS = {"AP214": "AP214IS", "AP242": "AP242DIS"}
+
+#: how IGES writes a real: 13 significant digits, trailing zeros and E+00 dropped. OCCT's IGES
+#: writer alone writes 9 decimals ("%11.9f" for 0.1 <= |x| < 1000, else "%11.9E"): a weight
+#: rounded by 5e-10 moves the surface by that times the distance to its pole (~ the radius),
+#: up to ~4e-8 on a canal surface or a route, whose weights vary in both directions. 13 digits is
+#: the most the zero suppression takes (it looks for the exponent in the first 16 characters,
+#: at 15 in "-1.234567890123E-05", and cuts a longer number short); more would have to keep
+#: every trailing zero, 2.4 times the file. The surfaces read back are then within ~1e-10 of
+#: the written ones, as STEP's.
+IGES_REAL = "%.12E"
 
 
 class ExportError(TubecadError):
@@ -236,8 +251,20 @@ def _write_iges(shape: TopoDS_Shape, path: Path, length_unit: str = DEFAULT_LENG
     if not writer.AddShape(shape):
         raise ExportError("OCCT could not translate the shape to IGES")
     writer.ComputeModel()
-    if not writer.Write(str(path)):
-        raise ExportError(f"OCCT could not write IGES to {str(path)!r}")
+    # IGESControl_Writer.Write, with the numbers written to 13 significant digits (IGES_REAL)
+    # instead of its fixed 9 decimals
+    iges = IGESData_IGESWriter(writer.Model())
+    iges.FloatWriter().SetFormat(IGES_REAL, True)  # True: no second format for 0.1 <= |x| < 1000
+    iges.FloatWriter().SetZeroSuppress(True)
+    try:
+        if writer.Model().NbEntities() == 0:
+            raise OSError("no entities")
+        iges.SendModel(IGESSelect_WorkLibrary.DefineProtocol_s())
+        with open(path, "wb") as stream:
+            if not iges.Print(stream):
+                raise OSError("IGESData_IGESWriter.Print failed")
+    except OSError as exc:
+        raise ExportError(f"OCCT could not write IGES to {str(path)!r}") from exc
 
 
 def _write_brep(shape: TopoDS_Shape, path: Path) -> None:

@@ -7,7 +7,8 @@ triangles themselves.
   0.1 rad and may be set from 1 to 45 degrees (``--mesh-angle``). Both bounds apply: the
   finer one wins.
 - A tube or wall (tubecad.brep.TubeBuild) is meshed on its curvature-line grid
-  (tubecad.export.tessellate), to a bound that holds by construction; everything else
+  (tubecad.export.tessellate), to a bound that holds by construction (a canal surface's:
+  measured on the exact surface as the grid is made); everything else
   (stiffeners, panels, a fused wall) by OCCT's BRepMesh with the same tolerances as
   absolute values (build123d's exporters ask BRepMesh for *relative* ones, which leave a
   tube's triangles several times the deflection away from it).
@@ -68,10 +69,13 @@ def tessellate(parts: list, deflection: float, angular: float, build=None) -> No
 
     from .tessellate import triangulate_build
 
-    from ..surface import CurvatureLineTube
+    from ..surface import CanalSurface, CurvatureLineTube
 
-    # a canal surface's grid would need its own step rules (its curvatures are not a tube's): BRepMesh meshes it
-    on_grid = build is not None and isinstance(build.surfaces[0].tube, CurvatureLineTube)
+    # a canal surface's grid has its own step rules, measured on the exact surfaces (tessellate.canal_grid);
+    # round a closed axis its stringers come back moved by a Moebius map, which the closing ring's
+    # nodes do not follow yet (they follow a turn): BRepMesh meshes a closed canal surface
+    exact = build.surfaces[0].tube if build is not None else None
+    on_grid = isinstance(exact, CurvatureLineTube) or (isinstance(exact, CanalSurface) and not exact.axis.closed)
     if on_grid and any(p.wrapped.IsSame(build.shape.wrapped) for p in parts):
         triangulate_build(build, deflection, angular)
     rest = [p for p in parts if not BRepTools.Triangulation_s(p.wrapped, deflection)]

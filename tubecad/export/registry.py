@@ -92,8 +92,8 @@ def _shape(item: Exportable, path: Path):
 FORMATS: tuple[OutputFormat, ...] = (
     OutputFormat("step", (".step", ".stp"), "cad", "AP214 or AP242 (`--step-schema`), in `[units] length`, product "
                  "names and colours; about 14 significant digits", _cad("step")),
-    OutputFormat("iges", (".iges", ".igs"), "cad", "B-rep entities (solids, shells), in `[units] length`; holds the "
-                 "surface less closely than STEP", _cad("iges")),
+    OutputFormat("iges", (".iges", ".igs"), "cad", "B-rep entities (solids, shells), in `[units] length`; 13 "
+                 "significant digits (about as closely as STEP)", _cad("iges")),
     OutputFormat("brep", (".brep",), "cad", "OCCT's own format: every digit of a double", _cad("brep")),
     OutputFormat("stl", (".stl",), "mesh", "binary STL, 32-bit floats, for viewing and printing", _mesh("stl")),
     OutputFormat("3mf", (".3mf",), "mesh", "one mesh per solid, with its name and colour, in `[units] length`",

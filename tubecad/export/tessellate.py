@@ -24,6 +24,15 @@ there, a_j and b_j = a_j + h), their points computed once per surface; the first
 bottom row and the last band's top row are those very points (the last band's at its own
 angles, theta - h), each joined to its regular neighbour row by fans: the mesh closes there
 too, with a triangle more per extra node.
+
+A canal surface (a radius law r(s)) is meshed on its own grid (:func:`canal_grid`): its
+rings are the characteristic circles, of radius r q varying along s, and its stringers
+chi0 = const are spaced round them by the Moebius map, so no closed bound like the tube's
+holds; the columns and rows are spaced where the second fundamental form asks, and then
+measured on the exact surfaces (chord midpoints along the normal, the normal's turn) and
+refined until they hold. A wall's caps, pieces of the normal cone through its end circles
+(planar where r' = 0), are strips between the outer and inner end circles' nodes, which
+lie on the cone's generators; a tube solid's end discs are strips across their circle.
 """
 
 from __future__ import annotations
@@ -35,7 +44,7 @@ from typing import Sequence
 import numpy as np
 from OCP.BRep import BRep_Builder
 from OCP.BRepAdaptor import BRepAdaptor_Surface
-from OCP.GeomAbs import GeomAbs_Plane
+from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Plane
 from OCP.gp import gp_Pnt, gp_Pnt2d
 from OCP.Poly import Poly_PolygonOnTriangulation, Poly_Triangle, Poly_Triangulation
 from OCP.TopAbs import TopAbs_FACE
@@ -45,7 +54,8 @@ from OCP.TopLoc import TopLoc_Location
 from ..brep.faces import CLOSING_MERGE
 from ..brep.layout import stringer_parameters
 from ..errors import ParameterError, TubecadError
-from ..occ_compat import as_face
+from ..occ_compat import as_edge, as_face
+from ..surface import CanalSurface
 
 #: the share of the linear tolerance given to each grid direction (around, along)
 SHARE = 0.45
@@ -99,10 +109,13 @@ def triangulate_build(build, tolerance: float, angular: float) -> int:
     closed axis has none: its first and last bands share the closing ring's nodes).
     Returns the number of triangles; refuses (ParameterError) more than MAX_TRIANGLES.
     Remove them with ``BRepTools.Clean_s``."""
-    radius = max(build.radii)  # the outer tube needs the finest angle step; the inner one shares it
     axis = build.surfaces[0].tube.axis
-    angles = grid_angles(build.layout.stringers_deg, angle_step(radius, tolerance, angular))
-    arcs = grid_arcs(axis, build.layout.s_rings, radius, tolerance, angular)
+    if isinstance(build.surfaces[0].tube, CanalSurface):  # steps measured on the exact surfaces
+        angles, arcs = canal_grid(build, tolerance, angular)
+    else:
+        radius = max(build.radii)  # the outer tube needs the finest angle step; the inner one shares it
+        angles = grid_angles(build.layout.stringers_deg, angle_step(radius, tolerance, angular))
+        arcs = grid_arcs(axis, build.layout.s_rings, radius, tolerance, angular)
     # every node once per surface, so that neighbouring faces and the caps share them bit for bit
     columns = np.radians(np.concatenate([a[:-1] for a in angles]))
     first_column = np.cumsum([0] + [len(a) - 1 for a in angles])
@@ -133,10 +146,142 @@ def triangulate_build(build, tolerance: float, angular: float) -> int:
                 top = closing.last(j) if closing is not None and i == last else None
                 _tube_face(builder, surface, patches, face, (i, j), block, angles[j], arcs[i], u_cuts, tolerance,
                            bottom, top)  # fmt: skip
-    for face, end in _caps(build):
+    for face, end, cone in _caps(build):
         rings = [grid[:-1, 0 if end == 0 else -1] for grid in grids]
-        total += _cap_face(builder, build, face, end, rings, first_column, tolerance)
+        cap = _cone_cap_face if cone else _cap_face
+        total += cap(builder, build, face, end, rings, first_column, tolerance)
     return total
+
+
+#: a canal grid's cell diagonal (the sum of its two directions' errors) may reach this
+#: fraction of the tolerance; the rest is left for the file's rounding
+DIAGONAL_SHARE = 0.95
+#: samples of the second fundamental form per sector (around) and per ring bay (along), for
+#: a canal grid's first steps and their spacing
+FORM_SAMPLES = (17, 17)
+#: passes of a canal grid's measure-and-refine loop (the first may also coarsen)
+CANAL_PASSES = 6
+
+
+def canal_grid(build, tolerance: float, angular: float) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """The grid of a canal surface's build (its surfaces' ``tube`` CanalSurfaces, the exact
+    r + d): per sector its columns' angles chi0 (degrees, both ends), per ring bay its rows'
+    s (both ends), as :func:`grid_angles` and :func:`grid_arcs` give a tube's.
+
+    Nothing of a tube's bound carries over (the circles' radius r q and the Moebius map's
+    spacing of the stringers vary along s, the stringers' normal curvature with r'' too), so
+    the steps are measured. The second fundamental form sampled over each sector and bay
+    gives the intervals needed per unit chi0 and s (|L| du^2 / 8 and |N| ds^2 / 8 within
+    SHARE x ``tolerance``, the normal's turn |L| du / sqrt(E), |N| ds / sqrt(G) within
+    ``angular``), the largest over the other direction; the columns and rows are spaced
+    where those densities ask (equal shares of their integrals), a first count from the
+    integrals. Then on the grid itself, on every surface, the chord midpoints' distance from
+    the exact surface along its normal (rings, stringers and the cells' diagonals) and the
+    turn of the exact normals between neighbouring nodes are measured, and each sector and
+    bay refined (the first pass also coarsened) by the square root of its excess, until
+    every one holds."""
+    exact = [surface.tube for surface in build.surfaces]
+    ends = np.array([*map(float, build.layout.stringers_deg), float(build.layout.stringers_deg[0]) + 360.0])
+    s_rings = np.asarray(build.layout.s_rings, dtype=float)
+    (chi0, around), (s, along_need) = _canal_densities(exact, np.radians(ends), s_rings, tolerance, angular)
+    n_u = np.maximum(1, np.ceil(_integrals(chi0, around))).astype(int)
+    n_s = np.maximum(1, np.ceil(_integrals(s, along_need))).astype(int)
+    for attempt in range(CANAL_PASSES):
+        angles = [np.degrees(_spaced(x, d, n)) for x, d, n in zip(chi0, around, n_u)]
+        arcs = [_spaced(x, d, n) for x, d, n in zip(s, along_need, n_s)]
+        for a, b, grid in ((ends[:-1], ends[1:], angles), (s_rings[:-1], s_rings[1:], arcs)):
+            for k, row in enumerate(grid):  # the ends exactly
+                row[0], row[-1] = a[k], b[k]
+        ring, along, diagonal = _canal_errors(exact, angles, arcs, tolerance, angular)
+        if ring.max() <= 1.0 and along.max() <= 1.0 and diagonal.max() <= 1.0:
+            return angles, arcs
+        # a cell whose diagonal alone is too far: both its directions share the excess
+        ring = np.maximum(ring, diagonal.max(axis=0))
+        along = np.maximum(along, diagonal.max(axis=1))
+        grow_u, grow_s = np.sqrt(np.maximum(ring, 0.0)) * 1.02, np.sqrt(np.maximum(along, 0.0)) * 1.02
+        if attempt > 0:
+            grow_u, grow_s = np.maximum(grow_u, 1.0), np.maximum(grow_s, 1.0)
+        n_u = np.maximum(1, np.ceil(n_u * grow_u - 1e-9)).astype(int)
+        n_s = np.maximum(1, np.ceil(n_s * grow_s - 1e-9)).astype(int)
+    raise TubecadError(f"the canal surface's mesh grid does not reach the mesh tolerance {tolerance:g} in "
+                       f"{CANAL_PASSES} passes")  # fmt: skip
+
+
+def _integrals(x: np.ndarray, density: np.ndarray) -> np.ndarray:
+    """Per row of samples ``x`` the trapezoid integral of ``density``."""
+    return (0.5 * (density[:, 1:] + density[:, :-1]) * np.diff(x, axis=1)).sum(axis=1)
+
+
+def _spaced(x: np.ndarray, density: np.ndarray, count: int) -> np.ndarray:
+    """``count`` + 1 points from x[0] to x[-1] that cut the integral of ``density`` (sampled at
+    ``x``, piecewise linear; floored at a tenth of its mean, so no interval grows far past the
+    equal one) into equal shares."""
+    d = np.maximum(density, 0.1 * density.mean() + 1e-300)
+    cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (d[1:] + d[:-1]) * np.diff(x))])
+    return np.interp(np.linspace(0.0, cumulative[-1], count + 1), cumulative, x)
+
+
+def _canal_densities(exact: list, ends: np.ndarray, s_rings: np.ndarray, tolerance: float, angular: float
+                     ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:  # fmt: skip
+    """The grid intervals a canal surface needs per unit chi0 over each sector (``ends``,
+    radians) and per unit s over each bay (``s_rings``), from |L|, |N| (and E, G) sampled on
+    every surface, each the largest over the other direction (see :func:`canal_grid`):
+    ((chi0 samples, density) per sector, (s samples, density) per bay), rows of samples."""
+    per_u, per_s = FORM_SAMPLES
+    frac_u, frac_s = np.linspace(0.0, 1.0, per_u), np.linspace(1e-9, 1.0 - 1e-9, per_s)
+    chi0 = ends[:-1, None] + np.diff(ends)[:, None] * frac_u
+    s = s_rings[:-1, None] + np.diff(s_rings)[:, None] * frac_s
+    around = np.zeros(chi0.size)
+    along = np.zeros(s.size)
+    sag = 8.0 * SHARE * tolerance
+    for surface in exact:
+        forms = surface.fundamental_forms(chi0.reshape(-1, 1), s.reshape(1, -1))
+        L, N = np.abs(forms.L), np.abs(forms.N)
+        around = np.maximum(around, np.maximum(np.sqrt(L / sag), L / (np.sqrt(forms.E) * angular)).max(axis=1))
+        along = np.maximum(along, np.maximum(np.sqrt(N / sag), N / (np.sqrt(forms.G) * angular)).max(axis=0))
+    s[:, 0], s[:, -1] = s_rings[:-1], s_rings[1:]
+    return (chi0, around.reshape(chi0.shape)), (s, along.reshape(s.shape))
+
+
+def _canal_errors(exact: list, angles: list[np.ndarray], arcs: list[np.ndarray], tolerance: float,
+                  angular: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+    """On the grid of ``angles`` (degrees) x ``arcs``, over every surface of ``exact``: per
+    sector the largest error around (the ring chords' midpoints' distance from the surface
+    over SHARE x ``tolerance``, or the normal's turn between neighbouring columns over
+    ``angular``), per bay the largest along (the stringer chords', the turn between rows), per
+    cell (bay x sector) its diagonal's midpoint's distance over DIAGONAL_SHARE x ``tolerance``:
+    each at most 1 where the grid holds. The distance is measured along the exact normal at
+    the chord's middle parameters (the chord leaves the surface along it, to higher order)."""
+    columns = np.radians(np.concatenate([a[:-1] for a in angles] + [angles[-1][-1:]]))
+    rows = np.concatenate([s[:-1] for s in arcs] + [arcs[-1][-1:]])
+    sector = np.repeat(np.arange(len(angles)), [len(a) - 1 for a in angles])  # of each column interval
+    bay = np.repeat(np.arange(len(arcs)), [len(s) - 1 for s in arcs])  # of each row interval
+    mid_c, mid_r = 0.5 * (columns[:-1] + columns[1:]), 0.5 * (rows[:-1] + rows[1:])
+    ring, along = np.zeros(len(angles)), np.zeros(len(arcs))
+    diagonal = np.zeros((len(arcs), len(angles)))
+
+    def normal(surface, x: np.ndarray, s: np.ndarray) -> np.ndarray:  # X = c + r n: the sphere's normal
+        return (x - surface.axis.position(s)[None]) / surface.radius_law.r(s)[None, :, None]
+
+    def off(chord: np.ndarray, chi0: np.ndarray, s: np.ndarray, surface) -> np.ndarray:
+        x = surface.points(chi0[:, None], s[None, :])
+        return np.abs(np.einsum("...i,...i", chord - x, normal(surface, x, s)))
+
+    def turn(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return 2.0 * np.arcsin(np.clip(0.5 * np.linalg.norm(a - b, axis=-1), 0.0, 1.0))
+
+    for surface in exact:
+        p = surface.points(columns[:, None], rows[None, :])
+        n = normal(surface, p, rows)
+        around = np.maximum(off(0.5 * (p[:-1] + p[1:]), mid_c, rows, surface) / (SHARE * tolerance),
+                            turn(n[:-1], n[1:]) / angular).max(axis=1)
+        np.maximum.at(ring, sector, around)
+        up = np.maximum(off(0.5 * (p[:, :-1] + p[:, 1:]), columns, mid_r, surface) / (SHARE * tolerance),
+                        turn(n[:, :-1], n[:, 1:]) / angular).max(axis=0)
+        np.maximum.at(along, bay, up)
+        cell = off(0.5 * (p[:-1, :-1] + p[1:, 1:]), mid_c, mid_r, surface) / (DIAGONAL_SHARE * tolerance)
+        np.maximum.at(diagonal, (bay[None, :], sector[:, None]), cell)
+    return ring, along, diagonal
 
 
 def closing_angles(columns: np.ndarray, holonomy: float, radius: float) -> tuple[np.ndarray, np.ndarray]:
@@ -344,17 +489,19 @@ def _closing_polygons(builder, arcs, ids: np.ndarray, row: _Row, tri) -> None:
 
 
 def _caps(build):
-    """(face, end) of each planar end cap of the solid, end 0 at the start of the span and 1
-    at its end (none on an open shell)."""
+    """(face, end, conical) of each end cap of the solid, end 0 at the start of the span and 1
+    at its end (none on an open shell): planar, or a canal wall's piece of the normal cone."""
     span = build.layout.s_rings[0], build.layout.s_rings[-1]
     ends = build.surfaces[0].tube.axis.position(np.array(span))
     explorer = TopExp_Explorer(build.shape.wrapped, TopAbs_FACE)
     while explorer.More():
         face = as_face(explorer.Current())
         adaptor = BRepAdaptor_Surface(face, False)
-        if adaptor.GetType() == GeomAbs_Plane:
-            origin = adaptor.Plane().Location()
-            yield face, int(np.argmin(np.linalg.norm(ends - [origin.X(), origin.Y(), origin.Z()], axis=1)))
+        kind = adaptor.GetType()
+        if kind in (GeomAbs_Plane, GeomAbs_Cone):
+            origin = (adaptor.Plane() if kind == GeomAbs_Plane else adaptor.Cone()).Location()
+            end = int(np.argmin(np.linalg.norm(ends - [origin.X(), origin.Y(), origin.Z()], axis=1)))
+            yield face, end, kind == GeomAbs_Cone
         explorer.Next()
 
 
@@ -371,14 +518,22 @@ def _cap_face(builder, build, face, end: int, rings: list[np.ndarray], first_col
     if len(rings) > 1:  # outer ring nodes 1..count, inner count+1..2 count
         points = np.concatenate(rings)
         triangles = np.concatenate([np.stack([a, b, b + count], -1), np.stack([a, b + count, a + count], -1)]) + 1
+    elif isinstance(build.surfaces[0].tube, CanalSurface):
+        # a canal surface's end circle: a strip zigzagging across it, no node off the circle
+        # (its centre c - r r' t is off the axis, where a mesh's measure would take it for
+        # the surface's); each triangle turned counter-clockwise below
+        points = rings[0]
+        order = np.empty(count, dtype=int)
+        order[0::2], order[1::2] = np.arange((count + 1) // 2), count - 1 - np.arange(count // 2)
+        triangles = np.stack([order[:-2], order[1:-1], order[2:]], -1) + 1
     else:  # the centre is the last node
         s = build.layout.s_rings[0 if end == 0 else -1]
         points = np.concatenate([rings[0], build.surfaces[0].tube.axis.position(np.array([s]))])
         triangles = np.stack([a, b, np.full(count, count)], -1) + 1
     uv = np.stack([(points - origin) @ x_dir, (points - origin) @ y_dir], -1)
-    p, q, r = uv[triangles[0] - 1]
-    if (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]) < 0:  # counter-clockwise about the normal
-        triangles = triangles[:, ::-1]
+    p, q, r = (uv[triangles[:, k] - 1] for k in range(3))
+    clockwise = (q[:, 0] - p[:, 0]) * (r[:, 1] - p[:, 1]) - (q[:, 1] - p[:, 1]) * (r[:, 0] - p[:, 0]) < 0
+    triangles[clockwise] = triangles[clockwise, ::-1]  # counter-clockwise about the normal
     tri = _triangulation(points, uv, triangles, tolerance)
     builder.UpdateFace(face, tri)
     ring = 0 if end == 0 else len(build.layout.s_rings) - 1
@@ -386,6 +541,53 @@ def _cap_face(builder, build, face, end: int, rings: list[np.ndarray], first_col
         for j, edge in enumerate(patches.rings[ring]):
             nodes = (np.arange(first_column[j], first_column[j + 1] + 1) % count) + 1 + k * count
             _polygon(builder, edge, [nodes], tri)
+    return len(triangles)
+
+
+def _cone_cap_face(builder, build, face, end: int, rings: list[np.ndarray], first_column: np.ndarray,
+                   tolerance: float) -> int:  # fmt: skip
+    """A canal wall's cap at ``end``, the piece of the normal cone through its outer and inner
+    end circles (tubecad.brep.solids.normal_cone_face): the strip between the ``rings``' nodes.
+    A node and its partner on the other ring lie on one generator (the stringers of r + d
+    share chi(chi0, s)), so each quad is planar, on the cone up to the circles' own chords.
+    The seam (the generator u = 0, through the first column) has its nodes twice, at u = 0
+    and u = 2 pi; UV is the cone's own (u about +t, v along the generator). Returns its
+    triangle count."""
+    from OCP.BRep import BRep_Tool
+    from OCP.ElSLib import ElSLib
+    from OCP.TopAbs import TopAbs_EDGE
+
+    count = len(rings[0])
+    cone = BRepAdaptor_Surface(face, False).Cone()
+    points = np.concatenate([np.concatenate([ring, ring[:1]]) for ring in rings])  # outer 0..count, inner after
+    uv = np.array([ElSLib.Parameters_s(cone, gp_Pnt(*p)) for p in points.tolist()]).reshape(-1, 2)
+    for k in range(2):  # u from the seam: about 0 at the first column, increasing round to 2 pi at its copy
+        block = slice(k * (count + 1), (k + 1) * (count + 1))
+        u = np.unwrap(uv[block, 0])
+        u -= 2.0 * math.pi * round(u[0] / (2.0 * math.pi))
+        u[-1] = u[0] + 2.0 * math.pi
+        uv[block, 0] = u
+    a = np.arange(count)
+    o, i = a, a + count + 1  # outer and inner nodes (0-based) of each column
+    triangles = np.concatenate([np.stack([o, o + 1, i + 1], -1), np.stack([o, i + 1, i], -1)]) + 1
+    p, q, r = uv[triangles[0] - 1]
+    if (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]) < 0:  # counter-clockwise in the cone's UV
+        triangles = triangles[:, ::-1]
+    tri = _triangulation(points, uv, triangles, tolerance)
+    builder.UpdateFace(face, tri)
+    ring = 0 if end == 0 else len(build.layout.s_rings) - 1
+    for k, patches in enumerate(build.patches):
+        for j, edge in enumerate(patches.rings[ring]):
+            _polygon(builder, edge, [np.arange(first_column[j], first_column[j + 1] + 1) + 1 + k * (count + 1)], tri)
+    # the seam, from the ring of the lower v to the other: its forward use at u = 2 pi, the reversed at u = 0
+    lower, upper = (0, count + 1) if uv[0, 1] < uv[count + 1, 1] else (count + 1, 0)
+    explorer = TopExp_Explorer(face, TopAbs_EDGE)
+    while explorer.More():
+        edge = as_edge(explorer.Current())
+        if BRep_Tool.IsClosed_s(edge, face):
+            _polygon(builder, edge, [np.array([lower + count, upper + count]) + 1, np.array([lower, upper]) + 1], tri)
+            break
+        explorer.Next()
     return len(triangles)
 
 

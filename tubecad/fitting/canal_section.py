@@ -172,7 +172,8 @@ def fit_canal(canal: CanalSurface, offsets: Sequence[float] = (0.0,), tolerance:
 
     ``rings`` (arc lengths inside the span) become knots, like the axis' joints (reduced
     continuity as in :func:`.frame_spline.fit_frame`) and a radius table's knots (C1: r' is
-    only C1 there)."""
+    only C1 there), except a table knot a sliver away from a joint or ring, which is left
+    out or added back exactly after the fit (see SLIVER_NOISE, DROP)."""
     if not isinstance(canal, CanalSurface):
         raise ParameterError(f"canal must be a CanalSurface, got {type(canal).__name__}")
     if isinstance(degree, bool) or not (isinstance(degree, int) and 3 <= degree <= 9):
@@ -182,12 +183,44 @@ def fit_canal(canal: CanalSurface, offsets: Sequence[float] = (0.0,), tolerance:
     offsets = tuple(float(d) for d in offsets) or (0.0,)
     axis, law = canal.axis, canal.radius_law
     joints = _joint_multiplicities(axis, degree)
-    for b in law.breaks:  # a table's knots: the functions are C1 there
-        joints[float(b)] = max(joints.get(float(b), 1), degree - 1)
-    breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([np.asarray(rings, dtype=float), list(joints)]))
+    rings = np.asarray(rings, dtype=float)
+    # a table's knots: the functions are C1 there, knots of multiplicity degree - 1. One a
+    # sliver away from a joint or ring (see _table_knots) is not interpolated across (the
+    # values in the sliver cannot give its derivatives: their rounding is amplified by
+    # 1 / sliver). Where leaving the knot out costs less than DROP of the targets it is left
+    # out; otherwise the fit interpolates F - K (s - b)_+^2 / 2 instead (C2 at b, K the jump
+    # of F'' there) and gets b back at multiplicity degree - 1 with that term added exactly
+    # (knot insertion). One within rounding of a joint or ring is taken onto it.
+    slivers = []
+    for b, fixed in _table_knots(canal, np.concatenate([rings, list(joints)]), orthogonality):
+        if fixed is None or b == fixed:
+            joints[b] = max(joints.get(b, 1), degree - 1)
+        else:
+            slivers.append((b, fixed))
+    singular = [(b, K) for (b, fixed), K in zip(slivers, _jumps(canal, [b for b, _ in slivers]))
+                if not _droppable(canal, offsets, b, fixed, K, tolerance, orthogonality)]  # fmt: skip
+    breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([rings, list(joints)]))
     chi0 = np.linspace(0.0, 2.0 * math.pi, MEASURE_ANGLES, endpoint=False) + 0.05
 
-    def span_errors(spline: BSpline, breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def values(s: np.ndarray) -> np.ndarray:
+        F = canal_functions(canal, s)
+        for b, K in singular:
+            F -= np.maximum(s - b, 0.0)[:, None] ** 2 * (0.5 * K)
+        return F
+
+    def span_errors(fitted: BSpline, breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        if not singular:
+            return _span_errors(fitted, breaks)
+        spline = _with_singular_parts(fitted, singular)
+        fine = np.unique(spline.t)  # the slivers sampled too; each fine span lies in one span of breaks
+        pos, orth = _span_errors(spline, fine)
+        span = np.clip(np.searchsorted(breaks, 0.5 * (fine[:-1] + fine[1:])) - 1, 0, len(breaks) - 2)
+        out = np.zeros((2, len(breaks) - 1))
+        np.maximum.at(out[0], span, pos)
+        np.maximum.at(out[1], span, orth)
+        return out[0], out[1]
+
+    def _span_errors(spline: BSpline, breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         m = len(breaks) - 1
         frac = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)
         s = (breaks[:-1, None] + np.diff(breaks)[:, None] * frac).ravel()
@@ -203,12 +236,136 @@ def fit_canal(canal: CanalSurface, offsets: Sequence[float] = (0.0,), tolerance:
             orth = np.maximum(orth, cos.max(axis=1))
         return pos.reshape(m, -1).max(axis=1), orth.reshape(m, -1).max(axis=1)
 
-    spline, pos, orth = refine_spline(lambda s: canal_functions(canal, s), breaks, degree, joints, span_errors,
-                                      tolerance, orthogonality, max_spans, "the canal section spline")  # fmt: skip
+    spline, pos, orth = refine_spline(values if singular else lambda s: canal_functions(canal, s), breaks, degree,
+                                      joints, span_errors, tolerance, orthogonality, max_spans,
+                                      "the canal section spline")  # fmt: skip
+    spline = _with_singular_parts(spline, singular)
     s_check = np.linspace(*canal.span, 4001)
     kappa = max(condition_number(spline(s_check)), condition_number(spline.c))
     radius_bound = max(law.max_radius + d for d in offsets)
     return CanalSpline(spline, pos, orth, radius_bound, offsets, sub_arc_for(kappa), kappa)
+
+
+#: a table knot is a sliver away from a joint or ring when, its values' rounding (about
+#: eps (|c| + r)) amplified by 1 / gap in the sliver's derivatives, SLIVER_NOISE times that
+#: would exceed the orthogonality target (see :func:`fit_canal`)
+SLIVER_NOISE = 200.0
+#: a sliver's table knot is left out where that costs at most this fraction of the targets,
+#: or less than the rounding of the poles, amplified by KEEP_NOISE / gap in the sliver's
+#: derivatives, would cost with the knot kept (about eps (|c| + r) KEEP_NOISE / gap)
+DROP = 0.1
+KEEP_NOISE = 2.0
+#: a table knot within this fraction of the span of a joint or ring is taken onto it
+COINCIDENT = 1e-12
+
+
+def _table_knots(canal: CanalSurface, fixed: np.ndarray, orthogonality: float) -> list[tuple[float, float | None]]:
+    """Per radius table knot b: (b, the joint or ring it is a sliver away from, or None); a
+    knot within COINCIDENT of the span of one is returned as that break, twice."""
+    s0, s1 = canal.span
+    fixed = np.asarray(fixed, dtype=float)
+    fixed = fixed[(fixed > s0) & (fixed < s1)]
+    out: list[tuple[float, float | None]] = []
+    if fixed.size == 0:
+        return [(float(b), None) for b in canal.radius_law.breaks]
+    size = _size(canal) if canal.radius_law.breaks.size else 0.0
+    sliver = SLIVER_NOISE * np.finfo(float).eps * size / (0.5 * orthogonality)
+    for b in map(float, canal.radius_law.breaks):
+        f = float(fixed[np.argmin(np.abs(fixed - b))])
+        gap = abs(f - b)
+        out.append((f, f) if gap <= COINCIDENT * (s1 - s0) else (b, f if gap < sliver else None))
+    return out
+
+
+def _size(canal: CanalSurface) -> float:
+    """The largest |c| + r over the span: the size of the fitted functions' values."""
+    s = np.linspace(*canal.span, 257)
+    return float(np.linalg.norm(canal.axis.position(s), axis=1).max() + canal.radius_law.max_radius)
+
+
+def _jumps(canal: CanalSurface, knots: Sequence[float]) -> list[np.ndarray]:
+    """K = [F''](b) per table knot b, the jump of the 21-vector's second derivative. Only
+    r''' jumps there (r, r', r'', Mb, Mb', Mb'' and the axis are continuous: b is no joint),
+    and F depends on r'' only through r': K = dF/dr' [r''']."""
+    law = canal.radius_law
+    s0, s1 = canal.span
+    rows = np.unique(np.concatenate([[s0, s1], law.breaks]))
+    out = []
+    for b in knots:
+        i = int(np.searchsorted(rows, b))  # rows[i] == b; r''' is constant on a table's pieces
+        jump = float(np.diff(law.dddr(np.array([0.5 * (rows[i - 1] + b), 0.5 * (b + rows[i + 1])])))[0])
+        out.append(jump * _dr_partial(canal, np.array([b]))[0])
+    return out
+
+
+def _droppable(canal: CanalSurface, offsets: Sequence[float], b: float, fixed: float, K: np.ndarray,
+               tolerance: float, orthogonality: float) -> bool:  # fmt: skip
+    """Whether the table knot ``b`` (a sliver gap from the joint or ring ``fixed``, F'' jumping
+    by ``K``) is better left out of the knots (see DROP): the spline then misses a term of F
+    supported on the sliver, K (s - b)^2 / 2 there, so X by about |K|_H gap^2 / (2 w) and
+    X_s by |K|_H gap / w (|K|_H the largest jump of H = A0 + cos A1 + sin A2 at any offset,
+    w = a^2 + b^2 > 0 its weight)."""
+    F = canal_functions(canal, np.array([b]))[0]
+    D = F[[3, 7, 11]]
+    w = D[0] - math.hypot(D[1], D[2])
+    jump = max(sum(np.linalg.norm(K[4 * k : 4 * k + 3] + d * K[12 + 3 * k : 15 + 3 * k]) for k in range(3))
+               for d in offsets)  # fmt: skip
+    # |X_s| from the exact surface on b's far side from the sliver (over a step far above rounding)
+    gap, step = abs(b - fixed), math.copysign(1e-6 * _size(canal), b - fixed)
+    chi0 = np.linspace(0.0, 2.0 * math.pi, MEASURE_ANGLES, endpoint=False)
+    s = np.array([b, min(max(b + step, canal.span[0]), canal.span[1])])
+    speed = min(np.linalg.norm(np.diff(canal.points(chi0[None, :], s[:, None]) + d * canal.normal(
+        chi0[None, :], s[:, None]), axis=0), axis=-1).min() / abs(s[1] - s[0]) for d in offsets)  # fmt: skip
+    kept = KEEP_NOISE * np.finfo(float).eps * _size(canal) / gap
+    return (jump * gap * gap / (2.0 * w) <= DROP * 0.5 * tolerance
+            and jump * gap / (w * speed) <= max(DROP * 0.5 * orthogonality, kept))  # fmt: skip
+
+
+def _dr_partial(canal: CanalSurface, s: np.ndarray) -> np.ndarray:
+    """dF/dr' with Mb, r and the axis held, (len(s), 21): n_k = -r' D_k t + q (B_k r1 + C_k r2),
+    q = sqrt(1 - r'^2), so dn_k = -D_k t - r' / q (B_k r1 + C_k r2) and dA_k = (r dn_k, 0)."""
+    D, B, C = _quadratic_coefficients(canal.moebius_matrix(s))
+    t, r1, r2 = canal.axis.rotation_minimising_frame(s)
+    law = canal.radius_law
+    r, dr = law.r(s), law.dr(s)
+    slope = dr / np.sqrt(1.0 - dr * dr)
+    A, N = [], []
+    for k in range(3):
+        n = -D[k][:, None] * t - slope[:, None] * (B[k][:, None] * r1 + C[k][:, None] * r2)
+        A.append(np.hstack([r[:, None] * n, np.zeros((len(s), 1))]))
+        N.append(n)
+    return np.hstack(A + N)
+
+
+def _insert_knot(spline: BSpline, x: float, times: int) -> BSpline:
+    """``spline`` with the knot ``x`` inserted ``times`` times (Boehm's algorithm): the same
+    function, its new poles convex combinations of the old (no interpolation, no conditioning)."""
+    t, c, k = np.asarray(spline.t, dtype=float), np.asarray(spline.c, dtype=float), int(spline.k)
+    for _ in range(times):
+        i = int(np.searchsorted(t, x, side="right")) - 1  # t[i] <= x < t[i + 1]
+        a = ((x - t[i - k + 1 : i + 1]) / (t[i + 1 : i + k + 1] - t[i - k + 1 : i + 1]))[:, None]
+        middle = (1.0 - a) * c[i - k : i] + a * c[i - k + 1 : i + 1]
+        c = np.concatenate([c[: i - k + 1], middle, c[i:]])
+        t = np.insert(t, i + 1, x)
+    return BSpline(t, c, k)
+
+
+def _with_singular_parts(spline: BSpline, singular: Sequence[tuple[float, np.ndarray]]) -> BSpline:
+    """``spline`` + sum K (s - b)_+^2 / 2, exactly: each b inserted to multiplicity degree - 1
+    (the term is C1 there), then the terms' poles added, their blossoms: zero on a pole whose
+    knots t_{i+1..i+k} lie below b, sum_{a<c} (t_a - b)(t_c - b) / (k (k - 1)) on one above."""
+    if not singular:
+        return spline
+    k = int(spline.k)
+    for b, _ in singular:
+        spline = _insert_knot(spline, b, max(0, k - 1 - int(np.count_nonzero(spline.t == b))))
+    t, c = spline.t, np.array(spline.c, dtype=float)
+    for b, K in singular:
+        for i in range(len(c)):
+            u = t[i + 1 : i + k + 1] - b
+            if u.min() >= 0.0:
+                c[i] += (0.5 * (u.sum() ** 2 - (u * u).sum()) / (k * (k - 1))) * K
+    return BSpline(t, c, k)
 
 
 @dataclass(frozen=True)
@@ -243,12 +400,12 @@ class CanalSectionSurface(TubeSurface):
         return np.append(theta, 2.0 * math.pi)
 
     def ring_chi0(self, s: float, chi_o: float, theta_a: float, chi0_a: float, theta: np.ndarray,
-                  theta_mid: float) -> np.ndarray:  # fmt: skip
+                  theta_mid: float, moebius: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
         """chi0 (radians, absolute) of the points at angles ``theta`` from the origin stringer
         on the circle at ``s``, on the arc that starts at theta_a on the stringer chi0_a: the
         exact inverse Moebius map, continued from the arc's start through its middle (each
-        step turns the half-angle vector by less than pi)."""
-        m = self.tube.moebius_matrix(np.array([s]))[0]
+        step turns the half-angle vector by less than pi). ``moebius``: Mb(s), if already known."""
+        m = self.tube.moebius_matrix(np.array([s]))[0] if moebius is None else moebius
         inverse = np.array([[m[1, 1], -m[0, 1]], [-m[1, 0], m[0, 0]]])
 
         def half(angle: np.ndarray) -> np.ndarray:

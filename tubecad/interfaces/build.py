@@ -12,7 +12,7 @@ from ..fitting.tolerance import DEFAULT_TOLERANCE
 from ..errors import ParameterError, RegularityError, SpecError
 from ..fitting import FitError
 from ..stiffeners.profiles import Profile
-from ..surface import CurvatureLineTube
+from ..surface import CanalSurface, CurvatureLineTube
 from ..units import DEFAULT_LENGTH_UNIT
 from .layout_section import layout_from_section
 from .progress import Progress, ProgressCallback
@@ -53,10 +53,11 @@ class StiffenerSelection:
     fuse: bool
     density: float
 
-    def base(self, build: TubeBuild) -> CurvatureLineTube:
+    def base(self, build: TubeBuild) -> CurvatureLineTube | CanalSurface:
         """The wall surface the stiffeners stand on: outer (outside) or inner (inside)."""
-        radius = build.radii[0] if self.side == "outside" else build.radii[-1]
-        return CurvatureLineTube(build.surfaces[0].tube.axis, radius, allow_irregular=True)
+        from ..stiffeners.assembly import stiffener_base
+
+        return stiffener_base(build, self.side)
 
 
 def stiffener_selection(spec: TubeSpec, build: TubeBuild) -> StiffenerSelection | None:

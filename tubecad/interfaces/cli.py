@@ -153,10 +153,10 @@ def write_paper_stiffeners(build, output: Path, report: dict) -> list[Path]:
 
 def write_flat_patterns(stiffeners, folder: Path) -> list[Path]:
     """webs.dxf, NAME.svg/.png per web and flat.json into ``folder`` (issue 4)."""
-    from ..stiffeners.flat import ring_flat_pattern, stringer_flat_pattern
+    from ..stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
 
     folder.mkdir(parents=True, exist_ok=True)
-    patterns = [ring_flat_pattern(st.base_radius, st.profile.height, st.side, st.name) if st.kind == "ring"
+    patterns = [ring_web_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name) if st.kind == "ring"
                 else stringer_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
                 for st in stiffeners]  # fmt: skip
     return write_patterns(patterns, folder)
@@ -355,7 +355,7 @@ def flat(spec: Path, output: Path) -> None:
     """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, [units] length), NAME.svg/.png
     each, and flat.json with every web's area and edge lengths."""
     _load()
-    from ..stiffeners.flat import ring_flat_pattern, stringer_flat_pattern
+    from ..stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
 
     try:
         checked = load_spec(spec)
@@ -369,7 +369,7 @@ def flat(spec: Path, output: Path) -> None:
             output.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise UserError(f"cannot create output folder {str(output)!r}: {exc.strerror}") from None
-        patterns = [ring_flat_pattern(base.radius, height, side, f"ring_{i:02d}") for i in chosen.rings]
+        patterns = [ring_web_flat_pattern(base, layout.s_rings[i], height, side, f"ring_{i:02d}") for i in chosen.rings]
         patterns += [stringer_flat_pattern(base, layout.stringers_deg[j], height, side, f"stringer_{j:02d}")
                      for j in chosen.stringers]  # fmt: skip
         written = write_patterns(patterns, output, checked.length_unit)

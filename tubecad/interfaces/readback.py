@@ -78,7 +78,8 @@ def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> 
     if named:  # the wall's solids come first in the file, in the order they were written
         shape = _first_solids(shape, wall_solids)
     level, levels = surface_levels(build)
-    m = measure_tube_faces(shape, axis, levels, READBACK_SAMPLES, every_face=not named, level=level)
+    size = None if list(levels) == list(build.radii) else min(build.radii)  # a canal wall's levels are offsets
+    m = measure_tube_faces(shape, axis, levels, READBACK_SAMPLES, every_face=not named, level=level, size=size)
     expected = None if named else sum(1 for _ in tube_faces(build.shape))
     limit_dev, limit_orth = build.tolerance, orthogonality_for(build.tolerance)
     out = {"measured_faces": m.faces, "samples": m.samples, "max_deviation": m.max_deviation,

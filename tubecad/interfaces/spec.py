@@ -179,11 +179,16 @@ def _check_build_sections(tube: CurvatureLineTube | CanalSurface, sections: dict
 def _check_canal_sections(surface: CanalSurface, sections: dict[str, dict[str, Any]],
                           fail: Callable[[str], SpecError]) -> None:  # fmt: skip
     """A radius law's [wall]: the offsets of the law, the inner one above MIN_SIZE, the outer
-    one regular; [stiffeners] and [panels] are not built on canal surfaces yet."""
+    one regular, and a [stiffeners] section's surfaces regular too."""
     from ..brep.wall import wall_offsets
     from ..fitting.tolerance import MIN_SIZE
 
     law, wall = surface.radius_law, sections.get("wall")
+    for name in ("stiffeners", "panels"):  # the wall itself closes; its stiffeners and panels do not yet
+        if surface.axis.closed and name in sections:
+            raise fail(f"[{name}] on a canal surface (a radius law) on a closed axis are not built yet (the closing "
+                       "ring and the stringers' ends on it, moved by a Moebius map); the wall alone builds, and a "
+                       "constant radius takes them")  # fmt: skip
     if wall is not None:
         side = wall.get("side", "centered")
         d_in, d_out = _with_section("wall", fail, lambda: wall_offsets(wall["thickness"], side))
@@ -196,9 +201,14 @@ def _check_canal_sections(surface: CanalSurface, sections: dict[str, dict[str, A
         except (ParameterError, RegularityError) as exc:
             raise fail(f"[wall] the wall's outer surface (the radius law + {d_out:g}) is not regular: "
                        f"{_irregular(exc)}") from None  # fmt: skip
-    for name in ("stiffeners", "panels"):
-        if name in sections:
-            raise fail(f"[{name}] on a canal surface (a radius law) are not built yet; a constant radius takes them")
+        if "stiffeners" in sections:  # a stiffener whose own surfaces would fold, or reach past the axis
+            from ..stiffeners.canal import check_spec_heights
+            from .layout_section import layout_from_section
+
+            layout = layout_from_section(surface, sections.get("layout", {}))
+            _with_section("stiffeners", fail, lambda: check_spec_heights(surface, layout, (d_in, d_out),
+                                                                         sections["stiffeners"]))  # fmt: skip
+
 
 
 def _irregular(exc: RegularityError) -> str:

@@ -17,7 +17,7 @@ import build123d as bd
 from ..brep import TubeBuild
 from ..errors import ParameterError
 from ..export.atomic import atomic_path
-from ..surface import CurvatureLineTube
+from ..surface import CanalSurface, CurvatureLineTube
 from .lines import CurvatureLine, lines_compound
 from .profiles import Profile
 from .solids import Stiffener, ring_stiffener, stringer_stiffener
@@ -34,8 +34,7 @@ def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence
     indices ``stringers``, standing on its outer (``outside``) or inner (``inside``) surface.
     ``progress(name, done, total)`` is called after each one (e.g. ``('ring_02', 2, 9)``)."""
     layout = build.layout
-    radius = build.radii[0] if side == "outside" else build.radii[-1]
-    base = CurvatureLineTube(build.surfaces[0].tube.axis, radius, allow_irregular=True)
+    base = stiffener_base(build, side)
     for name, chosen, count in (("rings", rings, len(layout.s_rings)), ("stringers", stringers, len(layout.stringers_deg))):
         bad = [i for i in chosen if not (isinstance(i, int) and 0 <= i < count)]
         if bad:
@@ -51,6 +50,16 @@ def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence
         if progress is not None:
             progress(out[-1].name, len(out), len(makers))
     return out
+
+
+def stiffener_base(build: TubeBuild, side: str) -> CurvatureLineTube | CanalSurface:
+    """The wall surface stiffeners on ``side`` stand on: the outer (outside) or the inner
+    (inside) one, as a tube of its radius, or a canal wall's exact offset canal surface."""
+    surface = build.surfaces[0] if side == "outside" else build.surfaces[-1]
+    if isinstance(surface.tube, CanalSurface):
+        return surface.tube
+    radius = build.radii[0] if side == "outside" else build.radii[-1]
+    return CurvatureLineTube(surface.tube.axis, radius, allow_irregular=True)
 
 
 def distinct_rings(build: TubeBuild, rings: Sequence[int]) -> list[int]:

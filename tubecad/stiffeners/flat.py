@@ -1,15 +1,27 @@
 """Flat patterns of stiffener webs (issue 4): webs cut from flat plate.
 
 Along a line of curvature the surface normals form a developable strip (Rodrigues:
-dN = -kappa_n dX), so a web standing along the normal develops without stretching:
-- a stringer's web develops to the region between the plane curve whose curvature is
-  kappa_g = +-kappa_n (+ outside, - inside) and its offset by the web height h. With
-  phi = theta - Int sigma ds (docs/MATH.md section 2) and s the axis arc length:
-      d alpha / ds = +-k cos phi,  d gamma / ds = (1 - R k cos phi) (cos alpha, sin alpha),
-  the base edge has length Int (1 - R k cos phi) ds, the top edge is the same curvature
-  line on the tube of radius R +- h: length Int |1 - (R +- h) k cos phi| ds, and the area is
-  Int [h (1 - R k cos phi) -+ h^2 / 2 k cos phi] ds;
-- a ring frame's web is an annulus of radii R and R +- h.
+dN = -kappa_n dX), so a web standing along the normal develops without stretching
+(docs/MATH.md section 9). For a curvature line X(s) of speed |X_s| = sqrt(G) and normal
+curvature kappa_n = N / G (outward normal; > 0 where the line bends towards it), the web of
+height h outside (+) or inside (-) the wall develops to the region between the plane curve
+of signed curvature +-kappa_n and its offset by h:
+      d alpha / ds = +-kappa_n sqrt(G),  d gamma / ds = sqrt(G) (cos alpha, sin alpha),
+the base edge has length Int sqrt(G) ds, the top edge (d(X +- h n) = sqrt(G) (1 -+ h kappa_n)
+dX / |dX|) Int |sqrt(G) (1 -+ h kappa_n)| ds, and the area Int [h sqrt(G) -+ h^2 / 2
+kappa_n sqrt(G)] ds. :func:`developed_strip` does this for any turn(s) = kappa_n sqrt(G)
+and speed(s) = sqrt(G):
+- on the tube of radius R, a stringer at u: turn = k cos phi (= k1 cos u + k2 sin u, with
+  phi = u - Int sigma ds, docs/MATH.md section 2) and speed = 1 - R k cos phi;
+- on the canal surface (docs/MATH.md section 8), the stringer chi0: along it the normal
+  n = -r' t + q e changes by dn / ds = -(r'' / q + kappa) (q t + r' e), kappa = k1 cos chi +
+  k2 sin chi, while dX / ds = sqrt(G) (q t + r' e); so turn = r'' / q + kappa and
+  speed = q - r r'' / q - r kappa = q - r turn (r' = 0: the tube's, bit for bit).
+Ring webs: on the tube the normals along a ring lie in its plane, so the web is the annulus
+of radii R and R +- h; on the canal surface the normals along the characteristic circle at s
+all pass through the sphere centre c(s), so the web is a piece of the cone with apex c(s)
+whose circle at slant rho has radius rho q: it develops to the annular sector of radii r and
+r +- h and angle 2 pi q (a full annulus when r' = 0).
 The quadratures use the adaptive Chebyshev series of :mod:`tubecad.curves.chebyshev`.
 """
 
@@ -18,13 +30,18 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
 from ..curves.chebyshev import PiecewiseChebyshev
+from ..errors import ParameterError
 from ..export.atomic import atomic_path, save_figure
 from ..surface import CurvatureLineTube
+from ..surface.canal import CanalSurface
 from ..units import DEFAULT_LENGTH_UNIT, length_unit as length_unit_of
+
+RateFunction = Callable[[np.ndarray], np.ndarray]
 
 
 @dataclass(frozen=True)
@@ -33,50 +50,140 @@ class FlatPattern:
 
     name: str
     kind: str  # ring | stringer
-    outline: np.ndarray  # (n, 2); for a ring the outer circle, the hole is ``hole``
+    outline: np.ndarray  # (n, 2); for a full ring the outer circle, the hole is ``hole``
     base_length: float
     top_length: float
     area: float
     hole: np.ndarray | None = None
+    #: a canal ring's annular sector (inner radius, outer radius, angle), centred on the
+    #: origin and symmetric about +y; the outline then goes round it (no hole)
+    sector: tuple[float, float, float] | None = None
 
 
-def stringer_flat_pattern(base: CurvatureLineTube, theta_deg: float, height: float, side: str = "outside",
-                          name: str = "stringer", samples: int = 2001) -> FlatPattern:  # fmt: skip
-    """The developed web of height ``height`` along the stringer at ``theta_deg`` on ``base``."""
-    sign = 1.0 if side == "outside" else -1.0
-    axis, R, h = base.axis, base.radius, height
-    s0, s1 = axis.span
-    theta = math.radians(theta_deg)
+def _side_sign(side: str) -> float:
+    if side not in ("outside", "inside"):
+        raise ParameterError(f"side must be one of outside, inside, got {side!r}")
+    return 1.0 if side == "outside" else -1.0
 
-    def kc(s: np.ndarray) -> np.ndarray:  # kappa_u = k1 cos theta + k2 sin theta (= k cos phi)
-        return base.normal_curvature(theta, s)
 
-    alpha = PiecewiseChebyshev.fit(lambda s: sign * kc(s), s0, s1, name="k cos phi").antiderivative()
-    speed = lambda s: 1.0 - R * kc(s)  # noqa: E731
-    x = PiecewiseChebyshev.fit(lambda s: speed(s) * np.cos(alpha(s)), s0, s1, name="flat x").antiderivative()
-    y = PiecewiseChebyshev.fit(lambda s: speed(s) * np.sin(alpha(s)), s0, s1, name="flat y").antiderivative()
+def developed_strip(turn: RateFunction, speed: RateFunction, span: tuple[float, float], height: float,
+                    side: str = "outside", name: str = "stringer", samples: int = 2001,
+                    breaks: np.ndarray | None = None) -> FlatPattern:  # fmt: skip
+    """The development of the normal strip X + v n, v from 0 to +-``height`` (``side``), along a
+    curvature line X(s), s in ``span``, with speed(s) = |X_s| = sqrt(G) and turn(s) = kappa_n
+    sqrt(G) (kappa_n = N / G, outward normal): the base edge is the plane curve turning by
+    +-turn per unit s (alpha' = +-turn, gamma' = speed (cos alpha, sin alpha)), the top edge its
+    offset by ``height`` to the left (the rulings develop to the curve's normals). ``breaks``
+    (the span's ends and any kinks of turn or speed) start the Chebyshev panels."""
+    sign = _side_sign(side)
+    h = float(height)
+    s0, s1 = span
+    edges = np.array([s0, s1]) if breaks is None else np.asarray(breaks, dtype=float)
+
+    def fit(f: RateFunction, label: str) -> PiecewiseChebyshev:
+        return PiecewiseChebyshev.fit(f, s0, s1, name=label, breaks=edges).antiderivative()
+
+    alpha = fit(lambda s: sign * turn(s), "the stringer's normal curvature")
+    x = fit(lambda s: speed(s) * np.cos(alpha(s)), "flat x")
+    y = fit(lambda s: speed(s) * np.sin(alpha(s)), "flat y")
     s = np.linspace(s0, s1, samples)
     base_curve = np.stack([x(s), y(s)], axis=1)
     normal = np.stack([-np.sin(alpha(s)), np.cos(alpha(s))], axis=1)  # the ruling's image, left of the curve
     top_curve = base_curve + h * normal
-    integral = lambda f, label: float(PiecewiseChebyshev.fit(f, s0, s1, name=label).antiderivative()(s1))  # noqa: E731
+    integral = lambda f, label: float(fit(f, label)(s1))  # noqa: E731
     return FlatPattern(
         name, "stringer", np.concatenate([base_curve, top_curve[::-1]]),
         base_length=integral(speed, "base"),
-        top_length=integral(lambda s: np.abs(1.0 - (R + sign * h) * kc(s)), "top"),
-        area=integral(lambda s: h * speed(s) - sign * h * h / 2 * kc(s), "area"),
+        top_length=integral(lambda s: np.abs(speed(s) - sign * h * turn(s)), "top"),
+        area=integral(lambda s: h * speed(s) - sign * h * h / 2 * turn(s), "area"),
     )  # fmt: skip
 
 
+def canal_stringer_rates(canal: CanalSurface, chi0: float) -> tuple[RateFunction, RateFunction]:
+    """(turn, speed) along the canal stringer ``chi0`` (radians): turn = kappa_n sqrt(G) =
+    r'' / q + k1 cos chi + k2 sin chi and speed = sqrt(G) = q - r turn (module docstring)."""
+    law, axis = canal.radius_law, canal.axis
+
+    def turn(s: np.ndarray) -> np.ndarray:
+        chi = canal.stringer_angle(chi0, s)
+        k1, k2 = axis.normal_development(s)
+        dr = law.dr(s)
+        return law.ddr(s) / np.sqrt(1.0 - dr * dr) + (k1 * np.cos(chi) + k2 * np.sin(chi))
+
+    def speed(s: np.ndarray) -> np.ndarray:
+        dr = law.dr(s)
+        return np.sqrt(1.0 - dr * dr) - law.r(s) * turn(s)
+
+    return turn, speed
+
+
+def stringer_flat_pattern(base: CurvatureLineTube | CanalSurface, theta_deg: float, height: float,
+                          side: str = "outside", name: str = "stringer",
+                          samples: int = 2001) -> FlatPattern:  # fmt: skip
+    """The developed web of height ``height`` along the stringer at ``theta_deg`` on ``base``:
+    on a tube the stringer's angle u, on a canal surface chi0 (its angle at the span's start)."""
+    theta = math.radians(theta_deg)
+    s0, s1 = base.span
+    joints = [s for s, _ in base.axis.joints if s0 < s < s1]
+    if isinstance(base, CanalSurface):
+        turn, speed = canal_stringer_rates(base, theta)
+        breaks = base._breaks()
+    else:
+        R = base.radius
+
+        def turn(s: np.ndarray) -> np.ndarray:  # kappa_u = k1 cos theta + k2 sin theta (= k cos phi)
+            return base.normal_curvature(theta, s)
+
+        def speed(s: np.ndarray) -> np.ndarray:
+            return 1.0 - R * base.normal_curvature(theta, s)
+
+        breaks = np.unique(np.concatenate([[s0, s1], joints]))
+    return developed_strip(turn, speed, (s0, s1), height, side, name, samples, breaks)
+
+
 def ring_flat_pattern(radius: float, height: float, side: str = "outside", name: str = "ring",
-                      samples: int = 721) -> FlatPattern:  # fmt: skip
-    """The annulus of a ring frame's web on a wall surface of ``radius``."""
-    r_in, r_out = (radius, radius + height) if side == "outside" else (radius - height, radius)
-    a = np.linspace(0.0, 2 * math.pi, samples, endpoint=False)
-    circle = np.stack([np.cos(a), np.sin(a)], axis=1)
-    base, top = (r_in, r_out) if side == "outside" else (r_out, r_in)
-    return FlatPattern(name, "ring", r_out * circle, 2 * math.pi * base, 2 * math.pi * top,
-                       math.pi * (r_out**2 - r_in**2), hole=r_in * circle)  # fmt: skip
+                      samples: int = 721, q: float = 1.0) -> FlatPattern:  # fmt: skip
+    """The flat web of a ring frame on a wall of (sphere) radius ``radius``: for ``q`` = 1 (a
+    tube, or a canal ring where r' = 0) the annulus of radii R and R +- h; for q < 1 (a canal
+    ring, q = sqrt(1 - r'^2)) the annular sector of those radii and angle 2 pi q, the
+    development of the cone of the normals along the characteristic circle."""
+    sign = _side_sign(side)
+    if not 0.0 < q <= 1.0:
+        raise ParameterError(f"q must lie in (0, 1], got {q!r}")
+    r_in, r_out = (radius, radius + height) if sign > 0 else (radius - height, radius)
+    base, top = (r_in, r_out) if sign > 0 else (r_out, r_in)
+    area = q * math.pi * (r_out**2 - r_in**2)
+    if q == 1.0:
+        a = np.linspace(0.0, 2 * math.pi, samples, endpoint=False)
+        circle = np.stack([np.cos(a), np.sin(a)], axis=1)
+        return FlatPattern(name, "ring", r_out * circle, 2 * math.pi * base, 2 * math.pi * top, area,
+                           hole=r_in * circle)  # fmt: skip
+    a = 0.5 * math.pi + math.pi * q * np.linspace(-1.0, 1.0, samples)
+    arc = np.stack([np.cos(a), np.sin(a)], axis=1)
+    outline = np.concatenate([r_out * arc, r_in * arc[::-1]])  # outer arc, radial edge, inner arc, radial edge
+    return FlatPattern(name, "ring", outline, 2 * math.pi * q * base, 2 * math.pi * q * top, area,
+                       sector=(r_in, r_out, 2 * math.pi * q))  # fmt: skip
+
+
+def canal_ring_flat_pattern(canal: CanalSurface, s: float, height: float, side: str = "outside",
+                            name: str = "ring", samples: int = 721) -> FlatPattern:  # fmt: skip
+    """The flat web of the ring frame on ``canal``'s characteristic circle at ``s``: the annular
+    sector of (slant) radii r(s) and r(s) +- h and angle 2 pi q(s)."""
+    s = float(canal._inside(s))
+    law = canal.radius_law
+    r, dr = float(law.r(s)), float(law.dr(s))
+    if side == "inside" and not height < r:
+        raise ParameterError(f"height must be < r(s) = {r:g} for a ring web inside, got {height!r}")
+    return ring_flat_pattern(r, height, side, name, samples, q=math.sqrt(1.0 - dr * dr))
+
+
+def ring_web_flat_pattern(base: CurvatureLineTube | CanalSurface, s: float, height: float, side: str = "outside",
+                          name: str = "ring") -> FlatPattern:  # fmt: skip
+    """The flat web of the ring frame at ``s`` on ``base``, the wall surface it stands on: an
+    annulus on a tube, an annular sector on a canal surface."""
+    if isinstance(base, CanalSurface):
+        return canal_ring_flat_pattern(base, s, height, side, name)
+    return ring_flat_pattern(base.radius, height, side, name)
 
 
 def polygon_area(points: np.ndarray) -> float:
@@ -88,7 +195,8 @@ def polygon_area(points: np.ndarray) -> float:
 def write_dxf(patterns: list[FlatPattern], path: str | Path, gap: float | None = None,
               length_unit: str = DEFAULT_LENGTH_UNIT) -> Path:  # fmt: skip
     """All patterns side by side in one DXF, one layer per pattern, outlines as closed
-    polylines (rings: two circles). The coordinates are in ``length_unit`` (the spec's
+    polylines (full rings: two circles; a canal ring's sector: one closed polyline whose arcs
+    are exact, as bulges). The coordinates are in ``length_unit`` (the spec's
     [units] length), which the file states ($INSUNITS, and $MEASUREMENT: imperial for in and
     ft, metric otherwise); ``gap`` between patterns: default 10 mm in that unit."""
     import ezdxf
@@ -102,7 +210,16 @@ def write_dxf(patterns: list[FlatPattern], path: str | Path, gap: float | None =
         lo = pattern.outline.min(axis=0)
         shift = np.array([x_offset - lo[0], -lo[1]])
         doc.layers.add(pattern.name)
-        if pattern.kind == "ring":
+        if pattern.sector is not None:  # a canal ring: the sector's arcs exact (bulges), each half <= 180 deg
+            r_in, r_out, angle = pattern.sector
+            bulge = math.tan(angle / 8.0)
+            a = 0.5 * math.pi + 0.5 * angle * np.array([-1.0, 0.0, 1.0])
+            arc = np.stack([np.cos(a), np.sin(a)], axis=1)
+            corners = np.concatenate([r_out * arc, r_in * arc[::-1]]) + shift
+            bulges = [bulge, bulge, 0.0, -bulge, -bulge, 0.0]
+            space.add_lwpolyline([(x, y, b) for (x, y), b in zip(corners.tolist(), bulges)], format="xyb",
+                                 close=True, dxfattribs={"layer": pattern.name})  # fmt: skip
+        elif pattern.hole is not None:  # a full annulus: two circles
             r_out = float(np.linalg.norm(pattern.outline[0]))
             centre = (x_offset + r_out, r_out)
             space.add_circle(centre, r_out, dxfattribs={"layer": pattern.name})

@@ -90,10 +90,9 @@ def fit_failure(exc: Exception, name: str, axis: Axis, reach: float) -> FitError
                     f"(a lower height or a looser tolerance helps): {exc}")  # fmt: skip
 
 
-def check_spec_heights(axis: Axis, layout, radii: tuple[float, float], section: dict) -> None:
-    """A [stiffeners] section's height against the wall between ``radii`` = (r_in, r_out) on
-    ``axis`` with ``layout`` (a NetLayout), before anything is built (ParameterError as
-    :func:`checked_reach`). Other faults (keys, profile, indices) are left to the build."""
+def spec_profile(section: dict) -> tuple[Profile, str] | None:
+    """A [stiffeners] section's (profile, side), or None where they are faulty (those faults
+    are left to the build, which names them)."""
     from .profiles import SIDES
 
     side = section.get("side", "outside")
@@ -101,22 +100,32 @@ def check_spec_heights(axis: Axis, layout, radii: tuple[float, float], section: 
         profile = Profile(section.get("profile", "flat"), section["height"], section["thickness"],
                           section.get("flange_width", 0.0), section.get("flange_thickness", 0.0))  # fmt: skip
     except (KeyError, TypeError, ParameterError):
+        return None
+    return (profile, side) if side in SIDES else None
+
+
+def chosen_indices(section: dict, key: str, count: int) -> list[int]:
+    """The valid indices a [stiffeners] key (``rings``, ``stringers``: a list or "all") picks."""
+    value = section.get(key, [])
+    indices = range(count) if value == "all" else value if isinstance(value, list) else []
+    return [i for i in indices if isinstance(i, int) and 0 <= i < count]
+
+
+def check_spec_heights(axis: Axis, layout, radii: tuple[float, float], section: dict) -> None:
+    """A [stiffeners] section's height against the wall between ``radii`` = (r_in, r_out) on
+    ``axis`` with ``layout`` (a NetLayout), before anything is built (ParameterError as
+    :func:`checked_reach`). Other faults (keys, profile, indices) are left to the build."""
+    picked = spec_profile(section)
+    if picked is None:
         return
-    if side not in SIDES:
-        return
+    profile, side = picked
     radius = radii[1] if side == "outside" else radii[0]
-
-    def chosen(key: str, count: int) -> list[int]:
-        value = section.get(key, [])
-        indices = range(count) if value == "all" else value if isinstance(value, list) else []
-        return [i for i in indices if isinstance(i, int) and 0 <= i < count]
-
     s0, s1 = axis.span
     w = [w for w, _ in profile.outline()]
-    for i in chosen("rings", len(layout.s_rings)):  # a ring sees the curvature over its own width
+    for i in chosen_indices(section, "rings", len(layout.s_rings)):  # a ring sees the curvature over its own width
         s = float(layout.s_rings[i])
         lo, hi = max(s0, s + min(w)), min(s1, s + max(w))
         if hi > lo:
             checked_reach(axis.restricted((lo, hi)), profile, radius, side, "ring")
-    if chosen("stringers", len(layout.stringers_deg)):
+    if chosen_indices(section, "stringers", len(layout.stringers_deg)):
         checked_reach(axis, profile, radius, side, "stringer")

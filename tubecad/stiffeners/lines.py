@@ -21,10 +21,14 @@ import build123d as bd
 import numpy as np
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 
+from OCP.Geom import Geom_Circle
+from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+
 from ..brep.faces import ring_circle
 from ..brep.layout import NetLayout
 from ..export.atomic import write_text
 from ..fitting import TubeSurface
+from ..fitting.canal_section import CanalSectionSurface
 from ..units import DEFAULT_LENGTH_UNIT
 
 
@@ -39,14 +43,28 @@ class CurvatureLine:
     surface: TubeSurface
 
     @property
+    def canal(self) -> bool:
+        """Whether the line lies on a canal surface (a radius law) rather than a tube."""
+        return isinstance(self.surface, CanalSectionSurface)
+
+    @property
     def radius(self) -> float:
-        return self.surface.tube.radius
+        """The tube's radius; on a canal surface r(s) + d, at a ring's s or averaged along a stringer."""
+        if not self.canal:
+            return self.surface.tube.radius
+        law = self.surface.tube.radius_law
+        return float(law.r(self.value) if self.kind == "ring" else np.mean(law.r(np.linspace(*law.span, 257))))
 
     def edge(self) -> bd.Edge:
         """The line as a build123d Edge: a ring is the exact circle (Geom_Circle, as the
         wall's ring edges), a stringer the fitted surface's isoline."""
         surf = self.surface.surface
-        if self.kind == "ring":
+        if self.kind == "ring" and self.canal:  # the characteristic circle
+            centre, radius, t, x_dir, _ = self.surface.ring(self.value)
+            circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+                                 radius)  # fmt: skip
+            maker = BRepBuilderAPI_MakeEdge(circle)
+        elif self.kind == "ring":
             maker = BRepBuilderAPI_MakeEdge(ring_circle(self.surface, self.value)[0])
         else:
             s0, s1 = self.surface.tube.span
@@ -57,6 +75,8 @@ class CurvatureLine:
         """Exact positions, unit tangents and unit outward normals at ``points`` samples
         (a ring is sampled over [0, 360) deg from the stringer origin, closing implied)."""
         tube = self.surface.tube
+        if self.canal:
+            return self._canal_polyline(points)
         if self.kind == "ring":
             theta = math.radians(self.surface.origin_deg) + np.linspace(0.0, 2 * math.pi, points, endpoint=False)
             s = np.full_like(theta, self.value)
@@ -68,6 +88,23 @@ class CurvatureLine:
             tangent = tube.axis.rotation_minimising_frame(s)[0]  # S_s = (1 - rho kappa_u) t, 1 - rho kappa_u > 0
         return {"s": s, "theta_deg": np.degrees(theta), "position": tube.points(theta, s),
                 "tangent": tangent, "normal": tube.normal(theta, s)}  # fmt: skip
+
+
+    def _canal_polyline(self, points: int) -> dict[str, np.ndarray]:
+        """:meth:`polyline` on a canal surface: samples uniform in chi0 round a ring (the
+        stringers' angle at the span's start; ``theta_deg`` holds it) or in s along a
+        stringer, unit tangents X_u or X_s of the exact surface."""
+        canal = self.surface.tube
+        if self.kind == "ring":
+            chi0 = math.radians(self.surface.origin_deg) + np.linspace(0.0, 2 * math.pi, points, endpoint=False)
+            s = np.full_like(chi0, self.value)
+        else:
+            s = np.linspace(*canal.span, points)
+            chi0 = np.full_like(s, math.radians(self.value))
+        d = canal.derivatives(chi0, s)
+        tangent = d.S_u if self.kind == "ring" else d.S_s
+        return {"s": s, "theta_deg": np.degrees(chi0), "position": d.S,
+                "tangent": tangent / np.linalg.norm(tangent, axis=-1, keepdims=True), "normal": canal.normal(chi0, s)}  # fmt: skip
 
 
 def net_lines(surface: TubeSurface, layout: NetLayout, suffix: str = "") -> list[CurvatureLine]:

@@ -6,6 +6,8 @@ A panel lies between two ring frames s_a < s_b and two seam stringers th_a -> th
 (ruled, as exact as the wall), and two planar caps in the normal planes, sharing their
 edges (nothing is sewn). Panels fit together into the wall: their volumes add up to it.
 With a single seam a panel is its bay all round (a full turn, the seam one of its edges).
+A canal surface's wall (a radius law) is split by :mod:`.canal_panels`: its own faces, ruled
+seam faces along the normals and pieces of the normal cones as caps.
 """
 
 from __future__ import annotations
@@ -20,7 +22,9 @@ from ..brep import properties as props
 from ..brep.assembled import Strip, c0_knots, strip_solid
 from ..errors import ParameterError
 from ..fitting import exact_section_surface
+from ..fitting.canal_section import CanalSpline
 from ..surface import CurvatureLineTube
+from .canal_panels import split_canal_panels
 from .rings import swept_section
 from .solids import cap_plane, ruled_surface, surface_part
 
@@ -49,6 +53,11 @@ def split_into_panels(build: TubeBuild, seams: list[int], rings: list[int] | Non
     rings = sorted(set(range(n_r) if rings is None else rings) | {0, n_r - 1})
     if any(not 0 <= i < n_r for i in rings):
         raise ParameterError(f"rings must be ring indices in [0, {n_r - 1}], got {rings}")
+    if isinstance(build.frame, CanalSpline):  # a radius law: the wall's own faces, seam faces and cone caps
+        if build.surfaces[0].tube.axis.closed:
+            raise ParameterError("panels of a canal wall (a radius law) on a closed axis are not built yet (its "
+                                 "stringers close on the closing ring moved by a Moebius map); the wall alone builds")  # fmt: skip
+        return split_canal_panels(build, seams, rings)
     angles = sorted(layout.stringers_deg[j] for j in set(seams))
     bays = list(zip(angles, angles[1:] + [angles[0] + 360.0]))
     r_out, r_in = build.radii

@@ -22,6 +22,7 @@ counter-clockwise polygon (s across, r up),
 from __future__ import annotations
 
 import math
+from typing import Callable
 
 import numpy as np
 from OCP.Geom import Geom_Circle
@@ -42,13 +43,17 @@ from .profiles import Profile
 Section = list[tuple[float, float]]
 
 
-def ring_section(profile: Profile, s: float, radius: float, side: str, span: tuple[float, float]) -> Section:
+def ring_section(profile: Profile, s: float, radius: float, side: str, span: tuple[float, float],
+                 along: Callable[[float], float] | None = None) -> Section:  # fmt: skip
     """The ring frame's cross-section at ``s``: the profile's outline (w, h) placed at
     (s + w, R + h) outside or (s + w, R - h) inside and closed by its base r = R, clipped to
-    ``span``, counter-clockwise in (s, r). Corners within MIN_SIZE of a span end snap to it."""
+    ``span``, counter-clockwise in (s, r). Corners within MIN_SIZE of a span end snap to it.
+    ``along(w)``, if given, is the s of the point w along the wall from s (a canal
+    surface's rings advance at their own speed: :func:`.canal.along_wall`)."""
     sign = 1.0 if side == "outside" else -1.0
     lo, hi = span
-    points = _clip(_clip([(s + w, radius + sign * h) for w, h in profile.outline()], lo, 1.0), hi, -1.0)
+    place = along or (lambda w: s + w)
+    points = _clip(_clip([(place(w), radius + sign * h) for w, h in profile.outline()], lo, 1.0), hi, -1.0)
     points = _simplified([(lo if abs(p - lo) < MIN_SIZE else hi if abs(p - hi) < MIN_SIZE else p, r) for p, r in points])
     if len(points) < 4:
         raise ParameterError(f"the ring at s = {s:g} lies outside the span [{lo:g}, {hi:g}]")

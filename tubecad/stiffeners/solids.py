@@ -32,7 +32,8 @@ from ..fitting.tolerance import orthogonality_for
 from ..errors import ParameterError
 from ..fitting import FitError, exact_section_surface, fit_frame
 from ..fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
-from ..surface import CurvatureLineTube
+from ..surface import CanalSurface, CurvatureLineTube
+from .canal import along_wall, canal_ring_solid, canal_stringer_solid, checked_levels
 from .limits import checked_reach, fit_failure
 from .profiles import SIDES, Profile
 from .rings import ring_section, ring_solid
@@ -48,18 +49,27 @@ class Stiffener:
     solid: bd.Solid
     profile: Profile
     side: str
-    base: CurvatureLineTube  # the wall surface it stands on, over its own span
+    #: the wall surface it stands on, over its own span: a tube, or a canal surface (then a
+    #: stringer's ``value`` is its angle chi0 at the wall's start, in degrees)
+    base: CurvatureLineTube | CanalSurface
 
     @property
     def base_radius(self) -> float:
-        return self.base.radius
+        """R of a tube; on a canal surface the radius of the ring's characteristic circle
+        (r q), or a stringer's mean r over its span."""
+        if isinstance(self.base, CurvatureLineTube):
+            return self.base.radius
+        if self.kind == "ring":
+            return float(self.base.circle(np.array([self.value]))[1][0])
+        return float(np.mean(self.base.radius_law.r(np.linspace(*self.base.span, 257))))
 
     def length(self) -> float:
-        """Length of its line on the wall: 2 pi R for a ring; Int sqrt(G) ds along u = angle
-        for a stringer (Gauss-Legendre on the exact G = (1 - R k cos phi)^2, on 32 panels
-        also cut at the axis' joints, where k may jump: a route's line-bend joints)."""
+        """Length of its line on the wall: the ring's circle, 2 pi R (2 pi r q on a canal
+        surface); Int sqrt(G) ds along u = angle for a stringer (Gauss-Legendre on the exact
+        G, on 32 panels also cut at the axis' joints, where k may jump: a route's line-bend
+        joints)."""
         if self.kind == "ring":
-            return 2 * math.pi * self.base.radius
+            return 2 * math.pi * self.base_radius
         x, w = np.polynomial.legendre.leggauss(32)
         s0, s1 = self.base.span
         edges = np.unique(np.concatenate([np.linspace(s0, s1, 33), [s for s, _ in self.base.axis.joints if s0 < s < s1]]))
@@ -75,6 +85,8 @@ def ring_stiffener(tube: CurvatureLineTube, s: float, profile: Profile, side: st
     On a closed axis the ring at either end of the span is the closing ring: its halves
     at both ends, fused into one solid."""
     _check_side(side)
+    if isinstance(tube, CanalSurface):
+        return _canal_ring(tube, s, profile, side, tolerance, name)
     s0, s1 = tube.span
     closing = tube.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0)
     ends = (s0, s1) if closing else (s,)  # the closing ring of a closed tube stands on both ends of the span
@@ -90,6 +102,21 @@ def ring_stiffener(tube: CurvatureLineTube, s: float, profile: Profile, side: st
     solid = halves[0] if len(halves) == 1 else _fused(halves, name)
     base = CurvatureLineTube(tube.axis, tube.radius, allow_irregular=True)
     return Stiffener(name, "ring", float(ends[0]), solid, profile, side, base)
+
+
+def _canal_ring(base: CanalSurface, s: float, profile: Profile, side: str, tolerance: float, name: str) -> Stiffener:
+    """The ring frame at ``s`` on the canal surface ``base`` (:mod:`.canal`): its widths laid
+    off along the wall, its web on the normal cones."""
+    s0, s1 = base.span
+    if base.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0):
+        raise ParameterError(f"{name}: the closing ring frame of a canal wall (a radius law) on a closed axis is not "
+                             "built yet; the other ring frames are")  # fmt: skip
+    section = ring_section(profile, s, 0.0, side, base.span, along=lambda w: along_wall(base, s, w))
+    try:
+        solid = canal_ring_solid(base, section, tolerance)
+    except FitError as exc:
+        raise FitError(f"{name}: {exc}") from None
+    return Stiffener(name, "ring", float(s), bd.Solid(solid), profile, side, base)
 
 
 def _fused(halves: list[bd.Solid], name: str) -> bd.Solid:
@@ -108,6 +135,8 @@ def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profi
     the outline's ruled faces and the wall patch under the web, one solid with shared edges
     (:func:`tubecad.brep.assembled.strip_solid`), on a frame fitted to the farthest corner."""
     _check_side(side)
+    if isinstance(tube, CanalSurface):
+        return _canal_stringer(tube, theta_deg, profile, side, span, tolerance, name)
     R, sign = tube.radius, (1.0 if side == "outside" else -1.0)
     tw = profile.thickness
     if not tw < 2 * R:
@@ -140,6 +169,25 @@ def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profi
     else:
         solid, _ = strip_solid(strips, s0, s1, (cap_plane(frame, s0), cap_plane(frame, s1)), ccw, cuts)
     return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, base_tube)
+
+
+def _canal_stringer(base: CanalSurface, chi0_deg: float, profile: Profile, side: str,
+                    span: tuple[float, float] | None, tolerance: float, name: str) -> Stiffener:  # fmt: skip
+    """The stringer chi0 = ``chi0_deg`` on the canal surface ``base`` (:mod:`.canal`)."""
+    if base.axis.closed and span is None:
+        raise ParameterError(f"{name}: stringers of a canal wall (a radius law) on a closed axis are not built yet "
+                             "(they end on the closing ring moved by a Moebius map); give a span short of it")  # fmt: skip
+    smallest = base.radius_law.min_radius
+    if not profile.thickness < 2 * smallest:
+        raise ParameterError(f"thickness must be < 2 r = {2 * smallest:g} (the wall's smallest radius, at s = "
+                             f"{base.radius_law.s_at_min_radius:.6g}), got {profile.thickness:g}")  # fmt: skip
+    sign = 1.0 if side == "outside" else -1.0
+    checked_levels(base, sorted({sign * h for _, h in profile.outline()}), name)  # before anything is fitted
+    try:
+        solid, _, _ = canal_stringer_solid(base, math.radians(chi0_deg), profile, side, span or base.span, tolerance)
+    except FitError as exc:
+        raise FitError(f"{name}: {exc}") from None
+    return Stiffener(name, "stringer", float(chi0_deg), bd.Solid(solid), profile, side, base)
 
 
 #: a stringer round a closed axis closes on itself when its section comes back within this

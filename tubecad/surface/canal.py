@@ -130,14 +130,21 @@ class CanalSurface:
     unless ``allow_irregular=True``; the measured facts are in :attr:`regularity` either way.
     """
 
-    def __init__(self, axis: Axis, radius_law: RadiusLaw | RadiusValue, *, allow_irregular: bool = False) -> None:
+    def __init__(self, axis: Axis, radius_law: RadiusLaw | RadiusValue, *, allow_irregular: bool = False,
+                 _known: tuple[Any, CanalRegularity] | None = None) -> None:  # fmt: skip
         if not isinstance(axis, Axis):
             raise ParameterError(f"axis must be a tubecad Axis (a SlopeCurve or another kind), got {type(axis).__name__}")
         self.axis = axis
         self.radius_law = radius_law_of(radius_law, axis.span, axis=axis)
+        if axis.closed:  # the circle at s1 must be the circle at s0
+            self.radius_law.check_closes()
         allow_irregular = flag("allow_irregular", allow_irregular)
-        self._moebius = None if self.radius_law.constant else self._solve_moebius()
-        self.regularity = self._check_regularity()
+        self._offsets: dict[float, CanalSurface] = {}
+        if _known is not None:  # (Moebius solution, regularity) of this very surface, from a sibling (offset, piece)
+            self._moebius, self.regularity = _known
+        else:
+            self._moebius = None if self.radius_law.constant else self._solve_moebius()
+            self.regularity = self._check_regularity()
         if not self.regularity.ok and not allow_irregular:
             raise RegularityError(self.regularity.message())
 
@@ -211,6 +218,17 @@ class CanalSurface:
         a, b = m[..., 0, 0] * sh + m[..., 0, 1] * ch, m[..., 1, 0] * sh + m[..., 1, 1] * ch
         return chi0 + 2.0 * np.arctan2(a * ch - b * sh, b * ch + a * sh)
 
+    def closing_angle(self, chi0: ArrayLike) -> FloatArray:
+        """On a closed axis, where the stringer that leaves the closing circle at angle
+        ``chi0`` (from r1 at the span's start) comes back to it: the absolute angle (from
+        r1(s0) too) phi = chi(chi0, s1) + h, h the axis' holonomy, since r1(s1) = cos h r1(s0)
+        + sin h r2(s0) and the circle at s1 is the circle at s0. A constant law gives chi0 + h.
+        phi is a Moebius map of the circle (increasing: the stringers' ends keep their order)."""
+        if not self.axis.closed:
+            raise ParameterError("closing_angle: the axis is not a closed loop")
+        chi0 = np.asarray(chi0, dtype=float)
+        return self.stringer_angle(chi0, np.full(np.shape(chi0), self.span[1])) + self.axis.holonomy
+
     # --- measures and the circles -------------------------------------------------------
     @property
     def span(self) -> tuple[float, float]:
@@ -240,8 +258,29 @@ class CanalSurface:
 
     def offset(self, distance: float, *, allow_irregular: bool = False) -> CanalSurface:
         """The normal offset by ``distance`` (outward > 0): the canal surface of r + distance,
-        with the same characteristic circles' planes and the same stringers chi(chi0, s)."""
-        return CanalSurface(self.axis, self.radius_law.shifted(distance), allow_irregular=allow_irregular)
+        with the same characteristic circles' planes and the same stringers chi(chi0, s)
+        (so the same Moebius solution; its regularity is its own, checked once per distance)."""
+        distance = float(distance)
+        if distance not in self._offsets:
+            law = self.radius_law.shifted(distance)
+            out = CanalSurface(self.axis, law, allow_irregular=True, _known=(self._moebius, self.regularity))
+            out.regularity = out._check_regularity()
+            self._offsets[distance] = out
+        out = self._offsets[distance]
+        if not out.regularity.ok and not allow_irregular:
+            raise RegularityError(out.regularity.message())
+        return out
+
+    def restricted(self, span: tuple[float, float]) -> CanalSurface:
+        """The same surface over a sub-span of the axis (a stiffener's), its stringers named
+        by their angle chi0 at the sub-span's start (:meth:`stringer_angle` of this surface
+        there converts)."""
+        axis, law = self.axis.restricted(span), self.radius_law.restricted(span)
+        if axis.span == self.span:
+            return self
+        piece = CanalSurface(axis, law, allow_irregular=True, _known=(None, self.regularity))  # a piece of a regular surface is regular
+        piece._moebius = None if law.constant else piece._solve_moebius()
+        return piece
 
     # --- evaluation -------------------------------------------------------------------
     def points(self, chi0: ArrayLike, s: ArrayLike) -> FloatArray:
@@ -281,7 +320,8 @@ class CanalSurface:
         e = ang.cos[..., None] * r1 + ang.sin[..., None] * r2
         return (-dr)[..., None] * t + np.sqrt(1.0 - dr * dr)[..., None] * e
 
-    def _sphere_derivatives(self, cos: FloatArray, sin: FloatArray, s: FloatArray) -> dict[str, FloatArray]:
+    def _sphere_derivatives(self, cos: FloatArray, sin: FloatArray, s: FloatArray,
+                            second: bool = True) -> dict[str, FloatArray]:  # fmt: skip
         """X and its partial derivatives in (chi, s) with chi held fixed (docs/MATH.md section 8).
 
         With g = -r r', h = r q, kappa = k1 cos + k2 sin, kbar = k2 cos - k1 sin:
@@ -290,27 +330,30 @@ class CanalSurface:
             X_ss = (A' - B kappa - C kbar) t + (A kappa + B') e + (A kbar + C') ebar.
         """
         law, a = self.radius_law, self.axis.at(s)
-        dk1, dk2 = self.axis.normal_development_derivative(s)
-        r, dr, ddr, dddr = law.r(s), law.dr(s), law.ddr(s), law.dddr(s)
+        r, dr, ddr = law.r(s), law.dr(s), law.ddr(s)
         q = np.sqrt(1.0 - dr * dr)
         dq = -dr * ddr / q
-        ddq = -(ddr * ddr + dr * dddr) / q - (dr * ddr) ** 2 / q**3
-        g, dg, ddg = -r * dr, -(dr * dr + r * ddr), -(3.0 * dr * ddr + r * dddr)
-        h, dh, ddh = r * q, dr * q + r * dq, ddr * q + 2.0 * dr * dq + r * ddq
+        g, dg = -r * dr, -(dr * dr + r * ddr)
+        h, dh = r * q, dr * q + r * dq
         kappa, kbar = a.k1 * cos + a.k2 * sin, a.k2 * cos - a.k1 * sin
-        dkappa, dkbar = dk1 * cos + dk2 * sin, dk2 * cos - dk1 * sin
         A, B, C = 1.0 + dg - h * kappa, dh + g * kappa, g * kbar
-        dA, dB, dC = ddg - dh * kappa - h * dkappa, ddh + dg * kappa + g * dkappa, dg * kbar + g * dkbar
         cos_, sin_ = cos[..., None], sin[..., None]
         e, ebar = cos_ * a.r1 + sin_ * a.r2, -sin_ * a.r1 + cos_ * a.r2
 
         def v(x: FloatArray) -> FloatArray:
             return x[..., None]
 
+        first = {"X": a.position + v(g) * a.t + v(h) * e, "X_chi": v(h) * ebar, "X_s": v(A) * a.t + v(B) * e + v(C) * ebar}
+        if not second:
+            return first
+        dk1, dk2 = self.axis.normal_development_derivative(s)
+        dddr = law.dddr(s)
+        ddq = -(ddr * ddr + dr * dddr) / q - (dr * ddr) ** 2 / q**3
+        ddg, ddh = -(3.0 * dr * ddr + r * dddr), ddr * q + 2.0 * dr * dq + r * ddq
+        dkappa, dkbar = dk1 * cos + dk2 * sin, dk2 * cos - dk1 * sin
+        dA, dB, dC = ddg - dh * kappa - h * dkappa, ddh + dg * kappa + g * dkappa, dg * kbar + g * dkbar
         return {
-            "X": a.position + v(g) * a.t + v(h) * e,
-            "X_chi": v(h) * ebar,
-            "X_s": v(A) * a.t + v(B) * e + v(C) * ebar,
+            **first,
             "X_chichi": -v(h) * e,
             "X_chis": v(dh) * ebar - v(h * kbar) * a.t,
             "X_ss": v(dA - B * kappa - C * kbar) * a.t + v(A * kappa + dB) * e + v(A * kbar + dC) * ebar,
@@ -340,6 +383,13 @@ class CanalSurface:
             S_ss=x["X_ss"] + 2.0 * x["X_chis"] * v(ang.s) + x["X_chichi"] * v(ang.s**2) + x["X_chi"] * v(ang.ss),
         )
 
+    def tangents(self, chi0: ArrayLike, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """(Y, Y_u, Y_s) of :meth:`derivatives` only: for Newton steps on the surface."""
+        chi0, s = np.broadcast_arrays(np.asarray(chi0, dtype=float), self._inside(s))
+        ang = self._angles(chi0, s, order=2)
+        x = self._sphere_derivatives(ang.cos, ang.sin, s, second=False)
+        return x["X"], x["X_chi"] * ang.u[..., None], x["X_s"] + x["X_chi"] * ang.s[..., None]
+
     def fundamental_forms(self, chi0: ArrayLike, s: ArrayLike) -> FundamentalForms:
         """E, F, G, L, M, N at (chi0, s), computed from the derivative vectors."""
         return FundamentalForms.from_derivatives(self.derivatives(chi0, s))
@@ -365,7 +415,10 @@ class CanalSurface:
 
         s_speed, min_speed = refined_extreme(speed, s, largest=False, name="radius: the stringer speed")
         intervals = _runs(lambda x: float(self.fold_ratio(np.array(x))) - 1.0, s, self.fold_ratio(s) >= 1.0)
-        entry = self._sphere_entry() if not intervals else None  # a folded surface is refused anyway
+        # a folded surface is refused anyway; one no longer than its smallest radius (a ring
+        # frame's piece) whose axis turns by less than a radian cannot come back into its spheres
+        short = self.length <= law.min_radius and self.length * float(np.hypot(*self.axis.normal_development(s)).max()) < 1.0
+        entry = self._sphere_entry() if not intervals and not short else None
         return CanalRegularity(law.max_slope, law.s_at_max_slope, fold, s_fold, min_speed, s_speed, intervals, entry)
 
     def _sphere_entry(self) -> tuple[float, float, float] | None:

@@ -1,0 +1,245 @@
+"""Panels of a canal surface's wall (a radius law r(s); docs/MATH.md section 8).
+
+A canal panel between the rings s_a < s_b and the seam stringers chi_a -> chi_b
+(counter-clockwise) is assembled from the wall build's own faces and edges, with new faces
+that share them (nothing is sewn, nothing is cut):
+
+- its outer and inner wall faces: the wall's patch faces between those rings and seams
+  (:class:`~tubecad.brep.faces.PatchFaces`), as they are;
+- a seam face per wall ring bay along each seam: the strip of surface normals from the
+  inner to the outer surface along the stringer chi0 = const. The two stringer isolines
+  are one B-spline in s of the canal spline with the same weights (the weights do not
+  depend on the offset d), so the ruled surface between them, degree 1 across and
+  parameterised by d - d_in, is exactly the strip of the fitted normals; its edges are the
+  wall's two stringer edges and two straight radial segments (its isolines s = const);
+- a cap at s_a and s_b: the piece of the normal cone through the inner and outer end
+  circles (:func:`tubecad.brep.solids.normal_cone_face`; the plane where |r'| is below
+  FLAT_CAP_SLOPE) between the wall's ring arcs and the two radial segments, which are
+  generators of that cone.
+
+Neighbouring panels share their seam faces and caps (one reversed), so the panels fit
+together into the wall exactly. With a single seam a panel is its ring bay all round: the
+wall's faces of those bays and two full normal-cone annuli.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Sequence
+
+import numpy as np
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepGProp import BRepGProp_Face
+from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface, Geom_ConicalSurface
+from OCP.Geom2d import Geom2d_Line
+from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec
+from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
+from OCP.TopExp import TopExp
+from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
+
+import build123d as bd
+
+from ..brep import TubeBuild
+from ..brep import properties as props
+from ..brep.assembled import closed_solid, edge, plane_face
+from ..brep.faces import TOLERANCE
+from ..brep.solids import FLAT_CAP_SLOPE, normal_cone_face
+from ..errors import TubecadError
+from ..fitting.occ_arrays import integers, points_2d, reals, reals_2d
+from ..occ_compat import Array1OfPnt
+
+if TYPE_CHECKING:
+    from .panels import Panel
+
+#: points per radial segment at which its distance from the cap's cone is measured
+RADIAL_GAP_SAMPLES = 9
+
+
+def split_canal_panels(build: TubeBuild, seams: Sequence[int], rings: Sequence[int]) -> list[Panel]:
+    """The panels of a canal wall ``build`` between the layout rings ``rings`` (indices,
+    increasing, first and last included) and the seam stringers ``seams`` (indices), in
+    the order of :func:`.panels.split_into_panels` (ring bay by ring bay, seam bays from
+    the first seam counter-clockwise)."""
+    from .panels import Panel  # (panels imports this module)
+
+    outer, inner = build.patches
+    layout = build.layout
+    s_rings = list(layout.s_rings)
+    n_s = len(layout.stringers_deg)
+    seams = sorted(set(seams))
+    bays = list(zip(seams, seams[1:] + [seams[0] + n_s]))  # stringer indices j_a -> j_b (j_b may wrap)
+    panels = []
+    if len(seams) == 1:  # the ring bay all round: the wall's faces and two full cone annuli
+        caps = {k: normal_cone_face(s_rings[k], build.surfaces[1], inner.rings[k], build.surfaces[0], outer.rings[k],
+                                    outward=True) for k in rings}  # fmt: skip
+        deg = layout.stringers_deg[seams[0]]
+        for i, (ia, ib) in enumerate(zip(rings, rings[1:])):
+            wall = [f for patches in (outer, inner) for row in patches.faces[ia:ib] for f in row]
+            solid = closed_solid(wall + [TopoDS_Face.Reversed(caps[ia]), caps[ib]])
+            area = props.faces_area([f for row in outer.faces[ia:ib] for f in row])
+            panels.append(Panel(f"panel_r{i}_s0", (s_rings[ia], s_rings[ib]), (deg, deg + 360.0), bd.Solid(solid), area))
+        return panels
+    walls = CanalWallEdges(build)
+    for i, (ia, ib) in enumerate(zip(rings, rings[1:])):
+        for n, (ja, jb) in enumerate(bays):
+            columns = [j % n_s for j in range(ja, jb)]
+            faces = [patches.faces[row][j] for patches in (outer, inner) for row in range(ia, ib) for j in columns]
+            for row in range(ia, ib):
+                faces += [walls.seam_face(jb % n_s, row), TopoDS_Face.Reversed(walls.seam_face(ja, row))]
+            faces += [TopoDS_Face.Reversed(walls.cap(ia, ja, jb)), walls.cap(ib, ja, jb)]
+            area = props.faces_area([outer.faces[row][j] for row in range(ia, ib) for j in columns])
+            a_deg = layout.stringers_deg[ja]
+            b_deg = layout.stringers_deg[jb % n_s] + (360.0 if jb >= n_s else 0.0)
+            panels.append(Panel(f"panel_r{i}_s{n}", (s_rings[ia], s_rings[ib]), (a_deg, b_deg),
+                                bd.Solid(closed_solid(faces)), area))  # fmt: skip
+    return panels
+
+
+class CanalWallEdges:
+    """The seam faces, radial segments and cap pieces of a canal wall's panels, each made
+    once (neighbouring panels share them): radial(k, j) from the inner to the outer
+    surface at ring k on stringer j, seam_face(j, i) along stringer j between rings i and
+    i + 1 (its normal towards stringer j + 1), cap(k, j_a, j_b) at ring k between stringers
+    j_a -> j_b (its normal along +t)."""
+
+    def __init__(self, build: TubeBuild):
+        self.build = build
+        self.outer, self.inner = build.patches
+        self.outer_surface, self.inner_surface = build.surfaces
+        self.thickness = float(self.outer_surface.offset - self.inner_surface.offset)
+        self.n_s = len(build.layout.stringers_deg)
+        self._radial: dict[tuple[int, int], TopoDS_Edge] = {}
+        self._seam: dict[tuple[int, int], TopoDS_Face] = {}
+        self._cap: dict[tuple[int, int, int], TopoDS_Face] = {}
+
+    def vertex(self, patches, k: int, j: int) -> TopoDS_Vertex:
+        """The wall's vertex on ring k and stringer j of ``patches``."""
+        return TopExp.FirstVertex_s(patches.rings[k][j])
+
+    def radial(self, k: int, j: int) -> TopoDS_Edge:
+        """The straight segment from the inner to the outer vertex at ring k on stringer j,
+        parameterised by d - d_in in [0, thickness] (the seam faces' isoline there)."""
+        if (k, j) not in self._radial:
+            v_in, v_out = self.vertex(self.inner, k, j), self.vertex(self.outer, k, j)
+            p, q = BRep_Tool.Pnt_s(v_in), BRep_Tool.Pnt_s(v_out)
+            poles = _points([p.Coord(), q.Coord()])
+            line = Geom_BSplineCurve(poles, reals([0.0, self.thickness]), integers([2, 2]), 1)
+            self._radial[k, j] = edge(line, v_in, v_out, 0.0, self.thickness)
+        return self._radial[k, j]
+
+    def seam_face(self, j: int, i: int) -> TopoDS_Face:
+        """The ruled face along stringer j between rings i and i + 1, from the inner wall's
+        stringer edge to the outer's: S(s, d - d_in), its normal S_s x S_d towards +chi."""
+        if (j, i) not in self._seam:
+            e_in, e_out = self.inner.stringers[j][i], self.outer.stringers[j][i]
+            c_in, c_out = BRep_Tool.Curve_s(e_in, 0.0, 0.0), BRep_Tool.Curve_s(e_out, 0.0, 0.0)
+            s0, s1 = BRep_Tool.Range_s(e_in)
+            surface = _ruled(c_in, c_out, self.thickness)
+            builder = BRep_Builder()
+            face = TopoDS_Face()
+            builder.MakeFace(face, surface, TOLERANCE)
+            low, high = self.radial(i, j), self.radial(i + 1, j)
+            builder.UpdateEdge(e_in, _line(0.0, 0.0, 1.0, 0.0), face, BRep_Tool.Tolerance_s(e_in))
+            builder.UpdateEdge(e_out, _line(0.0, self.thickness, 1.0, 0.0), face, BRep_Tool.Tolerance_s(e_out))
+            builder.UpdateEdge(low, _line(s0, 0.0, 0.0, 1.0), face, BRep_Tool.Tolerance_s(low))
+            builder.UpdateEdge(high, _line(s1, 0.0, 0.0, 1.0), face, BRep_Tool.Tolerance_s(high))
+            wire = TopoDS_Wire()
+            builder.MakeWire(wire)  # counter-clockwise in (s, d)
+            for e, orientation in ((e_in, TopAbs_FORWARD), (high, TopAbs_FORWARD), (e_out, TopAbs_REVERSED),
+                                   (low, TopAbs_REVERSED)):  # fmt: skip
+                builder.Add(wire, e.Oriented(orientation))
+            wire.Closed(True)
+            builder.Add(face, wire)
+            self._seam[j, i] = face
+        return self._seam[j, i]
+
+    def cap(self, k: int, ja: int, jb: int) -> TopoDS_Face:
+        """The piece of the normal cone at ring k between the stringers ja -> jb (jb > ja,
+        indices past the last stringer wrap round), its normal along +t."""
+        if (k, ja, jb) not in self._cap:
+            self._cap[k, ja, jb] = self._make_cap(k, ja, jb)
+        return self._cap[k, ja, jb]
+
+    def _make_cap(self, k: int, ja: int, jb: int) -> TopoDS_Face:
+        s = float(self.build.layout.s_rings[k])
+        n_s = self.n_s
+        columns = [j % n_s for j in range(ja, jb)]
+        lifts = [2.0 * math.pi if j >= n_s else 0.0 for j in range(ja, jb)]  # wrapped arcs: u = theta + 2 pi
+        arcs_in = [self.inner.rings[k][j] for j in columns]
+        arcs_out = [self.outer.rings[k][j] for j in columns]
+        radial_a, radial_b = self.radial(k, ja), self.radial(k, jb % n_s)
+        high, low = self.outer_surface, self.inner_surface
+        centre, _, t, x_dir, _ = high.ring(s)
+        dr = float(high.tube.radius_law.dr(np.array([s]))[0])
+        if abs(dr) <= FLAT_CAP_SLOPE:  # the plane annulus' piece, counter-clockwise about +t
+            loop = ([(e, True) for e in arcs_out] + [(radial_b, False)] + [(e, False) for e in arcs_in[::-1]]
+                    + [(radial_a, True)])  # fmt: skip
+            return plane_face(centre, t, x_dir, [loop])
+        c_lo, radius_lo, _, _, _ = low.ring(s)
+        q = math.sqrt(1.0 - dr * dr)
+        sign = -math.copysign(1.0, dr)
+        cone = Geom_ConicalSurface(gp_Ax3(gp_Pnt(*map(float, c_lo)), gp_Dir(*map(float, t)),
+                                          gp_Dir(*map(float, x_dir))), sign * math.atan2(q, abs(dr)), radius_lo)  # fmt: skip
+        v_high = sign * self.thickness  # the outer circle's v (distance along the generators from the inner)
+        builder = BRep_Builder()
+        face = TopoDS_Face()
+        builder.MakeFace(face, cone, TOLERANCE)
+        for arcs, v in ((arcs_in, 0.0), (arcs_out, v_high)):
+            for e, lift in zip(arcs, lifts):
+                builder.UpdateEdge(e, _line(lift, v, 1.0, 0.0), face, BRep_Tool.Tolerance_s(e))
+        theta_a = BRep_Tool.Range_s(arcs_in[0])[0] + lifts[0]
+        theta_b = BRep_Tool.Range_s(arcs_in[-1])[1] + lifts[-1]
+        for e, theta in ((radial_a, theta_a), (radial_b, theta_b)):
+            pcurve = _line(theta, 0.0, 0.0, sign)  # v = sign (d - d_in)
+            builder.UpdateEdge(e, pcurve, face, max(BRep_Tool.Tolerance_s(e), _gap(e, cone, theta, sign, self.thickness)))
+        # counter-clockwise in (u, v): the lower circle along +u, up the generator at b, back along the upper one
+        (lower, upper), up = ((arcs_in, arcs_out), True) if v_high > 0 else ((arcs_out, arcs_in), False)
+        wire = TopoDS_Wire()
+        builder.MakeWire(wire)
+        for e, orientation in ([(e, TopAbs_FORWARD) for e in lower] + [(radial_b, TopAbs_FORWARD if up else TopAbs_REVERSED)]
+                               + [(e, TopAbs_REVERSED) for e in upper[::-1]]
+                               + [(radial_a, TopAbs_REVERSED if up else TopAbs_FORWARD)]):  # fmt: skip
+            builder.Add(wire, e.Oriented(orientation))
+        wire.Closed(True)
+        builder.Add(face, wire)
+        point, normal = gp_Pnt(), gp_Vec()
+        BRepGProp_Face(face).Normal(0.5 * (theta_a + theta_b), 0.5 * v_high, point, normal)
+        return face if normal.Dot(gp_Vec(*map(float, t))) > 0 else TopoDS_Face.Reversed(face)
+
+
+def _ruled(c_in: Geom_BSplineCurve, c_out: Geom_BSplineCurve, thickness: float) -> Geom_BSplineSurface:
+    """The ruled surface S(s, d) from ``c_in`` (d = 0) to ``c_out`` (d = thickness): two
+    rational curves on the same knots and weights, so degree 1 across with those weights."""
+    n = c_in.NbPoles()
+    if c_out.NbPoles() != n or c_in.NbKnots() != c_out.NbKnots():
+        raise TubecadError("the wall's inner and outer stringer curves differ in their knots: no seam face between them")
+    poles = np.array([[c_in.Pole(i).Coord(), c_out.Pole(i).Coord()] for i in range(1, n + 1)])
+    weights = np.array([[c_in.Weight(i), c_out.Weight(i)] for i in range(1, n + 1)])
+    if np.abs(weights[:, 0] - weights[:, 1]).max() > 1e-12 * weights.max():
+        raise TubecadError("the wall's inner and outer stringer curves differ in their weights: no seam face between them")
+    weights[:, 1] = weights[:, 0]
+    knots = [c_in.Knot(i) for i in range(1, c_in.NbKnots() + 1)]
+    mults = [c_in.Multiplicity(i) for i in range(1, c_in.NbKnots() + 1)]
+    return Geom_BSplineSurface(points_2d(poles), reals_2d(weights), reals(knots), reals([0.0, thickness]),
+                               integers(mults), integers([2, 2]), c_in.Degree(), 1)  # fmt: skip
+
+
+def _gap(e: TopoDS_Edge, cone: Geom_ConicalSurface, theta: float, sign: float, thickness: float) -> float:
+    """Twice the largest distance of the radial segment ``e`` from the cone's generator at
+    ``theta`` through its pcurve (v = sign x the parameter), at least TOLERANCE."""
+    curve = BRep_Tool.Curve_s(e, 0.0, 0.0)
+    gap = 0.0
+    for x in np.linspace(0.0, thickness, RADIAL_GAP_SAMPLES):
+        gap = max(gap, curve.Value(float(x)).Distance(cone.Value(theta, sign * float(x))))
+    return max(TOLERANCE, 2.0 * gap)
+
+
+def _points(points) -> Array1OfPnt:
+    out = Array1OfPnt(1, len(points))
+    for i, p in enumerate(points):
+        out.SetValue(i + 1, gp_Pnt(*map(float, p)))
+    return out
+
+
+def _line(x: float, y: float, dx: float, dy: float) -> Geom2d_Line:
+    return Geom2d_Line(gp_Pnt2d(x, y), gp_Dir2d(dx, dy))
