@@ -1,5 +1,7 @@
 """Shared fixtures: one tube per axis family, each regular over its span."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -71,3 +73,12 @@ thickness = 2.0
 rings = [1, 2]
 stringers = [0, 2]
 """
+
+
+SAMPLES = Path(__file__).resolve().parent.parent / "samples"
+
+
+def sample_wall_spec(name: str) -> str:
+    """samples/NAME.toml without its [stiffeners] section (which the samples keep last): its
+    wall alone, for tests that do not need the stiffeners."""
+    return (SAMPLES / f"{name}.toml").read_text().split("\n[stiffeners]")[0]

@@ -23,41 +23,10 @@ from tubecad.brep.properties import topods
 from tubecad.export.cad import export_shape, import_shape
 from tubecad.interfaces.cli import cli
 
+from conftest import sample_wall_spec
+
 #: the nozzle and the tapered helix of samples/ (their walls alone, without stiffeners)
-NOZZLE = """
-[axis]
-curve = "natural"
-k = "0"
-tau = "0"
-s = [0.0, 200.0]
-
-[tube]
-radius = "40 - 25 * (s / 200)**2 * (3 - 2 * s / 200)"
-
-[layout]
-rings = 9
-stringers = 8
-
-[wall]
-thickness = 2.0
-"""
-TAPERED_HELIX = """
-[axis]
-curve = "helix"
-k = 0.02
-beta_deg = 20.0
-s = [0.0, 600.0]
-
-[tube]
-radius = "12 - 0.01 * s"
-
-[layout]
-rings = 9
-stringers = 8
-
-[wall]
-thickness = 1.0
-"""
+NOZZLE, TAPERED_HELIX = sample_wall_spec("nozzle"), sample_wall_spec("tapered_helix")
 
 
 def built_and_read_back(spec: str, tmp_path: Path) -> dict:

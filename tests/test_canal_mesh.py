@@ -13,42 +13,11 @@ from click.testing import CliRunner
 
 from tubecad.interfaces.cli import cli
 
-#: the [axis]/[tube]/[layout]/[wall] of samples/nozzle.toml (r' = 0 at both ends: plane caps)
-NOZZLE = """
-[axis]
-curve = "natural"
-k = "0"
-tau = "0"
-s = [0.0, 200.0]
+from conftest import sample_wall_spec
 
-[tube]
-radius = "40 - 25 * (s / 200)**2 * (3 - 2 * s / 200)"
-
-[layout]
-rings = 9
-stringers = 8
-
-[wall]
-thickness = 2.0
-"""
-#: ... and of samples/tapered_helix.toml (r' = -0.01: conical caps, stringers turned by the Moebius map)
-HELIX = """
-[axis]
-curve = "helix"
-k = 0.02
-beta_deg = 20.0
-s = [0.0, 600.0]
-
-[tube]
-radius = "12 - 0.01 * s"
-
-[layout]
-rings = 9
-stringers = 8
-
-[wall]
-thickness = 1.0
-"""
+#: the walls of samples/nozzle.toml (r' = 0 at both ends: plane caps) and samples/tapered_helix.toml
+#: (r' = -0.01: conical caps, stringers turned by the Moebius map), without their stiffeners
+NOZZLE, HELIX = sample_wall_spec("nozzle"), sample_wall_spec("tapered_helix")
 SPECS = {"nozzle": NOZZLE, "helix": HELIX}
 #: a coarse tolerance keeps the tests fast (the default, 1e-3 of the smallest radius, gives
 #: 35k and 426k triangles; the same checks hold there)
