@@ -43,7 +43,7 @@ from ..brep.faces import patch_faces
 from ..brep.solids import normal_cone_face
 from ..errors import ParameterError, RegularityError
 from ..fitting.canal_section import canal_section_surface, fit_canal
-from ..fitting.frame_spline import FitError, _initial_breaks, _joint_multiplicities, _with_rings, refine_spline
+from ..fitting.frame_spline import _initial_breaks, _joint_multiplicities, _with_rings, refine_spline
 from ..fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals
 from ..fitting.tolerance import MIN_SIZE, orthogonality_for
 from ..surface.canal import CanalSurface
@@ -182,13 +182,13 @@ def stringer_frame(base: CanalSurface, chi0: float, s: np.ndarray) -> tuple[np.n
     return X, n, ebar, np.cross(n, ebar)
 
 
-def wall_points_across(base: CanalSurface, chi0: float, s: np.ndarray, across: np.ndarray,
-                       clamp: bool = False) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+def wall_points_across(base: CanalSurface, chi0: float, s: np.ndarray,
+                       across: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
     """The wall's points in the section planes Pi(s) of the stringer chi0 at across distance
     ``across`` (broadcast (len(s), len(across))): Z(u, s') with (Z - X).m = 0 and
     (Z - X).ebar = w, by Newton on the exact surface from (chi0 + w / |X_u|, s). Returns the
-    points (len(s), len(across), 3) and the s' they lie at. ``clamp`` keeps s' in the span
-    (to find how far outside it a section's base would reach)."""
+    points (len(s), len(across), 3) and the s' they lie at (the surface is evaluated with s'
+    clamped to the span; an s' past it says how far a section's base would reach outside)."""
     X, n, ebar, m = stringer_frame(base, chi0, s)
     w = np.broadcast_to(np.asarray(across, dtype=float)[None, :], (len(s), len(across)))
     u = chi0 + w / np.linalg.norm(base.tangents(np.full(len(s), chi0), s)[1], axis=-1)[:, None]
@@ -205,8 +205,6 @@ def wall_points_across(base: CanalSurface, chi0: float, s: np.ndarray, across: n
         du, ds = (e * f1 - b * f2) / det, (a * f2 - c * f1) / det
         u -= du
         sp -= ds
-        if clamp:
-            sp = np.clip(sp, lo, hi)
         if max(np.abs(du).max(), np.abs(ds).max() / (hi - lo)) < 1e-15:
             break
     return base.points(u, np.clip(sp, lo, hi)), sp
@@ -278,11 +276,8 @@ def canal_stringer_strips(base: CanalSurface, chi0: float, profile: Profile, sid
         err = np.linalg.norm((spline(s) - values(s)).reshape(len(s), count, 3), axis=-1).max(axis=1)
         return err.reshape(len(breaks) - 1, -1).max(axis=1), np.zeros(len(breaks) - 1)
 
-    try:
-        spline, bound, _ = refine_spline(values, breaks, degree, joints, span_errors, tolerance, math.inf, 4096,
-                                         "the stringer's corner curves")  # fmt: skip
-    except FitError:
-        raise
+    spline, bound, _ = refine_spline(values, breaks, degree, joints, span_errors, tolerance, math.inf, 4096,
+                                     "the stringer's corner curves")  # fmt: skip
     poles = spline.c.reshape(len(spline.c), count, 3)
     s_knots, s_mults = knots_and_multiplicities(spline.t)
     wall = np.einsum("ij,kjl->kil", _bernstein_inverse(BASE_NODES), poles[:, len(off):])  # (poles, BASE_NODES, 3)
