@@ -82,3 +82,12 @@ def sample_wall_spec(name: str) -> str:
     """samples/NAME.toml without its [stiffeners] section (which the samples keep last): its
     wall alone, for tests that do not need the stiffeners."""
     return (SAMPLES / f"{name}.toml").read_text().split("\n[stiffeners]")[0]
+
+
+def fit_circle(xy: np.ndarray) -> tuple[float, float, np.ndarray]:
+    """(largest distance from the least-squares circle, its radius, its centre) of plane points."""
+    import math
+
+    sol = np.linalg.lstsq(np.c_[2 * xy, np.ones(len(xy))], (xy**2).sum(axis=1), rcond=None)[0]
+    radius = math.sqrt(sol[2] + sol[0] ** 2 + sol[1] ** 2)
+    return np.abs(np.linalg.norm(xy - sol[:2], axis=1) - radius).max(), radius, sol[:2]

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import fit_circle
 
 from tubecad import CurvatureLineTube, Helix, NaturalAxis, paper_tube
 from tubecad.curves.route import RouteAxis
@@ -34,13 +35,6 @@ def polyline(p):
 def edges(pattern):
     n = len(pattern.outline) // 2
     return pattern.outline[:n], pattern.outline[n:][::-1]
-
-
-def fit_circle(xy):
-    """(largest distance from the least-squares circle, its radius, its centre)."""
-    sol = np.linalg.lstsq(np.c_[2 * xy, np.ones(len(xy))], (xy**2).sum(axis=1), rcond=None)[0]
-    radius = math.sqrt(sol[2] + sol[0] ** 2 + sol[1] ** 2)
-    return np.abs(np.linalg.norm(xy - sol[:2], axis=1) - radius).max(), radius, sol[:2]
 
 
 # --- (a) a cone: straight axis, r = r0 + a s ------------------------------------------------------

@@ -59,7 +59,9 @@ def _sections() -> list[int]:
 
 def test_math_has_its_sections_in_order():
     assert MATH.is_file(), "docs/MATH.md is missing"
-    assert _sections() == list(range(1, 11)), "docs/MATH.md must keep sections '## 1.' to '## 10.', in order"
+    sections = _sections()
+    assert len(sections) >= 10 and sections == list(range(1, len(sections) + 1)), \
+        "docs/MATH.md must keep sections '## 1.' to '## 10.' (and any later ones) in order"  # fmt: skip
 
 
 def test_citations_exist():

@@ -6,6 +6,7 @@
     tubecad build A.toml B.toml ... -d DIR    a batch on all cores: DIR/NAME.step, NAME.report.json, batch.json
     tubecad build SPEC.toml --sweep tube.radius=10,12,15 -d DIR     the spec for each value (a batch)
     tubecad flat SPEC.toml -o DIR             flat patterns of the spec's stiffener webs
+    tubecad shop SPEC.toml -o DIR             shop-floor package: nested webs, flanges, bending, marking, panels, pin jigs
     tubecad schema [-o FILE]                  the JSON Schema of spec files, for editors
     tubecad view SPEC.toml | paper [--port N] the named, coloured tree in OCP CAD Viewer
 
@@ -170,9 +171,14 @@ def write_patterns(patterns, folder: Path, length_unit: str = DEFAULT_LENGTH_UNI
     written = [write_dxf(patterns, folder / "webs.dxf", length_unit=length_unit)]
     for pattern in patterns:
         written += write_picture(pattern, folder)
+    from shapely.geometry import Polygon
+
     summary = {"units": {"length": length_unit},
                "webs": [{"name": p.name, "kind": p.kind, "area": p.area, "base_length": p.base_length,
-                         "top_length": p.top_length} for p in patterns]}  # fmt: skip
+                         "top_length": p.top_length, "crosses_itself": not Polygon(p.outline).is_valid}
+                        for p in patterns],
+               "note": "a web that crosses itself cannot be cut as drawn: `tubecad shop` splits it into cuttable "
+                       "pieces at butt joints and nests them on plates"}  # fmt: skip
     written.append(write_text(folder / "flat.json", to_json(summary)))
     return written
 
@@ -377,6 +383,46 @@ def flat(spec: Path, output: Path) -> None:
         raise UserError(str(exc)) from None
     for path in written:
         click.echo(str(path))
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output", "output", required=True, type=click.Path(file_okay=False, path_type=Path),
+              help="Folder for the package (created if needed): webs/, flanges/, bending/, marking/, panels/, "
+                   "pin_jig/, index.json and overview.png/.svg.")
+@click.option("-q", "--quiet", is_flag=True, help="No stage lines on stderr (shown on a terminal only).")
+def shop(spec: Path, output: Path, quiet: bool) -> None:
+    """Shop-floor outputs of SPEC's stiffened wall, with its [fabrication] settings (plate_size, kerf,
+    joint_gap, max_strain, pin_spacing, pin_clearance, joints):
+
+    webs split at butt joints into cuttable pieces and nested 1:1 on plates (DXF, SVG) with the STEP
+    solids split the same way; stringer flanges developed and nested; bending tables and inverse
+    bending curves; each panel's marking lines (STEP), development with its strain (DXF, picture)
+    and pin-jig heights (CSV, picture); index.json and a one-page overview. Nothing is written
+    unless all of it is.
+    """
+    _load()
+    from .shop_section import shop_from_spec
+
+    live = not quiet and sys.stderr.isatty()  # stages on a terminal only: a log or a pipe gets the result lines
+    say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
+    try:
+        index = shop_from_spec(load_spec(spec), output, say)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
+    click.echo(f"webs: {webs['pieces']} pieces on {webs['plates']} plates, utilisation {100 * webs['utilisation']:.1f} %; "
+               f"flanges: {flanges['pieces']} pieces on {flanges['plates']} plates; {len(index['bending'])} bending tables")
+    if index["panels"]:
+        worst = max(index["panels"], key=lambda p: p["max_strain"])
+        flagged = sum(p["exceeds_max_strain"] for p in index["panels"])
+        click.echo(f"panels: {len(index['panels'])}, largest development strain {worst['max_strain']:.3g} "
+                   f"({worst['name']}), {flagged} above max_strain")
+    for warning in index["warnings"]:
+        click.echo(f"warning: {warning}", err=True)
+    for entry in index["files"]:
+        click.echo(str(output / entry["path"]))
+    click.echo(str(output / "index.json"))
 
 
 @cli.command()

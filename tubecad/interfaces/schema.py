@@ -35,6 +35,7 @@ _KINDS: dict[str, dict[str, Any]] = {
     "number_or_numbers": {"anyOf": [_NUMBER, {"type": "array", "items": _NUMBER, "minItems": 1}]},
     "selection": {"anyOf": [{"const": "all"}, {"type": "array", "items": {"type": "integer"}}]},
     "points": {"type": "array", "items": {"type": "array", "items": _NUMBER, "minItems": 3, "maxItems": 3}, "minItems": 3},
+    "joints": {"type": "object", "additionalProperties": {"type": "array", "items": _NUMBER, "minItems": 1}},
     "radius": {"anyOf": [_NUMBER, {"type": "string"},
                          {"type": "array", "items": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
                           "minItems": 2}]},

@@ -153,6 +153,14 @@ def _check_build_sections(tube: CurvatureLineTube | CanalSurface, sections: dict
     if "tolerance" in fit:
         _with_section("fit", fail, lambda: check_tolerance("tolerance", fit["tolerance"]))
     _with_section("layout", fail, lambda: layout_from_section(tube, sections.get("layout", {})))
+    if "fabrication" in sections:  # the shop's settings, in the spec's length unit
+        from ..shop.fabrication import fabrication_settings
+
+        unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+        try:
+            fabrication_settings(sections["fabrication"], unit)
+        except ParameterError as exc:
+            raise fail(str(exc)) from None
     if canal:
         return _check_canal_sections(tube, sections, fail)
     wall = sections.get("wall")
@@ -260,6 +268,8 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[s
                                                                          for v in value)),
         "points": isinstance(value, list) and len(value) >= 3 and all(
             isinstance(p, list) and len(p) == 3 and all(number(v) for v in p) for p in value),
+        "joints": isinstance(value, dict) and all(isinstance(v, list) and v and all(number(x) for x in v)
+                                                  for v in value.values()),
         "radius": number(value) or isinstance(value, str) or (isinstance(value, list) and len(value) >= 2 and all(
             isinstance(p, list) and len(p) == 2 and all(number(v) for v in p) for p in value)),
     }[spec.kind]
@@ -270,6 +280,7 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[s
                   "number_or_numbers": "a number or a non-empty list of numbers",
                   "selection": 'a list of whole-number indices or "all"',
                   "points": "a list of three or more [x, y, z] points",
+                  "joints": "a table of stiffener name = [positions]",
                   "radius": "a number, an expression in s or a table of two or more [s, r] rows"}[spec.kind]  # fmt: skip
         raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}")
     if spec.kind in ("number", "radius") and number(value) and not math.isfinite(value):

@@ -29,7 +29,8 @@ class Key:
     """
 
     kind: str  # "number", "string", "bool", "pair", "triple", "numbers", "number_or_numbers", "integer", "selection",
-    #            "points", "radius" (a number, an expression or a table of [s, r] rows)
+    #            "points", "radius" (a number, an expression or a table of [s, r] rows), "joints" (a table of
+#            name = [numbers])
     required: bool = True
     help: str = ""
     choices: tuple[str, ...] = ()
@@ -153,6 +154,23 @@ PANEL_KEYS = {
     "rings": Key("selection", required=False, help='ring indices bounding the panels, or "all" (default all)'),
 }
 
+FABRICATION_KEYS = {
+    "plate_size": Key("pair", required=False, help="[length, width] of the stock plates webs and flanges are nested "
+                      "on, each > 2 kerf (default 3000 x 1500 mm)"),
+    "kerf": Key("number", required=False, low=0.0, low_open=False,
+                help="the cut's width >= 0: parts lie 2 kerf apart and a kerf from the plate's edge (default 2 mm)"),
+    "joint_gap": Key("number", required=False, low=0.0, low_open=False,
+                     help="a butt joint's root gap >= 0, along the web's base line (default 0)"),
+    "max_strain": Key("number", required=False, low=0.0,
+                      help="panels whose development strains more are flagged, > 0 (default 0.01)"),
+    "pin_spacing": Key("number", required=False, low=0.0,
+                       help="the pin-jig grid's spacing > 0 (default: a round value giving ~6 pins across each panel)"),
+    "pin_clearance": Key("number", required=False, low=0.0, low_open=False,
+                         help="the panel's lowest point above the jig plane >= 0 (default 0)"),
+    "joints": Key("joints", required=False, help="chosen butt joints per stiffener: a table of name = [positions], s "
+                  "along a stringer, degrees in [0, 360) round a ring (e.g. stringer_02 = [450.0])"),
+}  # fmt: skip
+
 UNITS_KEYS = {
     "length": Key("string", required=False, choices=tuple(LENGTH_UNITS), default=DEFAULT_LENGTH_UNIT,
                   help=f"{' | '.join(LENGTH_UNITS)}: the unit of every length in the spec, written into STEP, "
@@ -162,7 +180,7 @@ UNITS_KEYS = {
 #: sections beyond [axis] and [tube]
 EXTRA_SECTIONS: dict[str, dict[str, Key]] = {
     "layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS, "stiffeners": STIFFENER_KEYS, "panels": PANEL_KEYS,
-    "units": UNITS_KEYS,
+    "units": UNITS_KEYS, "fabrication": FABRICATION_KEYS,
 }  # fmt: skip
 
 #: what each section is for (the schema's descriptions)
@@ -176,4 +194,5 @@ SECTION_HELP = {
     "stiffeners": "stiffener solids (ring frames, stringers) on the layout's lines",
     "panels": "split the wall into panels along seam stringers",
     "units": "the unit of every length in the spec and in the files written",
+    "fabrication": "shop-floor settings for tubecad shop: plates, kerf, butt joints, strain limit, pin jigs",
 }

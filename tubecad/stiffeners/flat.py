@@ -117,27 +117,40 @@ def canal_stringer_rates(canal: CanalSurface, chi0: float) -> tuple[RateFunction
     return turn, speed
 
 
-def stringer_flat_pattern(base: CurvatureLineTube | CanalSurface, theta_deg: float, height: float,
-                          side: str = "outside", name: str = "stringer",
-                          samples: int = 2001) -> FlatPattern:  # fmt: skip
-    """The developed web of height ``height`` along the stringer at ``theta_deg`` on ``base``:
-    on a tube the stringer's angle u, on a canal surface chi0 (its angle at the span's start)."""
+def stringer_rates(base: CurvatureLineTube | CanalSurface, theta_deg: float
+                   ) -> tuple[RateFunction, RateFunction, np.ndarray]:  # fmt: skip
+    """(turn, speed, breaks) along the stringer at ``theta_deg`` on ``base`` (module
+    docstring): on a tube turn = kappa_u = k1 cos u + k2 sin u and speed = 1 - R kappa_u; on a
+    canal surface :func:`canal_stringer_rates`. ``breaks``: the span's ends and the s where
+    turn or speed may kink (an axis' joints, a radius law's knots)."""
     theta = math.radians(theta_deg)
     s0, s1 = base.span
-    joints = [s for s, _ in base.axis.joints if s0 < s < s1]
     if isinstance(base, CanalSurface):
         turn, speed = canal_stringer_rates(base, theta)
-        breaks = base._breaks()
-    else:
-        R = base.radius
+        return turn, speed, np.asarray(base._breaks(), dtype=float)
+    R = base.radius
 
-        def turn(s: np.ndarray) -> np.ndarray:  # kappa_u = k1 cos theta + k2 sin theta (= k cos phi)
-            return base.normal_curvature(theta, s)
+    def turn(s: np.ndarray) -> np.ndarray:  # kappa_u = k1 cos theta + k2 sin theta (= k cos phi)
+        return base.normal_curvature(theta, s)
 
-        def speed(s: np.ndarray) -> np.ndarray:
-            return 1.0 - R * base.normal_curvature(theta, s)
+    def speed(s: np.ndarray) -> np.ndarray:
+        return 1.0 - R * base.normal_curvature(theta, s)
 
-        breaks = np.unique(np.concatenate([[s0, s1], joints]))
+    joints = [s for s, _ in base.axis.joints if s0 < s < s1]
+    return turn, speed, np.unique(np.concatenate([[s0, s1], joints]))
+
+
+def stringer_flat_pattern(base: CurvatureLineTube | CanalSurface, theta_deg: float, height: float,
+                          side: str = "outside", name: str = "stringer", samples: int = 2001,
+                          span: tuple[float, float] | None = None) -> FlatPattern:  # fmt: skip
+    """The developed web of height ``height`` along the stringer at ``theta_deg`` on ``base``:
+    on a tube the stringer's angle u, on a canal surface chi0 (its angle at the span's start);
+    over ``span`` (a piece of the stringer; default ``base.span``)."""
+    s0, s1 = base.span if span is None else (float(span[0]), float(span[1]))
+    if not base.span[0] <= s0 < s1 <= base.span[1]:
+        raise ParameterError(f"span must lie in [{base.span[0]:g}, {base.span[1]:g}] with start < end, got {span}")
+    turn, speed, breaks = stringer_rates(base, theta_deg)
+    breaks = np.unique(np.concatenate([[s0, s1], breaks[(breaks > s0) & (breaks < s1)]]))
     return developed_strip(turn, speed, (s0, s1), height, side, name, samples, breaks)
 
 

@@ -1,0 +1,185 @@
+"""1:1 cutting drawings of nested plates (issue 13): DXF for the cutting machine, SVG for
+people, both at full size with no axes.
+
+Layers (DXF layers, SVG groups of the same ids):
+- ``PLATE``: the stock plate's outline;
+- ``PARTS``: each piece's finished outline, closed polylines (a full ring's annulus: two
+  exact circles; a ring sector: exact arcs as bulges);
+- ``CUT``: the cutting path, the outline offset by kerf / 2 away from the part (shapely);
+- ``JOINTS``: the butt-joint edges of split pieces;
+- ``TEXT``: each piece's name (``stringer_02_a``) and the joint marks' names.
+The DXF is in the model's unit, which it states ($INSUNITS); the SVG's user unit is the
+millimetre (width and height in mm), so it prints at 1:1.
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+from ..export.atomic import atomic_path, write_text
+from ..units import length_unit
+from .fabrication import Fabrication
+from .nesting import PlacedPiece, Plate
+
+LAYERS = {"PLATE": 8, "PARTS": 7, "CUT": 1, "JOINTS": 3, "TEXT": 5}  # name -> DXF colour index
+SVG_STYLE = {"PLATE": ("#555555", 0.5), "PARTS": ("#10203a", 0.35), "CUT": ("#d04020", 0.2), "JOINTS": ("#2a8a3a", 0.6)}
+
+
+def joint_edges(placed: PlacedPiece) -> list[tuple[str, np.ndarray]]:
+    """The butt-joint edges of a placed piece, ("start" | "end", (2, 2) segment): a stringer
+    piece's end rulings (first and last points of its two edges), a ring sector's radial edges."""
+    outline, (start, end) = placed.outline, placed.piece.joints
+    n = len(outline) // 2
+    edges = []
+    if start:
+        edges.append(("start", np.array([outline[0], outline[-1]])))
+    if end:
+        edges.append(("end", np.array([outline[n - 1], outline[n]])))
+    return edges
+
+
+def cut_paths(placed: PlacedPiece, kerf: float) -> list[np.ndarray]:
+    """The cutting path: kerf / 2 outside the part (and inside its hole), by shapely."""
+    polygon = placed.polygon()
+    if kerf <= 0.0:
+        rings = [polygon.exterior, *polygon.interiors]
+    else:
+        grown = polygon.buffer(kerf / 2, quad_segs=16, join_style="round")
+        rings = [grown.exterior, *grown.interiors]
+    return [np.asarray(r.coords) for r in rings]
+
+
+def label_point(placed: PlacedPiece) -> tuple[float, float]:
+    point = placed.polygon().representative_point()
+    return float(point.x), float(point.y)
+
+
+def text_height(plate: Plate) -> float:
+    return 0.012 * min(plate.size)
+
+
+def write_plate_dxf(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
+    """The plate's 1:1 DXF (module docstring), atomically."""
+    import ezdxf
+
+    doc = ezdxf.new(units=length_unit(fab.length_unit).dxf)
+    for name, colour in LAYERS.items():
+        doc.layers.add(name, color=colour)
+    msp = doc.modelspace()
+    length, width = plate.size
+    msp.add_lwpolyline([(0, 0), (length, 0), (length, width), (0, width)], close=True, dxfattribs={"layer": "PLATE"})
+    height = text_height(plate)
+    for placed in plate.pieces:
+        _part_outline(msp, placed)
+        for path_points in cut_paths(placed, fab.kerf):
+            msp.add_lwpolyline(path_points[:-1].tolist(), close=True, dxfattribs={"layer": "CUT"})
+        for end, edge in joint_edges(placed):
+            msp.add_line(tuple(edge[0]), tuple(edge[1]), dxfattribs={"layer": "JOINTS"})
+            msp.add_text(f"joint {placed.piece.name} {end}", height=height / 2,
+                         dxfattribs={"layer": "TEXT", "insert": tuple(edge.mean(axis=0))})  # fmt: skip
+        msp.add_text(placed.piece.name, height=height, dxfattribs={"layer": "TEXT", "insert": label_point(placed)})
+    msp.add_text(f"{plate.name}  {length:g} x {width:g} {fab.length_unit}  kerf {fab.kerf:g}", height=height,
+                 dxfattribs={"layer": "TEXT", "insert": (0.0, -1.5 * height)})  # fmt: skip
+    with atomic_path(path) as tmp:
+        doc.saveas(tmp)
+    return Path(path)
+
+
+def _part_outline(msp, placed: PlacedPiece) -> None:
+    """The finished outline on PARTS: exact circles and arcs for rings, else the polyline."""
+    pattern = placed.piece.pattern
+    attribs = {"layer": "PARTS"}
+    if pattern.hole is not None:  # a full annulus: two circles about the placed centre
+        centre = tuple(placed.place(np.zeros((1, 2)))[0])
+        msp.add_circle(centre, float(np.linalg.norm(pattern.outline[0])), dxfattribs=attribs)
+        msp.add_circle(centre, float(np.linalg.norm(pattern.hole[0])), dxfattribs=attribs)
+    elif pattern.sector is not None:  # a sector: its arcs as bulges (each half arc <= 180 deg)
+        r_in, r_out, angle = pattern.sector
+        bulge = math.tan(angle / 8.0)
+        a = 0.5 * math.pi + 0.5 * angle * np.array([-1.0, 0.0, 1.0])
+        arc = np.stack([np.cos(a), np.sin(a)], axis=1)
+        corners = placed.place(np.concatenate([r_out * arc, r_in * arc[::-1]]))
+        bulges = [bulge, bulge, 0.0, -bulge, -bulge, 0.0]  # a rotation keeps every bulge
+        msp.add_lwpolyline([(x, y, b) for (x, y), b in zip(corners.tolist(), bulges)], format="xyb", close=True,
+                           dxfattribs=attribs)  # fmt: skip
+    else:
+        msp.add_lwpolyline(placed.outline.tolist(), close=True, dxfattribs=attribs)
+
+
+def write_plate_svg(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
+    """The plate at 1:1: the SVG's user unit is the millimetre, y up as in the DXF."""
+    mm = length_unit(fab.length_unit).mm
+    length, width = plate.size
+    height = text_height(plate)
+    pad = 4 * height
+    W, H = (length + 2 * pad) * mm, (width + 3 * pad) * mm
+    svg = ET.Element("svg", xmlns="http://www.w3.org/2000/svg", width=f"{W:.6g}mm", height=f"{H:.6g}mm",
+                     viewBox=f"0 0 {W:.6g} {H:.6g}")  # fmt: skip
+    ET.SubElement(svg, "title").text = f"{plate.name}: {length:g} x {width:g} {fab.length_unit}, 1:1"
+    # model (x, y) -> SVG mm, y flipped so that the drawing reads as the DXF does
+    flip = ET.SubElement(svg, "g", transform=f"translate({pad * mm:.6g} {(width + pad) * mm:.6g}) scale({mm:.9g} {-mm:.9g})")
+
+    def group(layer: str) -> ET.Element:
+        colour, stroke_mm = SVG_STYLE.get(layer, ("#000000", 0.3))
+        return ET.SubElement(flip, "g", id=layer, fill="none", stroke=colour, **{"stroke-width": f"{stroke_mm / mm:.6g}"})
+
+    def path_d(points: np.ndarray, close: bool = True) -> str:
+        d = "M " + " L ".join(f"{x:.6f} {y:.6f}" for x, y in points)
+        return d + (" Z" if close else "")
+
+    ET.SubElement(group("PLATE"), "path", d=path_d(np.array([(0, 0), (length, 0), (length, width), (0, width)])))
+    parts, cuts, joints = group("PARTS"), group("CUT"), group("JOINTS")
+    for placed in plate.pieces:
+        rings = [placed.outline] + ([] if placed.hole is None else [placed.hole])
+        ET.SubElement(parts, "path", d=" ".join(path_d(r) for r in rings), id=placed.piece.name,
+                      **{"fill-rule": "evenodd"})  # fmt: skip
+        for points in cut_paths(placed, fab.kerf):
+            ET.SubElement(cuts, "path", d=path_d(points))
+        for _, edge in joint_edges(placed):
+            ET.SubElement(joints, "path", d=path_d(edge, close=False))
+    text = ET.SubElement(svg, "g", id="TEXT", fill="#10203a", **{"font-family": "sans-serif",
+                                                                  "font-size": f"{height * mm:.6g}"})  # fmt: skip
+    for placed in plate.pieces:
+        x, y = label_point(placed)
+        ET.SubElement(text, "text", x=f"{(x + pad) * mm:.6g}", y=f"{(width + pad - y) * mm:.6g}",
+                      **{"text-anchor": "middle"}).text = placed.piece.name  # fmt: skip
+    ET.SubElement(text, "text", x=f"{pad * mm:.6g}", y=f"{(width + 2.5 * pad) * mm:.6g}").text = (
+        f"{plate.name}  {length:g} x {width:g} {fab.length_unit}  kerf {fab.kerf:g}  "
+        f"{len(plate.pieces)} pieces  utilisation {100 * plate.utilisation:.1f} %")
+    return write_text(path, ET.tostring(svg, encoding="unicode") + "\n")
+
+
+def write_plate_picture(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
+    """A preview of the plate for people (PNG, not to scale): parts, their names, the
+    butt-joint edges in green and the utilisation in the title."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Polygon as Patch
+
+    from ..export.atomic import save_figure
+
+    length, width = plate.size
+    fig, ax = plt.subplots(figsize=(12, 12 * width / length + 0.8))
+    ax.add_patch(Patch([(0, 0), (length, 0), (length, width), (0, width)], closed=True, facecolor="#f2f2f2",
+                       edgecolor="#555555"))  # fmt: skip
+    for placed in plate.pieces:
+        ax.add_patch(Patch(placed.outline, closed=True, facecolor="#c9d6ea", edgecolor="#10203a", linewidth=0.6))
+        if placed.hole is not None:
+            ax.add_patch(Patch(placed.hole, closed=True, facecolor="#f2f2f2", edgecolor="#10203a", linewidth=0.6))
+        for _, edge in joint_edges(placed):
+            ax.plot(edge[:, 0], edge[:, 1], color=SVG_STYLE["JOINTS"][0], linewidth=1.5)
+        ax.text(*label_point(placed), placed.piece.name, fontsize=6, ha="center", va="center")
+    ax.set_xlim(-0.01 * length, 1.01 * length)
+    ax.set_ylim(-0.01 * width, 1.01 * width)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    ax.set_title(f"{plate.name}: {length:g} x {width:g} {fab.length_unit}, {len(plate.pieces)} pieces, utilisation "
+                 f"{100 * plate.utilisation:.1f} %, kerf {fab.kerf:g} (butt joints green)", fontsize=9)  # fmt: skip
+    target = Path(path)
+    return save_figure(fig, target.parent, target.stem, ("png",), dpi=120)[0]

@@ -1,0 +1,273 @@
+"""Web pieces nested on stock plates (issue 13), checked with shapely.
+
+Each piece may be turned (never mirrored, so that its marked side stays up): its
+minimum-area rectangle laid along the plate's length, then turned by 0, 180, 90 or 270 deg.
+Pieces are placed largest first by a raster bottom-left fill: the usable plate (less a kerf
+at each edge) is a grid of RASTER_CELLS cells along its length; every placed piece marks
+the cells within 2 kerf + 1.5 cells of it, and a new piece goes where its own cells meet
+none of those (one FFT correlation per turn, scipy.signal.fftconvolve) with its top edge
+lowest, then leftmost; each such spot is checked exactly with shapely (distance >= 2 kerf
+to every placed piece, inside the plate less a kerf) before it is taken. A new plate is
+opened when no plate has room. Pieces nest inside ring annuli and curved strips inside
+each other. :func:`check_nesting` measures the plates with shapely, independently.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError
+from .fabrication import Fabrication
+from .webs import WebPiece
+
+
+@dataclass(frozen=True)
+class PlacedPiece:
+    """A piece on a plate: its own outline turned by ``angle`` (radians, counter-clockwise)
+    about the origin, then moved by ``offset``."""
+
+    piece: WebPiece
+    angle: float
+    offset: tuple[float, float]
+
+    def place(self, points: np.ndarray) -> np.ndarray:
+        """Points of the piece's own frame on the plate."""
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        return np.asarray(points) @ np.array([[c, s], [-s, c]]) + np.asarray(self.offset)
+
+    @property
+    def outline(self) -> np.ndarray:
+        return self.place(self.piece.pattern.outline)
+
+    @property
+    def hole(self) -> np.ndarray | None:
+        hole = self.piece.pattern.hole
+        return None if hole is None else self.place(hole)
+
+    def polygon(self):
+        """The placed piece as a shapely Polygon (a full ring's annulus with its hole)."""
+        from shapely.geometry import Polygon
+
+        hole = self.hole
+        return Polygon(self.outline, [] if hole is None else [hole])
+
+
+@dataclass
+class Plate:
+    index: int  # 1, 2, ...
+    size: tuple[float, float]  # (length, width): x along the length
+    pieces: list[PlacedPiece] = field(default_factory=list)
+
+    @property
+    def name(self) -> str:
+        return f"plate_{self.index:02d}"
+
+    @property
+    def utilisation(self) -> float:
+        """The pieces' exact area over the plate's."""
+        return sum(p.piece.area for p in self.pieces) / (self.size[0] * self.size[1])
+
+
+def oriented(piece: WebPiece) -> tuple[float, np.ndarray, np.ndarray]:
+    """(angle, lower-left corner, size) of the piece turned so that the long side of its
+    minimum-area rectangle lies along x (for a full ring: unturned)."""
+    from shapely.geometry import Polygon
+
+    outline = piece.pattern.outline
+    angle = 0.0
+    if piece.pattern.hole is None:
+        rect = np.asarray(Polygon(outline).minimum_rotated_rectangle.exterior.coords)[:4]
+        edge = rect[1] - rect[0] if np.linalg.norm(rect[1] - rect[0]) >= np.linalg.norm(rect[2] - rect[1]) else rect[2] - rect[1]
+        angle = -math.atan2(edge[1], edge[0])
+    c, s = math.cos(angle), math.sin(angle)
+    turned = outline @ np.array([[c, s], [-s, c]])
+    lo, hi = turned.min(axis=0), turned.max(axis=0)
+    if piece.pattern.hole is not None or piece.pattern.sector is not None:
+        # a ring's arcs are exact in the DXF: they bulge past the sampled outline by its sagitta
+        r_out = float(np.linalg.norm(outline, axis=1).max())
+        step = np.max(np.abs(np.diff(np.unwrap(np.arctan2(outline[:, 1], outline[:, 0])))))
+        pad = 2.0 * r_out * (1.0 - math.cos(min(step, math.pi / 2) / 2))
+        lo, hi = lo - pad, hi + pad
+    return angle, lo, hi - lo
+
+
+#: raster cells along the plate's usable length (the placement search's resolution)
+RASTER_CELLS = 600
+#: turns tried for each piece, after its minimum-area rectangle is laid along the plate
+TURNS_DEG = (0.0, 180.0, 90.0, 270.0)
+
+
+def nest(pieces: list[WebPiece], fab: Fabrication) -> list[Plate]:
+    """The pieces on as few plates as a raster bottom-left fill finds (module docstring)."""
+    length, width = sorted(fab.plate_size, reverse=True)
+    margin, spacing = fab.kerf, 2 * fab.kerf
+    usable = (length - 2 * margin, width - 2 * margin)
+    cell = usable[0] / RASTER_CELLS
+    shape = (int(usable[1] // cell), int(usable[0] // cell))  # rows along y, columns along x
+    plates: list[Plate] = []
+    occupied: list[np.ndarray] = []
+    order = sorted(pieces, key=lambda p: (-_footprint(p), p.name))
+    for piece in order:
+        candidates = _turned(piece, usable)
+        for k, plate in enumerate(plates + [None]):
+            if plate is None:
+                plates.append(Plate(len(plates) + 1, (length, width)))
+                occupied.append(np.zeros(shape, dtype=bool))
+                plate = plates[-1]
+            spot = _lowest_spot(plate, occupied[k], piece, candidates, cell, margin, spacing)
+            if spot is not None:
+                placed, mask, (row, col) = spot
+                plate.pieces.append(placed)
+                _paint(occupied[k], mask, row, col)
+                break
+            if not plate.pieces:
+                raise ParameterError(f"[fabrication] plate_size {list(fab.plate_size)} is too small for {piece.name} "
+                                     f"with a kerf of {fab.kerf:g} at its edges")  # fmt: skip
+    return plates
+
+
+def _paint(occupied: np.ndarray, mask: np.ndarray, row: int, col: int) -> None:
+    """OR ``mask`` into ``occupied`` with its corner at (row, col), clipped to the raster."""
+    r0, c0 = max(row, 0), max(col, 0)
+    r1, c1 = min(row + mask.shape[0], occupied.shape[0]), min(col + mask.shape[1], occupied.shape[1])
+    if r1 > r0 and c1 > c0:
+        occupied[r0:r1, c0:c1] |= mask[r0 - row:r1 - row, c0 - col:c1 - col]
+
+
+def _footprint(piece: WebPiece) -> float:
+    _, _, size = oriented(piece)
+    return float(size[0] * size[1])
+
+
+def _turned(piece: WebPiece, usable: tuple[float, float]) -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """(angle, lower-left, size) of each turn of the piece that fits the usable plate."""
+    angle, _, _ = oriented(piece)
+    out = []
+    for turn in TURNS_DEG:
+        a = angle + math.radians(turn)
+        c, s = math.cos(a), math.sin(a)
+        outline = piece.pattern.outline @ np.array([[c, s], [-s, c]])
+        lo, hi = outline.min(axis=0), outline.max(axis=0)
+        if piece.pattern.hole is not None or piece.pattern.sector is not None:
+            pad = _arc_pad(piece.pattern.outline)
+            lo, hi = lo - pad, hi + pad
+        if hi[0] - lo[0] <= usable[0] and hi[1] - lo[1] <= usable[1]:
+            out.append((a, lo, hi - lo))
+    return out
+
+
+def _arc_pad(outline: np.ndarray) -> float:
+    """How far a ring's exact arcs bulge past its sampled outline (twice the sagitta)."""
+    r_out = float(np.linalg.norm(outline, axis=1).max())
+    step = np.max(np.abs(np.diff(np.unwrap(np.arctan2(outline[:, 1], outline[:, 0])))))
+    return 2.0 * r_out * (1.0 - math.cos(min(step, math.pi / 2) / 2))
+
+
+def _mask(polygon, lo: np.ndarray, rows: int, cols: int, cell: float, grow: float) -> np.ndarray:
+    """Cells (of the raster anchored at ``lo``) within ``grow`` of the polygon."""
+    import shapely
+
+    x = lo[0] + (np.arange(cols) + 0.5) * cell
+    y = lo[1] + (np.arange(rows) + 0.5) * cell
+    xx, yy = np.meshgrid(x, y)
+    region = polygon.buffer(grow, quad_segs=4)
+    shapely.prepare(region)
+    return shapely.contains_xy(region, xx, yy)
+
+
+def _lowest_spot(plate: Plate, occupied: np.ndarray, piece: WebPiece, candidates, cell: float, margin: float,
+                 spacing: float):  # fmt: skip
+    """The placement of ``piece`` (one of its turns) whose top edge is lowest, then leftmost,
+    among the raster positions where its cells meet no cell within spacing + 1.5 cells of
+    a placed piece; each is checked exactly (shapely distances) before it is taken.
+    Returns (placed, its grown mask, the mask's (row, col) on the raster) or None."""
+    from scipy.signal import fftconvolve
+
+    tries = []
+    for angle, lo, size in candidates:
+        rows, cols = int(math.ceil(size[1] / cell)), int(math.ceil(size[0] / cell))
+        if rows > occupied.shape[0] or cols > occupied.shape[1]:
+            continue
+        polygon = PlacedPiece(piece, angle, (0.0, 0.0)).polygon()
+        mask = _mask(polygon, lo, rows, cols, cell, 0.75 * cell)
+        if occupied.any():
+            hits = fftconvolve(occupied.astype(float), mask[::-1, ::-1].astype(float), mode="valid") > 0.5
+        else:
+            hits = np.zeros((occupied.shape[0] - rows + 1, occupied.shape[1] - cols + 1), dtype=bool)
+        free = np.argwhere(~hits)
+        if len(free):
+            free = free[np.lexsort((free[:, 1], free[:, 0] + rows))][:64]  # lowest top edge, then leftmost
+            tries += [(row + rows, col, row, angle, lo, size) for row, col in free]
+    tries.sort(key=lambda t: (t[0], t[1]))
+    for _, col, row, angle, lo, size in tries:
+        placed = PlacedPiece(piece, angle, (margin + col * cell - lo[0], margin + row * cell - lo[1]))
+        if _fits_exactly(plate, placed, margin, spacing):
+            grow = spacing + 1.5 * cell
+            extra = int(math.ceil(grow / cell))
+            rows, cols = int(math.ceil(size[1] / cell)) + 2 * extra, int(math.ceil(size[0] / cell)) + 2 * extra
+            own = _mask(PlacedPiece(piece, angle, (0.0, 0.0)).polygon(), lo - extra * cell, rows, cols, cell, grow)
+            return placed, own, (row - extra, col - extra)
+    return None
+
+
+def _fits_exactly(plate: Plate, placed: PlacedPiece, margin: float, spacing: float) -> bool:
+    from shapely.geometry import box
+
+    polygon = placed.polygon()
+    inner = box(margin, margin, plate.size[0] - margin, plate.size[1] - margin)
+    if not inner.buffer(1e-9 * plate.size[0]).contains(polygon.buffer(_pad_of(placed), quad_segs=2)):
+        return False
+    for other in plate.pieces:
+        need = spacing + _pad_of(placed) + _pad_of(other)
+        shape = other.polygon()
+        if _bounds_gap(polygon, shape) < need and polygon.distance(shape) < need:
+            return False
+    return True
+
+
+def _bounds_gap(a, b) -> float:
+    """The distance between two shapes' bounding boxes: a lower bound of theirs."""
+    (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = a.bounds, b.bounds
+    return math.hypot(max(bx0 - ax1, ax0 - bx1, 0.0), max(by0 - ay1, ay0 - by1, 0.0))
+
+
+def _pad_of(placed: PlacedPiece) -> float:
+    pattern = placed.piece.pattern
+    return _arc_pad(pattern.outline) if pattern.hole is not None or pattern.sector is not None else 0.0
+
+
+def check_nesting(plates: list[Plate], fab: Fabrication) -> dict:
+    """What the plates hold, measured with shapely on the placed outlines: every piece a
+    valid polygon inside its plate at least a kerf from the edge, no two closer than 2 kerf
+    (the smallest distances found are reported), and the utilisation."""
+    from shapely.geometry import box
+
+    smallest_gap, smallest_margin, valid = math.inf, math.inf, True
+    for plate in plates:
+        sheet = box(0.0, 0.0, *plate.size)
+        polygons = [p.polygon() for p in plate.pieces]
+        for i, polygon in enumerate(polygons):
+            valid &= polygon.is_valid and sheet.contains(polygon)
+            smallest_margin = min(smallest_margin, sheet.exterior.distance(polygon))
+            for other in polygons[i + 1:]:
+                if _bounds_gap(polygon, other) < smallest_gap:  # else it cannot be the smallest
+                    smallest_gap = min(smallest_gap, polygon.distance(other))
+    area = sum(p.piece.area for plate in plates for p in plate.pieces)
+    tol = 1e-9 * max(fab.plate_size)
+    return {
+        "plates": len(plates),
+        "pieces": sum(len(p.pieces) for p in plates),
+        "valid": bool(valid and smallest_gap >= 2 * fab.kerf - tol and smallest_margin >= fab.kerf - tol),
+        "smallest_gap": None if math.isinf(smallest_gap) else smallest_gap,
+        "smallest_margin": None if math.isinf(smallest_margin) else smallest_margin,
+        "utilisation": area / (len(plates) * plate_area(fab)) if plates else 0.0,
+        "per_plate": [{"plate": p.name, "pieces": [q.piece.name for q in p.pieces], "utilisation": p.utilisation}
+                      for p in plates],  # fmt: skip
+    }
+
+
+def plate_area(fab: Fabrication) -> float:
+    return fab.plate_size[0] * fab.plate_size[1]
