@@ -236,6 +236,10 @@ def write_pin_jig_csv(jig: PinJig, path: str | Path, length_unit: str = DEFAULT_
     return write_text(path, "\n".join(lines) + "\n")
 
 
+#: pins whose heights the picture writes beside them (more: colours only)
+MAX_LABELLED_PINS = 150
+
+
 def write_pin_jig_picture(jig: PinJig, folder: str | Path, formats: tuple[str, ...] = ("png", "svg")) -> list[Path]:
     """``NAME_pin_jig.png`` and ``.svg`` (``formats``): the pins coloured by height, each height written at its
     pin, the panel's projected outline, equal aspect."""
@@ -250,8 +254,9 @@ def write_pin_jig_picture(jig: PinJig, folder: str | Path, formats: tuple[str, .
     dots = ax.scatter(jig.xy[:, 0], jig.xy[:, 1], c=jig.heights, cmap="viridis", s=18, zorder=3)
     fig.colorbar(dots, ax=ax, shrink=0.8, label="pin height")
     size = max(3.0, min(7.0, 300.0 / math.sqrt(max(len(jig.heights), 1))))
-    for (x, y), height in zip(jig.xy, jig.heights):
-        ax.annotate(f"{height:.1f}", (x, y), xytext=(0, 4), textcoords="offset points", ha="center", fontsize=size)
+    if len(jig.heights) <= MAX_LABELLED_PINS:  # beyond, the labels are unreadable (and slow): the CSV has them
+        for (x, y), height in zip(jig.xy, jig.heights):
+            ax.annotate(f"{height:.1f}", (x, y), xytext=(0, 4), textcoords="offset points", ha="center", fontsize=size)
     ax.set_aspect("equal")
     ax.set_title(f"{jig.name}: pin jig, spacing {jig.spacing:g}, {len(jig.heights)} pins, heights "
                  f"{jig.heights.min():.4g} to {jig.heights.max():.4g}", fontsize=9)  # fmt: skip
