@@ -163,10 +163,16 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
 
 
 def _check_height(st: Stiffener, fab: Fabrication) -> None:
-    if st.profile.height > fab.usable[1]:
-        raise ParameterError(f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: its "
-                             f"height {st.profile.height:g} exceeds the plate's usable width {fab.usable[1]:g} "
-                             f"(the width less a kerf at each edge)")  # fmt: skip
+    """No piece of the web (or of a T or L stringer's flange) can be narrower than its
+    height (its flange's width): refused at once if that exceeds the usable plate."""
+    widths = [("web", "height", st.profile.height)]
+    if st.profile.kind != "flat" and st.kind == "stringer":
+        widths.append(("flange", "width", st.profile.flange_width))
+    for part, what, size in widths:
+        if size > fab.usable[1]:
+            raise ParameterError(f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s "
+                                 f"{part}: its {what} {size:g} exceeds the plate's usable width {fab.usable[1]:g} "
+                                 f"(the width less a kerf at each edge)")  # fmt: skip
 
 
 # --- rings ----------------------------------------------------------------------------------------
