@@ -5,7 +5,6 @@ line, exit code 2 and no file."""
 
 import csv
 import json
-import math
 from pathlib import Path
 
 import numpy as np

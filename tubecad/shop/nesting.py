@@ -86,10 +86,7 @@ def oriented(piece: WebPiece) -> tuple[float, np.ndarray, np.ndarray]:
     turned = outline @ np.array([[c, s], [-s, c]])
     lo, hi = turned.min(axis=0), turned.max(axis=0)
     if piece.pattern.hole is not None or piece.pattern.sector is not None:
-        # a ring's arcs are exact in the DXF: they bulge past the sampled outline by its sagitta
-        r_out = float(np.linalg.norm(outline, axis=1).max())
-        step = np.max(np.abs(np.diff(np.unwrap(np.arctan2(outline[:, 1], outline[:, 0])))))
-        pad = 2.0 * r_out * (1.0 - math.cos(min(step, math.pi / 2) / 2))
+        pad = _arc_pad(outline)  # a ring's arcs are exact in the DXF: they bulge past the sampled outline
         lo, hi = lo - pad, hi + pad
     return angle, lo, hi - lo
 

@@ -21,15 +21,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any, Callable
+from typing import Callable
 
 from ..brep import TubeBuild
 from ..errors import ParameterError
 from ..stiffeners.panels import Panel
 from ..stiffeners.solids import Stiffener
 from .fabrication import Fabrication
-from .marking import MarkingLine, panel_marking
+from .marking import MarkingLine, marking_surface, panel_marking
 from .nesting import Plate, nest
 from .webs import WebPiece, piece_solids, ring_pieces, stringer_pieces
 
@@ -146,7 +145,7 @@ def panel_developments(build: TubeBuild, panels: list[Panel], side: str) -> list
     surface its marking lines lie on."""
     from .panel_development import develop_panel
 
-    surface = build.surfaces[0].tube if side == "outside" else build.surfaces[-1].tube
+    surface = marking_surface(build, side).tube
     return [develop_panel(surface, p.s_range, p.angles_deg, p.name) for p in panels]
 
 
@@ -157,7 +156,7 @@ def pin_jigs(build: TubeBuild, panels: list[Panel], stiffeners: list[Stiffener],
     from .pin_jig import pin_jig
 
     side = stiffeners[0].side if stiffeners else "outside"
-    surface = build.surfaces[-1].tube if side == "outside" else build.surfaces[0].tube
+    surface = marking_surface(build, "inside" if side == "outside" else "outside").tube  # the side opposite
     up_sign = 1.0 if side == "outside" else -1.0
     out = []
     for p in panels:

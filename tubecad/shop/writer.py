@@ -4,7 +4,6 @@ then ``index.json`` listing each file with what it is, and the one-page overview
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 from typing import Any
 
