@@ -7,6 +7,8 @@
     tubecad build SPEC.toml --sweep tube.radius=10,12,15 -d DIR     the spec for each value (a batch)
     tubecad flat SPEC.toml -o DIR             flat patterns of the spec's stiffener webs
     tubecad shop SPEC.toml -o DIR             shop-floor package: nested webs, flanges, bending, marking, panels, pin jigs
+    tubecad mesh SPEC.toml -o model.inp ...   finite-element shells and beams on the curvature-line net (.inp, .msh, .vtu)
+    tubecad analyse SPEC.toml -o DIR          the [analysis] pressure case solved with CalculiX: results.json, a picture
     tubecad schema [-o FILE]                  the JSON Schema of spec files, for editors
     tubecad view SPEC.toml | paper [--port N] the named, coloured tree in OCP CAD Viewer
 
@@ -423,6 +425,75 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
     for entry in index["files"]:
         click.echo(str(output / entry["path"]))
     click.echo(str(output / "index.json"))
+
+
+_MESH_OPTIONS = [
+    click.option("--element", type=click.Choice(["S4", "S4R", "S8", "S8R"]), default=None,
+                 help="Shell element (overrides [mesh] element; default S8R)."),
+    click.option("--size", type=float, default=None,
+                 help="Longest element edge both ways, model units (overrides [mesh] size)."),
+]
+
+
+def _mesh_options(command):
+    for option in reversed(_MESH_OPTIONS):
+        command = option(command)
+    return command
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output", "outputs", multiple=True, required=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="Mesh file: .inp (CalculiX/Abaqus), .msh (gmsh 4.1) or .vtu (VTK); repeat for several.")
+@_mesh_options
+def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float | None) -> None:
+    """Finite-element mesh of SPEC's wall on its lines of curvature, with its [mesh] settings
+    (element, beam, size, size_along, size_around, surface, max_elements, beams): quadrilateral
+    shells (S4/S4R/S8/S8R) whose nodes lie on the exact surface with exact normals, element edges
+    on the layout's rings and stringers, the [stiffeners] as beams (B31/B32) on the shells' nodes,
+    and node and element sets named after the parts (ring_03, stringer_05, panel_r2_s1,
+    start_ring, end_ring). A .inp also gets the material and, with [analysis], its pressure step."""
+    _load()
+    from .mesh_section import checked_outputs, write_mesh
+
+    try:
+        checked_outputs(list(outputs))
+        built, written = write_mesh(load_spec(spec), list(outputs), element=element, size=size)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    q = built.info["quality"]
+    click.echo(f"{built.element_count} elements ({built.info['elements_along']} along x {built.info['elements_around']} "
+               f"around, {len(built.beam_blocks)} beam blocks), {len(built.nodes)} nodes; aspect ratio <= "
+               f"{q['aspect_ratio_max']:.3g}, skew <= {q['skew_deg_max']:.3g} deg")
+    for path in written:
+        click.echo(str(path))
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output", "output", required=True, type=click.Path(file_okay=False, path_type=Path),
+              help="Folder for model.inp, model.frd, results.json and ring_stress.png (created if needed).")
+@_mesh_options
+@click.option("-q", "--quiet", is_flag=True, help="No stage lines on stderr (shown on a terminal only).")
+def analyse(spec: Path, output: Path, element: str | None, size: float | None, quiet: bool) -> None:
+    """Solve SPEC's [analysis] (internal pressure; ends fixed, capped or free) on its mesh with
+    CalculiX (ccx), and write the deck, the results, a summary (results.json: displacements,
+    stresses along the rings and stringers) and a picture of the ring stress on the deformed shell."""
+    _load()
+    from .mesh_section import analyse_spec
+
+    live = not quiet and sys.stderr.isatty()
+    say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
+    try:
+        summary = analyse_spec(load_spec(spec), output, say, element=element, size=size)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    ring, stringer = summary["ring_stress"], summary["stringer_stress"]
+    click.echo(f"{summary['elements']} elements solved in {summary['solve_seconds']:.1f} s; ring stress "
+               f"{ring['min']:.4g} to {ring['max']:.4g}, stringer stress {stringer['min']:.4g} to {stringer['max']:.4g}, "
+               f"largest displacement {summary['max_displacement']:.4g}")
+    for name in summary["files"]:
+        click.echo(str(output / name))
 
 
 @cli.command()

@@ -161,6 +161,15 @@ def _check_build_sections(tube: CurvatureLineTube | CanalSurface, sections: dict
             fabrication_settings(sections["fabrication"], unit)
         except ParameterError as exc:
             raise fail(str(exc)) from None
+    if "mesh" in sections or "analysis" in sections:  # the mesh's and the analysis' settings
+        from ..fem.settings import analysis_settings, mesh_settings
+
+        unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+        try:
+            mesh_settings(sections.get("mesh"))
+            analysis_settings(sections.get("analysis"), unit, bool(tube.axis.closed))
+        except ParameterError as exc:
+            raise fail(str(exc)) from None
     if canal:
         return _check_canal_sections(tube, sections, fail)
     wall = sections.get("wall")

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..brep.wall import WALL_SIDES
+from ..fem.settings import BEAM_TYPES, DEFAULT_MAX_ELEMENTS, ENDS, MAX_ELEMENTS_LIMIT, SHELL_TYPES, SURFACES
 from ..fitting.tolerance import MIN_SIZE
 from ..stiffeners.profiles import KINDS, SIDES
 from ..units import DEFAULT_LENGTH_UNIT, LENGTH_UNITS
@@ -171,6 +172,36 @@ FABRICATION_KEYS = {
                   "along a stringer, degrees in [0, 360) round a ring (e.g. stringer_02 = [450.0])"),
 }  # fmt: skip
 
+MESH_KEYS = {
+    "element": Key("string", required=False, choices=SHELL_TYPES, default="S8R",
+                   help=f"the shell element: {' | '.join(SHELL_TYPES)} (linear or quadratic; R: reduced integration)"),
+    "beam": Key("string", required=False, choices=BEAM_TYPES,
+                help=f"the stiffeners' beam element: {' | '.join(BEAM_TYPES)} (default B31 with S4, B32 with S8)"),
+    "size": Key("number", required=False, low=0.0, high=MAX_LENGTH, high_open=False,
+                help="the longest element edge, both ways, > 0 (default 2 pi r / 32 of the smallest radius)"),
+    "size_along": Key("number", required=False, low=0.0, high=MAX_LENGTH, high_open=False,
+                      help="the longest element edge along the stringers, > 0 (default size)"),
+    "size_around": Key("number", required=False, low=0.0, high=MAX_LENGTH, high_open=False,
+                       help="the longest element edge round the rings, > 0 (default size)"),
+    "surface": Key("string", required=False, choices=SURFACES, default="mid",
+                   help=f"{' | '.join(SURFACES)}: the wall's mid-surface with its thickness, its inner or outer face "
+                        "(the section offset into the wall), or both faces"),
+    "max_elements": Key("integer", required=False, low=1, high=MAX_ELEMENTS_LIMIT, low_open=False, high_open=False,
+                        default=DEFAULT_MAX_ELEMENTS, help=f"refuse meshes with more elements, 1 to {MAX_ELEMENTS_LIMIT}"),
+    "beams": Key("bool", required=False, default=True, help="the [stiffeners] as beam elements (default true)"),
+}  # fmt: skip
+
+ANALYSIS_KEYS = {
+    "pressure": Key("number", required=False, default=0.0,
+                    help="internal pressure, N per square [units] length (mm: MPa)"),
+    "ends": Key("string", required=False, choices=ENDS,
+                help=f"{' | '.join(ENDS)}: end rings held, capped (the caps' resultant on the end rings), or free "
+                     "(a closed tube; default fixed, free when closed)"),
+    "youngs_modulus": Key("number", required=False, low=0.0,
+                          help="N per square [units] length (default steel, 210 GPa: 210000 in mm)"),
+    "poisson_ratio": Key("number", required=False, low=-1.0, high=0.5, default=0.3, help="in (-1, 0.5)"),
+}  # fmt: skip
+
 UNITS_KEYS = {
     "length": Key("string", required=False, choices=tuple(LENGTH_UNITS), default=DEFAULT_LENGTH_UNIT,
                   help=f"{' | '.join(LENGTH_UNITS)}: the unit of every length in the spec, written into STEP, "
@@ -180,7 +211,7 @@ UNITS_KEYS = {
 #: sections beyond [axis] and [tube]
 EXTRA_SECTIONS: dict[str, dict[str, Key]] = {
     "layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS, "stiffeners": STIFFENER_KEYS, "panels": PANEL_KEYS,
-    "units": UNITS_KEYS, "fabrication": FABRICATION_KEYS,
+    "units": UNITS_KEYS, "fabrication": FABRICATION_KEYS, "mesh": MESH_KEYS, "analysis": ANALYSIS_KEYS,
 }  # fmt: skip
 
 #: what each section is for (the schema's descriptions)
@@ -195,4 +226,6 @@ SECTION_HELP = {
     "panels": "split the wall into panels along seam stringers",
     "units": "the unit of every length in the spec and in the files written",
     "fabrication": "shop-floor settings for tubecad shop: plates, kerf, butt joints, strain limit, pin jigs",
+    "mesh": "the finite-element mesh of tubecad mesh: shell and beam elements, sizes, surface, element cap",
+    "analysis": "the pressure analysis of tubecad analyse (CalculiX): pressure, ends, material",
 }

@@ -1,0 +1,60 @@
+"""A picture of a result on the deformed shell: each shell element a quadrilateral through
+its corners moved by the displacement (scaled so that the largest is ``exaggeration`` of the
+model's size), coloured by the mean of a nodal value over its corners."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .analysis import PressureResult
+
+
+def deformed_figure(result: PressureResult, values: np.ndarray, label: str, exaggeration: float = 0.05,
+                    title: str = ""):  # fmt: skip
+    """The matplotlib figure (module docstring); ``label`` names ``values`` on the colour bar."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    mesh = result.mesh
+    size = float(np.ptp(mesh.nodes, axis=0).max())
+    u = np.nan_to_num(result.displacement)
+    largest = float(np.linalg.norm(u, axis=1).max())
+    scale = exaggeration * size / largest if largest > 0 else 0.0
+    moved = mesh.nodes + scale * u
+    corners = np.concatenate([b.connectivity[:, :4] for b in mesh.shell_blocks])
+    colour = np.nanmean(values[corners], axis=1)
+    fig = plt.figure(figsize=(9, 7))
+    ax = fig.add_subplot(projection="3d")
+    cmap = plt.get_cmap("viridis")
+    lo, hi = float(np.nanmin(colour)), float(np.nanmax(colour))
+    norm = matplotlib.colors.Normalize(lo, hi if hi > lo else lo + 1.0)
+    quads = Poly3DCollection(moved[corners], facecolors=cmap(norm(colour)), edgecolors="none", linewidths=0)
+    ax.add_collection3d(quads)
+    low, high = moved.min(axis=0), moved.max(axis=0)
+    ax.set_xlim(low[0], high[0]), ax.set_ylim(low[1], high[1]), ax.set_zlim(low[2], high[2])
+    ax.set_box_aspect(tuple(np.maximum(high - low, 1e-9 * size)))
+    ax.set_axis_off()
+    ax.view_init(elev=30, azim=-60)
+    bar = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, shrink=0.7)
+    bar.set_label(label)
+    ax.set_title(f"{title}\ndisplacements x {scale:.3g} (largest {largest:.3g} {mesh.length_unit})", fontsize=10)
+    return fig
+
+
+def save_deformed(result: PressureResult, values: np.ndarray, label: str, folder: str | Path, stem: str,
+                  title: str = "") -> list[Path]:  # fmt: skip
+    """:func:`deformed_figure` saved as ``stem``.png in ``folder``, atomically."""
+    import matplotlib.pyplot as plt
+
+    from ..export.atomic import save_figure
+
+    fig = deformed_figure(result, values, label, title=title)
+    try:
+        return save_figure(fig, folder, stem, formats=("png",), dpi=110)
+    finally:
+        plt.close(fig)
