@@ -6,8 +6,10 @@ section 10): closed forms computed here, not from the code.
 - a closed torus (a circle axis of radius R, tube radius r): p r (2R + r sin theta) /
   (2 t (R + r sin theta)) round the rings, p r / 2t along the stringers (sin theta = +1 on the
   outer equator);
+- a capped cone (a canal surface, sphere radius rho(s)): p rho / t and p rho / 2t;
 - the error of linear elements halves (or better) each time the mesh is refined;
-- ring stiffeners (beams on the shell's nodes) take hoop load off the wall;
+- stringers (beams on the shell's nodes) take their share of the axial load by their area;
+- ring stiffeners take hoop load off the wall;
 - bad input: one line naming the key, exit code 2, no file.
 
 CI installs ccx (.ci/run); elsewhere these tests are skipped when it is missing.
@@ -121,6 +123,46 @@ def test_ring_stiffeners_take_hoop_load_off_the_wall():
     mid_bay = np.isclose(s, 370.0, atol=5.0)
     shell_at_ring = res.ring_stress[at_ring].mean() / (P * r / t)
     assert shell_at_ring < 0.6 * res.ring_stress[mid_bay].mean() / (P * r / t) and shell_at_ring < 0.6
+
+
+def test_a_capped_cone_carries_p_rho_over_t_round_and_half_along():
+    """A canal surface of sphere radius rho(s) = rho0 + c s on a straight axis is a cone of
+    half-angle asin c. Its normal meets the axis at the sphere's centre, so the second
+    principal radius is rho itself: capped, sigma_ring = p rho / t and sigma_stringer =
+    p a / (2 t cos alpha) = p rho / 2t (a = rho cos alpha, the ring's radius)."""
+    from tubecad.surface import CanalSurface
+
+    t = 0.5
+    cone = CanalSurface(NaturalAxis("0", "0", (0.0, 1000.0)), "80 + 0.04 * s")  # rho from 80 to 120
+    mesh = shell_mesh(cone, NetLayout.equal(cone, 5, 4), thickness=t, settings=MeshSettings("S8", size_along=20.0,
+                      size_around=20.0))  # fmt: skip
+    res = solve(mesh, STEEL, pressure_step(mesh, P, "capped", cone, (mesh.node_sets["start_ring"],
+                                                                      mesh.node_sets["end_ring"])))  # fmt: skip
+    mid = middle(mesh)
+    rho = 80.0 + 0.04 * mesh.parameters[mid, 1]
+    assert np.abs(res.ring_stress[mid] / (P * rho / t) - 1).max() < 0.01  # measured 0.44 %
+    assert np.abs(res.stringer_stress[mid] / (P * rho / (2 * t)) - 1).max() < 0.01  # measured 0.45 %
+
+
+def test_stringers_share_the_axial_load_by_their_area():
+    """Flat-bar stringers on a capped tube stretch with the wall (plane sections): with the
+    hoop stress p r / t, sigma_x = E eps + nu p r / t in the wall and E eps in a stringer, and
+    sigma_x 2 pi r t + E eps n A = p pi r^2 gives E eps = p pi r^2 (1 - 2 nu) / (2 pi r t + n A)."""
+    r, t, nu = 100.0, 0.5, 0.3
+    stringers = StiffenerPlan([], [0, 1, 2, 3, 4, 5, 6, 7], Profile("flat", 10.0, 2.0), "outside")
+    tube = straight_tube(r)
+    mesh = shell_mesh(tube, NetLayout.equal(tube, 5, 8), thickness=t, settings=MeshSettings("S4", size_along=10.0,
+                      size_around=10.0), stiffeners=stringers)  # fmt: skip
+    res = solve(mesh, STEEL, pressure_step(mesh, P, "capped", tube, (mesh.node_sets["start_ring"],
+                                                                      mesh.node_sets["end_ring"])))  # fmt: skip
+    e_eps = P * math.pi * r**2 * (1 - 2 * nu) / (2 * math.pi * r * t + 8 * 10.0 * 2.0)
+    # the wall between the stringers: a node beside a stringer's node sees its knot (measured 5 %)
+    step = 2 * math.pi / mesh.info["elements_around"]
+    off = np.abs((mesh.parameters[:, 0] + math.pi / 8) % (math.pi / 4) - math.pi / 8)
+    wall = middle(mesh) & (off > 1.5 * step)
+    sigma_x = res.stringer_stress[wall]  # along the stringer direction: the tube's axis
+    assert np.abs(sigma_x / (e_eps + nu * P * r / t) - 1).max() < 0.01  # measured 0.55 % (86.5 against 100 unstiffened)
+    assert abs((e_eps + nu * P * r / t) / (P * r / (2 * t)) - 1) > 0.1  # the stringers change it by > 10 %
 
 
 def run_cli(*args: str) -> subprocess.CompletedProcess:

@@ -75,8 +75,12 @@ def _ids(values: np.ndarray, per_line: int = 16) -> str:
 
 
 def _rows(ids: np.ndarray, values: np.ndarray) -> str:
-    """``id, v1, v2, ...`` lines (ids 1-based)."""
-    return "".join(f"{i}, " + ", ".join(map(number, row)) + "\n" for i, row in zip(np.asarray(ids) + 1, values.tolist()))
+    """``id, v1, v2, ...`` lines (ids 1-based), each number by :func:`number`."""
+    text = [repr(v) for v in values.ravel().tolist()]
+    text = [s if len(s) <= FIELD else number(float(s)) for s in text]
+    width = values.shape[1]
+    ids = (np.asarray(ids) + 1).tolist()
+    return "".join(f"{i}, " + ", ".join(text[k * width:(k + 1) * width]) + "\n" for k, i in enumerate(ids))
 
 
 def _direction_groups(directions: np.ndarray, tol: float = 1e-9) -> list[np.ndarray]:
@@ -122,8 +126,10 @@ def inp_text(mesh: FEMesh, material: Material | None = None, step: Step | None =
     for block in mesh.shell_blocks:
         elem = np.repeat(block.ids + 1, block.connectivity.shape[1])
         node = block.connectivity.ravel()
-        n = mesh.normals[node]
-        w("".join(f"{e}, {k + 1}, {number(x)}, {number(y)}, {number(z)}\n" for e, k, (x, y, z) in zip(elem, node, n.tolist())))
+        # unit vectors in fixed point: 17 decimals fit 20 characters ("-0.12345678901234567")
+        # and round each component by 5e-18 at most
+        rows = zip(elem.tolist(), (node + 1).tolist(), *mesh.normals[node].T.tolist())
+        w("".join(map("%d, %d, %.17f, %.17f, %.17f\n".__mod__, rows)))
     if material is None:
         return out.getvalue()
     w(f"*MATERIAL, NAME={material.name}\n*ELASTIC\n{number(material.youngs_modulus)}, {number(material.poisson_ratio)}\n")

@@ -161,10 +161,20 @@ def _beam_estimate(plan, counts: tuple[int, int], rings, strs) -> int:
 
 
 def _lattice_geometry(surface, grid: ParameterGrid) -> tuple[np.ndarray, ...]:
-    """Points, unit normals and unit ring and stringer tangents on the lattice (rows s, columns angles)."""
+    """Points, unit normals and unit ring and stringer tangents on the lattice (rows s,
+    columns angles). On a tube they are the frame's own vectors, the axis evaluated once per
+    row: N = e = cos u r1 + sin u r2, S_u / |S_u| = e_u = -sin u r1 + cos u r2 and
+    S_s / |S_s| = sign(1 - rho kappa_u) t; on a canal surface, from its derivatives."""
     u, s = grid.angles[None, :], grid.s[:, None]
-    d = surface.derivatives(u, s)
     unit = lambda v: v / np.linalg.norm(v, axis=-1, keepdims=True)  # noqa: E731
+    if isinstance(surface, CurvatureLineTube):
+        t, r1, r2 = (v[:, None, :] for v in surface.axis.rotation_minimising_frame(grid.s))
+        k1, k2 = surface.axis.normal_development(grid.s)
+        cu, su = np.cos(grid.angles)[None, :, None], np.sin(grid.angles)[None, :, None]
+        speed = 1.0 - surface.radius * (k1[:, None] * cu[..., 0] + k2[:, None] * su[..., 0])
+        return (surface.points(u, s), unit(cu * r1 + su * r2), unit(cu * r2 - su * r1),
+                np.sign(speed)[..., None] * np.broadcast_to(unit(t), speed.shape + (3,)))  # fmt: skip
+    d = surface.derivatives(u, s)
     return surface.points(u, s), unit(surface.normal(u, s)), unit(d.S_u), unit(d.S_s)
 
 
