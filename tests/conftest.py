@@ -91,3 +91,20 @@ def fit_circle(xy: np.ndarray) -> tuple[float, float, np.ndarray]:
     sol = np.linalg.lstsq(np.c_[2 * xy, np.ones(len(xy))], (xy**2).sum(axis=1), rcond=None)[0]
     radius = math.sqrt(sol[2] + sol[0] ** 2 + sol[1] ** 2)
     return np.abs(np.linalg.norm(xy - sol[:2], axis=1) - radius).max(), radius, sol[:2]
+
+
+#: a small helix tube for batches (about half a second a job): radius 5, 300 long, 3 rings, 2 stringers
+SMALL_BATCH_TUBE = """
+[axis]
+curve = "helix"
+k = 0.0097
+beta_deg = 10.0
+s = [0.0, 300.0]
+
+[tube]
+radius = 5.0
+
+[layout]
+rings = 3
+stringers = 2
+"""

@@ -81,8 +81,12 @@ def test_pool_batch_progress_lines(pool_batch):
     lines = result.stderr.splitlines()
     done = sorted(line.split("] ", 1)[1].split(":")[0] for line in lines if line.startswith(("[1/3]", "[2/3]", "[3/3]")))
     assert done == ["bad", "thick", "thin"]
-    assert any(line.startswith("[") and "] thin: tube_solid 6 faces valid, " in line and line.endswith(" s")
-               for line in lines)  # fmt: skip
+    import re
+
+    # what was built and how long it took, then the batch's rate and the time left (not after the last)
+    assert any(re.search(r"\] thin: tube_solid 6 faces valid, 3 files, [\d.]+ s; [\d.e+-]+ jobs/s(, ~\d+ s left)?$", line)
+               for line in lines), lines  # fmt: skip
+    assert re.search(r"^\[1/3\] .*, ~\d+ s left$", lines[1]) and "left" not in [l for l in lines if l.startswith("[3/3]")][0]
     assert any("] bad: FAILED: " in line and "radius must be" in line for line in lines)
     assert "3 jobs: 2 ok, 1 failed" in lines[-1] and str(out / "batch.json") in lines[-1]
     assert "Traceback" not in result.output
@@ -169,7 +173,7 @@ def test_job_names_are_unique_and_safe(tmp_path):
         (["two.toml", "-o", "x.step"], "-o/--output and --report are for one SPEC"),
         (["--report", "r.json", "--sweep", "tube.radius=1,2", "-d", "out"], "-o/--output and --report"),
         (["two.toml"], "batch mode (several SPECs) needs -d/--out-dir"),
-        (["-f", "iges", "-o", "x.step"], "-f/--format and -j/--jobs are for batch mode"),
+        (["-f", "iges", "-o", "x.step"], "-f/--format, -j/--jobs, --scheduler, --remote-dir and --job-timeout are for batch mode"),
         ([], "Missing option '-o' / '--output'"),
         (["-d", "out", "-f", "obj"], "'obj' is not one of"),
     ],

@@ -38,6 +38,8 @@ from tubecad.surface import CurvatureLineTube
 if shutil.which("ccx") is None and not os.environ.get("CI"):
     pytest.skip("CalculiX (ccx) is not installed (CI installs it)", allow_module_level=True)
 
+pytestmark = pytest.mark.once  # the same on both OCCT generations: CI runs it once
+
 STEEL = Material(210000.0, 0.3)
 P = 1.0
 ROOT = Path(__file__).resolve().parents[1]

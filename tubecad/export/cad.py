@@ -166,8 +166,23 @@ def write_step(shape, path: str | Path, schema: str = "AP214", name: str = "tube
         if header.IsDone():
             header.SetName(TCollection_HAsciiString(name))
             header.SetOriginatingSystem(TCollection_HAsciiString("tubecad"))
+            stamp = _source_date()
+            if stamp is not None:  # reproducible builds: the same spec, the same bytes
+                header.SetTimeStamp(TCollection_HAsciiString(stamp))
         if writer.Write(str(path)) != IFSelect_RetDone:
             raise ExportError(f"OCCT could not write STEP to {str(path)!r}")
+
+
+def _source_date() -> str | None:
+    """SOURCE_DATE_EPOCH (the reproducible-builds convention), as STEP's ISO 8601 time stamp,
+    or None when it is not set (OCCT then writes the current time)."""
+    import os
+    from datetime import datetime, timezone
+
+    value = os.environ.get("SOURCE_DATE_EPOCH")
+    if not value or not value.strip().isdigit():
+        return None
+    return datetime.fromtimestamp(int(value), tz=timezone.utc).strftime("%Y-%m-%dT%H:%M:%S")
 
 
 def step_names(path: str | Path) -> list[tuple[int, str]]:

@@ -6,10 +6,14 @@
 Every job is one spec: a file, or a file with swept values put in (``paper.toml[tube.radius=12]``,
 checked exactly like a file). It runs :func:`~tubecad.interfaces.build.build_and_export`, the
 code path of a single ``tubecad build``, and writes OUT/NAME.EXT for each format and
-OUT/NAME.report.json. Jobs run in a process pool started with "spawn" (OCCT and fork do not
-mix well), or in this process with one job at a time. A failed job does not stop the others
-and leaves none of its files; OUT/batch.json lists every job. On Ctrl-C the pending jobs are
-cancelled and the running ones stopped without partial files.
+OUT/NAME.report.json. Jobs run on an executor (:mod:`.executors`): worker processes started
+with "spawn" (OCCT and fork do not mix well), this process with one job at a time, or a Dask
+cluster (:mod:`.dask_executor`). A failed job does not stop the others and leaves none of its
+files; a job whose worker dies or that hangs past ``--job-timeout`` is retried
+(``--retries``). OUT/batch.json, the manifest (:mod:`.manifest`), is rewritten as each job
+finishes with the hashes of its spec and files, so that a rerun builds only what is missing
+or changed. On Ctrl-C the pending jobs are cancelled and the running ones stopped without
+partial files; a rerun resumes.
 """
 
 from __future__ import annotations
@@ -24,8 +28,6 @@ import re
 import signal
 import time
 import tomllib
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
@@ -65,6 +67,10 @@ class Job:
     step_schema: str = "AP214"
     mesh_tolerance: float | None = None  # --mesh-tolerance (model units), for mesh formats
     mesh_angle: float | None = None  # --mesh-angle (degrees)
+    #: a job sent to another machine: its resolved spec as JSON (then ``spec`` only names the
+    #: folder its relative files are in) and those files' bytes (name, data)
+    spec_data: str | None = None
+    attachments: tuple[tuple[str, bytes], ...] = ()
 
 
 @dataclass
@@ -80,6 +86,10 @@ class JobResult:
     faces: int = 0
     valid: bool = False
     built: str = ""  # what was built, for the job's line: "wall 50 faces valid + 5 ring + 4 stringer stiffeners (T)"
+    attempts: int = 1
+    hashes: dict[str, str] = field(default_factory=dict)  # file name -> content hash (tubecad.interfaces.manifest)
+    spec_hash: str | None = None
+    skipped: bool = False  # built by an earlier run, unchanged (resumed)
 
 
 # ---------------------------------------------------------------- sweeps and job names
@@ -241,7 +251,7 @@ def job_spec(job: Job):
     """The job's checked spec: the file, with the swept values put in, checked as a file is."""
     from .spec import parse_spec, read_spec_data
 
-    data = read_spec_data(job.spec)
+    data = json.loads(job.spec_data) if job.spec_data is not None else read_spec_data(job.spec)
     for section, key, value in job.overrides:
         table = data.setdefault(section, {})
         if isinstance(table, dict):  # else parse_spec says the section is not a table
@@ -314,82 +324,76 @@ def _on_sigterm(signum, frame) -> None:
 # ---------------------------------------------------------------- the batch
 
 
-def progress_line(result: JobResult, done: int, total: int) -> str:
+def progress_line(result: JobResult, done: int, total: int, rate: float | None = None) -> str:
+    """``[3/12] name: what was built, 2 files, 1.2 s``, then the rate and the time left."""
     head = f"[{done}/{total}] {result.name}: "
+    pace = ""
+    if rate:
+        left = (total - done) / rate
+        pace = f"; {rate:.3g} jobs/s, ~{_duration(left)} left" if done < total else f"; {rate:.3g} jobs/s"
+    tries = f" (attempt {result.attempts})" if result.attempts > 1 else ""
     if result.status != "ok":
         error = result.error or result.status
-        return head + "FAILED: " + (error if len(error) <= 300 else error[:297] + "...")
+        return head + "FAILED" + tries + ": " + (error if len(error) <= 300 else error[:297] + "...") + pace
     built = result.built or f"{result.kind} {result.faces} faces {'valid' if result.valid else 'NOT VALID'}"
     files = len(result.outputs)
-    return head + f"{built}, {files} file{'s' * (files != 1)}, {result.seconds:.1f} s"
+    return head + f"{built}, {files} file{'s' * (files != 1)}, {result.seconds:.1f} s{tries}{pace}"
 
 
-def run_batch(jobs: list[Job], workers: int, echo: Callable[[str], None]) -> tuple[list[JobResult | None], bool]:
-    """Run the jobs (``workers`` processes, or here if 1), echoing a line per finished job.
+def _duration(seconds: float) -> str:
+    if seconds < 90:
+        return f"{seconds:.0f} s"
+    if seconds < 5400:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h"
 
-    Returns the results in job order (None: cancelled) and whether Ctrl-C interrupted it.
-    """
+
+def run_batch(jobs: list[Job], workers: int, echo: Callable[[str], None], *, executor=None, retries: int = 0,
+              timeout: float | None = None, on_result: Callable[[int, JobResult], None] | None = None
+              ) -> tuple[list[JobResult | None], bool]:  # fmt: skip
+    """Run the jobs on ``executor`` (default: ``workers`` processes, or here if 1), echoing a
+    line per finished job; ``on_result(index, result)`` after each (the manifest is written
+    there). A lost run (its worker died, or it ran past ``timeout`` s) is retried up to
+    ``retries`` times. Returns the results in job order (None: cancelled) and whether Ctrl-C
+    interrupted it."""
+    from .executors import InlineExecutor, ProcessExecutor, run_jobs
+
     results: dict[int, JobResult] = {}
+    attempts: dict[int, int] = {}
+    start = time.perf_counter()
+    own = executor is None
+    if own:
+        executor = InlineExecutor(run_job) if workers <= 1 and timeout is None else ProcessExecutor(max(1, workers))
 
     def finished(i: int, result: JobResult) -> None:
-        results[i] = result
-        echo(progress_line(result, len(results), len(jobs)))
+        result.attempts = attempts.get(i, 0) + 1
+        if result.status == "ok":
+            folder = Path(jobs[i].report).parent
+            from .manifest import file_hash
 
-    interrupted = False
-    if workers <= 1:
-        try:
-            for i, job in enumerate(jobs):
-                finished(i, run_job(job))
-        except KeyboardInterrupt:
-            interrupted = True
-    else:
-        interrupted = _run_pool(jobs, workers, finished, results)
+            result.hashes = {name: file_hash(folder / name) for name in [*result.outputs, Path(jobs[i].report).name]
+                             if (folder / name).exists()}  # fmt: skip
+        results[i] = result
+        if on_result is not None:  # recorded (the manifest) before its line says it is done
+            on_result(i, result)
+        rate = len(results) / max(time.perf_counter() - start, 1e-9)
+        echo(progress_line(result, len(results), len(jobs), rate))
+
+    def retrying(i: int, message: str, attempt: int) -> None:
+        attempts[i] = attempt - 1
+        echo(f"[{len(results)}/{len(jobs)}] {jobs[i].name}: {message}; retrying (attempt {attempt})")
+
+    def lost(i: int, message: str) -> JobResult:
+        return JobResult(jobs[i].name, "failed", message)
+
+    try:
+        interrupted = run_jobs(jobs, executor, finished, retries, timeout, lost, retrying)
+    finally:
+        if own:
+            executor.close()
     if interrupted or any(r.status != "ok" for r in results.values()):
         remove_temporaries(jobs)
     return [results.get(i) for i in range(len(jobs))], interrupted
-
-
-def _run_pool(jobs: list[Job], workers: int, finished, results: dict[int, JobResult]) -> bool:
-    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"), initializer=_init_worker)
-    futures: dict = {}
-    try:
-        futures = {pool.submit(run_job, job): i for i, job in enumerate(jobs)}
-        for future in as_completed(futures):
-            finished(futures[future], _result_of(future, jobs[futures[future]]))
-    except KeyboardInterrupt:
-        for future in futures:
-            future.cancel()
-        while True:  # stop the running jobs, wait for the workers (a second Ctrl-C only repeats this)
-            try:
-                _stop_workers(pool)
-                pool.shutdown(wait=True, cancel_futures=True)
-                break
-            except KeyboardInterrupt:
-                continue
-        for future, i in futures.items():  # jobs that finished meanwhile keep their files
-            if i not in results and future.done() and not future.cancelled() and future.exception() is None:
-                results[i] = future.result()
-        return True
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
-    return False
-
-
-def _result_of(future, job: Job) -> JobResult:
-    try:
-        return future.result()
-    except BrokenProcessPool:
-        return JobResult(job.name, "failed", "its worker process died (killed, or out of memory?) before it finished")
-    except BaseException as exc:  # noqa: BLE001 - whatever a worker sent back fails that job only
-        return JobResult(job.name, "failed", one_line(exc))
-
-
-def _stop_workers(pool: ProcessPoolExecutor) -> None:
-    """SIGTERM to each worker: its running job raises KeyboardInterrupt and cleans up."""
-    for process in list((getattr(pool, "_processes", None) or {}).values()):
-        with contextlib.suppress(Exception):
-            if process.is_alive():
-                process.terminate()
 
 
 def remove_temporaries(jobs: list[Job]) -> None:
@@ -410,7 +414,9 @@ def batch_record(jobs: list[Job], results: list[JobResult | None], interrupted: 
                         "sweep": {f"{s}.{k}": v for s, k, v in job.overrides},
                         "status": result.status, "error": result.error,
                         "seconds": None if result.seconds is None else round(result.seconds, 3),
-                        "outputs": result.outputs})  # fmt: skip
+                        "outputs": result.outputs, "attempts": result.attempts, "skipped": result.skipped,
+                        "spec_hash": result.spec_hash, "hashes": result.hashes})  # fmt: skip
     counts = {status: sum(e["status"] == status for e in entries) for status in ("ok", "failed", "cancelled")}
-    return {"jobs_total": len(jobs), **counts, "interrupted": interrupted, "seconds": round(seconds, 3), "workers": workers,
-            "formats": list(formats), "sweeps": list(sweeps), "jobs": entries}  # fmt: skip
+    return {"jobs_total": len(jobs), **counts, "skipped": sum(e["skipped"] for e in entries), "interrupted": interrupted,
+            "seconds": round(seconds, 3), "workers": workers, "formats": list(formats), "sweeps": list(sweeps),
+            "jobs": entries}  # fmt: skip

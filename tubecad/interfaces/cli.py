@@ -5,6 +5,7 @@
     tubecad build SPEC.toml -o OUT.step ...   build the spec's solid, write STEP/IGES/BREP
     tubecad build A.toml B.toml ... -d DIR    a batch on all cores: DIR/NAME.step, NAME.report.json, batch.json
     tubecad build SPEC.toml --sweep tube.radius=10,12,15 -d DIR     the spec for each value (a batch)
+    tubecad build ... -d DIR --scheduler tcp://HOST:PORT            the batch on a Dask cluster; reruns resume
     tubecad flat SPEC.toml -o DIR             flat patterns of the spec's stiffener webs
     tubecad shop SPEC.toml -o DIR             shop-floor package: nested webs, flanges, bending, marking, panels, pin jigs
     tubecad mesh SPEC.toml -o model.inp ...   finite-element shells and beams on the curvature-line net (.inp, .msh, .vtu)
@@ -244,6 +245,20 @@ def schema(output: Path | None) -> None:
                    "(inclusive); several --sweep give every combination.")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
               help="Batch: jobs run at once, each in its own process  [default: all cores]")
+@click.option("--scheduler", default=None, metavar="tcp://HOST:PORT",
+              help="Batch: run the jobs on this Dask distributed cluster (the extra tubecad[dask]; or [batch] "
+                   "scheduler in the first SPEC); results come back here. 'local': this machine's processes.")
+@click.option("--remote-dir", default=None, metavar="DIR",
+              help="Batch on a cluster: the workers share a file system and write into DIR (the path of -d/--out-dir "
+                   "as the workers see it) instead of sending the files back.")
+@click.option("--resume", is_flag=True,
+              help="Batch: skip the jobs whose outputs DIR/batch.json records as built from the same spec and "
+                   "unchanged (the default when DIR/batch.json exists).")
+@click.option("--force", is_flag=True, help="Batch: build every job again, whatever DIR/batch.json records.")
+@click.option("--retries", type=click.IntRange(0, 100), default=1, show_default=True,
+              help="Batch: how often a job is run again when its worker dies or it times out.")
+@click.option("--job-timeout", type=click.FloatRange(min=0, min_open=True), default=None, metavar="SECONDS",
+              help="Batch: stop a job that runs longer (it is retried, then fails)  [default: no limit]")
 @click.option("--mesh-tolerance", type=float, default=None, metavar="LENGTH",
               help="Mesh outputs only (.stl, .3mf, .gltf, .glb): the farthest a triangle may lie from the surface, "
                    "in model units, from 1e-4 to 1 x the smallest tube radius  [default: 1e-3 x that radius]")
@@ -255,6 +270,7 @@ def schema(output: Path | None) -> None:
                    "batch: no line per job.")
 def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, report_path: Path | None,
           out_dir: Path | None, formats: tuple[str, ...], sweeps: tuple[str, ...], jobs: int | None,
+          scheduler: str | None, remote_dir: str | None, resume: bool, force: bool, retries: int, job_timeout: float | None,
           mesh_tolerance: float | None, mesh_angle: float | None, quiet: bool) -> None:
     """Build the solid of SPEC (the wall if it has [wall], else the capped tube) and write it.
 
@@ -272,12 +288,15 @@ def build(specs: tuple[Path, ...], outputs: tuple[Path, ...], step_schema: str, 
         check_mesh_options(outputs or [f"job.{f}" for f in formats or ("step",)], mesh_tolerance, mesh_angle)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
+    if resume and force:
+        raise click.UsageError("--resume and --force exclude each other")
     if len(specs) > 1 or sweeps or out_dir is not None:
         build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path,
-                    (mesh_tolerance, mesh_angle), quiet)  # fmt: skip
+                    (mesh_tolerance, mesh_angle), quiet, scheduler, remote_dir, not force, retries, job_timeout)  # fmt: skip
         return
-    if formats or jobs is not None:
-        raise click.UsageError("-f/--format and -j/--jobs are for batch mode (several SPECs, --sweep, or -d/--out-dir)")
+    if formats or jobs is not None or scheduler or remote_dir or job_timeout is not None:
+        raise click.UsageError("-f/--format, -j/--jobs, --scheduler, --remote-dir and --job-timeout are for batch mode "
+                               "(several SPECs, --sweep, or -d/--out-dir)")  # fmt: skip
     if not outputs:
         raise click.UsageError("Missing option '-o' / '--output' (or -d/--out-dir DIR for batch mode).")
     written: list[Path] = []
@@ -315,13 +334,16 @@ def export_summary(info: dict) -> str:
 
 
 def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, report_path, mesh=(None, None),
-                quiet: bool = False) -> None:  # fmt: skip
+                quiet: bool = False, scheduler: str | None = None, remote_dir: str | None = None, resume: bool = True,
+                retries: int = 1, job_timeout: float | None = None) -> None:  # fmt: skip
     """``tubecad build`` over many specs or a sweep (tubecad.interfaces.batch); exits 0, 2 or 130.
-    ``mesh``: (--mesh-tolerance, --mesh-angle); ``quiet``: no line per job."""
+    ``mesh``: (--mesh-tolerance, --mesh-angle); ``quiet``: no line per job; ``scheduler``: a
+    Dask cluster; ``resume``: skip the jobs the manifest shows built and unchanged."""
     import os
     import time
 
-    from .batch import batch_record, parse_sweep, plan_jobs, run_batch
+    from .batch import JobResult, batch_record, parse_sweep, plan_jobs, run_batch
+    from .manifest import read_manifest, spec_hash, up_to_date
 
     why = "several SPECs" if len(specs) > 1 else "--sweep" if sweeps else "-d/--out-dir"
     if outputs or report_path is not None:
@@ -331,28 +353,105 @@ def build_batch(specs, step_schema, out_dir, formats, sweeps, jobs, outputs, rep
         raise click.UsageError(f"batch mode ({why}) needs -d/--out-dir DIR")
     try:
         planned = plan_jobs(specs, [parse_sweep(s) for s in sweeps], out_dir, formats, step_schema, *mesh)
+        scheduler = scheduler or batch_scheduler(specs[0])
+        scheduler = None if scheduler == "local" else scheduler
     except TubecadError as exc:
         raise UserError(str(exc)) from None
+    if remote_dir is not None and scheduler is None:
+        raise click.UsageError("--remote-dir is for a batch on a Dask cluster (--scheduler)")
+    executor = None
+    if scheduler is not None:  # reached before anything is written
+        from .dask_executor import DaskExecutor
+
+        try:
+            executor = DaskExecutor(scheduler, remote_dir=remote_dir, out_dir=out_dir)
+        except TubecadError as exc:
+            raise UserError(str(exc)) from None
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
+        if executor is not None:
+            executor.close()
         raise UserError(f"cannot create output folder {str(out_dir)!r}: {exc.strerror}") from None
-    workers = min(jobs or os.cpu_count() or 1, len(planned))
     say = lambda line: click.echo(line, err=True)  # noqa: E731
-    if not quiet:
-        say(f"building {len(planned)} job{'s' * (len(planned) > 1)} with {workers} process{'es' * (workers > 1)} into {out_dir}")
+    manifest = read_manifest(out_dir) if resume else {}
+    digests = [_digest(spec_hash, job) for job in planned]
+    done = {i for i, job in enumerate(planned) if up_to_date(manifest.get(job.name), job, digests[i])}
+    todo = [i for i in range(len(planned)) if i not in done]
+    results: list[JobResult | None] = [None] * len(planned)
+    for i in done:
+        entry = manifest[planned[i].name]
+        results[i] = JobResult(planned[i].name, "ok", None, entry.get("seconds"), list(entry.get("outputs", [])),
+                               attempts=entry.get("attempts", 1), hashes=dict(entry.get("hashes", {})),
+                               spec_hash=digests[i], skipped=True)  # fmt: skip
+    workers = min(jobs or os.cpu_count() or 1, max(len(todo), 1))
     start = time.perf_counter()
-    results, interrupted = run_batch(planned, workers, (lambda line: None) if quiet else say)
-    record = batch_record(planned, results, interrupted, time.perf_counter() - start, workers, sweeps,
-                          formats or ("step",))  # fmt: skip
-    summary = write_text(out_dir / "batch.json", to_json(record))
+    where = executor.description if executor is not None else f"{workers} process{'es' * (workers > 1)}"
+
+    def record(interrupted: bool = False) -> str:
+        return write_text(out_dir / "batch.json", to_json(batch_record(planned, results, interrupted, time.perf_counter()
+                          - start, workers, sweeps, formats or ("step",))))  # fmt: skip
+
+    last = [0.0]
+
+    def on_result(k: int, result: JobResult) -> None:
+        result.spec_hash = digests[todo[k]]
+        results[todo[k]] = result
+        if time.perf_counter() - last[0] >= MANIFEST_INTERVAL:  # the manifest, atomically, as jobs finish
+            record()
+            last[0] = time.perf_counter()
+
+    if not quiet:
+        resumed = f" ({len(done)} of {len(planned)} already built and unchanged: skipped)" if done else ""
+        say(f"building {len(todo)} job{'s' * (len(todo) != 1)} with {where} into {out_dir}{resumed}")
+    interrupted = False
+    try:
+        if todo:
+            _, interrupted = run_batch([planned[i] for i in todo], workers, (lambda line: None) if quiet else say,
+                                       executor=executor, retries=retries, timeout=job_timeout, on_result=on_result)  # fmt: skip
+    finally:
+        if executor is not None:
+            executor.close()
+    summary = record(interrupted)
+    counts = {s: sum(r is not None and r.status == s for r in results) for s in ("ok", "failed")}
+    cancelled = sum(r is None for r in results)
+    seconds = time.perf_counter() - start
     if interrupted:
-        say(f"interrupted: {record['cancelled']} of {len(planned)} jobs cancelled, {record['ok']} done, "
+        say(f"interrupted: {cancelled} of {len(planned)} jobs cancelled, {counts['ok']} done, "
             f"no partial files; {summary}")  # fmt: skip
         click.get_current_context().exit(130)
-    say(f"{len(planned)} jobs: {record['ok']} ok, {record['failed']} failed, {record['seconds']:.1f} s; {summary}")
-    if record["failed"]:
+    skipped = f", {len(done)} skipped (unchanged)" if done else ""
+    say(f"{len(planned)} jobs: {counts['ok']} ok{skipped}, {counts['failed']} failed, {seconds:.1f} s; {summary}")
+    if counts["failed"]:
         click.get_current_context().exit(2)
+
+
+#: the manifest is rewritten as jobs finish, at most this often (seconds); the run's end
+#: (or Ctrl-C) writes it once more, so only a killed submitter can lose that much of it
+#: (those jobs are built again by the rerun)
+MANIFEST_INTERVAL = 0.5
+
+
+def _digest(spec_hash, job) -> str | None:
+    """The job's spec hash, or None when its spec cannot be read (the job then fails, saying why)."""
+    try:
+        return spec_hash(job)
+    except Exception:  # noqa: BLE001 - a bad spec fails its own job with the checker's message
+        return None
+
+
+def batch_scheduler(spec: Path) -> str | None:
+    """``[batch] scheduler`` of the first spec, if it has one."""
+    from .spec import read_spec_data
+
+    try:
+        section = read_spec_data(spec).get("batch", {})
+    except TubecadError:
+        return None
+    value = section.get("scheduler") if isinstance(section, dict) else None
+    if value is not None and not isinstance(value, str):
+        raise UserError(f"{spec}: [batch] scheduler must be a string such as \"tcp://10.0.0.5:8786\", got {value!r:.60}")
+    return value
 
 
 @cli.command()

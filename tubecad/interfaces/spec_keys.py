@@ -202,6 +202,12 @@ ANALYSIS_KEYS = {
     "poisson_ratio": Key("number", required=False, low=-1.0, high=0.5, default=0.3, help="in (-1, 0.5)"),
 }  # fmt: skip
 
+BATCH_KEYS = {
+    "scheduler": Key("string", required=False,
+                     help="a Dask distributed scheduler, tcp://HOST:PORT: tubecad build's batches of this spec (its "
+                          "first SPEC) run there (the extra tubecad[dask]; --scheduler wins)"),
+}  # fmt: skip
+
 UNITS_KEYS = {
     "length": Key("string", required=False, choices=tuple(LENGTH_UNITS), default=DEFAULT_LENGTH_UNIT,
                   help=f"{' | '.join(LENGTH_UNITS)}: the unit of every length in the spec, written into STEP, "
@@ -212,6 +218,7 @@ UNITS_KEYS = {
 EXTRA_SECTIONS: dict[str, dict[str, Key]] = {
     "layout": LAYOUT_KEYS, "wall": WALL_KEYS, "fit": FIT_KEYS, "stiffeners": STIFFENER_KEYS, "panels": PANEL_KEYS,
     "units": UNITS_KEYS, "fabrication": FABRICATION_KEYS, "mesh": MESH_KEYS, "analysis": ANALYSIS_KEYS,
+    "batch": BATCH_KEYS,
 }  # fmt: skip
 
 #: what each section is for (the schema's descriptions)
@@ -228,4 +235,5 @@ SECTION_HELP = {
     "fabrication": "shop-floor settings for tubecad shop: plates, kerf, butt joints, strain limit, pin jigs",
     "mesh": "the finite-element mesh of tubecad mesh: shell and beam elements, sizes, surface, element cap",
     "analysis": "the pressure analysis of tubecad analyse (CalculiX): pressure, ends, material",
+    "batch": "where tubecad build runs a batch of this spec: a Dask cluster",
 }
