@@ -182,3 +182,22 @@ def test_the_same_spec_gives_the_same_step_bytes(tmp_path, monkeypatch):
         assert run_job(j).status == "ok"
     a, b = (Path(j.outputs[0]).read_bytes() for j in (job, other))
     assert a == b and b"'2023-11-14T22:13:20'" in a
+
+
+def test_a_shipped_job_builds_without_the_submitters_files(tmp_path):
+    """What a cluster worker gets: the resolved spec and the bytes of the file it refers to
+    (here a STEP centreline), built with the originals gone, the files' bytes sent back."""
+    from tubecad.interfaces.dask_executor import remote_job, shipped
+
+    root = Path(__file__).resolve().parents[1] / "samples"
+    spec = tmp_path / "edge.toml"
+    spec.write_text((root / "edge.toml").read_text())
+    (tmp_path / "centreline.step").write_bytes((root / "centreline.step").read_bytes())
+    job = plan_jobs([spec], [parse_sweep("tube.radius=1.5,2")], tmp_path / "out", ["step"])[1]
+    task = shipped(job)
+    spec.unlink(), (tmp_path / "centreline.step").unlink()
+    result, files = remote_job(task)
+    assert result.status == "ok" and result.valid, result.error
+    assert sorted(files) == [f"{job.name}.report.json", f"{job.name}.step"]
+    assert json.loads(files[f"{job.name}.report.json"])["parameters"]["tube"]["radius"] == 2
+    assert not (tmp_path / "out").exists()  # nothing written here: the bytes came back

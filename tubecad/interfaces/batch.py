@@ -247,16 +247,32 @@ _stopping = False  # a worker was told to stop (the batch was interrupted)
 _busy = False  # a worker is running a job
 
 
-def job_spec(job: Job):
-    """The job's checked spec: the file, with the swept values put in, checked as a file is."""
-    from .spec import parse_spec, read_spec_data
+def resolved_data(job: Job) -> dict[str, Any]:
+    """The job's spec tables: the file's (or those it travelled with) with the swept values put in."""
+    from .spec import read_spec_data
 
     data = json.loads(job.spec_data) if job.spec_data is not None else read_spec_data(job.spec)
-    for section, key, value in job.overrides:
-        table = data.setdefault(section, {})
-        if isinstance(table, dict):  # else parse_spec says the section is not a table
-            table[key] = value
-    return parse_spec(data, job.source, Path(job.spec).parent)
+    if job.spec_data is None:
+        for section, key, value in job.overrides:
+            table = data.setdefault(section, {})
+            if isinstance(table, dict):  # else parse_spec says the section is not a table
+                table[key] = value
+    return data
+
+
+def referred_files(job: Job, data: dict[str, Any]) -> list[tuple[str, Path]]:
+    """The files the spec refers to ([axis] file: points, a route, a STEP edge), as (the name
+    the spec gives, its path beside the spec)."""
+    axis = data.get("axis", {})
+    name = axis.get("file") if isinstance(axis, dict) else None
+    return [(name, Path(job.spec).parent / name)] if isinstance(name, str) else []
+
+
+def job_spec(job: Job):
+    """The job's checked spec: the file, with the swept values put in, checked as a file is."""
+    from .spec import parse_spec
+
+    return parse_spec(resolved_data(job), job.source, Path(job.spec).parent)
 
 
 def run_job(job: Job) -> JobResult:

@@ -53,20 +53,11 @@ def remote_job(job, return_files: bool = True) -> tuple[Any, dict[str, bytes]]:
 def shipped(job, remote_dir: str | None = None):
     """``job`` as it travels: its resolved spec as JSON and the files its [axis] refers to;
     with ``remote_dir``, its outputs under that folder (the batch folder as workers see it)."""
-    from .spec import read_spec_data
+    from .batch import referred_files, resolved_data
 
-    data = read_spec_data(job.spec)
-    for section, key, value in job.overrides:
-        table = data.setdefault(section, {})
-        if isinstance(table, dict):
-            table[key] = value
-    attachments = []
-    axis = data.get("axis", {})
-    if isinstance(axis, dict) and isinstance(axis.get("file"), str):
-        referred = Path(job.spec).parent / axis["file"]
-        if referred.is_file():
-            attachments.append((axis["file"], referred.read_bytes()))
-    changes: dict[str, Any] = {"spec_data": json.dumps(data), "attachments": tuple(attachments)}
+    data = resolved_data(job)
+    attachments = tuple((name, path.read_bytes()) for name, path in referred_files(job, data) if path.is_file())
+    changes: dict[str, Any] = {"spec_data": json.dumps(data), "attachments": attachments}
     if remote_dir is not None:
         changes["outputs"] = tuple(str(Path(remote_dir) / Path(p).name) for p in job.outputs)
         changes["report"] = str(Path(remote_dir) / Path(job.report).name)

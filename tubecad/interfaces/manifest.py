@@ -43,19 +43,13 @@ def spec_hash(job) -> str:
     """The job's spec hash (module docstring)."""
     from importlib.metadata import PackageNotFoundError, version
 
-    from .spec import read_spec_data
+    from .batch import referred_files, resolved_data
 
-    data = read_spec_data(job.spec)
-    for section, key, value in job.overrides:
-        table = data.setdefault(section, {})
-        if isinstance(table, dict):
-            table[key] = value
+    data = resolved_data(job)
     digest = hashlib.sha256()
     digest.update(json.dumps(data, sort_keys=True, default=str).encode())
-    axis = data.get("axis", {})
-    if isinstance(axis, dict) and isinstance(axis.get("file"), str):
-        referred = Path(job.spec).parent / axis["file"]
-        digest.update(referred.read_bytes() if referred.is_file() else b"missing")
+    for _, path in referred_files(job, data):
+        digest.update(path.read_bytes() if path.is_file() else b"missing")
     try:
         tubecad_version = version("tubecad")
     except PackageNotFoundError:  # pragma: no cover - a source tree not installed
