@@ -176,7 +176,7 @@ def test_batch_line_names_the_wall_and_its_stiffeners(tmp_path):
     assert result.exit_code == 0, result.output
     line = next(line for line in result.stderr.splitlines() if line.startswith("[1/1] "))
     assert re.fullmatch(r"\[1/1\] helix_stiffened: wall 50 faces valid \+ 5 ring \+ 4 stringer stiffeners \(T\), "
-                        r"2 files, \d+\.\d s", line), line  # fmt: skip
+                        r"2 files, \d+\.\d s; [\d.e+-]+ jobs/s", line), line  # fmt: skip
     quiet = run("build", SAMPLES / "helix.toml", "-d", tmp_path / "quiet", "-j", "1", "-q")
     assert quiet.exit_code == 0 and quiet.stderr.splitlines()[0].startswith("1 jobs: 1 ok, 0 failed")
 
