@@ -56,6 +56,7 @@ import as build time; the steady numbers leave each worker's first job out.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import hashlib
 import json
 import os
@@ -98,6 +99,7 @@ stringers = 2
 TRIVIAL = SMALL.replace("s = [0.0, 300.0]", "s = [0.0, 20.0]").replace("rings = 3", "rings = 2").replace(
     "stringers = 2", "stringers = 1")  # fmt: skip
 
+RUNNING: list[subprocess.Popen] = []  # the command running now (stopped with the benchmark)
 JOB_LINE = re.compile(r"\[(\d+)/(\d+)\] ([A-Za-z0-9._+-]+): (.*)")
 MB = 1024.0 * 1024.0
 
@@ -202,6 +204,7 @@ def run_command(args: list[str], out_dir: Path, *, extra_pids: list[int] = (), l
     t0 = time.perf_counter()
     proc = subprocess.Popen(CLI + args, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                             text=True, cwd=ROOT)  # fmt: skip
+    RUNNING[:] = [proc]
     monitor = Monitor(proc.pid, extra_pids, every=series_every)
     monitor.start()
     stopped = []
@@ -233,6 +236,7 @@ def run_command(args: list[str], out_dir: Path, *, extra_pids: list[int] = (), l
             other.append(line)
     rc = proc.wait()
     wall = time.perf_counter() - t0
+    RUNNING.clear()
     if timer:
         timer.cancel()
     monitor.stop()
@@ -372,6 +376,8 @@ def _median(runs: list[dict], key: str):
 
 
 def summarise(runs: list[dict]) -> dict:
+    if not runs:
+        return {"runs": 0}
     keys = ["jobs_per_s", "steady_jobs_per_s", "batch_jobs_per_s", "wall_s", "planned_s", "batch_s", "startup_s",
             "mean_job_s", "overhead_steady_s", "overhead_batch_s", "overhead_total_s"]  # fmt: skip
     out = {"runs": len(runs), **{k: _median(runs, k) for k in keys}}
@@ -383,10 +389,12 @@ def summarise(runs: list[dict]) -> dict:
     return out
 
 
-def efficiency(one: list[dict], two: list[dict], key: str) -> dict:
-    """jobs/s at 2 / (2 x jobs/s at 1): paired round by round (the median of those), and of the medians."""
-    pairs = [b[key] / (2 * a[key]) for a, b in zip(one, two) if a.get(key) and b.get(key)]
-    m1, m2 = _median(one, key), _median(two, key)
+def efficiency(one: list[dict], two: list[dict], key: str, keep=lambda run: True) -> dict:
+    """jobs/s at 2 / (2 x jobs/s at 1): paired round by round (the median of those), and of the
+    medians; only the rounds where both runs pass ``keep``."""
+    both = [(a, b) for a, b in zip(one, two) if keep(a) and keep(b)]
+    pairs = [b[key] / (2 * a[key]) for a, b in both if a.get(key) and b.get(key)]
+    m1, m2 = _median([a for a, _ in both], key), _median([b for _, b in both], key)
     return {"paired_median": round(statistics.median(pairs), 3) if pairs else None,
             "of_medians": round(m2 / (2 * m1), 3) if m1 and m2 else None, "pairs": [round(p, 3) for p in pairs]}  # fmt: skip
 
@@ -400,24 +408,83 @@ def _log_run(log, label: str, config: str, result: dict) -> None:
         f"batch; others used {result['conditions']['other_cores']:.2f} cores{status}")  # fmt: skip
 
 
-def rounds(suites: dict, n_rounds: int, clusters: Clusters, work: Path, log) -> dict:
+def _warm(_=None) -> bool:
+    """On a Dask worker: import what a job imports (pickled by value from this script)."""
+    import tubecad.interfaces.batch  # noqa: F401
+    import tubecad.interfaces.build  # noqa: F401
+    import tubecad.interfaces.dask_executor  # noqa: F401
+
+    return True
+
+
+def rounds(suites: dict, n_rounds: int, state: "State", work: Path, log) -> None:
     """First a batch of the first suite on each fresh Dask cluster (cold: its workers import
     OCCT in their first jobs); then every suite's every configuration once per round, one
-    after the other (side by side), the order reversed every other round."""
-    runs = {suite: {c: [] for c in CONFIGS} for suite in suites}
+    after the other (side by side), the order reversed every other round. Each batch's
+    numbers go into ``state`` as it ends; batches already there (an earlier, interrupted
+    session) are not run again."""
     first = next(iter(suites))
-    cold = {first: {}}
-    for config, (_, _, cluster) in CONFIGS.items():
-        if cluster is not None:
-            cold[first][config] = run_batch(config, *suites[first], clusters, work)
-            _log_run(log, f"cold {first}", config, cold[first][config])
+    plan = [("cold", first, c) for c, (_, _, cluster) in CONFIGS.items() if cluster is not None]
     order = [(suite, config) for suite in suites for config in CONFIGS]
     for r in range(n_rounds):
-        for suite, config in order if r % 2 == 0 else order[::-1]:
+        plan += [(r, suite, config) for suite, config in (order if r % 2 == 0 else order[::-1])]
+    todo = [step for step in plan if state.key(*step) not in state.data["runs"]]
+    if not todo:
+        return
+    clusters = None
+    if any(CONFIGS[c][2] is not None for _, _, c in todo):
+        clusters = Clusters(log=log)
+        state.data.setdefault("dask_cluster_start_s", {str(n): t for n, t in clusters.start_s.items()})
+        if all(step[0] != "cold" for step in todo):  # resumed after the cold batches: warm the new workers first
+            for n in clusters.clients:
+                clusters.clients[n].run(_warm)
+            for config, (_, _, cluster) in CONFIGS.items():
+                if cluster is not None:
+                    run_batch(config, suites[first][0], 4, suites[first][2], clusters, work)
+            log("  new Dask workers warmed up (a 4-job batch each, not recorded)")
+    try:
+        for phase, suite, config in todo:
             result = run_batch(config, *suites[suite], clusters, work)
-            runs[suite][config].append(result)
-            _log_run(log, f"round {r + 1} {suite}", config, result)
-    return {"runs": runs, "cold": cold}
+            result["session"] = len(state.data["sessions"])
+            state.data["runs"][state.key(phase, suite, config)] = result
+            state.save()
+            _log_run(log, f"cold {suite}" if phase == "cold" else f"round {phase + 1} {suite}", config, result)
+    finally:
+        if clusters is not None:
+            clusters.close()
+
+
+class State:
+    """What the run has measured so far, in a file outside the project, so that a session
+    stopped from outside (this shared machine has seen SIGTERM and SIGKILL to the benchmark's
+    whole process tree) resumes with ``--resume`` instead of starting over."""
+
+    def __init__(self, path: Path, params: dict, resume: bool) -> None:
+        self.path = path
+        if resume and path.is_file():
+            self.data = json.loads(path.read_text())
+            if self.data["params"] != params:
+                raise SystemExit(f"{path} holds a run with other parameters {self.data['params']}; drop --resume")
+        else:
+            self.data = {"params": params, "runs": {}, "long": None, "sessions": []}
+        self.data["sessions"].append({"started": time.strftime("%Y-%m-%dT%H:%M:%S"), "ended": None,
+                                      "ended_by": "still running or killed (SIGKILL)", "seconds": 0.0})  # fmt: skip
+        self._t0 = time.perf_counter()
+        self.save()
+
+    @staticmethod
+    def key(phase, suite: str, config: str) -> str:
+        return f"{phase}|{suite}|{config}"
+
+    def save(self, ended_by: str | None = None) -> None:
+        session = self.data["sessions"][-1]
+        session["seconds"] = round(time.perf_counter() - self._t0, 1)
+        session["ended"] = time.strftime("%Y-%m-%dT%H:%M:%S")
+        if ended_by:
+            session["ended_by"] = ended_by
+        tmp = self.path.with_name(self.path.name + ".tmp")
+        tmp.write_text(json.dumps(self.data))
+        os.replace(tmp, self.path)
 
 
 # ---------------------------------------------------------------- the long sweep
@@ -607,6 +674,13 @@ def table(result: dict) -> str:
                 continue
             lines.append(f"- {name}: end-to-end {_f(e['jobs_per_s']['paired_median'], '.2f')}, "
                          f"steady {_f(e['steady_jobs_per_s']['paired_median'], '.2f')}")  # fmt: skip
+        for label, part in s.get("by_condition", {}).items():
+            lines += ["", f"{label}: jobs/s end-to-end / steady (runs)", ""]
+            lines += [f"- {c}: {_f(m.get('jobs_per_s'), '.3g')} / {_f(m.get('steady_jobs_per_s'), '.3g')} ({m['runs']})"
+                      for c, m in part["summary"].items()]  # fmt: skip
+            lines += [f"- efficiency {name}: {_f(e['jobs_per_s']['paired_median'], '.2f')} / "
+                      f"{_f(e['steady_jobs_per_s']['paired_median'], '.2f')} ({len(e['steady_jobs_per_s']['pairs'])} rounds)"
+                      for name, e in part["efficiency"].items()]  # fmt: skip
         lines.append("")
     if "long" in result:
         g = result["long"]
@@ -630,7 +704,9 @@ def table(result: dict) -> str:
                   "- per 50 jobs (jobs/s, mean job s, others' cores): "
                   + "; ".join(f"{b['jobs_per_s']:.2f} {b['mean_job_s']:.2f} {_f(b['other_cores'], '.2f')}" for b in g["blocks"]),
                   ""]  # fmt: skip
-    lines.append(f"Dask LocalCluster start-up: {result['dask_cluster_start_s']} s; full run {result['total_minutes']:.1f} min")
+    sessions = result.get("sessions") or [None]
+    lines.append(f"Dask LocalCluster start-up: {result['dask_cluster_start_s']} s; run time {result['total_minutes']:.1f} min "
+                 f"in {len(sessions)} session{'s' * (len(sessions) > 1)}")
     return "\n".join(lines)
 
 
@@ -641,33 +717,118 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--long-jobs", type=int, default=None, help="jobs of the long sweep (default 1000; quick 10)")
     parser.add_argument("--max-minutes", type=float, default=15.0, help="stop the long sweep after this long")
     parser.add_argument("--skip-long", action="store_true", help="no long sweep")
+    parser.add_argument("--resume", action="store_true",
+                        help="continue a run that was stopped (its state file), skipping the batches it measured")
+    parser.add_argument("--state", type=Path, default=None,
+                        help="the state file (default: in the temporary folder, one for full runs, one for quick ones)")
     parser.add_argument("--output", type=Path, default=None,
                         help=f"the JSON (default {RESULT.relative_to(ROOT)}; with --quick a file in the temporary folder)")
+    parser.add_argument("--retable", type=Path, default=None, metavar="RESULT.json",
+                        help="measure nothing: recompute the summaries of RESULT.json from its raw runs, print the table")
     args = parser.parse_args(argv)
+    if args.retable:
+        return retable(args.retable, args.output)
     quick = args.quick
     n_rounds = args.rounds or (1 if quick else 3)
     scaling_jobs, trivial_jobs = (4, 4) if quick else (24, 40)
-    long_jobs = args.long_jobs or (10 if quick else 1000)
+    long_jobs = 0 if args.skip_long else args.long_jobs or (10 if quick else 1000)
     log = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
 
-    started = time.perf_counter()
+    tmp_root = Path(tempfile.gettempdir())
+    output = args.output or (tmp_root / "tubecad-batch-scaling.quick.json" if quick else RESULT)
+    params = {"quick": quick, "rounds": n_rounds, "scaling_jobs": scaling_jobs, "trivial_jobs": trivial_jobs,
+              "long_jobs": long_jobs, "max_minutes": args.max_minutes}  # fmt: skip
+    state = State(args.state or tmp_root / f"tubecad-batch-scaling-state{'.quick' if quick else ''}.json", params, args.resume)
+
+    def on_signal(signum, frame) -> None:  # recorded, the command stopped cleanly, then this process ends as asked
+        state.save(ended_by=f"signal {signum} (from outside the benchmark)")
+        for proc in RUNNING:
+            with contextlib.suppress(OSError, subprocess.TimeoutExpired):
+                proc.send_signal(signal.SIGINT)
+                proc.wait(15)
+        signal.signal(signum, signal.SIG_DFL)
+        os.kill(os.getpid(), signum)
+
+    signal.signal(signal.SIGTERM, on_signal)
+    signal.signal(signal.SIGHUP, on_signal)
+    state.data.setdefault("machine", machine())
+    state.data.setdefault("code_before", watched_hashes())
     work = Path(tempfile.mkdtemp(prefix="tubecad-batch-bench-"))
-    output = args.output or (work.parent / f"{work.name}.json" if quick else RESULT)
     (work / "small.toml").write_text(SMALL)
     (work / "trivial.toml").write_text(TRIVIAL)
     suites = {"scaling": (work / "small.toml", scaling_jobs, []), "trivial": (work / "trivial.toml", trivial_jobs, ["brep"])}
-    code_before = watched_hashes()
-    log(f"tubecad batch scaling ({'quick' if quick else 'full'}): {n_rounds} rounds, work folder {work}")
-    clusters = Clusters(log=log)
+    done = len(state.data["runs"])
+    log(f"tubecad batch scaling ({'quick' if quick else 'full'}): {n_rounds} rounds, work folder {work}, state "
+        f"{state.path}" + (f" (resumed: {done} batches measured before)" if args.resume else ""))  # fmt: skip
     try:
-        measured = rounds(suites, n_rounds, clusters, work, log)
+        rounds(suites, n_rounds, state, work, log)
+        if long_jobs and state.data["long"] is None:
+            log(f"long sweep ({long_jobs} jobs)")
+            state.data["long"] = long_sweep(work / "small.toml", long_jobs, work, args.max_minutes * 60.0, log)
+            state.data["long"]["session"] = len(state.data["sessions"])
+            state.save()
+    except KeyboardInterrupt:
+        state.save(ended_by="Ctrl-C")
+        log(f"interrupted; continue with --resume ({state.path})")
+        return 130
     finally:
-        clusters.close()
-    result = {"benchmark": "batch_scaling", "quick": quick, "machine": machine(), "rounds": n_rounds,
-              "method": {"side_by_side": "the machine is shared (a CI run and another engineer's tests may use the CPU): "
-                                         "every configuration runs once per round, one after the other, order reversed "
-                                         "every other round; medians over rounds, efficiencies paired within a round; "
-                                         "conditions per run (other_cores = CPU the rest of the machine used meanwhile)",
+        shutil.rmtree(work, ignore_errors=True)
+    state.save(ended_by="finished")
+    result = assemble(state.data, suites)
+    output.parent.mkdir(parents=True, exist_ok=True)
+    output.write_text(json.dumps(result, indent=1) + "\n")
+    print(table(result))
+    print(f"\nwritten {output}")
+    state.path.unlink(missing_ok=True)
+    return 0
+
+
+#: the rounds split by what the rest of the machine used meanwhile (other_cores of the run)
+CONDITIONS = {"quiet (others < 0.3 cores)": lambda run: run["conditions"]["other_cores"] < 0.3,
+              "loaded (others >= 0.5 cores)": lambda run: run["conditions"]["other_cores"] >= 0.5}  # fmt: skip
+
+
+def summaries(runs: dict[str, list[dict]], cold: dict[str, dict]) -> dict:
+    """Medians per configuration, the scaling efficiencies, and both again per condition."""
+    pairs = {"local (inline -j 1 vs -j 2)": (runs["local -j 1 (inline)"], runs["local -j 2"]),
+             "local (1 process vs -j 2)": (runs["local -j 1 (1 process)"], runs["local -j 2"]),
+             "dask warm (1 vs 2 workers)": (runs["dask 1 worker"], runs["dask 2 workers"])}  # fmt: skip
+    cold_pairs = dict(pairs)
+    if "dask 1 worker" in cold and "dask 2 workers" in cold:
+        cold_pairs["dask cold (1 vs 2 workers)"] = ([cold["dask 1 worker"]], [cold["dask 2 workers"]])
+    keys = ("jobs_per_s", "steady_jobs_per_s")
+    return {"summary": {c: summarise(r) for c, r in runs.items()},
+            "cold": {c: {**summarise([r]), "runs": 1} for c, r in cold.items()},
+            "efficiency": {name: {k: efficiency(a, b, k) for k in keys} for name, (a, b) in cold_pairs.items()},
+            "by_condition": {label: {"summary": {c: summarise([r for r in rs if keep(r)]) for c, rs in runs.items()},
+                                     "efficiency": {name: {k: efficiency(a, b, k, keep) for k in keys}
+                                                    for name, (a, b) in pairs.items()}}
+                             for label, keep in CONDITIONS.items()},
+            "raw": runs, "raw_cold": cold}  # fmt: skip
+
+
+def retable(path: Path, output: Path | None) -> int:
+    """Recompute the summaries of a written result from its raw runs; print the table."""
+    result = json.loads(path.read_text())
+    for suite in result["suites"].values():
+        suite.update(summaries(suite["raw"], suite["raw_cold"]))
+    result["summaries_recomputed"] = (f"{time.strftime('%Y-%m-%dT%H:%M:%S')}: summaries, efficiencies and by_condition "
+                                      f"recomputed from the raw runs (--retable); the measurements are unchanged")  # fmt: skip
+    (output or path).write_text(json.dumps(result, indent=1) + "\n")
+    print(table(result))
+    print(f"\nwritten {output or path}")
+    return 0
+
+
+def assemble(data: dict, suites: dict) -> dict:
+    """The published JSON from the state: per suite and configuration the runs, their medians and the efficiencies."""
+    params = data["params"]
+    result = {"benchmark": "batch_scaling", "quick": params["quick"], "machine": data["machine"], "rounds": params["rounds"],
+              "method": {"side_by_side": "the machine is shared (a CI run and another engineer's tests used the CPU "
+                                         "meanwhile): every configuration runs once per round, one after the other, order "
+                                         "reversed every other round; medians over rounds, efficiencies paired within a "
+                                         "round; conditions per run (other_cores = CPU the rest of the machine used "
+                                         "meanwhile); by_condition splits the rounds into quiet and loaded ones",
                          "command": "python -m tubecad.interfaces.console build SPEC --sweep tube.radius=4:6:N -d DIR --force",
                          "local -j 1": "tubecad runs -j 1 jobs in the command's own process (InlineExecutor); "
                                        "'-j 1 --job-timeout 1e6' forces the pool of one spawned worker",
@@ -677,41 +838,28 @@ def main(argv: list[str] | None = None) -> int:
                                  "on fresh workers",
                          "definitions": __doc__.split("Throughput is given two ways:", 1)[1].strip(),
                          "memory": "RSS of the command's process tree (submitter + its workers) and, for Dask, of the "
-                                   "worker processes and nannies, polled every 0.5 s; peaks"},  # fmt: skip
+                                   "worker processes and nannies, polled every 0.5 s; peaks",
+                         "sessions": "the run may span several sessions (--resume) when something outside stopped it; "
+                                     "each batch records its session; see 'sessions'"},  # fmt: skip
               "specs": {"small": SMALL, "trivial": TRIVIAL, "trivial_formats": ["brep"]},
-              "dask_cluster_start_s": clusters.start_s, "suites": {}}  # fmt: skip
-    for suite, (spec, jobs, formats) in suites.items():
-        runs, cold = measured["runs"][suite], measured["cold"].get(suite, {})
-        result["suites"][suite] = {
-            "jobs": jobs, "formats": formats or ["step"],
-            "summary": {c: summarise(r) for c, r in runs.items()},
-            "cold": {c: {**summarise([r]), "runs": 1} for c, r in cold.items()},
-            "efficiency": {
-                "local (inline -j 1 vs -j 2)": {k: efficiency(runs["local -j 1 (inline)"], runs["local -j 2"], k)
-                                                for k in ("jobs_per_s", "steady_jobs_per_s")},
-                "local (1 process vs -j 2)": {k: efficiency(runs["local -j 1 (1 process)"], runs["local -j 2"], k)
-                                              for k in ("jobs_per_s", "steady_jobs_per_s")},
-                "dask warm (1 vs 2 workers)": {k: efficiency(runs["dask 1 worker"], runs["dask 2 workers"], k)
-                                               for k in ("jobs_per_s", "steady_jobs_per_s")},
-                "dask cold (1 vs 2 workers)": {k: efficiency([cold["dask 1 worker"]], [cold["dask 2 workers"]], k)
-                                               for k in ("jobs_per_s", "steady_jobs_per_s")}
-                if "dask 1 worker" in cold and "dask 2 workers" in cold else {},
-            },
-            "raw": {c: r for c, r in runs.items()}, "raw_cold": cold}  # fmt: skip
-    if not args.skip_long:
-        log(f"long sweep ({long_jobs} jobs)")
-        result["long"] = long_sweep(work / "small.toml", long_jobs, work, args.max_minutes * 60.0, log)
-    code_after = watched_hashes()
-    result["code_hashes"] = {"before": code_before, "after": code_after, "changed_during_run": code_before != code_after,
-                             "changed": [f for f in code_before if code_before[f] != code_after.get(f)],
+              "dask_cluster_start_s": data.get("dask_cluster_start_s"), "suites": {}}  # fmt: skip
+    runs_by = {}
+    for key, value in data["runs"].items():
+        phase, suite, config = key.split("|")
+        runs_by.setdefault((suite, "cold" if phase == "cold" else "warm", config), []).append((phase, value))
+    for suite, (_, jobs, formats) in suites.items():
+        runs = {c: [v for _, v in sorted(runs_by.get((suite, "warm", c), []), key=lambda pv: int(pv[0]))] for c in CONFIGS}
+        cold = {c: runs_by[(suite, "cold", c)][0][1] for c in CONFIGS if (suite, "cold", c) in runs_by}
+        result["suites"][suite] = {"jobs": jobs, "formats": formats or ["step"], **summaries(runs, cold)}
+    if data.get("long"):
+        result["long"] = data["long"]
+    before, after = data["code_before"], watched_hashes()
+    result["code_hashes"] = {"before": before, "after": after, "changed_during_run": before != after,
+                             "changed": [f for f in before if before[f] != after.get(f)],
                              "git_head_end": machine()["git_head"]}  # fmt: skip
-    result["total_minutes"] = round((time.perf_counter() - started) / 60.0, 2)
-    shutil.rmtree(work, ignore_errors=True)
-    output.parent.mkdir(parents=True, exist_ok=True)
-    output.write_text(json.dumps(result, indent=1) + "\n")
-    print(table(result))
-    print(f"\nwritten {output}")
-    return 0
+    result["sessions"] = data["sessions"]
+    result["total_minutes"] = round(sum(x["seconds"] for x in data["sessions"]) / 60.0, 2)
+    return result
 
 
 if __name__ == "__main__":
