@@ -54,7 +54,7 @@ from __future__ import annotations
 import math
 import sys
 import time
-from typing import Callable
+from collections.abc import Callable
 
 import build123d as bd
 import numpy as np
@@ -119,12 +119,21 @@ def periodic_cubic(tube: CurvatureLineTube, points: int) -> bd.Edge:
     parameterised by arc length: peers.spine's recipe, closed."""
     s = np.linspace(*tube.span, points + 1)
     a = tube.axis.at(s[:-1])
-    return bd.Edge.make_spline([bd.Vector(*p) for p in a.position], tangents=[bd.Vector(*t) for t in a.t],
-                               periodic=True, parameters=list(s), scale=False)  # fmt: skip
+    return bd.Edge.make_spline(
+        [bd.Vector(*p) for p in a.position],
+        tangents=[bd.Vector(*t) for t in a.t],
+        periodic=True,
+        parameters=list(s),
+        scale=False,
+    )
 
 
-def periodic_fit(tube: CurvatureLineTube, points: int = PERIODIC_POINTS, degree: int = PERIODIC_DEGREE,
-                 tolerance: float = PERIODIC_TOLERANCE) -> tuple[bd.Edge, int]:  # fmt: skip
+def periodic_fit(
+    tube: CurvatureLineTube,
+    points: int = PERIODIC_POINTS,
+    degree: int = PERIODIC_DEGREE,
+    tolerance: float = PERIODIC_TOLERANCE,
+) -> tuple[bd.Edge, int]:
     """The closed axis as a periodic B-spline of ``degree`` on uniform knots (C^(degree-1)
     everywhere, the closing point too), fitted by least squares to ``points`` exact points at
     their arc lengths: the fewest spans of PERIODIC_SPANS within ``tolerance`` of them."""
@@ -176,7 +185,11 @@ def route_wire(axis: RouteAxis) -> bd.Wire:
     for piece in axis.pieces:
         a, m, b = axis.position(np.array([piece.s0, 0.5 * (piece.s0 + piece.s1), piece.s1]))
         ends = (bd.Vector(*a), bd.Vector(*b))
-        edges.append(bd.Edge.make_line(*ends) if piece.kind == "line" else bd.Edge.make_three_point_arc(ends[0], bd.Vector(*m), ends[1]))
+        edges.append(
+            bd.Edge.make_line(*ends)
+            if piece.kind == "line"
+            else bd.Edge.make_three_point_arc(ends[0], bd.Vector(*m), ends[1])
+        )
     return bd.Wire(edges)
 
 
@@ -193,24 +206,43 @@ def trefoil(quick: bool):
         edge, fits["spans"] = periodic_fit(tube)
         return edge
 
-    spines = {f"periodic cubic {cubic}": (lambda built: periodic_cubic(tube, cubic),
-                                          f"periodic cubic through {cubic} points with exact tangents at arc-length parameters"),
-              "periodic degree 8": (degree_8, lambda: f"periodic degree 8 on {fits['spans']} uniform spans (C7), least squares "
-                                              f"within {PERIODIC_TOLERANCE:g} of {PERIODIC_POINTS} points"),
-              "periodic degree 8 refined": (lambda built: refined(built["periodic degree 8"]),
-                                            f"the periodic degree-8 spine with {REFINE - 1} knots inserted per span")}  # fmt: skip
+    spines = {
+        f"periodic cubic {cubic}": (
+            lambda built: periodic_cubic(tube, cubic),
+            f"periodic cubic through {cubic} points with exact tangents at arc-length parameters",
+        ),
+        "periodic degree 8": (
+            degree_8,
+            lambda: (
+                f"periodic degree 8 on {fits['spans']} uniform spans (C7), least squares "
+                f"within {PERIODIC_TOLERANCE:g} of {PERIODIC_POINTS} points"
+            ),
+        ),
+        "periodic degree 8 refined": (
+            lambda built: refined(built["periodic degree 8"]),
+            f"the periodic degree-8 spine with {REFINE - 1} knots inserted per span",
+        ),
+    }
     turn = axis.holonomy
-    return tube, spines, (f"ParametricAxis x(t) = {TREFOIL[0]}, y(t) = {TREFOIL[1]}, z(t) = {TREFOIL[2]}, t in [0, 2 pi]: "
-                          f"the whole knot, closed (holonomy {turn:.4f} rad = {math.degrees(turn):.2f} deg: the "
-                          "rotation-minimising frame comes back turned by it; no caps)")  # fmt: skip
+    return (
+        tube,
+        spines,
+        (
+            f"ParametricAxis x(t) = {TREFOIL[0]}, y(t) = {TREFOIL[1]}, z(t) = {TREFOIL[2]}, t in [0, 2 pi]: "
+            f"the whole knot, closed (holonomy {turn:.4f} rad = {math.degrees(turn):.2f} deg: the "
+            "rotation-minimising frame comes back turned by it; no caps)"
+        ),
+    )
 
 
 def spline_edge(quick: bool):
     """The axis along a build123d Spline edge; the spines: that edge, and it refined."""
     edge = bd.Spline(*SPLINE_POINTS)
     tube = CurvatureLineTube(edge_axis(edge), 6.0)
-    spines = {"the edge": (lambda built: edge, "the build123d Spline edge itself"),
-              "the edge refined": (lambda built: refined(edge), f"the same edge with {REFINE - 1} knots inserted per span")}  # fmt: skip
+    spines = {
+        "the edge": (lambda built: edge, "the build123d Spline edge itself"),
+        "the edge refined": (lambda built: refined(edge), f"the same edge with {REFINE - 1} knots inserted per span"),
+    }
     return tube, spines, f"edge_axis of the build123d Spline through {', '.join(map(str, SPLINE_POINTS))}"
 
 
@@ -218,9 +250,14 @@ def route(quick: bool):
     """The pipe route of samples/route.toml; the spine: its lines and arcs."""
     axis = RouteAxis(ROUTE_POINTS, ROUTE_BENDS)
     tube = CurvatureLineTube(axis, 20.0)
-    return tube, {"lines and arcs": (lambda built: route_wire(axis), "the route's lines and arcs as a wire")}, (
-        f"RouteAxis through {len(ROUTE_POINTS)} points, bend radii {', '.join(f'{r:g}' for r in ROUTE_BENDS)}: "
-        f"{sum(p.kind == 'line' for p in axis.pieces)} legs, {sum(p.kind == 'bend' for p in axis.pieces)} bends in three planes")  # fmt: skip
+    return (
+        tube,
+        {"lines and arcs": (lambda built: route_wire(axis), "the route's lines and arcs as a wire")},
+        (
+            f"RouteAxis through {len(ROUTE_POINTS)} points, bend radii {', '.join(f'{r:g}' for r in ROUTE_BENDS)}: "
+            f"{sum(p.kind == 'line' for p in axis.pieces)} legs, {sum(p.kind == 'bend' for p in axis.pieces)} bends in three planes"
+        ),
+    )
 
 
 #: case name -> (quick) -> (tube, {spine label: (make(spines built so far), description)}, description)
@@ -236,8 +273,9 @@ def at_equal_accuracy(variants: list[Measured], peer: Measured) -> tuple[Measure
     return min(variants, key=lambda m: m.max_deviation), False
 
 
-def run_methods(name: str, tube: CurvatureLineTube, runs, samples: int, repeats: int,
-                log=print) -> tuple[list[Measured], dict[str, str]]:  # fmt: skip
+def run_methods(
+    name: str, tube: CurvatureLineTube, runs, samples: int, repeats: int, log=print
+) -> tuple[list[Measured], dict[str, str]]:
     """compare.run_methods, where a method that raises (building or measuring) is reported,
     not fatal: the measured methods, and {method: error} of the others."""
     results: list[Measured] = []
@@ -250,14 +288,18 @@ def run_methods(name: str, tube: CurvatureLineTube, runs, samples: int, repeats:
             errors[method] = f"{type(exc).__name__}: {str(exc).strip() or 'no message'}"[:200]
             log(f"  {name}: {method}: FAILED ({errors[method]})")
             continue
-        log(f"  {name}: {method}: {results[-1].max_deviation:.2e} deviation, {build_s * 1e3:.0f} ms"
-            f"{'' if results[-1].valid else ', INVALID'}")  # fmt: skip
+        log(
+            f"  {name}: {method}: {results[-1].max_deviation:.2e} deviation, {build_s * 1e3:.0f} ms"
+            f"{'' if results[-1].valid else ', INVALID'}"
+        )
     return results, errors
 
 
 def not_counted(m: Measured, radius: float) -> str | None:
     """Why a peer's shape is not the tube (None if it is): invalid (BRepCheck), or off it."""
-    why = ([] if m.valid else ["invalid"]) + ([] if m.max_deviation < FAILED * radius else [f"{m.max_deviation:.1e} off"])
+    why = ([] if m.valid else ["invalid"]) + (
+        [] if m.max_deviation < FAILED * radius else [f"{m.max_deviation:.1e} off"]
+    )
     return ", ".join(why) or None
 
 
@@ -271,11 +313,16 @@ def run_case(name: str, setup: Callable, quick: bool, samples: int, repeats: int
         deviation = spine_deviation(tube, paths[label], 20_000)
         if not deviation < SPINE_LIMIT:
             raise RuntimeError(f"{name}: the spine '{label}' is {deviation:.2g} from the axis (limit {SPINE_LIMIT:g})")
-        spine_info[label] = {"description": text() if callable(text) else text, "deviation": deviation,
-                             "seconds": seconds, "closed": bool(paths[label].is_closed)}  # fmt: skip
+        spine_info[label] = {
+            "description": text() if callable(text) else text,
+            "deviation": deviation,
+            "seconds": seconds,
+            "closed": bool(paths[label].is_closed),
+        }
     named = (lambda sweep, label: f"{sweep} [{label}]") if len(paths) > 1 else (lambda sweep, label: sweep)
-    runs = [("tubecad", tubecad_solid, None)] + [(f"tubecad, tol {t:.0e}".replace("e-0", "e-"), tubecad_at(t), None)
-                                             for t in TUBECAD_TOLERANCES]  # fmt: skip
+    runs = [("tubecad", tubecad_solid, None)] + [
+        (f"tubecad, tol {t:.0e}".replace("e-0", "e-"), tubecad_at(t), None) for t in TUBECAD_TOLERANCES
+    ]
     runs += [(named(sweep, label), make, path) for label, path in paths.items() for sweep, make in SWEEPS.items()]
     results, errors = run_methods(name, tube, runs, samples, repeats, log)
     own = [run[0] for run in runs[: 1 + len(TUBECAD_TOLERANCES)]]
@@ -288,23 +335,47 @@ def run_case(name: str, setup: Callable, quick: bool, samples: int, repeats: int
     equal = []
     for peer in counted:
         ours, matched = at_equal_accuracy(variants, peer)
-        equal.append({"peer": peer.method, "peer_deviation": peer.max_deviation, "tubecad": ours.method,
-                      "tubecad_deviation": ours.max_deviation, "matched": matched,
-                      "poles_ratio": ours.poles / peer.poles, "build_ratio": ours.build_s / peer.build_s})  # fmt: skip
-    return {"axis": description, "kind": tube.axis.family, "length": tube.length, "radius": tube.radius,
-            "closed": tube.axis.closed, "holonomy": tube.axis.holonomy,
-            "axis_s": axis_s, "exact_grid": {"F": grid.max_orthogonality_error, "M": grid.max_M_error,
-                                             "nu": grid.nu, "ns": grid.ns},
-            "spines": spine_info, "methods": [m.as_dict() for m in results], "errors": errors,
-            "failed": [m for m, reason in why.items() if reason is not None] + list(errors),
-            "not_counted": {**{m: reason for m, reason in why.items() if reason is not None},
-                            **{m: "failed" for m in errors}},
-            "ratios": ratios(results[0], counted) if counted else None, "equal_accuracy": equal}  # fmt: skip
+        equal.append(
+            {
+                "peer": peer.method,
+                "peer_deviation": peer.max_deviation,
+                "tubecad": ours.method,
+                "tubecad_deviation": ours.max_deviation,
+                "matched": matched,
+                "poles_ratio": ours.poles / peer.poles,
+                "build_ratio": ours.build_s / peer.build_s,
+            }
+        )
+    return {
+        "axis": description,
+        "kind": tube.axis.family,
+        "length": tube.length,
+        "radius": tube.radius,
+        "closed": tube.axis.closed,
+        "holonomy": tube.axis.holonomy,
+        "axis_s": axis_s,
+        "exact_grid": {"F": grid.max_orthogonality_error, "M": grid.max_M_error, "nu": grid.nu, "ns": grid.ns},
+        "spines": spine_info,
+        "methods": [m.as_dict() for m in results],
+        "errors": errors,
+        "failed": [m for m, reason in why.items() if reason is not None] + list(errors),
+        "not_counted": {
+            **{m: reason for m, reason in why.items() if reason is not None},
+            **{m: "failed" for m in errors},
+        },
+        "ratios": ratios(results[0], counted) if counted else None,
+        "equal_accuracy": equal,
+    }
 
 
 def run(quick: bool = False, samples: int = 60_000, repeats: int = 3, log=print) -> dict:
-    out = {"peers": list(SWEEPS), "tubecad_tolerances": [DEFAULT_TOLERANCE, *TUBECAD_TOLERANCES],
-           "samples_per_method": samples, "quick": quick, "cases": {}}  # fmt: skip
+    out = {
+        "peers": list(SWEEPS),
+        "tubecad_tolerances": [DEFAULT_TOLERANCE, *TUBECAD_TOLERANCES],
+        "samples_per_method": samples,
+        "quick": quick,
+        "cases": {},
+    }
     start = time.perf_counter()
     for name, setup in CASES.items():
         log(f"  {name}:")
@@ -316,20 +387,31 @@ def run(quick: bool = False, samples: int = 60_000, repeats: int = 3, log=print)
 def table(result: dict) -> str:
     """tubecad's own numbers on each axis kind, where it stands against the 20 x targets,
     then the comparison per case (compare.py's table and ratio row)."""
-    lines = ["**Any axis: tubecad** (default tolerance 1e-8; F, M: largest |F|/sqrt(EG) and conjugacy error on "
-             "the exact grid; the rest measured on the B-rep as for the peers)", "",
-             "| case | axis | L | rho | axis + tube ms | build ms | STEP ms | poles | max deviation | max \\|cos\\| "
-             "| curvature-line angle (deg) | F (exact grid) | M (exact grid) | valid |", "|" + "---|" * 14]  # fmt: skip
+    lines = [
+        "**Any axis: tubecad** (default tolerance 1e-8; F, M: largest |F|/sqrt(EG) and conjugacy error on "
+        "the exact grid; the rest measured on the B-rep as for the peers)",
+        "",
+        "| case | axis | L | rho | axis + tube ms | build ms | STEP ms | poles | max deviation | max \\|cos\\| "
+        "| curvature-line angle (deg) | F (exact grid) | M (exact grid) | valid |",
+        "|" + "---|" * 14,
+    ]
     for name, case in result["cases"].items():
         m, g = case["methods"][0], case["exact_grid"]
-        lines.append(f"| {name} | {case['kind']} | {case['length']:.0f} | {case['radius']:g} | {case['axis_s'] * 1e3:.0f} "
-                     f"| {m['build_s'] * 1e3:.0f} | {m['export_s'] * 1e3:.0f} | {m['poles']:,} | {m['max_deviation']:.1e} "
-                     f"| {m['max_orthogonality']:.1e} | {m['max_curvature_angle_deg']:.1e} | {g['F']:.1e} | {g['M']:.1e} "
-                     f"| {'yes' if m['valid'] else 'NO'} |")  # fmt: skip
-    lines += ["", "**Any axis: against the 20 x targets** (for each peer that made the tube, the tubecad row with the "
-              "fewest poles at least as accurate; tubecad / peer, target 0.05 or less; the worst peer shown)", "",
-              "| case | poles, worst | build time, worst | most accurate peer | its deviation | tubecad row "
-              "| poles / its | build / its |", "|" + "---|" * 8]  # fmt: skip
+        lines.append(
+            f"| {name} | {case['kind']} | {case['length']:.0f} | {case['radius']:g} | {case['axis_s'] * 1e3:.0f} "
+            f"| {m['build_s'] * 1e3:.0f} | {m['export_s'] * 1e3:.0f} | {m['poles']:,} | {m['max_deviation']:.1e} "
+            f"| {m['max_orthogonality']:.1e} | {m['max_curvature_angle_deg']:.1e} | {g['F']:.1e} | {g['M']:.1e} "
+            f"| {'yes' if m['valid'] else 'NO'} |"
+        )
+    lines += [
+        "",
+        "**Any axis: against the 20 x targets** (for each peer that made the tube, the tubecad row with the "
+        "fewest poles at least as accurate; tubecad / peer, target 0.05 or less; the worst peer shown)",
+        "",
+        "| case | poles, worst | build time, worst | most accurate peer | its deviation | tubecad row "
+        "| poles / its | build / its |",
+        "|" + "---|" * 8,
+    ]
     for name, case in result["cases"].items():
         equal = case["equal_accuracy"]
         if not equal:
@@ -338,24 +420,33 @@ def table(result: dict) -> str:
         poles, build = (max(equal, key=lambda e: e[key]) for key in ("poles_ratio", "build_ratio"))
         best = min(equal, key=lambda e: e["peer_deviation"])
         mark = "" if best["matched"] else " (less accurate)"
-        lines.append(f"| {name} | {poles['poles_ratio']:.2g} ({poles['peer']}) | {build['build_ratio']:.2g} ({build['peer']}) "
-                     f"| {best['peer']} | {best['peer_deviation']:.1e} | {best['tubecad']}{mark} "
-                     f"| {best['poles_ratio']:.2g} | {best['build_ratio']:.2g} |")  # fmt: skip
+        lines.append(
+            f"| {name} | {poles['poles_ratio']:.2g} ({poles['peer']}) | {build['build_ratio']:.2g} ({build['peer']}) "
+            f"| {best['peer']} | {best['peer_deviation']:.1e} | {best['tubecad']}{mark} "
+            f"| {best['poles_ratio']:.2g} | {best['build_ratio']:.2g} |"
+        )
     for name, case in result["cases"].items():
-        spines = "; ".join(f"[{label}] {s['description']}, {s['deviation']:.1e} from the axis, made in {s['seconds']:.2g} s"
-                           for label, s in case["spines"].items())  # fmt: skip
+        spines = "; ".join(
+            f"[{label}] {s['description']}, {s['deviation']:.1e} from the axis, made in {s['seconds']:.2g} s"
+            for label, s in case["spines"].items()
+        )
         grouped: dict[str, list[str]] = {}
         for method, why in case["not_counted"].items():
             grouped.setdefault(why, []).append(method)
         groups = "; ".join(f"{why}: {', '.join(methods)}" for why, methods in grouped.items())
         failed = f"; not counted (not the tube): {groups}" if groups else ""
-        lines += ["", f"**{name}** ({case['axis']}; L = {case['length']:.6g}, rho = {case['radius']:g}; "
-                      f"spines: {spines}{failed})", ""]  # fmt: skip
+        lines += [
+            "",
+            f"**{name}** ({case['axis']}; L = {case['length']:.6g}, rho = {case['radius']:g}; "
+            f"spines: {spines}{failed})",
+            "",
+        ]
         rows = method_table(case["methods"], [("tubecad / best peer", case["ratios"])] if case["ratios"] else [])
         errors = case.get("errors", {})
         at = 2 + len(case["methods"])  # after the header and the measured methods, before the ratio row
-        rows[at:at] = [f"| {method} | failed: {error.replace('|', '/')} |" + " |" * 7 + " NO |"
-                       for method, error in errors.items()]  # fmt: skip
+        rows[at:at] = [
+            f"| {method} | failed: {error.replace('|', '/')} |" + " |" * 7 + " NO |" for method, error in errors.items()
+        ]
         lines += rows
     return "\n".join(lines)
 

@@ -3,7 +3,7 @@
 ``python benchmarks/batch_scaling.py [--quick] [--rounds N] [--output FILE]``
 
 Every batch is what a user runs: the command line in a subprocess
-(``python -m tubecad.interfaces.console build SPEC --sweep tube.radius=4:6:N -d DIR --force``),
+(``python -m tubecad.cli.console build SPEC --sweep tube.radius=4:6:N -d DIR --force``),
 its per-job lines on stderr time-stamped here as they arrive (the jobs' finish times), its
 DIR/batch.json read afterwards (each job's own build seconds, the batch's wall time).
 
@@ -77,11 +77,17 @@ import psutil
 
 ROOT = Path(__file__).resolve().parent.parent
 RESULT = ROOT / "benchmarks" / "results" / "batch_scaling.json"
-CLI = [sys.executable, "-m", "tubecad.interfaces.console", "build"]
+CLI = [sys.executable, "-m", "tubecad.cli.console", "build"]
 #: the code measured: hashed before and after, since the tree may be edited meanwhile
-WATCHED = ["tubecad/interfaces/batch.py", "tubecad/interfaces/executors.py", "tubecad/interfaces/dask_executor.py",
-           "tubecad/interfaces/cli.py", "tubecad/interfaces/manifest.py", "tubecad/interfaces/build.py",
-           "tubecad/interfaces/report.py"]  # fmt: skip
+WATCHED = [
+    "tubecad/batch/jobs.py",
+    "tubecad/batch/executors.py",
+    "tubecad/batch/dask_executor.py",
+    "tubecad/cli/app.py",
+    "tubecad/batch/manifest.py",
+    "tubecad/spec/build.py",
+    "tubecad/spec/report.py",
+]
 
 SMALL = """[axis]
 curve = "helix"
@@ -96,8 +102,11 @@ radius = 5.0
 rings = 3
 stringers = 2
 """
-TRIVIAL = SMALL.replace("s = [0.0, 300.0]", "s = [0.0, 20.0]").replace("rings = 3", "rings = 2").replace(
-    "stringers = 2", "stringers = 1")  # fmt: skip
+TRIVIAL = (
+    SMALL.replace("s = [0.0, 300.0]", "s = [0.0, 20.0]")
+    .replace("rings = 3", "rings = 2")
+    .replace("stringers = 2", "stringers = 1")
+)
 
 RUNNING: list[subprocess.Popen] = []  # the command running now (stopped with the benchmark)
 JOB_LINE = re.compile(r"\[(\d+)/(\d+)\] ([A-Za-z0-9._+-]+): (.*)")
@@ -118,8 +127,15 @@ class Monitor(threading.Thread):
         self.interval, self.every = interval, every
         self.done = threading.Event()
         self.t0 = time.perf_counter()
-        self.peak = {"submitter_mb": 0.0, "children_sum_mb": 0.0, "largest_child_mb": 0.0, "tree_mb": 0.0,
-                     "cluster_sum_mb": 0.0, "largest_cluster_process_mb": 0.0, "total_mb": 0.0}  # fmt: skip
+        self.peak = {
+            "submitter_mb": 0.0,
+            "children_sum_mb": 0.0,
+            "largest_child_mb": 0.0,
+            "tree_mb": 0.0,
+            "cluster_sum_mb": 0.0,
+            "largest_cluster_process_mb": 0.0,
+            "total_mb": 0.0,
+        }
         self.series: list[dict] = []
         self._last = -1e9
         self.samples = 0
@@ -142,9 +158,14 @@ class Monitor(threading.Thread):
             children = []
         kids = {c.pid: self._rss(c) for c in children}
         cluster = [self._rss(p) for p in self.extra]
-        now = {"submitter_mb": own, "children_sum_mb": sum(kids.values()), "largest_child_mb": max(kids.values(), default=0.0),
-               "tree_mb": own + sum(kids.values()), "cluster_sum_mb": sum(cluster),
-               "largest_cluster_process_mb": max(cluster, default=0.0)}  # fmt: skip
+        now = {
+            "submitter_mb": own,
+            "children_sum_mb": sum(kids.values()),
+            "largest_child_mb": max(kids.values(), default=0.0),
+            "tree_mb": own + sum(kids.values()),
+            "cluster_sum_mb": sum(cluster),
+            "largest_cluster_process_mb": max(cluster, default=0.0),
+        }
         now["total_mb"] = now["tree_mb"] + now["cluster_sum_mb"]
         for key, value in now.items():
             self.peak[key] = max(self.peak[key], value)
@@ -161,10 +182,15 @@ class Monitor(threading.Thread):
             span = max(wall - self._mark[0], 1e-9)
             others = max(busy - self._mark[1] - (self._ours - self._mark[2]), 0.0) / span
             self._mark = (wall, busy, self._ours)
-            self.series.append({"t": round(t, 1), "submitter_mb": round(own, 1),
-                                "children_mb": [round(kids[p], 1) for p in sorted(kids)],
-                                "cluster_mb": [round(c, 1) for c in cluster],
-                                "other_cores_since_last": round(others, 2)})  # fmt: skip
+            self.series.append(
+                {
+                    "t": round(t, 1),
+                    "submitter_mb": round(own, 1),
+                    "children_mb": [round(kids[p], 1) for p in sorted(kids)],
+                    "cluster_mb": [round(c, 1) for c in cluster],
+                    "other_cores_since_last": round(others, 2),
+                }
+            )
 
     def run(self) -> None:
         while not self.done.is_set():
@@ -192,8 +218,15 @@ def _machine_busy(times) -> float:
     return sum(times) - idle - getattr(times, "guest", 0.0) - getattr(times, "guest_nice", 0.0)
 
 
-def run_command(args: list[str], out_dir: Path, *, extra_pids: list[int] = (), limit_s: float | None = None,
-                interrupt_when_planned: bool = False, series_every: float = 10.0) -> dict:  # fmt: skip
+def run_command(
+    args: list[str],
+    out_dir: Path,
+    *,
+    extra_pids: list[int] = (),
+    limit_s: float | None = None,
+    interrupt_when_planned: bool = False,
+    series_every: float = 10.0,
+) -> dict:
     """Run ``tubecad build ARGS`` in a subprocess; time-stamp its job lines; watch memory and CPU."""
     extra = [psutil.Process(p) for p in extra_pids if psutil.pid_exists(p)]
     load0 = os.getloadavg()
@@ -202,8 +235,9 @@ def run_command(args: list[str], out_dir: Path, *, extra_pids: list[int] = (), l
     self0 = resource.getrusage(resource.RUSAGE_SELF)
     extra0 = _cpu_seconds(extra)
     t0 = time.perf_counter()
-    proc = subprocess.Popen(CLI + args, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            text=True, cwd=ROOT)  # fmt: skip
+    proc = subprocess.Popen(
+        CLI + args, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, cwd=ROOT
+    )
     RUNNING[:] = [proc]
     monitor = Monitor(proc.pid, extra_pids, every=series_every)
     monitor.start()
@@ -243,20 +277,44 @@ def run_command(args: list[str], out_dir: Path, *, extra_pids: list[int] = (), l
     children1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     self1 = resource.getrusage(resource.RUSAGE_SELF)
     machine1 = psutil.cpu_times()
-    ours = (children1.ru_utime + children1.ru_stime - children0.ru_utime - children0.ru_stime
-            + self1.ru_utime + self1.ru_stime - self0.ru_utime - self0.ru_stime + _cpu_seconds(extra) - extra0)  # fmt: skip
+    ours = (
+        children1.ru_utime
+        + children1.ru_stime
+        - children0.ru_utime
+        - children0.ru_stime
+        + self1.ru_utime
+        + self1.ru_stime
+        - self0.ru_utime
+        - self0.ru_stime
+        + _cpu_seconds(extra)
+        - extra0
+    )
     busy = _machine_busy(machine1) - _machine_busy(machine0)
     try:
         manifest = json.loads((out_dir / "batch.json").read_text())
     except (OSError, ValueError):
         manifest = None
-    return {"args": args, "returncode": rc, "wall_s": wall, "planned_s": planned_s, "finishes": finishes,
-            "retry_lines": retries, "other_lines": other[-6:], "stopped": stopped[0] if stopped else None,
-            "manifest": manifest, "memory": {k: round(v, 1) for k, v in monitor.peak.items()},
-            "memory_samples": monitor.samples, "memory_series": monitor.series,
-            "conditions": {"loadavg_1min_start": round(load0[0], 2), "loadavg_1min_end": round(os.getloadavg()[0], 2),
-                           "machine_busy_cores": round(busy / wall, 2), "benchmark_cores": round(ours / wall, 2),
-                           "other_cores": round(max(busy - ours, 0.0) / wall, 2)}}  # fmt: skip
+    return {
+        "args": args,
+        "returncode": rc,
+        "wall_s": wall,
+        "planned_s": planned_s,
+        "finishes": finishes,
+        "retry_lines": retries,
+        "other_lines": other[-6:],
+        "stopped": stopped[0] if stopped else None,
+        "manifest": manifest,
+        "memory": {k: round(v, 1) for k, v in monitor.peak.items()},
+        "memory_samples": monitor.samples,
+        "memory_series": monitor.series,
+        "conditions": {
+            "loadavg_1min_start": round(load0[0], 2),
+            "loadavg_1min_end": round(os.getloadavg()[0], 2),
+            "machine_busy_cores": round(busy / wall, 2),
+            "benchmark_cores": round(ours / wall, 2),
+            "other_cores": round(max(busy - ours, 0.0) / wall, 2),
+        },
+    }
 
 
 def metrics(raw: dict, workers: int) -> dict:
@@ -266,11 +324,19 @@ def metrics(raw: dict, workers: int) -> dict:
     finishes = raw["finishes"]
     n = len(finishes)
     own = [entries.get(name, {}).get("seconds") or 0.0 for _, name, _ in finishes]
-    out = {"jobs": n, "workers": workers, "returncode": raw["returncode"], "ok": manifest.get("ok"),
-           "failed": manifest.get("failed"), "skipped": manifest.get("skipped"), "wall_s": round(raw["wall_s"], 3),
-           "planned_s": None if raw["planned_s"] is None else round(raw["planned_s"], 3),
-           "batch_s": manifest.get("seconds"), "sum_job_s": round(sum(own), 3),
-           "mean_job_s": round(sum(own) / n, 4) if n else None}  # fmt: skip
+    out = {
+        "jobs": n,
+        "workers": workers,
+        "returncode": raw["returncode"],
+        "ok": manifest.get("ok"),
+        "failed": manifest.get("failed"),
+        "skipped": manifest.get("skipped"),
+        "wall_s": round(raw["wall_s"], 3),
+        "planned_s": None if raw["planned_s"] is None else round(raw["planned_s"], 3),
+        "batch_s": manifest.get("seconds"),
+        "sum_job_s": round(sum(own), 3),
+        "mean_job_s": round(sum(own) / n, 4) if n else None,
+    }
     if n:
         first_t, first_name, _ = finishes[0]
         out["first_finish_s"] = round(first_t, 3)
@@ -312,12 +378,15 @@ class Clusters:
         self.clusters, self.clients, self.start_s = {}, {}, {}
         for n in sizes:
             start = time.perf_counter()
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                   dashboard_address="127.0.0.1:0")  # fmt: skip
+            cluster = LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address="127.0.0.1:0"
+            )
             self.start_s[n] = round(time.perf_counter() - start, 3)
             self.clusters[n] = cluster
             self.clients[n] = Client(cluster)
-            log(f"  LocalCluster({n} worker{'s' * (n > 1)}) at {cluster.scheduler_address}: started in {self.start_s[n]:.1f} s")
+            log(
+                f"  LocalCluster({n} worker{'s' * (n > 1)}) at {cluster.scheduler_address}: started in {self.start_s[n]:.1f} s"
+            )
 
     def pids(self, n: int) -> list[int]:
         """The cluster's worker processes and their nannies (asked again each run: a nanny may restart its worker)."""
@@ -378,8 +447,19 @@ def _median(runs: list[dict], key: str):
 def summarise(runs: list[dict]) -> dict:
     if not runs:
         return {"runs": 0}
-    keys = ["jobs_per_s", "steady_jobs_per_s", "batch_jobs_per_s", "wall_s", "planned_s", "batch_s", "startup_s",
-            "mean_job_s", "overhead_steady_s", "overhead_batch_s", "overhead_total_s"]  # fmt: skip
+    keys = [
+        "jobs_per_s",
+        "steady_jobs_per_s",
+        "batch_jobs_per_s",
+        "wall_s",
+        "planned_s",
+        "batch_s",
+        "startup_s",
+        "mean_job_s",
+        "overhead_steady_s",
+        "overhead_batch_s",
+        "overhead_total_s",
+    ]
     out = {"runs": len(runs), **{k: _median(runs, k) for k in keys}}
     rates = [r["jobs_per_s"] for r in runs if r.get("jobs_per_s") is not None]
     out["jobs_per_s_range"] = [min(rates), max(rates)] if rates else None
@@ -395,29 +475,34 @@ def efficiency(one: list[dict], two: list[dict], key: str, keep=lambda run: True
     both = [(a, b) for a, b in zip(one, two) if keep(a) and keep(b)]
     pairs = [b[key] / (2 * a[key]) for a, b in both if a.get(key) and b.get(key)]
     m1, m2 = _median([a for a, _ in both], key), _median([b for _, b in both], key)
-    return {"paired_median": round(statistics.median(pairs), 3) if pairs else None,
-            "of_medians": round(m2 / (2 * m1), 3) if m1 and m2 else None, "pairs": [round(p, 3) for p in pairs]}  # fmt: skip
+    return {
+        "paired_median": round(statistics.median(pairs), 3) if pairs else None,
+        "of_medians": round(m2 / (2 * m1), 3) if m1 and m2 else None,
+        "pairs": [round(p, 3) for p in pairs],
+    }
 
 
 def _log_run(log, label: str, config: str, result: dict) -> None:
     nan = float("nan")
     status = "" if result["returncode"] == 0 else f"  EXIT {result['returncode']}"
-    log(f"  {label:17} {config:24} {result['jobs']:4} jobs {result['wall_s']:6.1f} s  "
+    log(
+        f"  {label:17} {config:24} {result['jobs']:4} jobs {result['wall_s']:6.1f} s  "
         f"{result.get('jobs_per_s', nan):.3g} jobs/s end-to-end, {result.get('steady_jobs_per_s', nan):.3g} steady; "
         f"overhead/job {result.get('overhead_steady_s', nan):.3f} s steady, {result.get('overhead_batch_s', nan):.3f} s "
-        f"batch; others used {result['conditions']['other_cores']:.2f} cores{status}")  # fmt: skip
+        f"batch; others used {result['conditions']['other_cores']:.2f} cores{status}"
+    )
 
 
 def _warm(_=None) -> bool:
     """On a Dask worker: import what a job imports (pickled by value from this script)."""
-    import tubecad.interfaces.batch  # noqa: F401
-    import tubecad.interfaces.build  # noqa: F401
-    import tubecad.interfaces.dask_executor  # noqa: F401
+    import tubecad.batch.dask_executor  # noqa: F401
+    import tubecad.batch.jobs  # noqa: F401
+    import tubecad.spec.build  # noqa: F401
 
     return True
 
 
-def rounds(suites: dict, n_rounds: int, state: "State", work: Path, log) -> None:
+def rounds(suites: dict, n_rounds: int, state: State, work: Path, log) -> None:
     """First a batch of the first suite on each fresh Dask cluster (cold: its workers import
     OCCT in their first jobs); then every suite's every configuration once per round, one
     after the other (side by side), the order reversed every other round. Each batch's
@@ -467,8 +552,14 @@ class State:
                 raise SystemExit(f"{path} holds a run with other parameters {self.data['params']}; drop --resume")
         else:
             self.data = {"params": params, "runs": {}, "long": None, "sessions": []}
-        self.data["sessions"].append({"started": time.strftime("%Y-%m-%dT%H:%M:%S"), "ended": None,
-                                      "ended_by": "still running or killed (SIGKILL)", "seconds": 0.0})  # fmt: skip
+        self.data["sessions"].append(
+            {
+                "started": time.strftime("%Y-%m-%dT%H:%M:%S"),
+                "ended": None,
+                "ended_by": "still running or killed (SIGKILL)",
+                "seconds": 0.0,
+            }
+        )
         self._t0 = time.perf_counter()
         self.save()
 
@@ -502,54 +593,78 @@ def long_sweep(spec: Path, jobs: int, work: Path, limit_s: float, log) -> dict:
     finishes = raw["finishes"]
     manifest = raw["manifest"] or {}
     entries = manifest.get("jobs", [])
-    from tubecad.interfaces.manifest import file_hash  # light: hashlib and json
+    from tubecad.batch.manifest import file_hash  # light: hashlib and json
 
-    mismatched = [e["name"] for e in entries if e["status"] == "ok"
-                  and any(file_hash(out / name) != h for name, h in e["hashes"].items())]  # fmt: skip
+    mismatched = [
+        e["name"]
+        for e in entries
+        if e["status"] == "ok" and any(file_hash(out / name) != h for name, h in e["hashes"].items())
+    ]
     missing = [e["name"] for e in entries if e["status"] == "ok" and not all((out / f).is_file() for f in e["outputs"])]
-    check = {"jobs_total": manifest.get("jobs_total"), "ok": manifest.get("ok"), "failed": manifest.get("failed"),
-             "cancelled": manifest.get("cancelled"), "skipped": manifest.get("skipped"),
-             "interrupted": manifest.get("interrupted"), "workers": manifest.get("workers"),
-             "entries": len(entries), "unique_names": len({e["name"] for e in entries}),
-             "attempts_over_1": sum(e.get("attempts", 1) > 1 for e in entries),
-             "job_lines": len(finishes), "unique_job_lines": len({name for _, name, _ in finishes}),
-             "files_missing": len(missing), "hash_mismatches": len(mismatched),
-             "all_ok": manifest.get("ok") == jobs and manifest.get("jobs_total") == jobs and not missing and not mismatched}  # fmt: skip
+    check = {
+        "jobs_total": manifest.get("jobs_total"),
+        "ok": manifest.get("ok"),
+        "failed": manifest.get("failed"),
+        "cancelled": manifest.get("cancelled"),
+        "skipped": manifest.get("skipped"),
+        "interrupted": manifest.get("interrupted"),
+        "workers": manifest.get("workers"),
+        "entries": len(entries),
+        "unique_names": len({e["name"] for e in entries}),
+        "attempts_over_1": sum(e.get("attempts", 1) > 1 for e in entries),
+        "job_lines": len(finishes),
+        "unique_job_lines": len({name for _, name, _ in finishes}),
+        "files_missing": len(missing),
+        "hash_mismatches": len(mismatched),
+        "all_ok": manifest.get("ok") == jobs and manifest.get("jobs_total") == jobs and not missing and not mismatched,
+    }
     # drift over the run: the own seconds and the finish rate, first tenth against last tenth
     by_name = {e["name"]: e.get("seconds") or 0.0 for e in entries}
     tenth = max(len(finishes) // 10, 2)
     drift = {}
     if len(finishes) >= 4 * tenth:
-        head, tail = finishes[2:2 + tenth], finishes[-tenth:]
-        drift = {"mean_job_s_first_tenth": round(statistics.fmean(by_name.get(n, 0.0) for _, n, _ in head), 4),
-                 "mean_job_s_last_tenth": round(statistics.fmean(by_name.get(n, 0.0) for _, n, _ in tail), 4),
-                 "jobs_per_s_first_tenth": round((len(head) - 1) / (head[-1][0] - head[0][0]), 4),
-                 "jobs_per_s_last_tenth": round((len(tail) - 1) / (tail[-1][0] - tail[0][0]), 4)}  # fmt: skip
+        head, tail = finishes[2 : 2 + tenth], finishes[-tenth:]
+        drift = {
+            "mean_job_s_first_tenth": round(statistics.fmean(by_name.get(n, 0.0) for _, n, _ in head), 4),
+            "mean_job_s_last_tenth": round(statistics.fmean(by_name.get(n, 0.0) for _, n, _ in tail), 4),
+            "jobs_per_s_first_tenth": round((len(head) - 1) / (head[-1][0] - head[0][0]), 4),
+            "jobs_per_s_last_tenth": round((len(tail) - 1) / (tail[-1][0] - tail[0][0]), 4),
+        }
     series = raw["memory_series"]
     if len(series) >= 3:
-        running = [s for s in series if (first.get("first_finish_s") or 0) <= s["t"] <= (first.get("last_finish_s") or 0)]
+        running = [
+            s for s in series if (first.get("first_finish_s") or 0) <= s["t"] <= (first.get("last_finish_s") or 0)
+        ]
         running = running or series
         early, last = running[0], running[-1]  # while the workers run: after the first job, before the last
         drift["worker_rss_mb_early"] = early["children_mb"]
         drift["worker_rss_mb_end"] = last["children_mb"]
         drift["submitter_rss_mb_early"], drift["submitter_rss_mb_end"] = early["submitter_mb"], last["submitter_mb"]
         drift["series_t_early_end"] = [early["t"], last["t"]]
-    log(f"  {first['jobs']} jobs in {first['wall_s']:.0f} s ({first['jobs_per_s']:.3g} jobs/s; steady "
+    log(
+        f"  {first['jobs']} jobs in {first['wall_s']:.0f} s ({first['jobs_per_s']:.3g} jobs/s; steady "
         f"{first.get('steady_jobs_per_s', float('nan')):.3g}); peak RSS: tree {first['memory']['tree_mb']:.0f} MB, "
         f"submitter {first['memory']['submitter_mb']:.0f} MB, largest worker {first['memory']['largest_child_mb']:.0f} MB; "
-        f"manifest ok {check['ok']}/{check['jobs_total']}{' STOPPED: ' + first['stopped'] if first.get('stopped') else ''}")  # fmt: skip
+        f"manifest ok {check['ok']}/{check['jobs_total']}{' STOPPED: ' + first['stopped'] if first.get('stopped') else ''}"
+    )
     # the rerun: every job already built (if the first run finished), so only the resume check
     mtimes = {p.name: p.stat().st_mtime_ns for p in out.iterdir()}
     rerun_raw = run_command(args, out, interrupt_when_planned=not check["all_ok"])
     rerun = metrics(rerun_raw, 2)
     rewritten = sum(1 for p in out.iterdir() if p.name != "batch.json" and mtimes.get(p.name) != p.stat().st_mtime_ns)
     rm = rerun_raw["manifest"] or {}
-    rerun_check = {"skipped": rm.get("skipped"), "ok": rm.get("ok"), "batch_s": rm.get("seconds"),
-                   "files_rewritten": rewritten, "first_line": next((line for line in rerun_raw["other_lines"]
-                                                                    if line.startswith("building ")), None),
-                   "last_line": rerun_raw["other_lines"][-1] if rerun_raw["other_lines"] else None}  # fmt: skip
-    log(f"  rerun (resume): {rerun['wall_s']:.1f} s wall, {rerun['planned_s'] or float('nan'):.1f} s to its first line; "
-        f"skipped {rerun_check['skipped']}, files rewritten {rewritten}")  # fmt: skip
+    rerun_check = {
+        "skipped": rm.get("skipped"),
+        "ok": rm.get("ok"),
+        "batch_s": rm.get("seconds"),
+        "files_rewritten": rewritten,
+        "first_line": next((line for line in rerun_raw["other_lines"] if line.startswith("building ")), None),
+        "last_line": rerun_raw["other_lines"][-1] if rerun_raw["other_lines"] else None,
+    }
+    log(
+        f"  rerun (resume): {rerun['wall_s']:.1f} s wall, {rerun['planned_s'] or float('nan'):.1f} s to its first line; "
+        f"skipped {rerun_check['skipped']}, files rewritten {rewritten}"
+    )
     rerun_check["in_process"] = resume_check_in_process(spec, jobs, out)
     log(f"  resume check in this process: {rerun_check['in_process']}")
     disk = sum(p.stat().st_size for p in out.iterdir())
@@ -557,18 +672,33 @@ def long_sweep(spec: Path, jobs: int, work: Path, limit_s: float, log) -> dict:
     blocks = []  # per 50 jobs, in finish order: rate, own seconds, the rest of the machine's CPU meanwhile
     size = 50 if len(finishes) >= 200 else max(len(finishes) // 4, 2)
     for b in range(0, len(finishes) - size + 1, size):
-        chunk = finishes[b:b + size]
+        chunk = finishes[b : b + size]
         t_start = finishes[b - 1][0] if b else (first.get("startup_s") or 0.0)
         near = [p["other_cores_since_last"] for p in series if t_start <= p["t"] <= chunk[-1][0] + 10.0]
-        blocks.append({"jobs": [b + 1, b + len(chunk)], "t_end": round(chunk[-1][0], 1),
-                       "jobs_per_s": round(len(chunk) / max(chunk[-1][0] - t_start, 1e-9), 3),
-                       "mean_job_s": round(statistics.fmean(by_name.get(n, 0.0) for _, n, _ in chunk), 3),
-                       "other_cores": round(statistics.fmean(near), 2) if near else None})  # fmt: skip
+        blocks.append(
+            {
+                "jobs": [b + 1, b + len(chunk)],
+                "t_end": round(chunk[-1][0], 1),
+                "jobs_per_s": round(len(chunk) / max(chunk[-1][0] - t_start, 1e-9), 3),
+                "mean_job_s": round(statistics.fmean(by_name.get(n, 0.0) for _, n, _ in chunk), 3),
+                "other_cores": round(statistics.fmean(near), 2) if near else None,
+            }
+        )
     control = radius_control(spec, work)
     log(f"  radius control (-j 1, radii 4 and 6 alternating): mean job s {control['mean_job_s']}")
-    return {"jobs": jobs, "run": first, "manifest_check": check, "drift": drift, "blocks": blocks,
-            "radius_control": control, "disk_mb": round(disk / MB, 1),
-            "rerun": {**{k: rerun[k] for k in ("wall_s", "planned_s", "returncode", "memory", "conditions")}, **rerun_check}}
+    return {
+        "jobs": jobs,
+        "run": first,
+        "manifest_check": check,
+        "drift": drift,
+        "blocks": blocks,
+        "radius_control": control,
+        "disk_mb": round(disk / MB, 1),
+        "rerun": {
+            **{k: rerun[k] for k in ("wall_s", "planned_s", "returncode", "memory", "conditions")},
+            **rerun_check,
+        },
+    }
 
 
 def resume_check_in_process(spec: Path, jobs: int, out: Path) -> dict:
@@ -576,8 +706,8 @@ def resume_check_in_process(spec: Path, jobs: int, out: Path) -> dict:
     read the manifest and verify every recorded output's hash (what the command does before
     its first line)."""
     try:
-        from tubecad.interfaces.batch import parse_sweep, plan_jobs
-        from tubecad.interfaces.manifest import read_manifest, spec_hash, up_to_date
+        from tubecad.batch.jobs import parse_sweep, plan_jobs
+        from tubecad.batch.manifest import read_manifest, spec_hash, up_to_date
 
         t0 = time.perf_counter()
         planned = plan_jobs([spec], [parse_sweep(f"tube.radius=4:6:{jobs}")], out, [])
@@ -590,8 +720,14 @@ def resume_check_in_process(spec: Path, jobs: int, out: Path) -> dict:
         t4 = time.perf_counter()
     except Exception as exc:  # noqa: BLE001 - the tree is being edited; record, do not fail the run
         return {"error": f"{type(exc).__name__}: {exc}"}
-    return {"plan_s": round(t1 - t0, 3), "spec_hashes_s": round(t2 - t1, 3), "read_manifest_s": round(t3 - t2, 3),
-            "verify_outputs_s": round(t4 - t3, 3), "total_s": round(t4 - t0, 3), "up_to_date": fresh}  # fmt: skip
+    return {
+        "plan_s": round(t1 - t0, 3),
+        "spec_hashes_s": round(t2 - t1, 3),
+        "read_manifest_s": round(t3 - t2, 3),
+        "verify_outputs_s": round(t4 - t3, 3),
+        "total_s": round(t4 - t0, 3),
+        "up_to_date": fresh,
+    }
 
 
 def radius_control(spec: Path, work: Path, pairs: int = 6) -> dict:
@@ -609,9 +745,13 @@ def radius_control(spec: Path, work: Path, pairs: int = 6) -> dict:
         r = e.get("sweep", {}).get("tube.radius")
         if r is not None and e.get("seconds") is not None:
             by_radius["4" if r < 5 else "6"].append(e["seconds"])
-    return {"values": values, "seconds": by_radius, "returncode": raw["returncode"],
-            "mean_job_s": {k: round(statistics.fmean(v), 3) if v else None for k, v in by_radius.items()},
-            "conditions": raw["conditions"]}  # fmt: skip
+    return {
+        "values": values,
+        "seconds": by_radius,
+        "returncode": raw["returncode"],
+        "mean_job_s": {k: round(statistics.fmean(v), 3) if v else None for k, v in by_radius.items()},
+        "conditions": raw["conditions"],
+    }
 
 
 # ---------------------------------------------------------------- machine, table, main
@@ -640,13 +780,22 @@ def machine() -> dict:
         head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
     except OSError:
         head = None
-    return {"cpus": os.cpu_count(), "physical_cpus": psutil.cpu_count(logical=False), "cpu_model": model,
-            "memory_gb": round(psutil.virtual_memory().total / 1024**3, 1), "platform": platform.platform(),
-            "python": platform.python_version(), "tubecad": _version("tubecad"), "dask": _version("dask"),
-            "distributed": _version("distributed"), "cadquery-ocp": _version("cadquery-ocp"),
-            "psutil": _version("psutil"), "git_head": head,
-            "note": "HEAD plus uncommitted edits in the working tree (being edited meanwhile); the measured "
-                    "files' hashes are in code_hashes"}  # fmt: skip
+    return {
+        "cpus": os.cpu_count(),
+        "physical_cpus": psutil.cpu_count(logical=False),
+        "cpu_model": model,
+        "memory_gb": round(psutil.virtual_memory().total / 1024**3, 1),
+        "platform": platform.platform(),
+        "python": platform.python_version(),
+        "tubecad": _version("tubecad"),
+        "dask": _version("dask"),
+        "distributed": _version("distributed"),
+        "cadquery-ocp": _version("cadquery-ocp"),
+        "psutil": _version("psutil"),
+        "git_head": head,
+        "note": "HEAD plus uncommitted edits in the working tree (being edited meanwhile); the measured "
+        "files' hashes are in code_hashes",
+    }
 
 
 def _f(value, fmt: str) -> str:
@@ -657,74 +806,111 @@ def table(result: dict) -> str:
     lines = []
     for suite, title in (("scaling", "small helix tube"), ("trivial", "trivial tube, -f brep")):
         s = result["suites"][suite]
-        lines += [f"{suite}: {s['jobs']} jobs of the {title}; medians of {result['rounds']} rounds "
-                  f"(Dask cold = the first batch on fresh workers, 1 run)", "",
-                  "| executor | jobs/s end-to-end | jobs/s steady | wall s | start-up s | mean job s | overhead/job steady s | "
-                  "overhead/job batch s | overhead/job total s | peak MB | others' cores |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
+        lines += [
+            f"{suite}: {s['jobs']} jobs of the {title}; medians of {result['rounds']} rounds "
+            f"(Dask cold = the first batch on fresh workers, 1 run)",
+            "",
+            "| executor | jobs/s end-to-end | jobs/s steady | wall s | start-up s | mean job s | overhead/job steady s | "
+            "overhead/job batch s | overhead/job total s | peak MB | others' cores |",
+            "|---|---|---|---|---|---|---|---|---|---|---|",
+        ]
         rows = [(c, m) for c, m in s["summary"].items()] + [(f"{c} (cold)", m) for c, m in s["cold"].items()]
         for config, m in rows:
-            lines.append(f"| {config} | {_f(m['jobs_per_s'], '.3g')} | {_f(m['steady_jobs_per_s'], '.3g')} | "
-                         f"{_f(m['wall_s'], '.1f')} | {_f(m['startup_s'], '.2f')} | {_f(m['mean_job_s'], '.3f')} | "
-                         f"{_f(m['overhead_steady_s'], '.3f')} | {_f(m['overhead_batch_s'], '.3f')} | "
-                         f"{_f(m['overhead_total_s'], '.3f')} | {_f(m['peak_total_mb'], '.0f')} | {_f(m['other_cores'], '.2f')} |")  # fmt: skip
+            lines.append(
+                f"| {config} | {_f(m['jobs_per_s'], '.3g')} | {_f(m['steady_jobs_per_s'], '.3g')} | "
+                f"{_f(m['wall_s'], '.1f')} | {_f(m['startup_s'], '.2f')} | {_f(m['mean_job_s'], '.3f')} | "
+                f"{_f(m['overhead_steady_s'], '.3f')} | {_f(m['overhead_batch_s'], '.3f')} | "
+                f"{_f(m['overhead_total_s'], '.3f')} | {_f(m['peak_total_mb'], '.0f')} | {_f(m['other_cores'], '.2f')} |"
+            )
         lines += ["", "scaling efficiency (jobs/s at 2 / (2 x jobs/s at 1); paired by round, median):", ""]
         for name, e in s["efficiency"].items():
             if not e:
                 continue
-            lines.append(f"- {name}: end-to-end {_f(e['jobs_per_s']['paired_median'], '.2f')}, "
-                         f"steady {_f(e['steady_jobs_per_s']['paired_median'], '.2f')}")  # fmt: skip
+            lines.append(
+                f"- {name}: end-to-end {_f(e['jobs_per_s']['paired_median'], '.2f')}, "
+                f"steady {_f(e['steady_jobs_per_s']['paired_median'], '.2f')}"
+            )
         for label, part in s.get("by_condition", {}).items():
             lines += ["", f"{label}: jobs/s end-to-end / steady (runs)", ""]
-            lines += [f"- {c}: {_f(m.get('jobs_per_s'), '.3g')} / {_f(m.get('steady_jobs_per_s'), '.3g')} ({m['runs']})"
-                      for c, m in part["summary"].items()]  # fmt: skip
-            lines += [f"- efficiency {name}: {_f(e['jobs_per_s']['paired_median'], '.2f')} / "
-                      f"{_f(e['steady_jobs_per_s']['paired_median'], '.2f')} ({len(e['steady_jobs_per_s']['pairs'])} rounds)"
-                      for name, e in part["efficiency"].items()]  # fmt: skip
+            lines += [
+                f"- {c}: {_f(m.get('jobs_per_s'), '.3g')} / {_f(m.get('steady_jobs_per_s'), '.3g')} ({m['runs']})"
+                for c, m in part["summary"].items()
+            ]
+            lines += [
+                f"- efficiency {name}: {_f(e['jobs_per_s']['paired_median'], '.2f')} / "
+                f"{_f(e['steady_jobs_per_s']['paired_median'], '.2f')} ({len(e['steady_jobs_per_s']['pairs'])} rounds)"
+                for name, e in part["efficiency"].items()
+            ]
         lines.append("")
     if "long" in result:
         g = result["long"]
         r, c, d = g["run"], g["manifest_check"], g["drift"]
-        lines += [f"long sweep: {g['jobs']} small tubes, local -j 2" + (f" (STOPPED: {r['stopped']})" if r.get("stopped") else ""), "",
-                  f"- wall {r['wall_s']:.0f} s ({r['wall_s'] / 60:.1f} min), {r['jobs']} jobs, {r['jobs_per_s']:.3g} jobs/s "
-                  f"end-to-end, {_f(r.get('steady_jobs_per_s'), '.3g')} steady; mean job {r['mean_job_s']:.3f} s; "
-                  f"overhead/job steady {_f(r.get('overhead_steady_s'), '.3f')} s, batch {_f(r.get('overhead_batch_s'), '.3f')} s",
-                  f"- peak RSS: process tree {r['memory']['tree_mb']:.0f} MB (submitter {r['memory']['submitter_mb']:.0f} MB, "
-                  f"largest worker {r['memory']['largest_child_mb']:.0f} MB, children {r['memory']['children_sum_mb']:.0f} MB)",
-                  f"- memory early -> end: workers {d.get('worker_rss_mb_early')} -> {d.get('worker_rss_mb_end')} MB, "
-                  f"submitter {d.get('submitter_rss_mb_early')} -> {d.get('submitter_rss_mb_end')} MB",
-                  f"- first -> last tenth: job s {d.get('mean_job_s_first_tenth')} -> {d.get('mean_job_s_last_tenth')}, "
-                  f"jobs/s {d.get('jobs_per_s_first_tenth')} -> {d.get('jobs_per_s_last_tenth')}",
-                  f"- manifest: ok {c['ok']}/{c['jobs_total']}, failed {c['failed']}, retried {c['attempts_over_1']}, "
-                  f"files missing {c['files_missing']}, hash mismatches {c['hash_mismatches']}: {'OK' if c['all_ok'] else 'NOT OK'}",
-                  f"- rerun (resume): {g['rerun']['wall_s']:.1f} s wall ({_f(g['rerun']['planned_s'], '.1f')} s to its first "
-                  f"line), skipped {g['rerun']['skipped']}, files rewritten {g['rerun']['files_rewritten']}; the check alone "
-                  f"(in process): {g['rerun']['in_process']}",
-                  f"- radius control (-j 1, alternating): mean job s {g['radius_control']['mean_job_s']}",
-                  "- per 50 jobs (jobs/s, mean job s, others' cores): "
-                  + "; ".join(f"{b['jobs_per_s']:.2f} {b['mean_job_s']:.2f} {_f(b['other_cores'], '.2f')}" for b in g["blocks"]),
-                  ""]  # fmt: skip
+        lines += [
+            f"long sweep: {g['jobs']} small tubes, local -j 2"
+            + (f" (STOPPED: {r['stopped']})" if r.get("stopped") else ""),
+            "",
+            f"- wall {r['wall_s']:.0f} s ({r['wall_s'] / 60:.1f} min), {r['jobs']} jobs, {r['jobs_per_s']:.3g} jobs/s "
+            f"end-to-end, {_f(r.get('steady_jobs_per_s'), '.3g')} steady; mean job {r['mean_job_s']:.3f} s; "
+            f"overhead/job steady {_f(r.get('overhead_steady_s'), '.3f')} s, batch {_f(r.get('overhead_batch_s'), '.3f')} s",
+            f"- peak RSS: process tree {r['memory']['tree_mb']:.0f} MB (submitter {r['memory']['submitter_mb']:.0f} MB, "
+            f"largest worker {r['memory']['largest_child_mb']:.0f} MB, children {r['memory']['children_sum_mb']:.0f} MB)",
+            f"- memory early -> end: workers {d.get('worker_rss_mb_early')} -> {d.get('worker_rss_mb_end')} MB, "
+            f"submitter {d.get('submitter_rss_mb_early')} -> {d.get('submitter_rss_mb_end')} MB",
+            f"- first -> last tenth: job s {d.get('mean_job_s_first_tenth')} -> {d.get('mean_job_s_last_tenth')}, "
+            f"jobs/s {d.get('jobs_per_s_first_tenth')} -> {d.get('jobs_per_s_last_tenth')}",
+            f"- manifest: ok {c['ok']}/{c['jobs_total']}, failed {c['failed']}, retried {c['attempts_over_1']}, "
+            f"files missing {c['files_missing']}, hash mismatches {c['hash_mismatches']}: {'OK' if c['all_ok'] else 'NOT OK'}",
+            f"- rerun (resume): {g['rerun']['wall_s']:.1f} s wall ({_f(g['rerun']['planned_s'], '.1f')} s to its first "
+            f"line), skipped {g['rerun']['skipped']}, files rewritten {g['rerun']['files_rewritten']}; the check alone "
+            f"(in process): {g['rerun']['in_process']}",
+            f"- radius control (-j 1, alternating): mean job s {g['radius_control']['mean_job_s']}",
+            "- per 50 jobs (jobs/s, mean job s, others' cores): "
+            + "; ".join(
+                f"{b['jobs_per_s']:.2f} {b['mean_job_s']:.2f} {_f(b['other_cores'], '.2f')}" for b in g["blocks"]
+            ),
+            "",
+        ]
     sessions = result.get("sessions") or [None]
-    lines.append(f"Dask LocalCluster start-up: {result['dask_cluster_start_s']} s; run time {result['total_minutes']:.1f} min "
-                 f"in {len(sessions)} session{'s' * (len(sessions) > 1)}")
+    lines.append(
+        f"Dask LocalCluster start-up: {result['dask_cluster_start_s']} s; run time {result['total_minutes']:.1f} min "
+        f"in {len(sessions)} session{'s' * (len(sessions) > 1)}"
+    )
     return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="a smoke run: 4 jobs per batch, 1 round, a 10-job long sweep")
+    parser.add_argument(
+        "--quick", action="store_true", help="a smoke run: 4 jobs per batch, 1 round, a 10-job long sweep"
+    )
     parser.add_argument("--rounds", type=int, default=None, help="rounds of every configuration (default 3; quick 1)")
     parser.add_argument("--long-jobs", type=int, default=None, help="jobs of the long sweep (default 1000; quick 10)")
     parser.add_argument("--max-minutes", type=float, default=15.0, help="stop the long sweep after this long")
     parser.add_argument("--skip-long", action="store_true", help="no long sweep")
-    parser.add_argument("--resume", action="store_true",
-                        help="continue a run that was stopped (its state file), skipping the batches it measured")
-    parser.add_argument("--state", type=Path, default=None,
-                        help="the state file (default: in the temporary folder, one for full runs, one for quick ones)")
-    parser.add_argument("--output", type=Path, default=None,
-                        help=f"the JSON (default {RESULT.relative_to(ROOT)}; with --quick a file in the temporary folder)")
-    parser.add_argument("--retable", type=Path, default=None, metavar="RESULT.json",
-                        help="measure nothing: recompute the summaries of RESULT.json from its raw runs, print the table")
+    parser.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue a run that was stopped (its state file), skipping the batches it measured",
+    )
+    parser.add_argument(
+        "--state",
+        type=Path,
+        default=None,
+        help="the state file (default: in the temporary folder, one for full runs, one for quick ones)",
+    )
+    parser.add_argument(
+        "--output",
+        type=Path,
+        default=None,
+        help=f"the JSON (default {RESULT.relative_to(ROOT)}; with --quick a file in the temporary folder)",
+    )
+    parser.add_argument(
+        "--retable",
+        type=Path,
+        default=None,
+        metavar="RESULT.json",
+        help="measure nothing: recompute the summaries of RESULT.json from its raw runs, print the table",
+    )
     args = parser.parse_args(argv)
     if args.retable:
         return retable(args.retable, args.output)
@@ -733,12 +919,19 @@ def main(argv: list[str] | None = None) -> int:
     scaling_jobs, trivial_jobs = (4, 4) if quick else (24, 40)
     long_jobs = 0 if args.skip_long else args.long_jobs or (10 if quick else 1000)
     log = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
-
     tmp_root = Path(tempfile.gettempdir())
     output = args.output or (tmp_root / "tubecad-batch-scaling.quick.json" if quick else RESULT)
-    params = {"quick": quick, "rounds": n_rounds, "scaling_jobs": scaling_jobs, "trivial_jobs": trivial_jobs,
-              "long_jobs": long_jobs, "max_minutes": args.max_minutes}  # fmt: skip
-    state = State(args.state or tmp_root / f"tubecad-batch-scaling-state{'.quick' if quick else ''}.json", params, args.resume)
+    params = {
+        "quick": quick,
+        "rounds": n_rounds,
+        "scaling_jobs": scaling_jobs,
+        "trivial_jobs": trivial_jobs,
+        "long_jobs": long_jobs,
+        "max_minutes": args.max_minutes,
+    }
+    state = State(
+        args.state or tmp_root / f"tubecad-batch-scaling-state{'.quick' if quick else ''}.json", params, args.resume
+    )
 
     def on_signal(signum, frame) -> None:  # recorded, the command stopped cleanly, then this process ends as asked
         state.save(ended_by=f"signal {signum} (from outside the benchmark)")
@@ -756,10 +949,15 @@ def main(argv: list[str] | None = None) -> int:
     work = Path(tempfile.mkdtemp(prefix="tubecad-batch-bench-"))
     (work / "small.toml").write_text(SMALL)
     (work / "trivial.toml").write_text(TRIVIAL)
-    suites = {"scaling": (work / "small.toml", scaling_jobs, []), "trivial": (work / "trivial.toml", trivial_jobs, ["brep"])}
+    suites = {
+        "scaling": (work / "small.toml", scaling_jobs, []),
+        "trivial": (work / "trivial.toml", trivial_jobs, ["brep"]),
+    }
     done = len(state.data["runs"])
-    log(f"tubecad batch scaling ({'quick' if quick else 'full'}): {n_rounds} rounds, work folder {work}, state "
-        f"{state.path}" + (f" (resumed: {done} batches measured before)" if args.resume else ""))  # fmt: skip
+    log(
+        f"tubecad batch scaling ({'quick' if quick else 'full'}): {n_rounds} rounds, work folder {work}, state "
+        f"{state.path}" + (f" (resumed: {done} batches measured before)" if args.resume else "")
+    )
     try:
         rounds(suites, n_rounds, state, work, log)
         if long_jobs and state.data["long"] is None:
@@ -784,27 +982,37 @@ def main(argv: list[str] | None = None) -> int:
 
 
 #: the rounds split by what the rest of the machine used meanwhile (other_cores of the run)
-CONDITIONS = {"quiet (others < 0.3 cores)": lambda run: run["conditions"]["other_cores"] < 0.3,
-              "loaded (others >= 0.5 cores)": lambda run: run["conditions"]["other_cores"] >= 0.5}  # fmt: skip
+CONDITIONS = {
+    "quiet (others < 0.3 cores)": lambda run: run["conditions"]["other_cores"] < 0.3,
+    "loaded (others >= 0.5 cores)": lambda run: run["conditions"]["other_cores"] >= 0.5,
+}
 
 
 def summaries(runs: dict[str, list[dict]], cold: dict[str, dict]) -> dict:
     """Medians per configuration, the scaling efficiencies, and both again per condition."""
-    pairs = {"local (inline -j 1 vs -j 2)": (runs["local -j 1 (inline)"], runs["local -j 2"]),
-             "local (1 process vs -j 2)": (runs["local -j 1 (1 process)"], runs["local -j 2"]),
-             "dask warm (1 vs 2 workers)": (runs["dask 1 worker"], runs["dask 2 workers"])}  # fmt: skip
+    pairs = {
+        "local (inline -j 1 vs -j 2)": (runs["local -j 1 (inline)"], runs["local -j 2"]),
+        "local (1 process vs -j 2)": (runs["local -j 1 (1 process)"], runs["local -j 2"]),
+        "dask warm (1 vs 2 workers)": (runs["dask 1 worker"], runs["dask 2 workers"]),
+    }
     cold_pairs = dict(pairs)
     if "dask 1 worker" in cold and "dask 2 workers" in cold:
         cold_pairs["dask cold (1 vs 2 workers)"] = ([cold["dask 1 worker"]], [cold["dask 2 workers"]])
     keys = ("jobs_per_s", "steady_jobs_per_s")
-    return {"summary": {c: summarise(r) for c, r in runs.items()},
-            "cold": {c: {**summarise([r]), "runs": 1} for c, r in cold.items()},
-            "efficiency": {name: {k: efficiency(a, b, k) for k in keys} for name, (a, b) in cold_pairs.items()},
-            "by_condition": {label: {"summary": {c: summarise([r for r in rs if keep(r)]) for c, rs in runs.items()},
-                                     "efficiency": {name: {k: efficiency(a, b, k, keep) for k in keys}
-                                                    for name, (a, b) in pairs.items()}}
-                             for label, keep in CONDITIONS.items()},
-            "raw": runs, "raw_cold": cold}  # fmt: skip
+    return {
+        "summary": {c: summarise(r) for c, r in runs.items()},
+        "cold": {c: {**summarise([r]), "runs": 1} for c, r in cold.items()},
+        "efficiency": {name: {k: efficiency(a, b, k) for k in keys} for name, (a, b) in cold_pairs.items()},
+        "by_condition": {
+            label: {
+                "summary": {c: summarise([r for r in rs if keep(r)]) for c, rs in runs.items()},
+                "efficiency": {name: {k: efficiency(a, b, k, keep) for k in keys} for name, (a, b) in pairs.items()},
+            }
+            for label, keep in CONDITIONS.items()
+        },
+        "raw": runs,
+        "raw_cold": cold,
+    }
 
 
 def retable(path: Path, output: Path | None) -> int:
@@ -812,8 +1020,10 @@ def retable(path: Path, output: Path | None) -> int:
     result = json.loads(path.read_text())
     for suite in result["suites"].values():
         suite.update(summaries(suite["raw"], suite["raw_cold"]))
-    result["summaries_recomputed"] = (f"{time.strftime('%Y-%m-%dT%H:%M:%S')}: summaries, efficiencies and by_condition "
-                                      f"recomputed from the raw runs (--retable); the measurements are unchanged")  # fmt: skip
+    result["summaries_recomputed"] = (
+        f"{time.strftime('%Y-%m-%dT%H:%M:%S')}: summaries, efficiencies and by_condition "
+        f"recomputed from the raw runs (--retable); the measurements are unchanged"
+    )
     (output or path).write_text(json.dumps(result, indent=1) + "\n")
     print(table(result))
     print(f"\nwritten {output or path}")
@@ -823,40 +1033,54 @@ def retable(path: Path, output: Path | None) -> int:
 def assemble(data: dict, suites: dict) -> dict:
     """The published JSON from the state: per suite and configuration the runs, their medians and the efficiencies."""
     params = data["params"]
-    result = {"benchmark": "batch_scaling", "quick": params["quick"], "machine": data["machine"], "rounds": params["rounds"],
-              "method": {"side_by_side": "the machine is shared (a CI run and another engineer's tests used the CPU "
-                                         "meanwhile): every configuration runs once per round, one after the other, order "
-                                         "reversed every other round; medians over rounds, efficiencies paired within a "
-                                         "round; conditions per run (other_cores = CPU the rest of the machine used "
-                                         "meanwhile); by_condition splits the rounds into quiet and loaded ones",
-                         "command": "python -m tubecad.interfaces.console build SPEC --sweep tube.radius=4:6:N -d DIR --force",
-                         "local -j 1": "tubecad runs -j 1 jobs in the command's own process (InlineExecutor); "
-                                       "'-j 1 --job-timeout 1e6' forces the pool of one spawned worker",
-                         "dask": "distributed.LocalCluster(n_workers=1|2, threads_per_worker=1, processes=True, "
-                                 "host='127.0.0.1') started in the benchmark process (its scheduler runs there), "
-                                 "passed with --scheduler; workers persist across batches; 'cold' = the first batch "
-                                 "on fresh workers",
-                         "definitions": __doc__.split("Throughput is given two ways:", 1)[1].strip(),
-                         "memory": "RSS of the command's process tree (submitter + its workers) and, for Dask, of the "
-                                   "worker processes and nannies, polled every 0.5 s; peaks",
-                         "sessions": "the run may span several sessions (--resume) when something outside stopped it; "
-                                     "each batch records its session; see 'sessions'"},  # fmt: skip
-              "specs": {"small": SMALL, "trivial": TRIVIAL, "trivial_formats": ["brep"]},
-              "dask_cluster_start_s": data.get("dask_cluster_start_s"), "suites": {}}  # fmt: skip
+    result = {
+        "benchmark": "batch_scaling",
+        "quick": params["quick"],
+        "machine": data["machine"],
+        "rounds": params["rounds"],
+        "method": {
+            "side_by_side": "the machine is shared (a CI run and another engineer's tests used the CPU "
+            "meanwhile): every configuration runs once per round, one after the other, order "
+            "reversed every other round; medians over rounds, efficiencies paired within a "
+            "round; conditions per run (other_cores = CPU the rest of the machine used "
+            "meanwhile); by_condition splits the rounds into quiet and loaded ones",
+            "command": "python -m tubecad.cli.console build SPEC --sweep tube.radius=4:6:N -d DIR --force",
+            "local -j 1": "tubecad runs -j 1 jobs in the command's own process (InlineExecutor); "
+            "'-j 1 --job-timeout 1e6' forces the pool of one spawned worker",
+            "dask": "distributed.LocalCluster(n_workers=1|2, threads_per_worker=1, processes=True, "
+            "host='127.0.0.1') started in the benchmark process (its scheduler runs there), "
+            "passed with --scheduler; workers persist across batches; 'cold' = the first batch "
+            "on fresh workers",
+            "definitions": __doc__.split("Throughput is given two ways:", 1)[1].strip(),
+            "memory": "RSS of the command's process tree (submitter + its workers) and, for Dask, of the "
+            "worker processes and nannies, polled every 0.5 s; peaks",
+            "sessions": "the run may span several sessions (--resume) when something outside stopped it; "
+            "each batch records its session; see 'sessions'",
+        },
+        "specs": {"small": SMALL, "trivial": TRIVIAL, "trivial_formats": ["brep"]},
+        "dask_cluster_start_s": data.get("dask_cluster_start_s"),
+        "suites": {},
+    }
     runs_by = {}
     for key, value in data["runs"].items():
         phase, suite, config = key.split("|")
         runs_by.setdefault((suite, "cold" if phase == "cold" else "warm", config), []).append((phase, value))
     for suite, (_, jobs, formats) in suites.items():
-        runs = {c: [v for _, v in sorted(runs_by.get((suite, "warm", c), []), key=lambda pv: int(pv[0]))] for c in CONFIGS}
+        runs = {
+            c: [v for _, v in sorted(runs_by.get((suite, "warm", c), []), key=lambda pv: int(pv[0]))] for c in CONFIGS
+        }
         cold = {c: runs_by[(suite, "cold", c)][0][1] for c in CONFIGS if (suite, "cold", c) in runs_by}
         result["suites"][suite] = {"jobs": jobs, "formats": formats or ["step"], **summaries(runs, cold)}
     if data.get("long"):
         result["long"] = data["long"]
     before, after = data["code_before"], watched_hashes()
-    result["code_hashes"] = {"before": before, "after": after, "changed_during_run": before != after,
-                             "changed": [f for f in before if before[f] != after.get(f)],
-                             "git_head_end": machine()["git_head"]}  # fmt: skip
+    result["code_hashes"] = {
+        "before": before,
+        "after": after,
+        "changed_during_run": before != after,
+        "changed": [f for f in before if before[f] != after.get(f)],
+        "git_head_end": machine()["git_head"],
+    }
     result["sessions"] = data["sessions"]
     result["total_minutes"] = round(sum(x["seconds"] for x in data["sessions"]) / 60.0, 2)
     return result

@@ -66,9 +66,9 @@ import math
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 import build123d as bd
 import numpy as np
@@ -79,13 +79,13 @@ from OCP.BRepAdaptor import BRepAdaptor_CompCurve
 from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
 from OCP.gp import gp_Pnt2d
 from OCP.Law import Law_Interpol
-from tubecad.occ_compat import Array1OfPnt2d  # OCP 7.9 and 8 name it differently
 from peers import DEFAULT_TOLERANCE, PIPE_MODES, spine_deviation
 
 from tubecad.brep import NetLayout, build_tube_solid, properties
 from tubecad.brep.measure import orthogonality, sample_face, tube_faces
-from tubecad.export.cad import export_shape
-from tubecad.interfaces.spec import load_spec
+from tubecad.export.registry import export_shape
+from tubecad.occ_compat import Array1OfPnt2d  # OCP 7.9 and 8 name it differently
+from tubecad.spec.parse import load_spec
 from tubecad.surface import CanalSurface
 from tubecad.surface.checks import distance_to_axis, envelope_distance
 
@@ -103,8 +103,15 @@ SPINE_LIMIT = 1e-9
 #: the helix's spine: degree, exact points, tolerance
 FIT_DEGREE, FIT_POINTS, FIT_TOLERANCE = 8, 2000, 1e-11
 #: lower is better for each; the ratio columns of the table
-RATIO_METRICS = ("build_s", "export_s", "poles", "max_deviation", "max_orthogonality",
-                 "max_curvature_angle_deg", "area_rel_error")  # fmt: skip
+RATIO_METRICS = (
+    "build_s",
+    "export_s",
+    "poles",
+    "max_deviation",
+    "max_orthogonality",
+    "max_curvature_angle_deg",
+    "area_rel_error",
+)
 
 
 # --- the spines ---------------------------------------------------------------------------------
@@ -114,8 +121,9 @@ def line_spine(surface: CanalSurface) -> tuple[bd.Edge, str]:
     return bd.Edge.make_line(bd.Vector(*a), bd.Vector(*b)), "a line edge between the axis' ends"
 
 
-def fitted_spine(surface: CanalSurface, degree: int = FIT_DEGREE, points: int = FIT_POINTS,
-                 tolerance: float = FIT_TOLERANCE) -> tuple[bd.Edge, str]:  # fmt: skip
+def fitted_spine(
+    surface: CanalSurface, degree: int = FIT_DEGREE, points: int = FIT_POINTS, tolerance: float = FIT_TOLERANCE
+) -> tuple[bd.Edge, str]:
     """The axis as a clamped B-spline of ``degree`` on uniform knots in arc length, fitted by
     least squares to ``points`` exact points: the fewest spans within ``tolerance`` of them."""
     from scipy.interpolate import make_lsq_spline
@@ -130,9 +138,11 @@ def fitted_spine(surface: CanalSurface, degree: int = FIT_DEGREE, points: int = 
             break
     else:
         raise RuntimeError(f"no degree-{degree} fit within {tolerance:g} with up to {spans} spans")
-    return (bd.Edge.make_bspline([tuple(p) for p in fit.c], list(knots), degree),
-            f"degree {degree} on {spans} uniform spans in arc length, least squares within {tolerance:g} of {points} "
-            "exact points")  # fmt: skip
+    return (
+        bd.Edge.make_bspline([tuple(p) for p in fit.c], list(knots), degree),
+        f"degree {degree} on {spans} uniform spans in arc length, least squares within {tolerance:g} of {points} "
+        "exact points",
+    )
 
 
 def wire_spine(surface: CanalSurface) -> tuple[bd.Wire, str]:
@@ -208,11 +218,15 @@ def loft(surface: CanalSurface, path):
 
 #: name -> builder(surface, spine) -> (shape, is_solid)
 PEERS: dict[str, Callable] = {
-    f"OCCT MakePipeShell + radius law ({LAW_SAMPLES} points), CorrectedFrenet, tol 1e-9": pipe_with_law("CorrectedFrenet"),
-    f"OCCT MakePipeShell + radius law ({LAW_SAMPLES} points), DiscreteTrihedron, tol 1e-9": pipe_with_law("DiscreteTrihedron"),
+    f"OCCT MakePipeShell + radius law ({LAW_SAMPLES} points), CorrectedFrenet, tol 1e-9": pipe_with_law(
+        "CorrectedFrenet"
+    ),
+    f"OCCT MakePipeShell + radius law ({LAW_SAMPLES} points), DiscreteTrihedron, tol 1e-9": pipe_with_law(
+        "DiscreteTrihedron"
+    ),
     f"build123d sweep, multisection=True, {SECTIONS} circles": multisection_sweep,
     f"build123d loft, {SECTIONS} circles (no spine)": loft,
-}  # fmt: skip
+}
 
 
 def tubecad_at(tolerance: float) -> Callable:
@@ -233,8 +247,9 @@ class CanalMeasured(Measured):
     max_pipe_deviation: float
 
 
-def against_envelope(surface: CanalSurface, points: np.ndarray, d1: np.ndarray, d2: np.ndarray
-                     ) -> tuple[float, float, float, float]:  # fmt: skip
+def against_envelope(
+    surface: CanalSurface, points: np.ndarray, d1: np.ndarray, d2: np.ndarray
+) -> tuple[float, float, float, float]:
     """(max |distance from the envelope|, max distance from the normal-circle pipe of r(s),
     max |cos| between d1 and d2, max angle in degrees of d1 and d2 from the principal
     directions of the envelope at the closest point) of the samples."""
@@ -250,17 +265,30 @@ def against_envelope(surface: CanalSurface, points: np.ndarray, d1: np.ndarray, 
         w = w - np.einsum("ij,ij->i", w, n)[:, None] * n
         w = w / np.linalg.norm(w, axis=1)[:, None]
         # atan2(|w x d|, |w . d|): arccos of a cosine near 1 would floor at ~1e-6 deg
-        angles = [np.arctan2(np.linalg.norm(np.cross(w, d), axis=1), np.abs(np.einsum("ij,ij->i", w, d))) for d in (ebar, m)]
+        angles = [
+            np.arctan2(np.linalg.norm(np.cross(w, d), axis=1), np.abs(np.einsum("ij,ij->i", w, d))) for d in (ebar, m)
+        ]
         return np.degrees(np.minimum(*angles))
 
     d, s_axis = distance_to_axis(surface.axis, points)
     pipe = np.abs(d - surface.radius_law.r(s_axis))
-    return (float(np.abs(e).max()), float(pipe.max()), float(orthogonality(d1, d2).max()),
-            float(np.maximum(angle(d1), angle(d2)).max()))  # fmt: skip
+    return (
+        float(np.abs(e).max()),
+        float(pipe.max()),
+        float(orthogonality(d1, d2).max()),
+        float(np.maximum(angle(d1), angle(d2)).max()),
+    )
 
 
-def measure_canal(method: str, shape, surface: CanalSurface, exact: tuple[float, float], build_s: float,
-                  samples: int = 60_000, solid: bool = True) -> CanalMeasured:  # fmt: skip
+def measure_canal(
+    method: str,
+    shape,
+    surface: CanalSurface,
+    exact: tuple[float, float],
+    build_s: float,
+    samples: int = 60_000,
+    solid: bool = True,
+) -> CanalMeasured:
     """All the measurements of ``shape`` against ``surface``; ``exact``: its (area, volume)."""
     faces = list(tube_faces(shape))
     per_face = max(samples // len(faces), 64)
@@ -279,11 +307,21 @@ def measure_canal(method: str, shape, surface: CanalSurface, exact: tuple[float,
         export_s = time.perf_counter() - start
         size = target.stat().st_size
     return CanalMeasured(
-        method=method, build_s=build_s, export_s=export_s, step_bytes=size, faces=len(faces),
-        poles=sum(poles(f) for f in faces), max_deviation=deviation, max_orthogonality=cos,
-        max_curvature_angle_deg=angle, area_rel_error=abs(area / exact[0] - 1.0), volume_rel_error=volume_error,
-        valid=properties.is_valid(shape), samples=len(faces) * nu * nv, max_pipe_deviation=pipe,
-    )  # fmt: skip
+        method=method,
+        build_s=build_s,
+        export_s=export_s,
+        step_bytes=size,
+        faces=len(faces),
+        poles=sum(poles(f) for f in faces),
+        max_deviation=deviation,
+        max_orthogonality=cos,
+        max_curvature_angle_deg=angle,
+        area_rel_error=abs(area / exact[0] - 1.0),
+        volume_rel_error=volume_error,
+        valid=properties.is_valid(shape),
+        samples=len(faces) * nu * nv,
+        max_pipe_deviation=pipe,
+    )
 
 
 # --- the run ------------------------------------------------------------------------------------
@@ -325,47 +363,87 @@ def run_case(name: str, spec: Path, make_spine: Callable, samples: int, repeats:
             log(f"  {name}: {method}: FAILED ({errors[method]})")
             continue
         m = results[-1]
-        log(f"  {name}: {method}: {m.max_deviation:.2e} from the envelope, {m.max_pipe_deviation:.2e} from the r(s) "
-            f"pipe, {build_s * 1e3:.0f} ms{'' if m.valid else ', INVALID'}")  # fmt: skip
+        log(
+            f"  {name}: {method}: {m.max_deviation:.2e} from the envelope, {m.max_pipe_deviation:.2e} from the r(s) "
+            f"pipe, {build_s * 1e3:.0f} ms{'' if m.valid else ', INVALID'}"
+        )
     variants = [m for m in results if m.method in own]
     peers = [m for m in results if m.method not in own]
     limit = FAILED * surface.radius_law.min_radius
-    not_counted = {m.method: ", ".join(([] if m.valid else ["invalid"]) + (
-        [] if m.max_pipe_deviation < limit else [f"{m.max_pipe_deviation:.1e} off the r(s) pipe"]))
-        for m in peers}  # fmt: skip
+    not_counted = {
+        m.method: ", ".join(
+            ([] if m.valid else ["invalid"])
+            + ([] if m.max_pipe_deviation < limit else [f"{m.max_pipe_deviation:.1e} off the r(s) pipe"])
+        )
+        for m in peers
+    }
     not_counted = {**{k: v for k, v in not_counted.items() if v}, **{k: "failed" for k in errors}}
     counted = [m for m in peers if m.method not in not_counted]
     equal = []
     for peer in counted:
         ours, matched = at_equal_accuracy(variants, peer)
-        equal.append({"peer": peer.method, "peer_deviation": peer.max_deviation, "peer_poles": peer.poles,
-                      "tubecad": ours.method, "tubecad_deviation": ours.max_deviation, "matched": matched,
-                      "poles_ratio": ours.poles / peer.poles, "build_ratio": ours.build_s / peer.build_s})  # fmt: skip
+        equal.append(
+            {
+                "peer": peer.method,
+                "peer_deviation": peer.max_deviation,
+                "peer_poles": peer.poles,
+                "tubecad": ours.method,
+                "tubecad_deviation": ours.max_deviation,
+                "matched": matched,
+                "poles_ratio": ours.poles / peer.poles,
+                "build_ratio": ours.build_s / peer.build_s,
+            }
+        )
     summary = None
     if counted:  # the tubecad row at least as accurate as the most accurate peer (so as every peer)
         best = min(counted, key=lambda m: m.max_deviation)
         ours, matched = at_equal_accuracy(variants, best)
         fewest, fastest = min(counted, key=lambda m: m.poles), min(counted, key=lambda m: m.build_s)
-        summary = {"best_peer": best.method, "best_peer_deviation": best.max_deviation, "tubecad": ours.method,
-                   "tubecad_deviation": ours.max_deviation, "tubecad_poles": ours.poles, "tubecad_build_s": ours.build_s,
-                   "matched": matched, "fewest_poles_peer": fewest.method, "fewest_poles": fewest.poles,
-                   "poles_ratio": ours.poles / fewest.poles, "fastest_peer": fastest.method,
-                   "fastest_build_s": fastest.build_s, "build_ratio": ours.build_s / fastest.build_s}  # fmt: skip
+        summary = {
+            "best_peer": best.method,
+            "best_peer_deviation": best.max_deviation,
+            "tubecad": ours.method,
+            "tubecad_deviation": ours.max_deviation,
+            "tubecad_poles": ours.poles,
+            "tubecad_build_s": ours.build_s,
+            "matched": matched,
+            "fewest_poles_peer": fewest.method,
+            "fewest_poles": fewest.poles,
+            "poles_ratio": ours.poles / fewest.poles,
+            "fastest_peer": fastest.method,
+            "fastest_build_s": fastest.build_s,
+            "build_ratio": ours.build_s / fastest.build_s,
+        }
     law = surface.radius_law
-    return {"spec": str(spec.relative_to(ROOT)), "axis": type(surface.axis).__name__, "length": surface.length,
-            "radius": {"min": law.min_radius, "max": law.max_radius}, "model": model_error(surface),
-            "exact": {"area": exact[0], "volume": exact[1]}, "load_s": load_s,
-            "spine": {"description": spine_text, "deviation": spine_dev, "seconds": spine_s},
-            "methods": [m.as_dict() for m in results], "errors": errors, "not_counted": not_counted,
-            "peers_within_1e-6": [m.method for m in counted if m.max_deviation <= 1e-6],
-            "ratios": ratios(results[0], counted, RATIO_METRICS) if counted else None, "equal_accuracy": equal,
-            "summary": summary}  # fmt: skip
+    return {
+        "spec": str(spec.relative_to(ROOT)),
+        "axis": type(surface.axis).__name__,
+        "length": surface.length,
+        "radius": {"min": law.min_radius, "max": law.max_radius},
+        "model": model_error(surface),
+        "exact": {"area": exact[0], "volume": exact[1]},
+        "load_s": load_s,
+        "spine": {"description": spine_text, "deviation": spine_dev, "seconds": spine_s},
+        "methods": [m.as_dict() for m in results],
+        "errors": errors,
+        "not_counted": not_counted,
+        "peers_within_1e-6": [m.method for m in counted if m.max_deviation <= 1e-6],
+        "ratios": ratios(results[0], counted, RATIO_METRICS) if counted else None,
+        "equal_accuracy": equal,
+        "summary": summary,
+    }
 
 
 def run(quick: bool = False, samples: int = 60_000, repeats: int = 3, log=print) -> dict:
-    out = {"peers": list(PEERS), "tubecad_tolerances": [DEFAULT_TOLERANCE, *TUBECAD_TOLERANCES],
-           "law_samples": LAW_SAMPLES, "sections": SECTIONS, "samples_per_method": samples, "quick": quick,
-           "cases": {}}  # fmt: skip
+    out = {
+        "peers": list(PEERS),
+        "tubecad_tolerances": [DEFAULT_TOLERANCE, *TUBECAD_TOLERANCES],
+        "law_samples": LAW_SAMPLES,
+        "sections": SECTIONS,
+        "samples_per_method": samples,
+        "quick": quick,
+        "cases": {},
+    }
     start = time.perf_counter()
     for name, (spec, make_spine) in CASES.items():
         log(f"  {name}:")
@@ -376,14 +454,21 @@ def run(quick: bool = False, samples: int = 60_000, repeats: int = 3, log=print)
 
 # --- the tables ---------------------------------------------------------------------------------
 def method_table(case: dict) -> list[str]:
-    lines = ["| method | build ms | STEP ms | poles | max deviation from the envelope | from the r(s) pipe "
-             "| max \\|cos\\| | curvature-line angle (deg) | area error | valid |", "|" + "---|" * 10]  # fmt: skip
+    lines = [
+        "| method | build ms | STEP ms | poles | max deviation from the envelope | from the r(s) pipe "
+        "| max \\|cos\\| | curvature-line angle (deg) | area error | valid |",
+        "|" + "---|" * 10,
+    ]
     for m in case["methods"]:
-        lines.append(f"| {m['method']} | {m['build_s'] * 1e3:.0f} | {m['export_s'] * 1e3:.0f} | {m['poles']:,} "
-                     f"| {m['max_deviation']:.1e} | {m['max_pipe_deviation']:.1e} | {m['max_orthogonality']:.1e} "
-                     f"| {m['max_curvature_angle_deg']:.1e} | {m['area_rel_error']:.1e} | {'yes' if m['valid'] else 'NO'} |")  # fmt: skip
-    lines += [f"| {method} | failed: {error.replace('|', '/')} |" + " |" * 7 + " NO |"
-              for method, error in case["errors"].items()]  # fmt: skip
+        lines.append(
+            f"| {m['method']} | {m['build_s'] * 1e3:.0f} | {m['export_s'] * 1e3:.0f} | {m['poles']:,} "
+            f"| {m['max_deviation']:.1e} | {m['max_pipe_deviation']:.1e} | {m['max_orthogonality']:.1e} "
+            f"| {m['max_curvature_angle_deg']:.1e} | {m['area_rel_error']:.1e} | {'yes' if m['valid'] else 'NO'} |"
+        )
+    lines += [
+        f"| {method} | failed: {error.replace('|', '/')} |" + " |" * 7 + " NO |"
+        for method, error in case["errors"].items()
+    ]
     if case["ratios"]:
         r = case["ratios"]
         cells = ["-" if r[k]["ratio"] is None else f"{r[k]['ratio']:.2g}" for k in RATIO_METRICS]
@@ -394,35 +479,46 @@ def method_table(case: dict) -> list[str]:
 def table(result: dict) -> str:
     """The summary (per case: the most accurate peer, and tubecad at least as accurate), then
     per case the methods with the ratio row."""
-    lines = ["**Canal surfaces: against the sweeps with a radius law** (deviation from the true envelope of the "
-             "spheres; the tubecad row with the fewest poles at least as accurate as every counted peer, against the "
-             "peer with the fewest poles and the fastest one)", "",
-             "| case | axis | L | r | max \\|r'\\| | r r'^2/2 | peers within 1e-6 | most accurate peer's deviation "
-             "| tubecad row | its deviation | poles / fewest-poles peer | build / fastest peer | tubecad (1e-8) deviation |",
-             "|" + "---|" * 13]  # fmt: skip
+    lines = [
+        "**Canal surfaces: against the sweeps with a radius law** (deviation from the true envelope of the "
+        "spheres; the tubecad row with the fewest poles at least as accurate as every counted peer, against the "
+        "peer with the fewest poles and the fastest one)",
+        "",
+        "| case | axis | L | r | max \\|r'\\| | r r'^2/2 | peers within 1e-6 | most accurate peer's deviation "
+        "| tubecad row | its deviation | poles / fewest-poles peer | build / fastest peer | tubecad (1e-8) deviation |",
+        "|" + "---|" * 13,
+    ]
     for name, case in result["cases"].items():
         m, rad, e = case["model"], case["radius"], case["summary"]
-        head = (f"| {name} | {case['axis']} | {case['length']:.0f} | {rad['max']:g} to {rad['min']:g} "
-                f"| {m['max_abs_slope']:.3g} | {m['normal_circle_estimate']:.1e} | {len(case['peers_within_1e-6'])} ")  # fmt: skip
+        head = (
+            f"| {name} | {case['axis']} | {case['length']:.0f} | {rad['max']:g} to {rad['min']:g} "
+            f"| {m['max_abs_slope']:.3g} | {m['normal_circle_estimate']:.1e} | {len(case['peers_within_1e-6'])} "
+        )
         own = case["methods"][0]["max_deviation"]
         if e is None:
             lines.append(head + f"| no peer counted | | | | | {own:.1e} |")
             continue
         mark = "" if e["matched"] else " (less accurate)"
-        lines.append(head + f"| {e['best_peer_deviation']:.1e} | {e['tubecad']}{mark} | {e['tubecad_deviation']:.1e} "
-                     f"| {e['poles_ratio']:.2g} ({e['fewest_poles_peer']}) | {e['build_ratio']:.2g} ({e['fastest_peer']}) "
-                     f"| {own:.1e} |")  # fmt: skip
+        lines.append(
+            head + f"| {e['best_peer_deviation']:.1e} | {e['tubecad']}{mark} | {e['tubecad_deviation']:.1e} "
+            f"| {e['poles_ratio']:.2g} ({e['fewest_poles_peer']}) | {e['build_ratio']:.2g} ({e['fastest_peer']}) "
+            f"| {own:.1e} |"
+        )
     for name, case in result["cases"].items():
         m, spine = case["model"], case["spine"]
         grouped: dict[str, list[str]] = {}
         for method, why in case["not_counted"].items():
             grouped.setdefault(why, []).append(method)
         groups = "; ".join(f"{why}: {', '.join(methods)}" for why, methods in grouped.items())
-        lines += ["", f"**{name}** (`{case['spec']}`, {case['axis']}, L = {case['length']:.6g}, r from "
-                      f"{case['radius']['max']:g} to {case['radius']['min']:g}, max |r'| = {m['max_abs_slope']:.3g} "
-                      f"(a normal circle of radius r lies up to about r r'^2/2 = {m['normal_circle_estimate']:.1e} "
-                      f"inside the envelope); spine: {spine['description']}, {spine['deviation']:.1e} from the axis"
-                      f"{f'; not counted: {groups}' if groups else ''})", ""]  # fmt: skip
+        lines += [
+            "",
+            f"**{name}** (`{case['spec']}`, {case['axis']}, L = {case['length']:.6g}, r from "
+            f"{case['radius']['max']:g} to {case['radius']['min']:g}, max |r'| = {m['max_abs_slope']:.3g} "
+            f"(a normal circle of radius r lies up to about r r'^2/2 = {m['normal_circle_estimate']:.1e} "
+            f"inside the envelope); spine: {spine['description']}, {spine['deviation']:.1e} from the axis"
+            f"{f'; not counted: {groups}' if groups else ''})",
+            "",
+        ]
         lines += method_table(case)
     return "\n".join(lines)
 

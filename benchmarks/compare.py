@@ -11,7 +11,7 @@ from pathlib import Path
 from measure import Measured, measure
 from peers import METHODS, PEERS, SPINE_POINTS, spine, spine_deviation
 
-from tubecad.interfaces.spec import load_spec
+from tubecad.spec.parse import load_spec
 
 ROOT = Path(__file__).resolve().parent.parent
 SPECS = {
@@ -20,8 +20,16 @@ SPECS = {
     "helix": ROOT / "samples" / "helix.toml",
 }
 #: lower is better for each; the ratio columns of the table
-RATIO_METRICS = ("build_s", "export_s", "poles", "max_deviation", "max_orthogonality",
-                 "max_curvature_angle_deg", "area_rel_error", "step_bytes")  # fmt: skip
+RATIO_METRICS = (
+    "build_s",
+    "export_s",
+    "poles",
+    "max_deviation",
+    "max_orthogonality",
+    "max_curvature_angle_deg",
+    "area_rel_error",
+    "step_bytes",
+)
 
 
 def timed_build(make, tube, path, repeats: int) -> tuple[object, bool, float]:
@@ -52,8 +60,12 @@ def ratios(ours: Measured, peers: list[Measured], metrics: tuple[str, ...] = RAT
     for metric in metrics:
         best = min(peers, key=lambda m: getattr(m, metric))
         value = getattr(best, metric)
-        out[metric] = {"best_peer": best.method, "best_peer_value": value, "tubecad": getattr(ours, metric),
-                       "ratio": getattr(ours, metric) / value if value else None}  # fmt: skip
+        out[metric] = {
+            "best_peer": best.method,
+            "best_peer_value": value,
+            "tubecad": getattr(ours, metric),
+            "ratio": getattr(ours, metric) / value if value else None,
+        }
     return out
 
 
@@ -61,9 +73,15 @@ def compare_spec(name: str, spec: Path, samples: int, repeats: int, log=print) -
     tube = load_spec(spec).tube
     path = spine(tube)
     results = run_methods(name, tube, [(method, make, path) for method, make in METHODS.items()], samples, repeats, log)
-    return {"spec": str(spec.relative_to(ROOT)), "length": tube.length, "radius": tube.radius,
-            "spine_points": SPINE_POINTS, "spine_deviation": spine_deviation(tube, path),
-            "methods": [m.as_dict() for m in results], "ratios": ratios(results[0], results[1:])}  # fmt: skip
+    return {
+        "spec": str(spec.relative_to(ROOT)),
+        "length": tube.length,
+        "radius": tube.radius,
+        "spine_points": SPINE_POINTS,
+        "spine_deviation": spine_deviation(tube, path),
+        "methods": [m.as_dict() for m in results],
+        "ratios": ratios(results[0], results[1:]),
+    }
 
 
 def run(samples: int = 60_000, repeats: int = 3, log=print) -> dict:
@@ -75,12 +93,17 @@ def run(samples: int = 60_000, repeats: int = 3, log=print) -> dict:
 
 def method_table(methods: list[dict], ratio_rows: list[tuple[str, dict]]) -> list[str]:
     """One Markdown table: a row per measured method, then one row per (label, ratios)."""
-    lines = ["| method | build ms | STEP ms | poles | max deviation | max \\|cos\\| | curvature-line angle (deg) "
-             "| area error | STEP KB | valid |", "|" + "---|" * 10]  # fmt: skip
+    lines = [
+        "| method | build ms | STEP ms | poles | max deviation | max \\|cos\\| | curvature-line angle (deg) "
+        "| area error | STEP KB | valid |",
+        "|" + "---|" * 10,
+    ]
     for m in methods:
-        lines.append(f"| {m['method']} | {m['build_s'] * 1e3:.0f} | {m['export_s'] * 1e3:.0f} | {m['poles']:,} "
-                     f"| {m['max_deviation']:.1e} | {m['max_orthogonality']:.1e} | {m['max_curvature_angle_deg']:.1e} "
-                     f"| {m['area_rel_error']:.1e} | {m['step_bytes'] / 1024:.0f} | {'yes' if m['valid'] else 'NO'} |")  # fmt: skip
+        lines.append(
+            f"| {m['method']} | {m['build_s'] * 1e3:.0f} | {m['export_s'] * 1e3:.0f} | {m['poles']:,} "
+            f"| {m['max_deviation']:.1e} | {m['max_orthogonality']:.1e} | {m['max_curvature_angle_deg']:.1e} "
+            f"| {m['area_rel_error']:.1e} | {m['step_bytes'] / 1024:.0f} | {'yes' if m['valid'] else 'NO'} |"
+        )
     for label, r in ratio_rows:
         cells = ["-" if r[metric]["ratio"] is None else f"{r[metric]['ratio']:.2g}" for metric in RATIO_METRICS]
         lines.append(f"| *{label}* | " + " | ".join(cells) + " | |")
@@ -91,8 +114,11 @@ def table(result: dict) -> str:
     """The comparison as a Markdown table (one block per spec), with the ratio row."""
     lines = []
     for name, spec in result["specs"].items():
-        lines += [f"**{name}** (`{spec['spec']}`, L = {spec['length']:g}, rho = {spec['radius']:g}; "
-                  f"sweep spine {spec['spine_points']} points, {spec['spine_deviation']:.1e} from the axis)", ""]  # fmt: skip
+        lines += [
+            f"**{name}** (`{spec['spec']}`, L = {spec['length']:g}, rho = {spec['radius']:g}; "
+            f"sweep spine {spec['spine_points']} points, {spec['spine_deviation']:.1e} from the axis)",
+            "",
+        ]
         lines += method_table(spec["methods"], [("tubecad / best peer", spec["ratios"])])
         lines.append("")
     return "\n".join(lines)
@@ -116,4 +142,3 @@ def case_main(argv: list[str] | None, doc: str, run, table, quick_help: str) -> 
             json.dump(result, handle, indent=2)
     print(table(result))
     return 0
-

@@ -127,8 +127,10 @@ def gmsh_size(step: Path, target: int, h: float, log) -> tuple[float, dict]:
     """h (starting from ``h``) giving gmsh quadrilaterals within MATCH of ``target``."""
     for _ in range(6):
         run = gmsh_mesh(step, h)
-        log(f"    gmsh size {h:.4g}: {run['quadrilaterals']:,} quads, {run['triangles']} triangles, "
-            f"{run['seconds']:.2f} s")
+        log(
+            f"    gmsh size {h:.4g}: {run['quadrilaterals']:,} quads, {run['triangles']} triangles, "
+            f"{run['seconds']:.2f} s"
+        )
         if abs(run["quadrilaterals"] - target) <= MATCH * target:
             return h, run
         h *= math.sqrt(run["quadrilaterals"] / target)
@@ -139,21 +141,27 @@ def run(repeats: int = 3, log=print) -> dict:
     import gmsh
 
     from tubecad.brep import build_tube_shell
-    from tubecad.export.cad import export_shape
+    from tubecad.export.registry import export_shape
 
     tube, layout = the_tube()
     result: dict = {
         "machine": {"python": platform.python_version(), "cpus": os.cpu_count(), "platform": platform.platform()},
-        "tube": {"axis": "Helix(k=0.002, beta_deg=10, s=[0, 2000])", "radius": tube.radius,
-                 "layout": {"rings": len(layout.s_rings), "stringers": len(layout.stringers_deg)}},
+        "tube": {
+            "axis": "Helix(k=0.002, beta_deg=10, s=[0, 2000])",
+            "radius": tube.radius,
+            "layout": {"rings": len(layout.s_rings), "stringers": len(layout.stringers_deg)},
+        },
         "repeats": repeats,
         "tubecad": {"element": "S4", "surface": "the tube itself (no wall)"},
-    }  # fmt: skip
+    }
     gmsh.initialize(readConfigFiles=False, interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
-        result["gmsh"] = {"version": gmsh.__version__, "algorithm": "6 (Frontal-Delaunay) + RecombineAll (Blossom)",
-                          "threads": gmsh.option.getNumber("General.NumThreads")}  # fmt: skip
+        result["gmsh"] = {
+            "version": gmsh.__version__,
+            "algorithm": "6 (Frontal-Delaunay) + RecombineAll (Blossom)",
+            "threads": gmsh.option.getNumber("General.NumThreads"),
+        }
         with tempfile.TemporaryDirectory() as tmp:
             start = time.perf_counter()
             build = build_tube_shell(tube, layout)
@@ -179,29 +187,48 @@ def run(repeats: int = 3, log=print) -> dict:
                     g_runs.append(gmsh_mesh(step, gh))
                 theirs = min(g_runs[1:], key=lambda r: r["seconds"])
                 t_best, g_best = min(t_runs), theirs["seconds"]
-                t_err, g_err = surface_error(tube.axis, tube.radius, ours.nodes), \
-                    surface_error(tube.axis, tube.radius, theirs["nodes"])  # fmt: skip
+                t_err, g_err = (
+                    surface_error(tube.axis, tube.radius, ours.nodes),
+                    surface_error(tube.axis, tube.radius, theirs["nodes"]),
+                )
                 g_count = theirs["quadrilaterals"] + theirs["triangles"]
                 row = {
                     "target": target,
-                    "tubecad": {"size": h, "elements": count, "nodes": len(ours.nodes), "seconds": t_best,
-                                "seconds_per_1e5_elements": t_best / count * 1e5,
-                                "max_surface_error": t_err[0], "rms_surface_error": t_err[1]},
-                    "gmsh": {"size": gh, "elements": g_count, "quadrilaterals": theirs["quadrilaterals"],
-                             "triangles": theirs["triangles"], "nodes": len(theirs["nodes"]), "seconds": g_best,
-                             "mesh_seconds": theirs["mesh_seconds"],
-                             "seconds_per_1e5_elements": g_best / g_count * 1e5,
-                             "mesh_seconds_per_1e5_elements": theirs["mesh_seconds"] / g_count * 1e5,
-                             "max_surface_error": g_err[0], "rms_surface_error": g_err[1]},
-                }  # fmt: skip
-                row["gmsh_over_tubecad_per_element"] = row["gmsh"]["seconds_per_1e5_elements"] / \
-                    row["tubecad"]["seconds_per_1e5_elements"]  # fmt: skip
-                row["gmsh_mesh_only_over_tubecad_per_element"] = row["gmsh"]["mesh_seconds_per_1e5_elements"] / \
-                    row["tubecad"]["seconds_per_1e5_elements"]  # fmt: skip
+                    "tubecad": {
+                        "size": h,
+                        "elements": count,
+                        "nodes": len(ours.nodes),
+                        "seconds": t_best,
+                        "seconds_per_1e5_elements": t_best / count * 1e5,
+                        "max_surface_error": t_err[0],
+                        "rms_surface_error": t_err[1],
+                    },
+                    "gmsh": {
+                        "size": gh,
+                        "elements": g_count,
+                        "quadrilaterals": theirs["quadrilaterals"],
+                        "triangles": theirs["triangles"],
+                        "nodes": len(theirs["nodes"]),
+                        "seconds": g_best,
+                        "mesh_seconds": theirs["mesh_seconds"],
+                        "seconds_per_1e5_elements": g_best / g_count * 1e5,
+                        "mesh_seconds_per_1e5_elements": theirs["mesh_seconds"] / g_count * 1e5,
+                        "max_surface_error": g_err[0],
+                        "rms_surface_error": g_err[1],
+                    },
+                }
+                row["gmsh_over_tubecad_per_element"] = (
+                    row["gmsh"]["seconds_per_1e5_elements"] / row["tubecad"]["seconds_per_1e5_elements"]
+                )
+                row["gmsh_mesh_only_over_tubecad_per_element"] = (
+                    row["gmsh"]["mesh_seconds_per_1e5_elements"] / row["tubecad"]["seconds_per_1e5_elements"]
+                )
                 result["sizes"].append(row)
-                log(f"    tubecad {t_best:.3f} s, gmsh {g_best:.3f} s ({theirs['mesh_seconds']:.3f} s meshing): "
+                log(
+                    f"    tubecad {t_best:.3f} s, gmsh {g_best:.3f} s ({theirs['mesh_seconds']:.3f} s meshing): "
                     f"gmsh / tubecad per element {row['gmsh_over_tubecad_per_element']:.1f}; surface error max "
-                    f"{t_err[0]:.2g} vs {g_err[0]:.2g}")  # fmt: skip
+                    f"{t_err[0]:.2g} vs {g_err[0]:.2g}"
+                )
             # the check of the distance search: the same nodes by tubecad's own Newton projection
             from tubecad.surface.checks import distance_to_axis
 
@@ -210,8 +237,12 @@ def run(repeats: int = 3, log=print) -> dict:
             result["tubecad_projection_max_surface_error"] = float(np.abs(theirs).max())
             # gmsh's Frontal-Delaunay for quads at the first gmsh size
             a8 = gmsh_mesh(step, result["sizes"][0]["gmsh"]["size"], algorithm=8)
-            result["algorithm_8"] = {"size": result["sizes"][0]["gmsh"]["size"], "quadrilaterals": a8["quadrilaterals"],
-                                     "triangles": a8["triangles"], "seconds": a8["seconds"]}  # fmt: skip
+            result["algorithm_8"] = {
+                "size": result["sizes"][0]["gmsh"]["size"],
+                "quadrilaterals": a8["quadrilaterals"],
+                "triangles": a8["triangles"],
+                "seconds": a8["seconds"],
+            }
     finally:
         gmsh.finalize()
     return result
@@ -228,7 +259,7 @@ def main(argv: list[str] | None = None) -> int:
     text = json.dumps(result, indent=2)
     print(text)
     args.json.parent.mkdir(parents=True, exist_ok=True)
-    from tubecad.export.atomic import write_text
+    from tubecad.core.atomic import write_text
 
     write_text(args.json, text + "\n")
     return 0

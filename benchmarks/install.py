@@ -31,8 +31,17 @@ ROOT = Path(__file__).resolve().parent.parent
 PYTHON = "python3.11"
 
 #: the [project] dependencies of tubecad 0.1.0 up to issue 9 (git 52f2bb5)
-BEFORE = ["numpy>=1.26", "scipy>=1.11", "matplotlib>=3.8", "click>=8.1", "build123d>=0.12,<0.13", "cadquery>=2.8,<2.9",
-          "cadquery-ocp>=7.9.3,<7.10", "cadquery-ocp-novtk>=7.9.3,<7.10", "ocp-vscode>=2.6"]  # fmt: skip
+BEFORE = [
+    "numpy>=1.26",
+    "scipy>=1.11",
+    "matplotlib>=3.8",
+    "click>=8.1",
+    "build123d>=0.12,<0.13",
+    "cadquery>=2.8,<2.9",
+    "cadquery-ocp>=7.9.3,<7.10",
+    "cadquery-ocp-novtk>=7.9.3,<7.10",
+    "ocp-vscode>=2.6",
+]
 
 #: case -> (what is installed first, not timed; the timed pip install steps)
 CASES: dict[str, tuple[list[list[str]], list[list[str]]]] = {
@@ -46,8 +55,15 @@ CASES: dict[str, tuple[list[list[str]], list[list[str]]]] = {
 
 def run_case(first: list[list[str]], steps: list[list[str]], folder: Path, cold: bool = False) -> dict:
     subprocess.run([PYTHON, "-m", "venv", str(folder)], check=True)
-    pip = [str(folder / "bin" / "python"), "-m", "pip", "install", "-q", "--disable-pip-version-check",
-           *(["--no-cache-dir"] if cold else [])]  # fmt: skip
+    pip = [
+        str(folder / "bin" / "python"),
+        "-m",
+        "pip",
+        "install",
+        "-q",
+        "--disable-pip-version-check",
+        *(["--no-cache-dir"] if cold else []),
+    ]
     for step in first:
         subprocess.run(pip + step, check=True)
     seconds = 0.0
@@ -56,23 +72,37 @@ def run_case(first: list[list[str]], steps: list[list[str]], folder: Path, cold:
         subprocess.run(pip + step, check=True)
         seconds += time.perf_counter() - start
     du = subprocess.run(["du", "-sm", str(folder)], check=True, capture_output=True, text=True).stdout
-    listing = subprocess.run([str(folder / "bin" / "python"), "-m", "pip", "list", "--format", "json"],
-                             check=True, capture_output=True, text=True).stdout  # fmt: skip
+    listing = subprocess.run(
+        [str(folder / "bin" / "python"), "-m", "pip", "list", "--format", "json"],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
     versions = {p["name"].lower(): p["version"] for p in json.loads(listing)}
     check = subprocess.run([str(folder / "bin" / "python"), "-m", "pip", "check"], capture_output=True, text=True)
-    return {"seconds": seconds, "megabytes": int(du.split()[0]), "distributions": len(versions),
-            "build123d": versions.get("build123d"), "ocp": versions.get("cadquery-ocp-novtk") or versions.get("cadquery-ocp"),
-            "ocp_distributions": sorted(d for d in versions if d.startswith("cadquery-ocp")),
-            "cadquery": versions.get("cadquery"), "pip_check": check.returncode == 0}  # fmt: skip
+    return {
+        "seconds": seconds,
+        "megabytes": int(du.split()[0]),
+        "distributions": len(versions),
+        "build123d": versions.get("build123d"),
+        "ocp": versions.get("cadquery-ocp-novtk") or versions.get("cadquery-ocp"),
+        "ocp_distributions": sorted(d for d in versions if d.startswith("cadquery-ocp")),
+        "cadquery": versions.get("cadquery"),
+        "pip_check": check.returncode == 0,
+    }
 
 
 def table(result: dict) -> str:
-    lines = ["| install | seconds | MB on disk | distributions | build123d | OCP wheels | pip check |",
-             "|---|---|---|---|---|---|---|"]  # fmt: skip
+    lines = [
+        "| install | seconds | MB on disk | distributions | build123d | OCP wheels | pip check |",
+        "|---|---|---|---|---|---|---|",
+    ]
     for name, r in result.items():
         wheels = ", ".join(f"{d} {r['ocp']}" for d in r["ocp_distributions"])
-        lines.append(f"| {name} | {r['seconds']:.0f} | {r['megabytes']:,} | {r['distributions']} | {r['build123d']} "
-                     f"| {wheels} | {'ok' if r['pip_check'] else 'FAILS'} |")  # fmt: skip
+        lines.append(
+            f"| {name} | {r['seconds']:.0f} | {r['megabytes']:,} | {r['distributions']} | {r['build123d']} "
+            f"| {wheels} | {'ok' if r['pip_check'] else 'FAILS'} |"
+        )
     return "\n".join(lines)
 
 
@@ -81,14 +111,18 @@ def run(cold: bool = False, log=print) -> dict:
     with tempfile.TemporaryDirectory(prefix="tubecad-install-") as tmp:
         for i, (name, (first, steps)) in enumerate(CASES.items()):
             out[name] = run_case(first, steps, Path(tmp) / f"venv{i}", cold)
-            log(f"  {name}: {out[name]['seconds']:.0f} s, {out[name]['megabytes']:,} MB, build123d {out[name]['build123d']}")
+            log(
+                f"  {name}: {out[name]['seconds']:.0f} s, {out[name]['megabytes']:,} MB, build123d {out[name]['build123d']}"
+            )
     return out
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cold", action="store_true", help="pip --no-cache-dir: download every wheel again")
-    parser.add_argument("--out", type=Path, default=None, help="JSON file [default: benchmarks/results/install[-cold].json]")
+    parser.add_argument(
+        "--out", type=Path, default=None, help="JSON file [default: benchmarks/results/install[-cold].json]"
+    )
     args = parser.parse_args()
     out = args.out or ROOT / "benchmarks" / "results" / f"install{'-cold' * args.cold}.json"
     result = run(args.cold)

@@ -23,7 +23,7 @@ from OCP.GeomConvert import GeomConvert
 
 from tubecad.brep import properties
 from tubecad.brep.measure import net_against_tube, sample_face, tube_faces  # also checks every file tubecad writes
-from tubecad.export.cad import export_shape
+from tubecad.export.registry import export_shape
 from tubecad.surface import CurvatureLineTube
 
 
@@ -56,8 +56,15 @@ def poles(face) -> int:
     return bspline.NbUPoles() * bspline.NbVPoles()
 
 
-def measure(method: str, shape, tube: CurvatureLineTube, build_s: float, samples: int = 60_000,
-            workdir: Path | None = None, solid: bool = True) -> Measured:  # fmt: skip
+def measure(
+    method: str,
+    shape,
+    tube: CurvatureLineTube,
+    build_s: float,
+    samples: int = 60_000,
+    workdir: Path | None = None,
+    solid: bool = True,
+) -> Measured:
     """All the measurements of ``shape`` (a solid, or a face/shell if ``solid`` is False)."""
     faces = list(tube_faces(shape))
     per_face = max(samples // len(faces), 64)
@@ -77,8 +84,17 @@ def measure(method: str, shape, tube: CurvatureLineTube, build_s: float, samples
         export_s = time.perf_counter() - start
         size = target.stat().st_size
     return Measured(
-        method=method, build_s=build_s, export_s=export_s, step_bytes=size, faces=len(faces),
-        poles=sum(poles(f) for f in faces), max_deviation=deviation, max_orthogonality=orthogonality,
-        max_curvature_angle_deg=angle, area_rel_error=abs(area / tube.area_exact - 1.0),
-        volume_rel_error=volume_error, valid=properties.is_valid(shape), samples=len(faces) * nu * nv,
-    )  # fmt: skip
+        method=method,
+        build_s=build_s,
+        export_s=export_s,
+        step_bytes=size,
+        faces=len(faces),
+        poles=sum(poles(f) for f in faces),
+        max_deviation=deviation,
+        max_orthogonality=orthogonality,
+        max_curvature_angle_deg=angle,
+        area_rel_error=abs(area / tube.area_exact - 1.0),
+        volume_rel_error=volume_error,
+        valid=properties.is_valid(shape),
+        samples=len(faces) * nu * nv,
+    )

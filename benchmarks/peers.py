@@ -20,8 +20,7 @@ builder takes any :class:`~tubecad.curves.Axis` (the circle starts along r1 at s
 
 from __future__ import annotations
 
-
-from typing import Callable
+from collections.abc import Callable
 
 import build123d as bd
 import numpy as np
@@ -42,8 +41,9 @@ def spine(tube: CurvatureLineTube, points: int = SPINE_POINTS) -> bd.Edge:
     parameterised by arc length."""
     s = np.linspace(*tube.span, points)
     a = tube.axis.at(s)
-    return bd.Edge.make_spline([bd.Vector(*p) for p in a.position], tangents=[bd.Vector(*t) for t in a.t],
-                               parameters=list(s), scale=False)  # fmt: skip
+    return bd.Edge.make_spline(
+        [bd.Vector(*p) for p in a.position], tangents=[bd.Vector(*t) for t in a.t], parameters=list(s), scale=False
+    )
 
 
 def spine_deviation(tube: CurvatureLineTube, path: bd.Edge | bd.Wire, samples: int = 4000) -> float:
@@ -131,4 +131,3 @@ METHODS: dict[str, Callable] = {
 
 #: the methods an engineer could use instead of tubecad
 PEERS = [name for name in METHODS if name != "tubecad"]
-

@@ -70,8 +70,10 @@ def grid_throughput(sizes=GRID_SIZES, log=print) -> list[dict]:
             occt_s = _best_of(occt, 1)
             row.update(occt_s=occt_s, occt_points_per_s=nu * ns / occt_s, ratio=occt_s / seconds)
         rows.append(row)
-        log(f"  grid {nu * ns:>10,} points: {row['tubecad_points_per_s']:.3g} points/s"
-            + (f", OCCT D0 {row['occt_points_per_s']:.3g} points/s" if "occt_s" in row else ""))  # fmt: skip
+        log(
+            f"  grid {nu * ns:>10,} points: {row['tubecad_points_per_s']:.3g} points/s"
+            + (f", OCCT D0 {row['occt_points_per_s']:.3g} points/s" if "occt_s" in row else "")
+        )
     return rows
 
 
@@ -111,9 +113,16 @@ def wall_case(rings: int, stringers: int) -> dict:
     start = time.perf_counter()
     valid = properties.is_valid(build.shape)
     check_s = time.perf_counter() - start
-    return {"rings": rings, "stringers": stringers, "faces": properties.count(build.shape, "face"),
-            "seconds": seconds, "peak_mb": peak, "valid": valid, "check_s": check_s,
-            "free_edges": properties.free_edges(build.shape)}  # fmt: skip
+    return {
+        "rings": rings,
+        "stringers": stringers,
+        "faces": properties.count(build.shape, "face"),
+        "seconds": seconds,
+        "peak_mb": peak,
+        "valid": valid,
+        "check_s": check_s,
+        "free_edges": properties.free_edges(build.shape),
+    }
 
 
 def shell_case(rings: int, stringers: int, sew: bool) -> dict:
@@ -141,9 +150,16 @@ def shell_case(rings: int, stringers: int, sew: bool) -> dict:
         shape = build_tube_shell(tube, layout).shape
     seconds = time.perf_counter() - start
     peak = _peak_mb_since(baseline)
-    return {"rings": rings, "stringers": stringers, "method": "sewing" if sew else "tubecad",
-            "faces": properties.count(shape, "face"), "seconds": seconds, "peak_mb": peak,
-            "free_edges": properties.free_edges(shape), "valid": properties.is_valid(shape)}  # fmt: skip
+    return {
+        "rings": rings,
+        "stringers": stringers,
+        "method": "sewing" if sew else "tubecad",
+        "faces": properties.count(shape, "face"),
+        "seconds": seconds,
+        "peak_mb": peak,
+        "free_edges": properties.free_edges(shape),
+        "valid": properties.is_valid(shape),
+    }
 
 
 def _in_fresh_processes(calls, log) -> list[dict]:
@@ -158,7 +174,9 @@ def _in_fresh_processes(calls, log) -> list[dict]:
 
 def brep_scaling(wall_layouts=WALL_LAYOUTS, sewing_layouts=SEWING_LAYOUTS, log=print) -> dict:
     walls = _in_fresh_processes([(wall_case, layout) for layout in wall_layouts], log)
-    shells = _in_fresh_processes([(shell_case, (*layout, sew)) for layout in sewing_layouts for sew in (False, True)], log)
+    shells = _in_fresh_processes(
+        [(shell_case, (*layout, sew)) for layout in sewing_layouts for sew in (False, True)], log
+    )
     return {"walls": walls, "shells": shells}
 
 
@@ -180,8 +198,13 @@ def fit_scaling(tolerances=TOLERANCES, peer_tolerances=PEER_TOLERANCES, log=prin
         seconds = time.perf_counter() - start
         measured = measure_surface(ts)
         nu, nv = ts.pole_count
-        row = {"tolerance": tol, "tubecad_s": seconds, "tubecad_poles": nu * nv,
-               "tubecad_deviation": measured.max_deviation, "tubecad_orthogonality": measured.max_orthogonality_error}  # fmt: skip
+        row = {
+            "tolerance": tol,
+            "tubecad_s": seconds,
+            "tubecad_poles": nu * nv,
+            "tubecad_deviation": measured.max_deviation,
+            "tubecad_orthogonality": measured.max_orthogonality_error,
+        }
         if tol in peer_tolerances:
             start = time.perf_counter()
             fit = grid_surface(tube, 33, 201, tol)

@@ -23,8 +23,16 @@ CASES = {
     "tubecad --help": [str(CONSOLE), "--help"],
     "import tubecad": [PYTHON, "-c", "import tubecad"],
     "import tubecad.surface (numpy, scipy)": [PYTHON, "-c", "import tubecad.surface"],
-    "tubecad report samples/helix.toml": [str(CONSOLE), "report", str(Path(__file__).resolve().parent.parent / "samples" / "helix.toml")],
-    "from tubecad.brep import build_wall_solid (tubecad build)": [PYTHON, "-c", "from tubecad.brep import build_wall_solid"],
+    "tubecad report samples/helix.toml": [
+        str(CONSOLE),
+        "report",
+        str(Path(__file__).resolve().parent.parent / "samples" / "helix.toml"),
+    ],
+    "from tubecad.brep import build_wall_solid (tubecad build)": [
+        PYTHON,
+        "-c",
+        "from tubecad.brep import build_wall_solid",
+    ],
     "import build123d (peer)": [PYTHON, "-c", "import build123d"],
 }
 
@@ -41,8 +49,14 @@ def best_seconds(command: list[str], repeats: int) -> float:
 def loads_occt(command: list[str]) -> bool:
     """Does the command load OCCT (the OCP extension)? Checked with -X importtime."""
     if command[0] != PYTHON:
-        probe = [PYTHON, "-X", "importtime", "-c", f"from tubecad.interfaces.cli import cli\ntry:\n"
-                 f"    cli.main({command[1:]!r}, standalone_mode=False)\nexcept SystemExit:\n    pass"]  # fmt: skip
+        probe = [
+            PYTHON,
+            "-X",
+            "importtime",
+            "-c",
+            f"from tubecad.cli.app import cli\ntry:\n"
+            f"    cli.main({command[1:]!r}, standalone_mode=False)\nexcept SystemExit:\n    pass",
+        ]
     else:
         probe = [PYTHON, "-X", "importtime", *command[1:]]
     err = subprocess.run(probe, check=True, capture_output=True, text=True).stderr

@@ -1,7 +1,7 @@
 """A stiffened wall beside the same wall without stiffeners, in one process (issue 9).
 
 ``python benchmarks/stiffened.py [--spec SPEC.toml] [--repeats N] [--json FILE]`` runs what
-``tubecad build SPEC.toml -o OUT.step`` runs (tubecad.interfaces.build.build_and_export:
+``tubecad build SPEC.toml -o OUT.step`` runs (tubecad.spec.build.build_and_export:
 build, report, named STEP, read back and check) for a stiffened sample (default
 ``samples/helix_stiffened.toml``; ``samples/nozzle.toml`` is a canal wall) and for the same
 spec without its [stiffeners] section (the plain wall), alternately, after one warm-up
@@ -29,7 +29,7 @@ TARGET_RATIO = 1.6
 
 def specs(path: Path = SPEC) -> dict[str, object]:
     """The plain wall (the sample without [stiffeners]) and the stiffened sample, checked."""
-    from tubecad.interfaces.spec import parse_spec
+    from tubecad.spec.parse import parse_spec
 
     data = tomllib.loads(path.read_text())
     plain = {key: value for key, value in data.items() if key != "stiffeners"}
@@ -38,18 +38,22 @@ def specs(path: Path = SPEC) -> dict[str, object]:
 
 def one_build(spec, out: Path) -> dict[str, float]:
     """build_and_export to STEP: wall-clock and CPU seconds, peak MB above the start."""
-    from tubecad.interfaces.build import build_and_export
+    from tubecad.spec.build import build_and_export
 
     baseline = _reset_peak()
     wall, cpu = time.perf_counter(), time.process_time()
     build_and_export(spec, [out])
-    return {"seconds": time.perf_counter() - wall, "cpu_seconds": time.process_time() - cpu,
-            "peak_mb": _peak_mb_since(baseline), "step_bytes": out.stat().st_size}  # fmt: skip
+    return {
+        "seconds": time.perf_counter() - wall,
+        "cpu_seconds": time.process_time() - cpu,
+        "peak_mb": _peak_mb_since(baseline),
+        "step_bytes": out.stat().st_size,
+    }
 
 
 def stiffeners_only(spec) -> float:
     """Seconds to make the [stiffeners] solids on an already built wall."""
-    from tubecad.interfaces.build import build_from_spec, stiffeners_from_spec
+    from tubecad.spec.build import build_from_spec, stiffeners_from_spec
 
     build = build_from_spec(spec)
     start = time.perf_counter()
@@ -71,28 +75,40 @@ def run(repeats: int = 3, log=print, spec: Path = SPEC) -> dict:
         # the allocator reuses what the warm-up freed, so the first build of each shows its peak best
         result[name]["peak_mb"] = max(row["peak_mb"] for row in rows)
         r = result[name]
-        log(f"  {name:9s}: {r['seconds']:.2f} s ({r['cpu_seconds']:.2f} s CPU), peak {r['peak_mb']:.0f} MB, "
-            f"STEP {r['step_bytes'] / 1e6:.2f} MB")  # fmt: skip
+        log(
+            f"  {name:9s}: {r['seconds']:.2f} s ({r['cpu_seconds']:.2f} s CPU), peak {r['peak_mb']:.0f} MB, "
+            f"STEP {r['step_bytes'] / 1e6:.2f} MB"
+        )
     plain, stiffened = result["plain"], result["stiffened"]
     result["time_ratio"] = stiffened["seconds"] / plain["seconds"]
     result["cpu_ratio"] = stiffened["cpu_seconds"] / plain["cpu_seconds"]
     result["memory_ratio"] = stiffened["peak_mb"] / plain["peak_mb"] if plain["peak_mb"] >= 1.0 else float("nan")
     result["stiffeners_seconds"] = min(stiffeners_only(cases["stiffened"]) for _ in range(repeats))
-    log(f"  stiffened / plain: time {result['time_ratio']:.2f} (CPU {result['cpu_ratio']:.2f}; target <= {TARGET_RATIO}), "
-        f"peak memory {result['memory_ratio']:.2f}; the stiffener solids alone {result['stiffeners_seconds']:.2f} s")  # fmt: skip
+    log(
+        f"  stiffened / plain: time {result['time_ratio']:.2f} (CPU {result['cpu_ratio']:.2f}; target <= {TARGET_RATIO}), "
+        f"peak memory {result['memory_ratio']:.2f}; the stiffener solids alone {result['stiffeners_seconds']:.2f} s"
+    )
     return result
 
 
 def table(result: dict) -> str:
     """The markdown table of :func:`run`'s result."""
-    rows = [f"**Stiffened wall** (`{result['spec']}`; `tubecad build -o x.step` in one process, best of "
-            f"{result['repeats']})", "",
-            "| build | seconds | CPU seconds | peak MB | STEP MB |", "|---|---|---|---|---|"]  # fmt: skip
+    rows = [
+        f"**Stiffened wall** (`{result['spec']}`; `tubecad build -o x.step` in one process, best of "
+        f"{result['repeats']})",
+        "",
+        "| build | seconds | CPU seconds | peak MB | STEP MB |",
+        "|---|---|---|---|---|",
+    ]
     for name in ("plain", "stiffened"):
         r = result[name]
-        rows.append(f"| {name} | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | {r['peak_mb']:.0f} | {r['step_bytes'] / 1e6:.2f} |")
-    rows.append(f"| *stiffened / plain* | {result['time_ratio']:.2f} | {result['cpu_ratio']:.2f} | "
-                f"{result['memory_ratio']:.2f} | |")  # fmt: skip
+        rows.append(
+            f"| {name} | {r['seconds']:.2f} | {r['cpu_seconds']:.2f} | {r['peak_mb']:.0f} | {r['step_bytes'] / 1e6:.2f} |"
+        )
+    rows.append(
+        f"| *stiffened / plain* | {result['time_ratio']:.2f} | {result['cpu_ratio']:.2f} | "
+        f"{result['memory_ratio']:.2f} | |"
+    )
     return "\n".join(rows)
 
 

@@ -18,8 +18,9 @@ import build123d as bd
 
 from tubecad import CurvatureLineTube, edge_axis
 from tubecad.brep import NetLayout, build_wall_solid
+from tubecad.export.cad import export_named_step
 from tubecad.stiffeners import net_lines
-from tubecad.stiffeners.assembly import build_stiffeners, export_named_step, named_assembly
+from tubecad.stiffeners.assembly import build_stiffeners, named_assembly
 from tubecad.stiffeners.profiles import Profile
 
 
@@ -30,17 +31,23 @@ def main() -> None:
     centreline = model.edges()[0]
 
     axis = edge_axis(centreline)
-    print(f"axis: {axis.length:.6f} long (the edge: {centreline.length:.6f}), joints at the spline's knots: "
-          f"{len(axis.joints)}")
+    print(
+        f"axis: {axis.length:.6f} long (the edge: {centreline.length:.6f}), joints at the spline's knots: "
+        f"{len(axis.joints)}"
+    )
     tube = CurvatureLineTube(axis, 6.0)
     build = build_wall_solid(tube, 0.8, "outside", NetLayout.equal(tube, rings=9, stringers=8))
-    print(f"wall: valid={build.shape.is_valid}, {len(build.shape.faces())} faces, "
-          f"fit deviation {build.frame.position_bound:.1e}, poles along the axis {build.frame.poles}")
+    print(
+        f"wall: valid={build.shape.is_valid}, {len(build.shape.faces())} faces, "
+        f"fit deviation {build.frame.position_bound:.1e}, poles along the axis {build.frame.poles}"
+    )
     stiffeners = build_stiffeners(build, [1, 3, 5, 7], [], Profile("T", 4.0, 0.8, 3.0, 0.8), "outside")
     lines = net_lines(build.surfaces[0], build.layout)
     assembly = named_assembly(build, stiffeners, lines)
-    print(f"stiffeners: {', '.join(st.name for st in stiffeners)}; all valid: "
-          f"{all(st.solid.is_valid for st in stiffeners)}")
+    print(
+        f"stiffeners: {', '.join(st.name for st in stiffeners)}; all valid: "
+        f"{all(st.solid.is_valid for st in stiffeners)}"
+    )
     print(f"written {export_named_step(assembly, output)}")
 
 

@@ -22,7 +22,9 @@ def main() -> None:
     output = sys.argv[1] if len(sys.argv) > 1 else "paper_wall.step"
     tube = paper_tube()
     wall = wall_solid(tube, thickness=2.0, side="centered", layout=NetLayout.equal(tube, rings=11, stringers=8))
-    print(f"wall: valid={wall.is_valid}, {len(wall.faces())} faces, {len(wall.edges())} edges, volume {wall.volume:.6f}")
+    print(
+        f"wall: valid={wall.is_valid}, {len(wall.faces())} faces, {len(wall.edges())} edges, volume {wall.volume:.6f}"
+    )
     print(f"exact volume pi (16^2 - 14^2) L = {np.pi * (16**2 - 14**2) * tube.length:.6f}")
 
     # A hand hole of diameter 8 through the wall at s = 650, between two ring frames, on the

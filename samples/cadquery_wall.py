@@ -1,6 +1,6 @@
 """CadQuery sample: a helical duct wall (curvature-line edges) on the Workplane stack, to STEP.
 
-    python samples/cadquery_wall.py [OUT.step]
+python samples/cadquery_wall.py [OUT.step]
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import sys
 
 import cadquery as cq
 
-import tubecad.interfaces.cadquery_plugin  # noqa: F401  (registers Workplane.curvatureLineWall)
+import tubecad.integrations.cadquery_plugin  # noqa: F401  (registers Workplane.curvatureLineWall)
 from tubecad import CurvatureLineTube, Helix
 
 

@@ -47,7 +47,7 @@ def assert_build_refused(tmp_path, spec_text: str, says: str) -> None:
     writes no file."""
     from click.testing import CliRunner
 
-    from tubecad.interfaces.cli import cli
+    from tubecad.cli.app import cli
 
     spec = tmp_path / "bad.toml"
     spec.write_text(spec_text)

@@ -23,8 +23,14 @@ def natural_twin(slope) -> NaturalAxis:
     s0 = slope.span[0]
     a = slope.evaluate(np.array([s0]))
     tan_b = math.tan(slope.beta)
-    return NaturalAxis(lambda s: slope.curvature(s), lambda s: slope.curvature(s) * tan_b, slope.span,
-                       origin=a.position[0], tangent=a.t[0], normal=a.n[0])  # fmt: skip
+    return NaturalAxis(
+        lambda s: slope.curvature(s),
+        lambda s: slope.curvature(s) * tan_b,
+        slope.span,
+        origin=a.position[0],
+        tangent=a.t[0],
+        normal=a.n[0],
+    )
 
 
 def helix_curve(R: float, h: float) -> tuple[ParametricAxis, float]:
@@ -38,7 +44,8 @@ AXES = {
     "parametric_helix": lambda: helix_curve(40.0, 7.0)[0],
     "parametric_inflection": lambda: ParametricAxis(expression_curve("100 * t", "100 * t**3", "10 * t"), (-1.0, 1.0)),
     "parametric_straight_then_bent": lambda: ParametricAxis(  # a line, then a C2 bend: breaks at the join
-        lambda t: np.stack([t, np.where(t > 0, t**4, 0.0), 0 * t], axis=-1), (-1.0, 1.0), breaks=[-1.0, 0.0, 1.0]),
+        lambda t: np.stack([t, np.where(t > 0, t**4, 0.0), 0 * t], axis=-1), (-1.0, 1.0), breaks=[-1.0, 0.0, 1.0]
+    ),
 }
 
 
@@ -81,8 +88,11 @@ def test_rings_and_stringers_are_lines_of_curvature_on_every_axis(name):
     assert np.abs(f.E - rho**2).max() < 1e-10 * rho**2 and np.abs(f.L + rho).max() < 1e-10 * rho
 
 
-@pytest.mark.parametrize("slope", [LogSpiral(10.0, 10.0, (200.0, 1200.0)), Helix(0.02, 30.0, (0.0, 1000.0)),
-                                   Helix(0.05, 0.0, (0.0, 125.0))], ids=["log_spiral", "helix", "circle"])  # fmt: skip
+@pytest.mark.parametrize(
+    "slope",
+    [LogSpiral(10.0, 10.0, (200.0, 1200.0)), Helix(0.02, 30.0, (0.0, 1000.0)), Helix(0.05, 0.0, (0.0, 125.0))],
+    ids=["log_spiral", "helix", "circle"],
+)
 def test_natural_equations_give_the_closed_form_tube(slope):
     """The slope curve given as k(s), tau = k tan b: the same axis and the same tube to 1e-10
     relative, up to the constant turn w(s0) of the start frame."""
@@ -125,13 +135,19 @@ def test_the_frame_passes_an_inflection_without_a_jump():
     assert k.min() < 1e-6 * k_max  # the inflection is sampled
 
 
-@pytest.mark.parametrize("make, says", [
-    (lambda: ParametricAxis(expression_curve("t**2", "t**3", "0"), (-1.0, 1.0)), "degenerate: its speed"),
-    (lambda: ParametricAxis(expression_curve("t", "log(t)", "0"), (-1.0, 1.0)), "not finite"),
-    (lambda: NaturalAxis("1 / s", "0", (-1.0, 1.0)), r"k\(s\) is not finite at s = 0"),
-    (lambda: NaturalAxis("0.1", "0", (0.0, 1.0), tangent=[1, 0, 0], normal=[2, 0, 0]), "normal must not be parallel"),
-    (lambda: NaturalAxis("0.1", "0", (0.0, 1.0), tangent=[0, 0, 0]), "tangent must not be the zero vector"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "make, says",
+    [
+        (lambda: ParametricAxis(expression_curve("t**2", "t**3", "0"), (-1.0, 1.0)), "degenerate: its speed"),
+        (lambda: ParametricAxis(expression_curve("t", "log(t)", "0"), (-1.0, 1.0)), "not finite"),
+        (lambda: NaturalAxis("1 / s", "0", (-1.0, 1.0)), r"k\(s\) is not finite at s = 0"),
+        (
+            lambda: NaturalAxis("0.1", "0", (0.0, 1.0), tangent=[1, 0, 0], normal=[2, 0, 0]),
+            "normal must not be parallel",
+        ),
+        (lambda: NaturalAxis("0.1", "0", (0.0, 1.0), tangent=[0, 0, 0]), "tangent must not be the zero vector"),
+    ],
+)
 def test_bad_axes_are_refused_naming_what_is_wrong(make, says):
     with pytest.raises(ParameterError, match=says):
         make()
@@ -151,8 +167,13 @@ def test_walls_on_new_axes_are_valid_and_within_tolerance(name):
     rho = 0.3 / k_max
     tube = CurvatureLineTube(axis, rho)
     build = build_wall_solid(tube, 0.1 * rho, "centered", NetLayout.equal(tube, 7, 6))
-    assert build.shape.is_valid and analyzer_findings(build.shape, modes=("SmallEdgeMode", "ContinuityMode", "CurveOnSurfaceMode")) == {}
+    assert (
+        build.shape.is_valid
+        and analyzer_findings(build.shape, modes=("SmallEdgeMode", "ContinuityMode", "CurveOnSurfaceMode")) == {}
+    )
     measured = measure_tube_faces(build.shape, axis, build.radii, samples=6000)
     assert measured.faces == 2 * 6 * 6
     assert measured.max_deviation < 1e-8 and measured.max_orthogonality < 1e-9
-    assert volume(build.shape) == pytest.approx(math.pi * (build.radii[0] ** 2 - build.radii[1] ** 2) * axis.length, rel=1e-9)
+    assert volume(build.shape) == pytest.approx(
+        math.pi * (build.radii[0] ** 2 - build.radii[1] ** 2) * axis.length, rel=1e-9
+    )

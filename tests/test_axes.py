@@ -27,8 +27,9 @@ def central_difference(f, s, h):
 def test_numeric_path_matches_closed_form_to_1e12_relative(name):
     axis, k_text = CLOSED_FORMS[name]
     s0 = axis.span[0]
-    numeric = CustomCurvature(k_text, axis.beta_deg, axis.span, psi0_deg=math.degrees(axis.psi(s0)),
-                              origin=axis.position(s0))  # fmt: skip
+    numeric = CustomCurvature(
+        k_text, axis.beta_deg, axis.span, psi0_deg=math.degrees(axis.psi(s0)), origin=axis.position(s0)
+    )
     s = np.linspace(*axis.span, 5001)
     scale = axis.length
     assert np.abs(numeric.position(s) - axis.position(s)).max() / scale < 1e-12

@@ -1,4 +1,4 @@
-"""`tubecad build` over many specs and parameter sweeps (tubecad.interfaces.batch)."""
+"""`tubecad build` over many specs and parameter sweeps (tubecad.batch.jobs)."""
 
 import json
 import math
@@ -7,10 +7,10 @@ import pytest
 from click.testing import CliRunner
 
 from tubecad import ParameterError
+from tubecad.batch.jobs import parse_sweep, plan_jobs
 from tubecad.brep import properties as props
+from tubecad.cli.app import cli
 from tubecad.export.cad import import_shape
-from tubecad.interfaces.batch import parse_sweep, plan_jobs
-from tubecad.interfaces.cli import cli
 
 LENGTH = 300.0
 SMALL = """
@@ -79,14 +79,21 @@ def test_pool_batch_writes_each_good_spec_and_reports_the_bad_one(pool_batch):
 def test_pool_batch_progress_lines(pool_batch):
     result, out = pool_batch
     lines = result.stderr.splitlines()
-    done = sorted(line.split("] ", 1)[1].split(":")[0] for line in lines if line.startswith(("[1/3]", "[2/3]", "[3/3]")))
+    done = sorted(
+        line.split("] ", 1)[1].split(":")[0] for line in lines if line.startswith(("[1/3]", "[2/3]", "[3/3]"))
+    )
     assert done == ["bad", "thick", "thin"]
     import re
 
     # what was built and how long it took, then the batch's rate and the time left (not after the last)
-    assert any(re.search(r"\] thin: tube_solid 6 faces valid, 3 files, [\d.]+ s; [\d.e+-]+ jobs/s(, ~\d+ s left)?$", line)
-               for line in lines), lines  # fmt: skip
-    assert re.search(r"^\[1/3\] .*, ~\d+ s left$", lines[1]) and "left" not in [l for l in lines if l.startswith("[3/3]")][0]
+    assert any(
+        re.search(r"\] thin: tube_solid 6 faces valid, 3 files, [\d.]+ s; [\d.e+-]+ jobs/s(, ~\d+ s left)?$", line)
+        for line in lines
+    ), lines
+    assert (
+        re.search(r"^\[1/3\] .*, ~\d+ s left$", lines[1])
+        and "left" not in [l for l in lines if l.startswith("[3/3]")][0]
+    )
     assert any("] bad: FAILED: " in line and "radius must be" in line for line in lines)
     assert "3 jobs: 2 ok, 1 failed" in lines[-1] and str(out / "batch.json") in lines[-1]
     assert "Traceback" not in result.output
@@ -131,10 +138,10 @@ def test_bad_sweeps_exit_2_naming_them_before_anything_is_built(tmp_path, sweep,
 
 def test_swept_values_the_spec_refuses_fail_their_jobs_naming_the_value(tmp_path):
     out = tmp_path / "out"
-    result = run("build", spec(tmp_path, "paper", 5.0), "--sweep", "tube.radius=-1,\"big\"", "-d", out, "-j", 1)
+    result = run("build", spec(tmp_path, "paper", 5.0), "--sweep", 'tube.radius=-1,"big"', "-d", out, "-j", 1)
     assert result.exit_code == 2, result.output
     assert "paper.toml[tube.radius=-1]: [tube] radius must be in (0, inf)" in result.stderr
-    assert 'paper.toml[tube.radius="big"]: [tube] radius: unknown name \'big\'' in result.stderr
+    assert "paper.toml[tube.radius=\"big\"]: [tube] radius: unknown name 'big'" in result.stderr
     record = json.loads((out / "batch.json").read_text())
     assert [j["status"] for j in record["jobs"]] == ["failed", "failed"]
     assert sorted(p.name for p in out.iterdir()) == ["batch.json"]
@@ -158,8 +165,12 @@ def test_job_names_are_unique_and_safe(tmp_path):
     (tmp_path / "b").mkdir()
     sweeps = [parse_sweep("tube.radius=10,12.5"), parse_sweep("axis.beta_deg=0:30:2")]
     jobs = plan_jobs([tmp_path / "a" / "p q.toml", tmp_path / "b" / "p q.toml"], sweeps, tmp_path, ["STEP", "step"])
-    assert [j.name for j in jobs][:4] == ["p_q_radius-10_beta_deg-0", "p_q_radius-10_beta_deg-30",
-                                          "p_q_radius-12.5_beta_deg-0", "p_q_radius-12.5_beta_deg-30"]  # fmt: skip
+    assert [j.name for j in jobs][:4] == [
+        "p_q_radius-10_beta_deg-0",
+        "p_q_radius-10_beta_deg-30",
+        "p_q_radius-12.5_beta_deg-0",
+        "p_q_radius-12.5_beta_deg-30",
+    ]
     assert [j.name for j in jobs][4:] == [j.name + "_2" for j in jobs[:4]]
     assert jobs[0].outputs == (str(tmp_path / "p_q_radius-10_beta_deg-0.step"),)
     assert jobs[3].source.endswith("p q.toml[tube.radius=12.5, axis.beta_deg=30]")
@@ -173,7 +184,10 @@ def test_job_names_are_unique_and_safe(tmp_path):
         (["two.toml", "-o", "x.step"], "-o/--output and --report are for one SPEC"),
         (["--report", "r.json", "--sweep", "tube.radius=1,2", "-d", "out"], "-o/--output and --report"),
         (["two.toml"], "batch mode (several SPECs) needs -d/--out-dir"),
-        (["-f", "iges", "-o", "x.step"], "-f/--format, -j/--jobs, --scheduler, --remote-dir and --job-timeout are for batch mode"),
+        (
+            ["-f", "iges", "-o", "x.step"],
+            "-f/--format, -j/--jobs, --scheduler, --remote-dir and --job-timeout are for batch mode",
+        ),
         ([], "Missing option '-o' / '--output'"),
         (["-d", "out", "-f", "obj"], "'obj' is not one of"),
     ],
@@ -186,8 +200,8 @@ def test_batch_option_errors(tmp_path, args, says, monkeypatch):
 
 
 def test_ctrl_c_cancels_the_rest_without_partial_files(tmp_path, monkeypatch):
-    import tubecad.interfaces.build as build
-    from tubecad.export.atomic import atomic_path, write_text
+    import tubecad.spec.build as build
+    from tubecad.core.atomic import atomic_path, write_text
 
     def fake(spec, outputs, step_schema, report_path, written):
         if "radius=2" in spec.source:

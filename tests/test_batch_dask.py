@@ -21,10 +21,12 @@ from click.testing import CliRunner
 
 distributed = pytest.importorskip("distributed")
 
-from tubecad.interfaces.batch import JobResult, parse_sweep, plan_jobs, run_batch  # noqa: E402
 from conftest import SMALL_BATCH_TUBE
-from tubecad.interfaces.cli import cli  # noqa: E402
-from tubecad.interfaces.dask_executor import DaskExecutor  # noqa: E402
+
+from tubecad.batch.dask_executor import DaskExecutor  # noqa: E402
+from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs  # noqa: E402
+from tubecad.batch.runner import run_batch
+from tubecad.cli.app import cli  # noqa: E402
 
 pytestmark = pytest.mark.once  # the same on both OCCT generations: CI runs it once
 
@@ -37,8 +39,9 @@ def cluster():
     os.environ["SOURCE_DATE_EPOCH"] = "1700000000"  # the workers inherit it: stable STEP headers
     from distributed import LocalCluster
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address="127.0.0.1:0") as local:  # fmt: skip
+    with LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address="127.0.0.1:0"
+    ) as local:
         yield local
     del os.environ["SOURCE_DATE_EPOCH"]
 
@@ -58,8 +61,10 @@ def test_the_cluster_builds_the_same_files_as_the_local_pool(cluster, spec, tmp_
     runner = CliRunner()
     local = runner.invoke(cli, ["build", str(spec), "--sweep", SWEEP, "-d", str(tmp_path / "local"), "-j", "2"])
     assert local.exit_code == 0, local.output
-    remote = runner.invoke(cli, ["build", str(spec), "--sweep", SWEEP, "-d", str(tmp_path / "dask"),
-                                 "--scheduler", cluster.scheduler_address])  # fmt: skip
+    remote = runner.invoke(
+        cli,
+        ["build", str(spec), "--sweep", SWEEP, "-d", str(tmp_path / "dask"), "--scheduler", cluster.scheduler_address],
+    )
     assert remote.exit_code == 0, remote.output
     first = remote.stderr.splitlines()[0]
     assert f"with Dask at {cluster.scheduler_address} (2 workers, 2 threads; dashboard http://127.0.0.1:" in first
@@ -100,8 +105,19 @@ def test_a_worker_killed_mid_batch_loses_no_result(cluster, spec, tmp_path):
 
 def test_an_interrupted_cluster_batch_resumes(cluster, spec, tmp_path):
     out = tmp_path / "out"
-    command = [sys.executable, "-m", "tubecad.interfaces.console", "build", str(spec), "--sweep", SWEEP, "-d", str(out),
-               "--scheduler", cluster.scheduler_address]  # fmt: skip
+    command = [
+        sys.executable,
+        "-m",
+        "tubecad.cli.console",
+        "build",
+        str(spec),
+        "--sweep",
+        SWEEP,
+        "-d",
+        str(out),
+        "--scheduler",
+        cluster.scheduler_address,
+    ]
     env = {**os.environ, "SOURCE_DATE_EPOCH": "1700000000"}
     proc = subprocess.Popen(command, stderr=subprocess.PIPE, text=True, env=env)
     finished = 0
@@ -116,7 +132,10 @@ def test_an_interrupted_cluster_batch_resumes(cluster, spec, tmp_path):
     assert 4 <= done < 12 and not list(out.glob(".*.part*"))
     again = subprocess.run(command, capture_output=True, text=True, env=env)
     assert again.returncode == 0, again.stderr
-    assert f"building {12 - done} jobs" in again.stderr and f"({done} of 12 already built and unchanged: skipped)" in again.stderr
+    assert (
+        f"building {12 - done} jobs" in again.stderr
+        and f"({done} of 12 already built and unchanged: skipped)" in again.stderr
+    )
     assert manifest(out)["ok"] == 12
 
 
@@ -142,8 +161,21 @@ def test_workers_sharing_a_file_system_write_the_files_themselves(cluster, spec,
     """--remote-dir: the batch folder as the workers see it (here the same disk); the files
     are not sent back, and the manifest hashes them as this machine sees them."""
     out = tmp_path / "shared"
-    result = CliRunner().invoke(cli, ["build", str(spec), "--sweep", "tube.radius=4:6:3", "-d", str(out),
-                                      "--scheduler", cluster.scheduler_address, "--remote-dir", str(out)])  # fmt: skip
+    result = CliRunner().invoke(
+        cli,
+        [
+            "build",
+            str(spec),
+            "--sweep",
+            "tube.radius=4:6:3",
+            "-d",
+            str(out),
+            "--scheduler",
+            cluster.scheduler_address,
+            "--remote-dir",
+            str(out),
+        ],
+    )
     assert result.exit_code == 0, result.output
     record = manifest(out)
     assert record["ok"] == 3
@@ -151,10 +183,13 @@ def test_workers_sharing_a_file_system_write_the_files_themselves(cluster, spec,
         assert all((out / name).stat().st_size > 0 for name in job["hashes"]) and len(job["hashes"]) == 2
 
 
-@pytest.mark.parametrize("address, says", [
-    ("tcp://127.0.0.1:1", "--scheduler tcp://127.0.0.1:1: cannot reach the Dask scheduler"),
-    ("foo", "--scheduler 'foo': not a scheduler address such as tcp://HOST:PORT"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "address, says",
+    [
+        ("tcp://127.0.0.1:1", "--scheduler tcp://127.0.0.1:1: cannot reach the Dask scheduler"),
+        ("foo", "--scheduler 'foo': not a scheduler address such as tcp://HOST:PORT"),
+    ],
+)
 def test_a_scheduler_that_cannot_be_reached_is_refused_before_anything_is_written(spec, tmp_path, address, says):
     result = CliRunner().invoke(cli, ["build", str(spec), "-d", str(tmp_path / "out"), "--scheduler", address])
     assert result.exit_code == 2 and says in result.output, result.output

@@ -23,12 +23,12 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-
-from tubecad.interfaces.batch import JobResult, plan_jobs, parse_sweep, run_job
 from conftest import SMALL_BATCH_TUBE
-from tubecad.interfaces.cli import cli
-from tubecad.interfaces.executors import ProcessExecutor, run_jobs
-from tubecad.interfaces.manifest import content_hash, file_hash
+
+from tubecad.batch.executors import ProcessExecutor, run_jobs
+from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs, run_job
+from tubecad.batch.manifest import content_hash, file_hash
+from tubecad.cli.app import cli
 
 pytestmark = pytest.mark.once  # the same on both OCCT generations: CI runs it once
 
@@ -77,10 +77,15 @@ def test_a_rerun_builds_only_what_is_missing_or_changed(first_batch, tmp_path):
         fh.write(b"\n")
     third = run("build", spec, "--sweep", SWEEP, "-d", out, "-j", 1)
     assert third.exit_code == 0 and "building 2 jobs" in third.stderr, third.stderr
-    built = sorted(line.split("] ")[1].split(":")[0] for line in third.stderr.splitlines() if line.startswith("[2/2]")
-                   or line.startswith("[1/2]"))  # fmt: skip
+    built = sorted(
+        line.split("] ")[1].split(":")[0]
+        for line in third.stderr.splitlines()
+        if line.startswith("[2/2]") or line.startswith("[1/2]")
+    )
     assert built == sorted(names[1:3])
-    assert all(file_hash(out / f"{n}.step") == manifest(out)["jobs"][i]["hashes"][f"{n}.step"] for i, n in enumerate(names))
+    assert all(
+        file_hash(out / f"{n}.step") == manifest(out)["jobs"][i]["hashes"][f"{n}.step"] for i, n in enumerate(names)
+    )
     forced = run("build", spec, "--sweep", SWEEP, "-d", out, "-j", 1, "--force")
     assert forced.exit_code == 0 and "building 6 jobs" in forced.stderr and manifest(out)["skipped"] == 0
 
@@ -100,8 +105,19 @@ def test_ctrl_c_keeps_what_finished_and_a_rerun_builds_the_rest(tmp_path):
     spec = tmp_path / "t.toml"
     spec.write_text(SMALL)
     out = tmp_path / "out"
-    command = [sys.executable, "-m", "tubecad.interfaces.console", "build", str(spec), "--sweep", "tube.radius=4:6:8",
-               "-d", str(out), "-j", "2"]  # fmt: skip
+    command = [
+        sys.executable,
+        "-m",
+        "tubecad.cli.console",
+        "build",
+        str(spec),
+        "--sweep",
+        "tube.radius=4:6:8",
+        "-d",
+        str(out),
+        "-j",
+        "2",
+    ]
     proc = subprocess.Popen(command, stderr=subprocess.PIPE, text=True)
     finished = 0
     for line in proc.stderr:
@@ -119,7 +135,10 @@ def test_ctrl_c_keeps_what_finished_and_a_rerun_builds_the_rest(tmp_path):
     assert files == {n for j in record["jobs"] if j["status"] == "ok" for n in j["hashes"]}
     again = subprocess.run(command, capture_output=True, text=True)
     assert again.returncode == 0, again.stderr
-    assert f"building {8 - done} jobs" in again.stderr and f"({done} of 8 already built and unchanged: skipped)" in again.stderr
+    assert (
+        f"building {8 - done} jobs" in again.stderr
+        and f"({done} of 8 already built and unchanged: skipped)" in again.stderr
+    )
     assert manifest(out)["ok"] == 8
 
 
@@ -141,8 +160,14 @@ def test_a_worker_killed_mid_job_costs_only_that_jobs_retry(tmp_path):
                 killed.append(busy[0].index)
 
     try:
-        interrupted = run_jobs(jobs, executor, finished, retries=1, lost=lambda i, m: JobResult(jobs[i].name, "failed", m),
-                               retrying=lambda i, m, a: retried.append((i, m, a)))  # fmt: skip
+        interrupted = run_jobs(
+            jobs,
+            executor,
+            finished,
+            retries=1,
+            lost=lambda i, m: JobResult(jobs[i].name, "failed", m),
+            retrying=lambda i, m, a: retried.append((i, m, a)),
+        )
     finally:
         executor.close()
     assert not interrupted and killed and [r[0] for r in retried] == killed
@@ -187,7 +212,7 @@ def test_the_same_spec_gives_the_same_step_bytes(tmp_path, monkeypatch):
 def test_a_shipped_job_builds_without_the_submitters_files(tmp_path):
     """What a cluster worker gets: the resolved spec and the bytes of the file it refers to
     (here a STEP centreline), built with the originals gone, the files' bytes sent back."""
-    from tubecad.interfaces.dask_executor import remote_job, shipped
+    from tubecad.batch.dask_executor import remote_job, shipped
 
     root = Path(__file__).resolve().parents[1] / "samples"
     spec = tmp_path / "edge.toml"

@@ -6,16 +6,16 @@ import math
 import build123d as bd
 import numpy as np
 import pytest
+from conftest import FAMILY_CASES
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.TopAbs import TopAbs_EDGE
 from OCP.TopExp import TopExp_Explorer
-from tubecad.occ_compat import as_edge
 
-from conftest import FAMILY_CASES
 from tubecad import CurvatureLineTube, LogSpiral, ParameterError, RegularityError, paper_tube
 from tubecad.brep import NetLayout, build_tube_shell, build_tube_solid, build_wall_solid, tube_solid
 from tubecad.brep import properties as props
 from tubecad.fitting import FitError, fit_frame, measure_surface
+from tubecad.occ_compat import as_edge
 
 
 def make(name):
@@ -110,8 +110,9 @@ def test_edges_are_exactly_the_requested_rings_and_stringers():
 def test_neighbouring_faces_share_one_edge():
     build = build_tube_solid(paper_tube(), NetLayout.equal(paper_tube(), 5, 4))
     from OCP.TopAbs import TopAbs_FACE
-    from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape
     from OCP.TopExp import TopExp
+
+    from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape
 
     edge_faces = IndexedDataMapOfShapeListOfShape()
     TopExp.MapShapesAndAncestors_s(build.shape.wrapped, TopAbs_EDGE, TopAbs_FACE, edge_faces)
@@ -130,7 +131,9 @@ def test_inner_edges_have_outer_twins_along_the_normal():
     assert build.radii == [15.0, 13.0]
 
 
-@pytest.mark.parametrize("side, radii", [("centered", (16.0, 14.0)), ("inside", (15.0, 13.0)), ("outside", (17.0, 15.0))])
+@pytest.mark.parametrize(
+    "side, radii", [("centered", (16.0, 14.0)), ("inside", (15.0, 13.0)), ("outside", (17.0, 15.0))]
+)
 def test_wall_sides(side, radii):
     tube = CurvatureLineTube(LogSpiral(10.0, 10.0, (300.0, 1200.0)), 15.0)  # room for 17 outside
     build = build_wall_solid(tube, 2.0, side, NetLayout.equal(tube, 2, 2))
@@ -167,7 +170,7 @@ def test_same_line_listed_twice_is_one_line():
 def test_solids_work_in_build123d_and_cadquery():
     cq = pytest.importorskip("cadquery", reason="CadQuery is the extra tubecad[cadquery]")
 
-    import tubecad.interfaces.cadquery_plugin  # noqa: F401
+    import tubecad.integrations.cadquery_plugin  # noqa: F401
 
     tube = CurvatureLineTube(LogSpiral(10.0, 10.0, (200.0, 400.0)), 15.0)
     solid = tube_solid(tube, NetLayout.equal(tube, 3, 4))

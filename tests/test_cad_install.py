@@ -56,6 +56,6 @@ def test_the_cadquery_plugin_says_how_to_install_cadquery_when_missing():
 
     if installed("cadquery"):
         pytest.skip("CadQuery is installed here")
-    sys.modules.pop("tubecad.interfaces.cadquery_plugin", None)
+    sys.modules.pop("tubecad.integrations.cadquery_plugin", None)
     with pytest.raises(ImportError, match=r"pip install 'tubecad\[cadquery\]'"):
-        importlib.import_module("tubecad.interfaces.cadquery_plugin")
+        importlib.import_module("tubecad.integrations.cadquery_plugin")

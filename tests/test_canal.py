@@ -249,19 +249,22 @@ def refused(error, match, *args, **kwargs):
     return message
 
 
-@pytest.mark.parametrize("law, says", [
-    ("2 - 0.1 * s", "r reaches -2 at s = 40"),
-    ("3 + 0.02 * s**2", "|r'| reaches 1.6 at s = 40"),
-    ("3 + 1 / (s - 20)", "not finite at s = 20"),
-    ("sqrt(s - 5)", "not finite at s = 0"),
-    ([[0, 3], [30, 4], [20, 3], [40, 3]], "s = 20 (row 2) follows s = 30 (row 1)"),
-    ([[0, 3], [20, 4], [20, 3], [40, 3]], "s = 20 (row 2) appears twice"),
-    ([[5, 3], [40, 3]], "misses s = 0"),
-    ([[0, 3], [30, 3]], "misses s = 40"),
-    ([[0, 3], [20, -1], [40, 3]], "r = -1 at s = 20"),
-    ([[0, 1], [10, 1], [12, 4], [40, 4]], "r reaches -2.9"),  # the spline overshoots between rows
-    ([[0, 3], [40, 50]], "|r'| reaches 1.175 at s = "),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "law, says",
+    [
+        ("2 - 0.1 * s", "r reaches -2 at s = 40"),
+        ("3 + 0.02 * s**2", "|r'| reaches 1.6 at s = 40"),
+        ("3 + 1 / (s - 20)", "not finite at s = 20"),
+        ("sqrt(s - 5)", "not finite at s = 0"),
+        ([[0, 3], [30, 4], [20, 3], [40, 3]], "s = 20 (row 2) follows s = 30 (row 1)"),
+        ([[0, 3], [20, 4], [20, 3], [40, 3]], "s = 20 (row 2) appears twice"),
+        ([[5, 3], [40, 3]], "misses s = 0"),
+        ([[0, 3], [30, 3]], "misses s = 40"),
+        ([[0, 3], [20, -1], [40, 3]], "r = -1 at s = 20"),
+        ([[0, 1], [10, 1], [12, 4], [40, 4]], "r reaches -2.9"),  # the spline overshoots between rows
+        ([[0, 3], [40, 50]], "|r'| reaches 1.175 at s = "),
+    ],
+)
 def test_bad_laws_are_refused(law, says):
     axis = NaturalAxis("0.01", "0", (0.0, 40.0))
     refused(ParameterError, says, axis, law)
@@ -272,7 +275,7 @@ def test_a_folding_law_is_refused_with_where():
     message = refused(RegularityError, "at s = 15.70", axis, "4 + 2.5 * sin(s / 10)")
     assert "folds" in message and "allow_irregular" in message
     surface = CanalSurface(axis, "4 + 2.5 * sin(s / 10)", allow_irregular=True)
-    (a, b), = surface.regularity.folded_intervals
+    ((a, b),) = surface.regularity.folded_intervals
     # r (k q + r'') / q^2 = 1 at the ends of the folded run, from the law written out here
     for s in (a, b):
         r, dr, ddr = 4 + 2.5 * math.sin(s / 10), 0.25 * math.cos(s / 10), -0.025 * math.sin(s / 10)

@@ -100,12 +100,14 @@ def test_the_cone_solid_lies_on_the_cone_and_holds_the_frustum(cone):
     h = (LENGTH - r_end * SLOPE) - (0.0 - R0 * SLOPE)
     assert props.volume(shape) == pytest.approx(frustum(R0 * Q, r_end * Q, h), rel=1e-9)
     assert props.area(shape) == pytest.approx(
-        math.pi * ((R0 * Q) ** 2 + (r_end * Q) ** 2 + Q * (R0 + r_end) * math.hypot(h, (r_end - R0) * Q)), rel=1e-9)
+        math.pi * ((R0 * Q) ** 2 + (r_end * Q) ** 2 + Q * (R0 + r_end) * math.hypot(h, (r_end - R0) * Q)), rel=1e-9
+    )
     assert props.analyzer_findings(shape, CHEAP_MODES) == {}
 
 
-@pytest.mark.parametrize("side, offsets", [("centered", (-0.25, 0.25)), ("inside", (-0.5, 0.0)),
-                                           ("outside", (0.0, 0.5))])  # fmt: skip
+@pytest.mark.parametrize(
+    "side, offsets", [("centered", (-0.25, 0.25)), ("inside", (-0.5, 0.0)), ("outside", (0.0, 0.5))]
+)
 def test_the_cone_wall_is_a_revolved_rectangle(cone, side, offsets):
     """The wall between the cones of r + d_in and r + d_out, capped by the cones of the sphere
     normals at the ends, is the revolution of a rectangle (the caps are normal to both
@@ -124,6 +126,7 @@ def test_the_cone_wall_is_a_revolved_rectangle(cone, side, offsets):
     # with the cap frustums between their end circles: added at the end (r' > 0: the outer
     # end circle lies behind the inner one), cut off at the start
     d_in, d_out = offsets
+
     def cut(r):
         return frustum((r + d_in) * Q, (r + d_out) * Q, SLOPE * (d_out - d_in))
 
@@ -259,7 +262,10 @@ def test_a_tapered_helix_shell_and_solid(helical):
 def test_a_constant_law_is_built_as_the_tube():
     axis = Helix(0.02, 30.0, (0.0, 100.0))
     layout = NetLayout.equal(CurvatureLineTube(axis, 3.0), 3, 4)
-    canal, tube = build_tube_solid(CanalSurface(axis, 3.0), layout), build_tube_solid(CurvatureLineTube(axis, 3.0), layout)
+    canal, tube = (
+        build_tube_solid(CanalSurface(axis, 3.0), layout),
+        build_tube_solid(CurvatureLineTube(axis, 3.0), layout),
+    )
     assert type(canal.surfaces[0]) is TubeSurface and canal.radii == tube.radii == [3.0]
     assert np.array_equal(canal.frame.spline.c, tube.frame.spline.c)
     assert props.volume(canal.shape) == props.volume(tube.shape)

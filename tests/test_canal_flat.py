@@ -13,7 +13,7 @@ from conftest import fit_circle
 
 from tubecad import CurvatureLineTube, Helix, NaturalAxis, paper_tube
 from tubecad.curves.route import RouteAxis
-from tubecad.interfaces.spec import load_spec
+from tubecad.spec.parse import load_spec
 from tubecad.stiffeners.flat import (
     canal_ring_flat_pattern,
     canal_stringer_rates,
@@ -199,15 +199,18 @@ def test_constant_radius_canal_gives_the_tube_pattern(side, theta):
 # --- (d) the developed measures are the 3-D web's ------------------------------------------------------
 def canal_cases():
     return {
-        "smoothstep_straight": lambda: CanalSurface(NaturalAxis("0", "0", (0.0, 200.0)),
-                                                    "40 - 25 * (s / 200)**2 * (3 - 2 * s / 200)"),
+        "smoothstep_straight": lambda: CanalSurface(
+            NaturalAxis("0", "0", (0.0, 200.0)), "40 - 25 * (s / 200)**2 * (3 - 2 * s / 200)"
+        ),
         "tapered_helix": lambda: load_spec(f"{SAMPLES}/tapered_helix.toml").tube,
-        "table_on_helix": lambda: CanalSurface(Helix(0.01, 20.0, (0.0, 400.0)),
-                                               [[0.0, 10.0], [100.0, 13.0], [250.0, 9.0], [400.0, 11.0]]),
-        "route": lambda: CanalSurface(RouteAxis([[0, 0, 0], [200, 0, 0], [200, 150, 60], [380, 150, 60]], 70.0),
-                                      "18 - 0.012 * s"),
+        "table_on_helix": lambda: CanalSurface(
+            Helix(0.01, 20.0, (0.0, 400.0)), [[0.0, 10.0], [100.0, 13.0], [250.0, 9.0], [400.0, 11.0]]
+        ),
+        "route": lambda: CanalSurface(
+            RouteAxis([[0, 0, 0], [200, 0, 0], [200, 150, 60], [380, 150, 60]], 70.0), "18 - 0.012 * s"
+        ),
         "cyclide": lambda: load_spec(f"{SAMPLES}/dupin_cyclide.toml").tube,
-    }  # fmt: skip
+    }
 
 
 CASES = canal_cases()

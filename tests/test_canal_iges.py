@@ -14,16 +14,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from conftest import sample_wall_spec
 from OCP.BRep import BRep_Tool
 
 from tubecad import NaturalAxis, paper_tube, tube_or_canal
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep.measure import tube_faces
 from tubecad.brep.properties import topods
-from tubecad.export.cad import export_shape, import_shape
-from tubecad.interfaces.cli import cli
-
-from conftest import sample_wall_spec
+from tubecad.cli.app import cli
+from tubecad.export.cad import import_shape
+from tubecad.export.registry import export_shape
 
 #: the nozzle and the tapered helix of samples/ (their walls alone, without stiffeners)
 NOZZLE, TAPERED_HELIX = sample_wall_spec("nozzle"), sample_wall_spec("tapered_helix")
@@ -39,10 +39,14 @@ def built_and_read_back(spec: str, tmp_path: Path) -> dict:
     return {"faces": report["brep"]["faces"], "file": report["exports"][str(out)]}
 
 
-@pytest.mark.parametrize("spec, deviation, orthogonality", [
-    (NOZZLE, 1.5e-10, 2e-11),          # straight axis, r 40 -> 15: measured 1.05e-10, |cos| 8.3e-12
-    (TAPERED_HELIX, 5e-10, 1.5e-10),   # helical axis, r 12 -> 6: measured 3.93e-10, |cos| 9.1e-11
-], ids=["nozzle", "tapered_helix"])  # fmt: skip
+@pytest.mark.parametrize(
+    "spec, deviation, orthogonality",
+    [
+        (NOZZLE, 1.5e-10, 2e-11),  # straight axis, r 40 -> 15: measured 1.05e-10, |cos| 8.3e-12
+        (TAPERED_HELIX, 5e-10, 1.5e-10),  # helical axis, r 12 -> 6: measured 3.93e-10, |cos| 9.1e-11
+    ],
+    ids=["nozzle", "tapered_helix"],
+)
 def test_iges_holds_a_canal_wall_to_the_fit_tolerance(tmp_path, spec, deviation, orthogonality):
     got = built_and_read_back(spec, tmp_path)
     file = got["file"]

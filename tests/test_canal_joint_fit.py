@@ -17,7 +17,7 @@ import pytest
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
 from tubecad.fitting.canal_section import _insert_knot, _with_singular_parts, canal_functions, fit_canal
-from tubecad.interfaces.spec import load_spec
+from tubecad.spec.parse import load_spec
 from tubecad.surface.canal import tube_or_canal
 
 SAMPLE = Path(__file__).resolve().parents[1] / "samples" / "tapered_bend.toml"
@@ -81,8 +81,10 @@ def test_fit_with_a_true_table_knot_near_a_joint(axis, gap):
     fit = fit_canal(canal, (1.0, -1.0), TOLERANCE, ORTHOGONALITY, rings=NetLayout.equal(canal, 7, 8).s_rings)
     assert fit.position_bound <= 0.5 * TOLERANCE and fit.orthogonality_bound <= 0.5 * ORTHOGONALITY
     # measured independently of the fit's own sampling: densely across the sliver
-    s = np.union1d(np.linspace(joint(axis) - 0.05, joint(axis) + 0.05, 401),
-                   np.linspace(min(b, joint(axis)), max(b, joint(axis)), 41))  # fmt: skip
+    s = np.union1d(
+        np.linspace(joint(axis) - 0.05, joint(axis) + 0.05, 401),
+        np.linspace(min(b, joint(axis)), max(b, joint(axis)), 41),
+    )
     error = np.abs(fit.spline(s) - canal_functions(canal, s)).max()
     assert error < 1e-10  # about 3e-12 measured
     if 1e-4 < abs(gap):  # the knot kept, at multiplicity degree - 1 (r' is C1 there)

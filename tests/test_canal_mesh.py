@@ -10,10 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
-
-from tubecad.interfaces.cli import cli
-
 from conftest import sample_wall_spec
+
+from tubecad.cli.app import cli
 
 #: the walls of samples/nozzle.toml (r' = 0 at both ends: plane caps) and samples/tapered_helix.toml
 #: (r' = -0.01: conical caps, stringers turned by the Moebius map), without their stiffeners
@@ -76,8 +75,8 @@ def test_every_canal_mesh_vertex_lies_on_the_exact_surface(meshed):
     """Every vertex (caps included: their nodes are the end circles') within the tolerance of
     the exact canal surface r + d it belongs to, by the sphere-envelope distance; the read-back
     check of the triangles' edge midpoints passed with its numbers in the report."""
-    from tubecad.interfaces.build import build_from_spec
-    from tubecad.interfaces.spec import load_spec
+    from tubecad.spec.build import build_from_spec
+    from tubecad.spec.parse import load_spec
     from tubecad.surface.checks import envelope_distance
 
     _, spec, out, report = meshed
@@ -87,8 +86,12 @@ def test_every_canal_mesh_vertex_lies_on_the_exact_surface(meshed):
     assert 0.5 * TOLERANCE < info["max_triangle_deviation"] <= TOLERANCE + info["max_vertex_deviation"]
     build = build_from_spec(load_spec(spec), lambda *a: None)
     outer = build.surfaces[0].tube
-    levels = np.array([surface.tube.radius_law.r(np.array([0.0]))[0] - outer.radius_law.r(np.array([0.0]))[0]
-                       for surface in build.surfaces])  # fmt: skip
+    levels = np.array(
+        [
+            surface.tube.radius_law.r(np.array([0.0]))[0] - outer.radius_law.r(np.array([0.0]))[0]
+            for surface in build.surfaces
+        ]
+    )
     vertices, _ = closed_mesh(out)
     distance, _ = envelope_distance(outer, vertices)
     assert np.abs(distance[:, None] - levels[None, :]).min(axis=1).max() < 1e-4
@@ -105,9 +108,9 @@ def test_a_canal_wall_mesh_has_fewer_triangles_than_brepmesh(meshed):
     from OCP.TopLoc import TopLoc_Location
 
     from tubecad.export.meshing import ANGULAR_DEFLECTION
-    from tubecad.interfaces.build import build_from_spec
-    from tubecad.interfaces.spec import load_spec
     from tubecad.occ_compat import as_face
+    from tubecad.spec.build import build_from_spec
+    from tubecad.spec.parse import load_spec
 
     _, spec, out, report = meshed
     build = build_from_spec(load_spec(spec), lambda *a: None)

@@ -11,7 +11,7 @@ from OCP.TopExp import TopExp_Explorer
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
 from tubecad.curves.natural import NaturalAxis
-from tubecad.interfaces.spec import load_spec
+from tubecad.spec.parse import load_spec
 from tubecad.stiffeners.panels import split_into_panels
 from tubecad.surface import tube_or_canal
 
@@ -38,8 +38,10 @@ def checked(panels, analyzed=(0, -1)):
     return panels
 
 
-@pytest.mark.parametrize("seams, rings, analyzed", [([5, 0, 3], [0, 2, 4], ()), ([2, 6], None, ()),
-                                                    ([1, 2, 3, 4, 5, 6, 7, 0], None, (0, 13, -1))])
+@pytest.mark.parametrize(
+    "seams, rings, analyzed",
+    [([5, 0, 3], [0, 2, 4], ()), ([2, 6], None, ()), ([1, 2, 3, 4, 5, 6, 7, 0], None, (0, 13, -1))],
+)
 def test_canal_panels_fit_together_into_the_wall(sample_wall, seams, rings, analyzed):
     name, build = sample_wall
     panels = checked(split_into_panels(build, seams, rings), analyzed)
@@ -96,7 +98,8 @@ def test_canal_panels_on_a_cone_are_solids_of_revolution(r0, slope):
 
 
 def test_canal_panels_survive_a_step_round_trip(tmp_path):
-    from tubecad.export.cad import export_shape, import_shape
+    from tubecad.export.cad import import_shape
+    from tubecad.export.registry import export_shape
     from tubecad.stiffeners.assembly import named_assembly
 
     spec = load_spec("samples/nozzle.toml")

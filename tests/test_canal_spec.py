@@ -13,7 +13,7 @@ import pytest
 from click.testing import CliRunner
 from scipy.integrate import quad
 
-from tubecad.interfaces.cli import cli
+from tubecad.cli.app import cli
 
 NOZZLE = """
 [axis]
@@ -49,8 +49,9 @@ def test_report_of_a_nozzle_is_the_surface_of_revolution_of_its_profile(tmp_path
         q = math.sqrt(1 - dr * dr)
         return r * q, dr * q - r * dr * ddr / q, 1 - dr * dr - r * ddr
 
-    area = quad(lambda s: 2 * math.pi * profile_speed(s)[0] * math.hypot(*profile_speed(s)[1:]), 0, 200,
-                epsabs=0, epsrel=1e-13)[0]  # fmt: skip
+    area = quad(
+        lambda s: 2 * math.pi * profile_speed(s)[0] * math.hypot(*profile_speed(s)[1:]), 0, 200, epsabs=0, epsrel=1e-13
+    )[0]
     # the solid between the end discs: the discs of the profile swept along z
     volume = quad(lambda s: math.pi * profile_speed(s)[0] ** 2 * profile_speed(s)[2], 0, 200, epsabs=0, epsrel=1e-13)[0]
     assert report["surface"] == "canal" and report["regular"] is True
@@ -58,14 +59,18 @@ def test_report_of_a_nozzle_is_the_surface_of_revolution_of_its_profile(tmp_path
     assert report["volume_numeric"] == pytest.approx(volume, rel=1e-12)
     law = report["parameters"]["tube"]["radius"]
     assert law["min"] == pytest.approx(15.0, rel=1e-12) and law["max"] == pytest.approx(40.0, rel=1e-12)
-    assert law["max_abs_slope"] == pytest.approx(25 * 6 * 0.25 / 200, rel=1e-12) and law["s_at_max_abs_slope"] == pytest.approx(100)
+    assert law["max_abs_slope"] == pytest.approx(25 * 6 * 0.25 / 200, rel=1e-12) and law[
+        "s_at_max_abs_slope"
+    ] == pytest.approx(100)
     assert report["max_orthogonality_error"] < 1e-12 and report["max_M_error"] < 1e-12
 
 
 def test_a_table_law_on_a_helix_has_a_curvature_line_net(tmp_path):
     spec = tmp_path / "helix.toml"
-    spec.write_text('[axis]\ncurve = "helix"\nk = 0.02\nbeta_deg = 20.0\ns = [0.0, 300.0]\n'
-                    '[tube]\nradius = [[0, 8], [100, 10], [200, 7], [300, 9]]\n')  # fmt: skip
+    spec.write_text(
+        '[axis]\ncurve = "helix"\nk = 0.02\nbeta_deg = 20.0\ns = [0.0, 300.0]\n'
+        "[tube]\nradius = [[0, 8], [100, 10], [200, 7], [300, 9]]\n"
+    )
     result = run("report", spec)
     assert result.exit_code == 0, result.output
     report = json.loads(result.output)
@@ -78,17 +83,31 @@ def test_a_table_law_on_a_helix_has_a_curvature_line_net(tmp_path):
 @pytest.mark.parametrize(
     "tube, extra, says",
     [
-        ('radius = [[0, 40], [100, 20], [50, 45]]', "", "[tube] radius: s = 50 (row 2) follows s = 100 (row 1)"),
-        ('radius = [[0, 40], [100, 20], [100, 45]]', "", "[tube] radius: s = 100 (row 2) appears twice"),
+        ("radius = [[0, 40], [100, 20], [50, 45]]", "", "[tube] radius: s = 50 (row 2) follows s = 100 (row 1)"),
+        ("radius = [[0, 40], [100, 20], [100, 45]]", "", "[tube] radius: s = 100 (row 2) appears twice"),
         ('radius = "10 + 1.5 * s"', "", "[tube] radius: |r'| reaches 1.5 at s = 0"),
         ('radius = "20 - 0.2 * s"', "", "[tube] radius: r reaches -20 at s = 200"),
         ('radius = "10 + log(s - 100)"', "", "[tube] radius"),
-        ('radius = "40 - 0.1 * s"', "[wall]\nthickness = 41\n", "[wall] thickness 41 (side = 'centered') is too thick for the smallest radius 20 at s = 200"),
-        ('radius = "40 - 0.1 * s"', '[wall]\nthickness = 2\n[stiffeners]\nstringers = [0]\nheight = 25\nthickness = 1\n'
-         'side = "inside"\n', "[stiffeners] height: a stringer reaches in to r -26, and the radius law's r is 20 at s = 200"),
-        ('radius = "40 - 0.1 * s"', '[wall]\nthickness = 2\n[stiffeners]\nrings = [3]\nheight = 39\nthickness = 1\n'
-         'side = "inside"\n', "[stiffeners] height: the ring at s = 60 reaches in to r -40, and the radius law's r is 33.95"),
-        ('radius = [40]', "", "[tube] radius must be a number, an expression in s or a table of two or more [s, r] rows"),
+        (
+            'radius = "40 - 0.1 * s"',
+            "[wall]\nthickness = 41\n",
+            "[wall] thickness 41 (side = 'centered') is too thick for the smallest radius 20 at s = 200",
+        ),
+        (
+            'radius = "40 - 0.1 * s"',
+            '[wall]\nthickness = 2\n[stiffeners]\nstringers = [0]\nheight = 25\nthickness = 1\nside = "inside"\n',
+            "[stiffeners] height: a stringer reaches in to r -26, and the radius law's r is 20 at s = 200",
+        ),
+        (
+            'radius = "40 - 0.1 * s"',
+            '[wall]\nthickness = 2\n[stiffeners]\nrings = [3]\nheight = 39\nthickness = 1\nside = "inside"\n',
+            "[stiffeners] height: the ring at s = 60 reaches in to r -40, and the radius law's r is 33.95",
+        ),
+        (
+            "radius = [40]",
+            "",
+            "[tube] radius must be a number, an expression in s or a table of two or more [s, r] rows",
+        ),
     ],
 )
 def test_bad_radius_laws_are_refused_in_one_line(tmp_path, tube, extra, says):
@@ -102,7 +121,7 @@ def test_bad_radius_laws_are_refused_in_one_line(tmp_path, tube, extra, says):
 
 
 def test_a_constant_radius_is_the_tube_of_today(tmp_path):
-    from tubecad.interfaces.spec import load_spec
+    from tubecad.spec.parse import load_spec
     from tubecad.surface import CurvatureLineTube
 
     spec = tmp_path / "tube.toml"
@@ -128,7 +147,7 @@ def test_a_radius_expression_may_use_the_axis_point(tmp_path):
     mu - (c/a) x, c = 60, mu = 80: r is given through the axis point's x."""
     import numpy as np
 
-    from tubecad.interfaces.spec import load_spec
+    from tubecad.spec.parse import load_spec
 
     spec = tmp_path / "dupin.toml"
     spec.write_text(DUPIN)
@@ -139,15 +158,20 @@ def test_a_radius_expression_may_use_the_axis_point(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text(DUPIN.replace("0.6 * x", "0.6 * w"))
     result = run("report", bad)
-    assert result.exit_code == 2 and "[tube] radius: unknown name 'w'; the names allowed are s, x, y, z, pi, e" in result.output
+    assert (
+        result.exit_code == 2
+        and "[tube] radius: unknown name 'w'; the names allowed are s, x, y, z, pi, e" in result.output
+    )
 
 
 def test_a_canal_wall_splits_into_named_panels_from_the_cli(tmp_path):
     from tubecad.export.cad import step_names
 
     spec = tmp_path / "nozzle.toml"
-    spec.write_text(NOZZLE + '[layout]\nrings = 5\nstringers = 4\n[wall]\nthickness = 2.0\n'
-                    '[panels]\nseams = [0, 2]\nrings = [0, 2, 4]\n')  # fmt: skip
+    spec.write_text(
+        NOZZLE + "[layout]\nrings = 5\nstringers = 4\n[wall]\nthickness = 2.0\n"
+        "[panels]\nseams = [0, 2]\nrings = [0, 2, 4]\n"
+    )
     out, report = tmp_path / "panels.step", tmp_path / "r.json"
     result = run("build", spec, "-o", out, "--report", report)
     assert result.exit_code == 0, result.output

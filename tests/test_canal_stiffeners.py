@@ -14,9 +14,15 @@ from tubecad import NaturalAxis, tube_or_canal
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
 from tubecad.brep.measure import sample_face
-from tubecad.interfaces.spec import load_spec
+from tubecad.spec.parse import load_spec
 from tubecad.stiffeners.assembly import build_stiffeners
-from tubecad.stiffeners.canal import along_wall, canal_ring_solid, canal_stringer_solid, stringer_frame, wall_points_across
+from tubecad.stiffeners.canal import (
+    along_wall,
+    canal_ring_solid,
+    canal_stringer_solid,
+    stringer_frame,
+    wall_points_across,
+)
 from tubecad.stiffeners.profiles import Profile
 from tubecad.stiffeners.rings import ring_section
 from tubecad.surface.checks import envelope_distance
@@ -76,8 +82,9 @@ def test_ring_web_on_a_cone_is_its_thickness_wide_along_the_wall(cone):
 def test_ring_frames_on_a_curved_axis_pass_the_pre_boolean_check():
     canal = load_spec("samples/tapered_helix.toml").tube
     s = 300.0
-    section = ring_section(Profile("T", 4, 1, 3, 0.8), s, 0.0, "outside", canal.span,
-                           along=lambda w: along_wall(canal, s, w))  # fmt: skip
+    section = ring_section(
+        Profile("T", 4, 1, 3, 0.8), s, 0.0, "outside", canal.span, along=lambda w: along_wall(canal, s, w)
+    )
     solid = bd.Solid(canal_ring_solid(canal, section, 1e-8))
     assert props.is_valid(solid.wrapped) and props.analyzer_findings(solid) == {}
     # its base faces lie on the sphere envelope (distance 0), its top faces at height 4
@@ -104,7 +111,10 @@ def test_stringer_base_lies_on_the_wall_and_its_web_stands_normal_to_it(sample):
     law = canal.radius_law
     for end, station in zip(canal.span, (a, b)):
         dr, r = float(law.dr(end)), float(law.r(end))
-        assert abs(station - end) <= 1.05 * 0.25 * abs(dr) / (2 * r * math.sqrt(1 - dr * dr)) / canal.regularity.min_speed + 1e-12
+        assert (
+            abs(station - end)
+            <= 1.05 * 0.25 * abs(dr) / (2 * r * math.sqrt(1 - dr * dr)) / canal.regularity.min_speed + 1e-12
+        )
     # the base face (the one nearest the wall) lies on the exact sphere envelope
     distances = []
     for face in shape.faces():
@@ -145,7 +155,9 @@ def test_stringer_on_a_cone_has_the_volume_of_its_parallel_sections(cone):
         base = np.stack([(wall[k] - X[k]) @ ebar[k], (wall[k] - X[k]) @ n[k]], axis=1)
         ring = np.vstack([base[-1:], top, base])  # +t/2 on the wall, round the profile, back across the wall
         areas.append(0.5 * abs(ring[:, 0] @ np.roll(ring[:, 1], -1) - ring[:, 1] @ np.roll(ring[:, 0], -1)))
-    length = float(np.linalg.norm(stringer_frame(cone, chi0, np.array([b]))[0] - stringer_frame(cone, chi0, np.array([a]))[0]))
+    length = float(
+        np.linalg.norm(stringer_frame(cone, chi0, np.array([b]))[0] - stringer_frame(cone, chi0, np.array([a]))[0])
+    )
     assert props.volume(shape) == pytest.approx(0.5 * length * float(np.dot(w, areas)), rel=1e-8)
 
 

@@ -10,14 +10,15 @@ from OCP.BRep import BRep_Tool
 from OCP.BRepTools import BRepTools
 from OCP.Geom import Geom_BSplineCurve
 from OCP.gp import gp_Pnt, gp_Vec
-from tubecad.occ_compat import Array1OfPnt
 
 from tubecad import CircleInvolute, CurvatureLineTube, CustomCurvature, Helix, LogSpiral, paper_tube
 from tubecad.brep import NetLayout, build_tube_solid, build_wall_solid
 from tubecad.brep import properties as props
-from tubecad.export.cad import export_shape, import_shape
+from tubecad.export.cad import import_shape
+from tubecad.export.registry import export_shape
 from tubecad.fitting.circle import CircleSpline
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, reals
+from tubecad.occ_compat import Array1OfPnt
 from tubecad.surface.checks import distance_to_axis
 
 BREAK_CASES = {
@@ -34,7 +35,9 @@ def occ_circle(circle: CircleSpline) -> Geom_BSplineCurve:
     poles = Array1OfPnt(1, len(circle.x))
     for i, (x, y) in enumerate(zip(circle.x, circle.y)):
         poles.SetValue(i + 1, gp_Pnt(x, y, 0.0))
-    return Geom_BSplineCurve(poles, reals(circle.weights), reals(circle.knots), integers(circle.multiplicities), 2, True)
+    return Geom_BSplineCurve(
+        poles, reals(circle.weights), reals(circle.knots), integers(circle.multiplicities), 2, True
+    )
 
 
 @pytest.mark.parametrize("breaks", BREAK_CASES.values(), ids=BREAK_CASES.keys())
@@ -53,7 +56,9 @@ def test_circle_spline_is_the_unit_circle_c0_only_at_its_breaks(breaks):
     assert np.allclose(double, circle.breaks)
     requested = np.mod(np.array(breaks) - breaks[0], 2 * math.pi)
     assert set(np.round(requested, 12)) <= set(np.round(circle.breaks, 12))
-    assert len(circle.breaks) == len(requested) + int(np.diff(np.append(np.sort(requested), 2 * math.pi)).max() > math.radians(330))
+    assert len(circle.breaks) == len(requested) + int(
+        np.diff(np.append(np.sort(requested), 2 * math.pi)).max() > math.radians(330)
+    )
     assert np.abs(circle.u_of_theta(np.array(circle.breaks)) - np.array(circle.breaks)).max() < 1e-15
     # at every simple knot the derivative is continuous (C1 of the rational curve)
     for knot in circle.knots[circle.multiplicities == 1]:
@@ -212,7 +217,7 @@ def test_involute_far_out_builds():
 @pytest.mark.slow
 def test_paper_stiffened_step_solids_pass_every_argument_analyzer_check(tmp_path):
     """paper_stiffened.step as FreeCAD imports it: each part checked on its own, no finding."""
-    from tubecad.interfaces.cli import cli
+    from tubecad.cli.app import cli
 
     cli.main(args=["paper", "-o", str(tmp_path), "--nu", "16", "--ns", "101"], standalone_mode=False)
     shape = import_shape(tmp_path / "paper_stiffened.step")

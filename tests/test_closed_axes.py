@@ -15,13 +15,13 @@ import pytest
 from click.testing import CliRunner
 from scipy.integrate import quad
 
+from tubecad.cli.app import cli
+from tubecad.core.errors import ParameterError
 from tubecad.curves.natural import NaturalAxis
 from tubecad.curves.parametric import ParametricAxis
 from tubecad.curves.points import points_axis
 from tubecad.curves.route import RouteAxis
-from tubecad.errors import ParameterError
-from tubecad.interfaces.cli import cli
-from tubecad.interfaces.spec import load_spec
+from tubecad.spec.parse import load_spec
 
 SAMPLES = Path(__file__).parent.parent / "samples"
 TWO_PI = 2 * math.pi
@@ -52,6 +52,7 @@ def symbolic_curve(x, y, z):
 
 def total_torsion(d, t0: float, t1: float) -> float:
     """Int tau ds = Int (x' x x'') . x''' / |x' x x''|^2 |x'| dt, by adaptive quadrature."""
+
     def integrand(t: float) -> float:
         d1, d2, d3 = d(t)
         c = np.cross(d1, d2)
@@ -67,8 +68,11 @@ def trefoil(t, sp):
 
 
 TREFOIL = (lambda t, sp: trefoil(t, sp)[0], lambda t, sp: trefoil(t, sp)[1], lambda t, sp: trefoil(t, sp)[2])
-TORUS_KNOT_2_3 = (lambda t, sp: (3 + sp.cos(3 * t)) * sp.cos(2 * t), lambda t, sp: (3 + sp.cos(3 * t)) * sp.sin(2 * t),
-                  lambda t, sp: sp.sin(3 * t))  # fmt: skip
+TORUS_KNOT_2_3 = (
+    lambda t, sp: (3 + sp.cos(3 * t)) * sp.cos(2 * t),
+    lambda t, sp: (3 + sp.cos(3 * t)) * sp.sin(2 * t),
+    lambda t, sp: sp.sin(3 * t),
+)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -126,12 +130,16 @@ def test_closed_true_on_an_open_arc_says_how_far_apart_the_ends_are():
 def test_closed_true_on_ends_meeting_at_a_corner_says_the_tangents_differ():
     """x = sin t, y = sin t cos t, t in [0, pi]: a teardrop whose ends meet at the origin with
     tangents (1, 1) and (-1, 1), 90 deg apart."""
+
     def teardrop(t):
         return np.stack([np.sin(t), np.sin(t) * np.cos(t), 0 * t], -1)
 
     assert not ParametricAxis(teardrop, (0.0, math.pi)).closed  # detected: not a loop
-    with pytest.raises(ParameterError, match=r"^closed = true, but the tangents at the axis' ends differ by 90 deg: "
-                                             r"the closing rings would not lie in one plane"):  # fmt: skip
+    with pytest.raises(
+        ParameterError,
+        match=r"^closed = true, but the tangents at the axis' ends differ by 90 deg: "
+        r"the closing rings would not lie in one plane",
+    ):
         ParametricAxis(teardrop, (0.0, math.pi), closed=True)
 
 
@@ -150,7 +158,9 @@ def test_closed_must_be_a_boolean():
 
 def loop_points(n: int = 7) -> np.ndarray:
     a = np.linspace(0.0, TWO_PI, n, endpoint=False)
-    return np.stack([(40 + 8 * np.cos(3 * a)) * np.cos(a), (40 + 8 * np.cos(3 * a)) * np.sin(a), 12 * np.sin(2 * a)], -1)
+    return np.stack(
+        [(40 + 8 * np.cos(3 * a)) * np.cos(a), (40 + 8 * np.cos(3 * a)) * np.sin(a), 12 * np.sin(2 * a)], -1
+    )
 
 
 LOOP = loop_points()
@@ -165,7 +175,9 @@ def test_a_closed_polygon_of_points_gives_a_periodic_spline():
     assert np.abs(ends.position[1] - ends.position[0]).max() < 1e-12 * axis.length
     assert np.abs(ends.t[1] - ends.t[0]).max() < 1e-12
     # C2 all round: the curvature vector t' agrees too (a not-a-knot spline's would not)
-    assert np.abs(ends.curvature_vector[1] - ends.curvature_vector[0]).max() < 1e-9 * np.abs(ends.curvature_vector).max()
+    assert (
+        np.abs(ends.curvature_vector[1] - ends.curvature_vector[0]).max() < 1e-9 * np.abs(ends.curvature_vector).max()
+    )
     assert axis.curvature(np.array(axis.span)) == pytest.approx(axis.curvature(np.array(axis.span[::-1])), rel=1e-9)
     # it passes through every point: the first at s = 0, the others at the knots (its joints, C1 frame)
     knots = np.array([0.0] + [s for s, continuity in axis.joints if continuity == 1])
@@ -263,8 +275,9 @@ def test_a_closed_skew_route_comes_back_turned_by_its_parallel_transport():
 def test_the_fitting_takes_a_closed_route_frame_exactly():
     from tubecad.fitting.route_frame import route_frame
 
-    axis = RouteAxis(np.array([[0, 0, 0], [400, 0, 0], [400, 300, 0], [400, 300, 250], [0, 300, 250]]),
-                     60.0, closed=True)  # fmt: skip
+    axis = RouteAxis(
+        np.array([[0, 0, 0], [400, 0, 0], [400, 300, 0], [400, 300, 250], [0, 300, 250]]), 60.0, closed=True
+    )
     frame = route_frame(axis, 20.0, rings=np.linspace(*axis.span, 7), radii=(18.0, 20.0))
     assert frame.position_bound < 1e-9 and frame.orthogonality_bound < 1e-12
 
@@ -274,28 +287,43 @@ def test_closed_route_errors_name_the_users_points():
         RouteAxis([[0, 0, 0], [100, 0, 0]], 5.0, closed=True)
     with pytest.raises(ParameterError, match=r"^a closed route needs 3 or more distinct points, got 2$"):
         RouteAxis([[0, 0, 0], [100, 0, 0], [0, 0, 0]], 5.0)
-    with pytest.raises(ParameterError, match=r"^bend_radius must be one number or 4 \(one per vertex of the loop "
-                                             r"points\[0\]\.\.points\[3\]\), got 3$"):  # fmt: skip
+    with pytest.raises(
+        ParameterError,
+        match=r"^bend_radius must be one number or 4 \(one per vertex of the loop "
+        r"points\[0\]\.\.points\[3\]\), got 3$",
+    ):
         RouteAxis(SQUARE + [SQUARE[0]], [5.0, 5.0, 5.0])
     with pytest.raises(ParameterError, match=r"^bend_radius at points\[0\] must be a finite number > 0"):
         RouteAxis(SQUARE, [-1.0, 5.0, 5.0, 5.0], closed=True)
     # points[0] on the line points[3]-points[1]: no bend there
-    with pytest.raises(ParameterError, match=r"^points\[0\] \[0, 0, 0\] makes no bend: points\[3\], points\[0\] and "
-                                             r"points\[1\] are collinear"):  # fmt: skip
+    with pytest.raises(
+        ParameterError,
+        match=r"^points\[0\] \[0, 0, 0\] makes no bend: points\[3\], points\[0\] and "
+        r"points\[1\] are collinear",
+    ):
         RouteAxis([[0, 0, 0], [100, 0, 0], [100, 100, 0], [-100, 0, 0]], 5.0, closed=True)
     # the closing leg points[3]-points[0] cannot hold the bends at both its ends
-    with pytest.raises(ParameterError, match=r"^bend_radius 90 at points\[0\] \[0, 0, 0\] does not fit: the leg "
-                                             r"points\[3\]-points\[0\] is 100 long but its bends need 20 \(the bend at "
-                                             r"points\[3\]\) \+ 90 \(the bend at points\[0\]\)"):  # fmt: skip
+    with pytest.raises(
+        ParameterError,
+        match=r"^bend_radius 90 at points\[0\] \[0, 0, 0\] does not fit: the leg "
+        r"points\[3\]-points\[0\] is 100 long but its bends need 20 \(the bend at "
+        r"points\[3\]\) \+ 90 \(the bend at points\[0\]\)",
+    ):
         RouteAxis(SQUARE, [90, 5, 5, 20], closed=True)
     # a bend not above the tube radius, named by the user's vertex
-    assert RouteAxis(SQUARE, [4, 6, 6, 6], closed=True).tube_radius_problem(5.0).startswith(
-        "tube is not regular: the bend at points[0] [0, 0, 0] has bend_radius 4")
+    assert (
+        RouteAxis(SQUARE, [4, 6, 6, 6], closed=True)
+        .tube_radius_problem(5.0)
+        .startswith("tube is not regular: the bend at points[0] [0, 0, 0] has bend_radius 4")
+    )
 
 
 def test_open_route_messages_are_unchanged():
-    with pytest.raises(ParameterError, match=r"^bend_radius must be one number or 2 \(one per inner vertex "
-                                             r"points\[1\]\.\.points\[2\]\), got 3$"):  # fmt: skip
+    with pytest.raises(
+        ParameterError,
+        match=r"^bend_radius must be one number or 2 \(one per inner vertex "
+        r"points\[1\]\.\.points\[2\]\), got 3$",
+    ):
         RouteAxis(SQUARE, [5.0, 5.0, 5.0])
     assert not RouteAxis(SQUARE, 5.0).closed and "closed" not in RouteAxis(SQUARE, 5.0).describe()
 
@@ -311,8 +339,14 @@ def test_a_periodic_spline_edge_and_a_closed_wire_are_closed():
     spline = edge_axis(bd.Spline((0, 0, 0), (60, 25, 10), (120, 10, 45), (80, -30, 40), (20, -20, 5), periodic=True))
     assert spline.closed and spline.describe()["closed"] is True
     r = 5.0  # a stadium: two lines and two half circles, G1 where they meet
-    wire = bd.Wire([bd.Line((0, 0), (20, 0)), bd.CenterArc((20, r), r, 270, 180), bd.Line((20, 2 * r), (0, 2 * r)),
-                    bd.CenterArc((0, r), r, 90, 180)])  # fmt: skip
+    wire = bd.Wire(
+        [
+            bd.Line((0, 0), (20, 0)),
+            bd.CenterArc((20, r), r, 270, 180),
+            bd.Line((20, 2 * r), (0, 2 * r)),
+            bd.CenterArc((0, r), r, 90, 180),
+        ]
+    )
     stadium = edge_axis(wire)
     assert stadium.closed and stadium.length == pytest.approx(40 + TWO_PI * r, rel=1e-12)
     assert abs(stadium.holonomy) < 1e-12

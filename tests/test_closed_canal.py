@@ -23,9 +23,9 @@ from scipy.interpolate import CubicSpline
 from tubecad.brep import NetLayout, build_tube_shell, build_tube_solid, build_wall_solid
 from tubecad.brep import properties as props
 from tubecad.brep.solids import exact_volume
+from tubecad.cli.app import cli
+from tubecad.core.errors import ParameterError
 from tubecad.curves.parametric import ParametricAxis
-from tubecad.errors import ParameterError
-from tubecad.interfaces.cli import cli
 from tubecad.surface import CanalSurface, CurvatureLineTube, tube_or_canal
 from tubecad.surface.checks import envelope_distance
 
@@ -49,8 +49,11 @@ def trefoil(t: np.ndarray) -> np.ndarray:
 def cosine_law(r0: float, a: float, length: float):
     """r, r', r'' of r0 + a cos(2 pi s / L), by hand."""
     w = TWO_PI / length
-    return (lambda s: r0 + a * math.cos(w * s), lambda s: -a * w * math.sin(w * s),
-            lambda s: -a * w * w * math.cos(w * s))  # fmt: skip
+    return (
+        lambda s: r0 + a * math.cos(w * s),
+        lambda s: -a * w * math.sin(w * s),
+        lambda s: -a * w * w * math.cos(w * s),
+    )
 
 
 def swept_volume(r, dr, ddr, length: float, offset: float = 0.0) -> float:
@@ -108,8 +111,9 @@ def test_a_closed_law_and_a_periodic_table(torus_canal):
     # the periodic table's closed solid: valid, watertight, its volume the discs' swept volume
     solid = build_tube_solid(table, NetLayout.equal(table, 7, 4))
     assert props.is_valid(solid.shape) and props.free_edges(solid.shape) == 0
-    expected = swept_volume(lambda x: float(reference(x)), lambda x: float(reference(x, 1)),
-                            lambda x: float(reference(x, 2)), L)  # fmt: skip
+    expected = swept_volume(
+        lambda x: float(reference(x)), lambda x: float(reference(x, 1)), lambda x: float(reference(x, 2)), L
+    )
     assert props.volume(solid.shape) == pytest.approx(expected, rel=1e-9)
     # a constant radius on a closed axis stays today's tube
     assert isinstance(tube_or_canal(axis, 2.0), CurvatureLineTube)
@@ -134,8 +138,9 @@ def test_the_torus_like_canal_wall(torus_canal):
     """(a) A circle axis, r = 2 + 0.5 cos(2 pi s / L): the closed shell, solid and wall."""
     L = torus_canal.length
     r, dr, ddr = cosine_law(R0, AMPLITUDE, L)
-    assert swept_volume(lambda s: R0, lambda s: 0.0, lambda s: 0.0, L) == pytest.approx(2 * math.pi**2 * R_TORUS * R0**2,
-                                                                                        rel=1e-13)  # fmt: skip
+    assert swept_volume(lambda s: R0, lambda s: 0.0, lambda s: 0.0, L) == pytest.approx(
+        2 * math.pi**2 * R_TORUS * R0**2, rel=1e-13
+    )
     layout = NetLayout.equal(torus_canal, 9, 4)
     shell = build_tube_shell(torus_canal, layout).shape
     assert props.is_valid(shell) and props.free_edges(shell) == 0 and shell.wrapped.Closed()
@@ -186,8 +191,14 @@ def test_the_trefoil_canal_wall(trefoil_canal):
     assert wall.frame.position_bound <= 0.5 * wall.tolerance
     for surface, offset in enumerate((0.02, -0.02)):
         exact = trefoil_canal.offset(offset)
-        points = np.array([tuple(face.position_at(u, v)) for face in [f for row in wall.face_grid(surface) for f in row]
-                           for u in (0.1, 0.5, 0.9) for v in (0.1, 0.5, 0.9)])  # fmt: skip
+        points = np.array(
+            [
+                tuple(face.position_at(u, v))
+                for face in [f for row in wall.face_grid(surface) for f in row]
+                for u in (0.1, 0.5, 0.9)
+                for v in (0.1, 0.5, 0.9)
+            ]
+        )
         distance, _ = envelope_distance(exact, points)
         assert np.abs(distance).max() < wall.tolerance
 
@@ -217,19 +228,24 @@ thickness = 1.0
 """
 
 
-@pytest.mark.parametrize("radius, says", [
-    ('"8 + 0.001 * s"', "[tube] radius: on a closed axis the law must close (r and r' at s = "),
-    ('"8 + 0.5 * sin(s / 40)"', "they differ by"),
-    ("[[-10.0, 8.0], [300.0, 9.0], [2000.0, 8.0]]", "[tube] radius: on a closed axis the table must run from"),
-    ("[[0.0, 8.0], [300.0, 9.0], [700.0, 8.5], [1400.0, 8.5]]", "[tube] radius: on a closed axis a table must close "
-                                                                 "(row 0 has r = 8 at s = 0 but row 3 has r = 8.5"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "radius, says",
+    [
+        ('"8 + 0.001 * s"', "[tube] radius: on a closed axis the law must close (r and r' at s = "),
+        ('"8 + 0.5 * sin(s / 40)"', "they differ by"),
+        ("[[-10.0, 8.0], [300.0, 9.0], [2000.0, 8.0]]", "[tube] radius: on a closed axis the table must run from"),
+        (
+            "[[0.0, 8.0], [300.0, 9.0], [700.0, 8.5], [1400.0, 8.5]]",
+            "[tube] radius: on a closed axis a table must close (row 0 has r = 8 at s = 0 but row 3 has r = 8.5",
+        ),
+    ],
+)
 def test_a_law_that_does_not_close_is_refused(tmp_path, radius, says):
     """(c) On a closed axis: a law whose r or r' differs at the ends, a table that does not span
     the loop or whose ends differ: one line naming radius, exit 2, no file written."""
     text = CLOSED_TREFOIL.format(radius=radius)
     if "1400.0" in radius:  # the table's last row at the loop's end
-        from tubecad.interfaces.spec import load_spec
+        from tubecad.spec.parse import load_spec
 
         path = tmp_path / "probe.toml"
         path.write_text(CLOSED_TREFOIL.format(radius=8.0))
@@ -262,10 +278,13 @@ def test_the_closed_canal_sample_builds_to_step(tmp_path):
 def test_stiffeners_on_a_closed_canal_wall_are_refused_in_one_line(tmp_path):
     """The wall closes; its ring frames and stringers are not built on a closed canal axis yet."""
     path = tmp_path / "spec.toml"
-    path.write_text(CLOSED_TREFOIL.format(radius='"8 + 0.02 * x"') + "\n[stiffeners]\nrings = [1]\nheight = 2.0\n"
-                    "thickness = 0.5\n")  # fmt: skip
+    path.write_text(
+        CLOSED_TREFOIL.format(radius='"8 + 0.02 * x"') + "\n[stiffeners]\nrings = [1]\nheight = 2.0\nthickness = 0.5\n"
+    )
     out = tmp_path / "x.step"
     result = run("build", path, "-o", out)
-    assert result.exit_code == 2 and "[stiffeners] on a canal surface (a radius law) on a closed axis are not built yet" \
-        in result.output, result.output  # fmt: skip
+    assert (
+        result.exit_code == 2
+        and "[stiffeners] on a canal surface (a radius law) on a closed axis are not built yet" in result.output
+    ), result.output
     assert len(result.output.strip().splitlines()) == 1 and not out.exists()

@@ -19,9 +19,9 @@ from scipy.integrate import quad
 
 from tubecad.brep import NetLayout, build_tube_shell, build_tube_solid, build_wall_solid
 from tubecad.brep import properties as props
+from tubecad.core.errors import ParameterError
 from tubecad.curves.parametric import ParametricAxis
 from tubecad.curves.route import RouteAxis
-from tubecad.errors import ParameterError
 from tubecad.stiffeners.assembly import build_stiffeners
 from tubecad.stiffeners.profiles import Profile
 from tubecad.surface import CurvatureLineTube
@@ -105,9 +105,16 @@ def test_the_stringers_meet_the_closing_ring_turned_by_minus_the_total_torsion(t
     th_j + h: its end vertex is the exact tube point S(th_j, L) and lies on the ring circle at
     s = 0 at that angle, with h = -Int tau ds mod 2 pi from the closed-form trefoil."""
     axis = trefoil_tube.axis
-    total, _ = quad(lambda t: (lambda d: float(np.cross(d[0], d[1]) @ d[2] / np.sum(np.cross(d[0], d[1]) ** 2)
-                                             * np.linalg.norm(d[0])))(trefoil_derivatives(t)),
-                    0.0, TWO_PI, limit=400, epsabs=1e-13, epsrel=1e-13)  # fmt: skip
+    total, _ = quad(
+        lambda t: (
+            lambda d: float(np.cross(d[0], d[1]) @ d[2] / np.sum(np.cross(d[0], d[1]) ** 2) * np.linalg.norm(d[0]))
+        )(trefoil_derivatives(t)),
+        0.0,
+        TWO_PI,
+        limit=400,
+        epsabs=1e-13,
+        epsrel=1e-13,
+    )
     holonomy = math.remainder(-total, TWO_PI)
     assert abs(math.remainder(axis.holonomy - holonomy, TWO_PI)) < 1e-9
     layout = NetLayout.equal(trefoil_tube, 5, 4)
@@ -138,8 +145,14 @@ def test_stiffeners_on_a_closed_wall(trefoil_tube):
     wall = build_wall_solid(trefoil_tube, 0.04, "centered", layout)
     profile = Profile("T", 0.15, 0.02, 0.08, 0.015)
     stiffeners = build_stiffeners(wall, [0, 2, 4], [0, 1, 2, 3], profile, "outside")
-    assert [st.name for st in stiffeners] == ["ring_00", "ring_02", "stringer_00", "stringer_01", "stringer_02",
-                                              "stringer_03"]  # ring 4 is ring 0  # fmt: skip
+    assert [st.name for st in stiffeners] == [
+        "ring_00",
+        "ring_02",
+        "stringer_00",
+        "stringer_01",
+        "stringer_02",
+        "stringer_03",
+    ]  # ring 4 is ring 0
     for st in stiffeners:
         assert props.is_valid(st.solid) and props.analyzer_findings(st.solid, CHECKS) == {}, st.name
     closing, middle = (props.volume(st.solid) for st in stiffeners[:2])
@@ -169,7 +182,9 @@ def test_stringers_on_a_planar_loop_close_on_themselves():
     # sweeps A (R_b - c_n) phi_b round each bend and A l along each line, so on a convex
     # planar loop (sum phi_b = 2 pi) V = A (L - 2 pi c_n). The section is cut mid-leg, where
     # the axis is (20, 0, 0), its tangent +x and the inward normal +y.
-    [section] = stringer.solid.intersect(bd.Face.make_rect(40, 40, bd.Plane(origin=(20, 0, 0), z_dir=(1, 0, 0)))).faces()
+    [section] = stringer.solid.intersect(
+        bd.Face.make_rect(40, 40, bd.Plane(origin=(20, 0, 0), z_dir=(1, 0, 0)))
+    ).faces()
     area, centroid = section.area, section.center()
     assert abs(centroid.X - 20) < 1e-9
     assert props.volume(stringer.solid) == pytest.approx(area * (axis.length - TWO_PI * centroid.Y), rel=1e-9)
@@ -223,14 +238,15 @@ def test_build_a_closed_wall_with_stiffeners_to_step_and_a_closed_mesh(tmp_path)
 
     from click.testing import CliRunner
 
+    from tubecad.cli.app import cli
     from tubecad.export.cad import import_shape
     from tubecad.export.mesh import read_mesh_triangles
-    from tubecad.interfaces.cli import cli
 
     spec = tmp_path / "closed.toml"
     spec.write_text(SMALL_CLOSED_SPEC)
-    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "c.step"), "--report",
-                                      str(tmp_path / "r.json"), "-q"])  # fmt: skip
+    result = CliRunner().invoke(
+        cli, ["build", str(spec), "-o", str(tmp_path / "c.step"), "--report", str(tmp_path / "r.json"), "-q"]
+    )
     assert result.exit_code == 0, result.output
     plain = tmp_path / "plain.toml"  # the wall alone: the stiffeners' meshes touch it
     plain.write_text(SMALL_CLOSED_SPEC.split("[stiffeners]")[0])
@@ -256,8 +272,10 @@ def test_a_closing_with_a_kink_is_refused(tmp_path):
     t = 0 and pi differ): closed = true is refused in one line naming the key, no file."""
     from conftest import assert_build_refused
 
-    text = ('[axis]\ncurve = "parametric"\nx = "10 * sin(t)"\ny = "10 * sin(t) * cos(t)"\nz = "0"\n'
-            't = [0.0, 3.141592653589793]\nclosed = true\n[tube]\nradius = 0.5\n')  # fmt: skip
+    text = (
+        '[axis]\ncurve = "parametric"\nx = "10 * sin(t)"\ny = "10 * sin(t) * cos(t)"\nz = "0"\n'
+        "t = [0.0, 3.141592653589793]\nclosed = true\n[tube]\nradius = 0.5\n"
+    )
     assert_build_refused(tmp_path, text, "[axis] closed = true, but the tangents at the axis' ends differ by")
 
 
@@ -337,8 +355,8 @@ def test_a_closed_wall_meshes_on_its_grid_closed_at_the_default_tolerance(tmp_pa
 
     from click.testing import CliRunner
 
+    from tubecad.cli.app import cli
     from tubecad.export.mesh import read_mesh_triangles
-    from tubecad.interfaces.cli import cli
 
     spec = tmp_path / "plain.toml"
     spec.write_text(SMALL_CLOSED_SPEC.split("[stiffeners]")[0])

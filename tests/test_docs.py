@@ -15,8 +15,17 @@ TEXT_SUFFIXES = {".py", ".md", ".toml", ".txt", ".rst", ".cfg", ".ini", ".json",
 
 #: never scanned: version control, the virtual environment, and generated files that
 #: .gitignore keeps out of the repository (egg-info copies the README at install time)
-SKIP_DIRS = {".git", ".venv", "__pycache__", ".pytest_cache", ".hypothesis", ".benchmarks", "build", "out",
-             "tubecad-paper"}  # fmt: skip
+SKIP_DIRS = {
+    ".git",
+    ".venv",
+    "__pycache__",
+    ".pytest_cache",
+    ".hypothesis",
+    ".benchmarks",
+    "build",
+    "out",
+    "tubecad-paper",
+}
 
 # "MATH.md section 3", "MATH.md sections 2-5", "MATH.md, sections 3 and 4"
 CITATION = re.compile(r"MATH\.md`?,?\s+sections?\s+(\d+(?:\s*(?:-|–|,|and|to)\s*\d+)*)")
@@ -40,8 +49,11 @@ def _files(roots: list[Path]) -> list[Path]:
 
 def _citing_texts() -> list[tuple[Path, str]]:
     this = Path(__file__).resolve()
-    return [(p, p.read_text(encoding="utf-8", errors="replace")) for p in _files(CITING)
-            if p.suffix in TEXT_SUFFIXES and p.resolve() != this]  # fmt: skip
+    return [
+        (p, p.read_text(encoding="utf-8", errors="replace"))
+        for p in _files(CITING)
+        if p.suffix in TEXT_SUFFIXES and p.resolve() != this
+    ]
 
 
 def _numbers(spec: str) -> list[int]:
@@ -60,16 +72,21 @@ def _sections() -> list[int]:
 def test_math_has_its_sections_in_order():
     assert MATH.is_file(), "docs/MATH.md is missing"
     sections = _sections()
-    assert len(sections) >= 10 and sections == list(range(1, len(sections) + 1)), \
-        "docs/MATH.md must keep sections '## 1.' to '## 10.' (and any later ones) in order"  # fmt: skip
+    assert len(sections) >= 10 and sections == list(range(1, len(sections) + 1)), (
+        "docs/MATH.md must keep sections '## 1.' to '## 10.' (and any later ones) in order"
+    )
 
 
 def test_citations_exist():
     citations = [(p, m) for p, text in _citing_texts() for m in CITATION.finditer(text)]
     assert len(citations) >= 20, f"expected the package to cite docs/MATH.md, found {len(citations)} citations"
     sections = set(_sections())
-    bad = [f"{p.relative_to(ROOT)}: '{m.group(0)}' (section {n})"
-           for p, m in citations for n in _numbers(m.group(1)) if n not in sections]  # fmt: skip
+    bad = [
+        f"{p.relative_to(ROOT)}: '{m.group(0)}' (section {n})"
+        for p, m in citations
+        for n in _numbers(m.group(1))
+        if n not in sections
+    ]
     assert not bad, "citations of sections that docs/MATH.md does not have:\n" + "\n".join(bad)
 
 

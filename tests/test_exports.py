@@ -8,13 +8,14 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-
 from conftest import PAPER_SPEC
+
 from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
-from tubecad.export.cad import export_shape, import_shape
-from tubecad.interfaces.cli import cli
+from tubecad.cli.app import cli
+from tubecad.export.cad import import_shape
+from tubecad.export.registry import export_shape
 
 SAMPLES = Path(__file__).parent.parent / "samples"
 
@@ -25,7 +26,9 @@ def wall():
     return build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 6, 4)).shape
 
 
-@pytest.mark.parametrize("name, volume_rel", [("w.step", 1e-9), ("w242.step", 1e-9), ("w.iges", 1e-9), ("w.brep", 1e-12)])
+@pytest.mark.parametrize(
+    "name, volume_rel", [("w.step", 1e-9), ("w242.step", 1e-9), ("w.iges", 1e-9), ("w.brep", 1e-12)]
+)
 def test_round_trip_keeps_a_valid_identical_solid(tmp_path, wall, name, volume_rel):
     path = export_shape(wall, tmp_path / name, "AP242" if "242" in name else "AP214")
     back = import_shape(path)
@@ -44,7 +47,9 @@ def test_round_trip_keeps_a_valid_identical_solid(tmp_path, wall, name, volume_r
 def test_unknown_extension_and_missing_folder(tmp_path, wall):
     from tubecad import ParameterError
 
-    with pytest.raises(ParameterError, match="unknown extension '.obj'; use one of .step, .stp, .iges, .igs, .brep, .stl"):
+    with pytest.raises(
+        ParameterError, match="unknown extension '.obj'; use one of .step, .stp, .iges, .igs, .brep, .stl"
+    ):
         export_shape(wall, tmp_path / "w.obj")
     with pytest.raises(ParameterError, match="does not exist"):
         export_shape(wall, tmp_path / "nope" / "w.step")
@@ -70,7 +75,7 @@ def test_interrupt_as_the_temporary_is_created_leaves_no_file(tmp_path, monkeypa
     window that left a ``.part`` file in CI, then inside ``mkstemp``): the file is removed."""
     import signal
 
-    from tubecad.export.atomic import atomic_path
+    from tubecad.core.atomic import atomic_path
 
     real_open = os.open
 
@@ -109,8 +114,9 @@ def test_paper_command_writes_a_valid_wall_step_and_iges(tmp_path):
     import build123d as bd
 
     names = [c.label for c in bd.import_step(tmp_path / "paper_stiffened.step").children]
-    assert names == ["wall"] + [f"ring_{i:02d}" for i in range(1, 10)] + \
-        [f"stringer_{j:02d}" for j in (0, 2, 4, 6)] + ["curvature_lines"]
+    assert names == ["wall"] + [f"ring_{i:02d}" for i in range(1, 10)] + [f"stringer_{j:02d}" for j in (0, 2, 4, 6)] + [
+        "curvature_lines"
+    ]
     stiff = report["stiffeners"]
     assert len(stiff["stiffeners"]) == 13 and all(s["valid"] for s in stiff["stiffeners"])
     ring = stiff["stiffeners"][0]
@@ -150,8 +156,19 @@ def test_build_command_for_every_family(tmp_path, spec):
     # the closed trefoil's isolines, its 104 faces 320 long, stay orthogonal in IGES only to
     # |cos| 1.1e-9: the read-back check refuses it, so it goes to BREP
     second = "a.brep" if spec.stem == "trefoil_closed" else "a.iges"
-    result = CliRunner().invoke(cli, ["build", str(path), "-o", str(tmp_path / "a.step"), "-o", str(tmp_path / second),
-                                      "--report", str(tmp_path / "r.json")])  # fmt: skip
+    result = CliRunner().invoke(
+        cli,
+        [
+            "build",
+            str(path),
+            "-o",
+            str(tmp_path / "a.step"),
+            "-o",
+            str(tmp_path / second),
+            "--report",
+            str(tmp_path / "r.json"),
+        ],
+    )
     assert result.exit_code == 0, result.output
     report = json.loads((tmp_path / "r.json").read_text())
     assert report["brep"]["valid"] and report["brep"]["volume_relative_error"] < 1e-6
@@ -162,7 +179,9 @@ def test_build_command_for_every_family(tmp_path, spec):
         assert back["valid"] and back["volume_relative_error"] < 1e-6
         if "stiffeners" in report:  # the assembly: the wall's faces and the stiffeners'
             wall = len(report.get("panels") or []) or 1  # the wall, or its panels
-            assert back["faces"] > report["brep"]["faces"] and back["solids"] == wall + len(report["stiffeners"]["stiffeners"])
+            assert back["faces"] > report["brep"]["faces"] and back["solids"] == wall + len(
+                report["stiffeners"]["stiffeners"]
+            )
         else:
             assert back["faces"] == report["brep"]["faces"]
 
@@ -174,10 +193,10 @@ def test_build_command_for_every_family(tmp_path, spec):
         ("[layout]\nrings = 1\n", "[layout] rings must be a whole number >= 2"),
         ("[layout]\nrings = 2.5\n", "[layout] rings must be a whole number"),
         ("[layout]\nu_stringers_deg = []\n", "[layout] u_stringers_deg must be a non-empty list"),
-        ("[wall]\nthickness = 2.0\nside = \"middle\"\n", "[wall] side must be one of"),
+        ('[wall]\nthickness = 2.0\nside = "middle"\n', "[wall] side must be one of"),
         ("[wall]\nthickness = 40.0\n", "[wall] thickness must be < 30"),
         ("[wall]\nthickness = 3.0\n", "[wall] the wall's outer surface is not regular"),
-        ("[wall]\nside = \"inside\"\n", "[wall] thickness is missing"),
+        ('[wall]\nside = "inside"\n', "[wall] thickness is missing"),
         ("[fit]\ntolerance = 2.0\n", "[fit] fit tolerance must be in (0, 1)"),
         ("[fit]\ntolerance = 1e-17\n", "[fit] fit tolerance"),
     ],

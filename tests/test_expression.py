@@ -15,8 +15,14 @@ from tubecad.curves.expression import compile_expression
         ("10 / s", lambda s: 10 / s),
         ("0.02 + 1e-5 * s", lambda s: 0.02 + 1e-5 * s),
         ("-s ** 2 / 4", lambda s: -(s**2) / 4),
-        ("sqrt(s) * exp(-s / 100) + cos(pi * s) * e", lambda s: np.sqrt(s) * np.exp(-s / 100) + np.cos(np.pi * s) * np.e),
-        ("abs(sin(s)) + ln(s) - log10(s) + atan(s)", lambda s: np.abs(np.sin(s)) + np.log(s) - np.log10(s) + np.arctan(s)),
+        (
+            "sqrt(s) * exp(-s / 100) + cos(pi * s) * e",
+            lambda s: np.sqrt(s) * np.exp(-s / 100) + np.cos(np.pi * s) * np.e,
+        ),
+        (
+            "abs(sin(s)) + ln(s) - log10(s) + atan(s)",
+            lambda s: np.abs(np.sin(s)) + np.log(s) - np.log10(s) + np.arctan(s),
+        ),
         ("3", lambda s: 3.0 + 0 * s),
     ],
 )

@@ -50,8 +50,13 @@ def straight_tube(r: float = 100.0, length: float = 1000.0) -> CurvatureLineTube
 
 
 def capped(tube, t: float, element: str, h: float, stiffeners=None):
-    mesh = shell_mesh(tube, NetLayout.equal(tube, 5, 4), thickness=t, settings=MeshSettings(element, size_along=h,
-                      size_around=h), stiffeners=stiffeners)  # fmt: skip
+    mesh = shell_mesh(
+        tube,
+        NetLayout.equal(tube, 5, 4),
+        thickness=t,
+        settings=MeshSettings(element, size_along=h, size_around=h),
+        stiffeners=stiffeners,
+    )
     step = pressure_step(mesh, P, "capped", tube, (mesh.node_sets["start_ring"], mesh.node_sets["end_ring"]))
     return mesh, solve(mesh, STEEL, step)
 
@@ -71,9 +76,13 @@ def test_a_capped_tube_carries_pr_over_t_round_and_pr_over_2t_along():
     # the diameters at mid-length (the 3-2-1 support moves the tube rigidly; diameters do not see that)
     ring = mesh.node_sets["ring_02"]  # s = 500
     u = mesh.parameters[ring, 0]
-    opposite = ring[np.argmin(np.abs(((u[:, None] - u[None, :] - math.pi) + math.pi) % (2 * math.pi) - math.pi), axis=1)]
+    opposite = ring[
+        np.argmin(np.abs(((u[:, None] - u[None, :] - math.pi) + math.pi) % (2 * math.pi) - math.pi), axis=1)
+    ]
     before = np.linalg.norm(mesh.nodes[ring] - mesh.nodes[opposite], axis=1)
-    after = np.linalg.norm(mesh.nodes[ring] + res.displacement[ring] - mesh.nodes[opposite] - res.displacement[opposite], axis=1)
+    after = np.linalg.norm(
+        mesh.nodes[ring] + res.displacement[ring] - mesh.nodes[opposite] - res.displacement[opposite], axis=1
+    )
     w = (after - before) / 2
     assert np.abs(w / (P * r**2 * (1 - 0.15) / (210000.0 * t)) - 1).max() < 0.01
 
@@ -81,15 +90,25 @@ def test_a_capped_tube_carries_pr_over_t_round_and_pr_over_2t_along():
 def test_a_closed_torus_matches_membrane_theory():
     R, r, t = 1000.0, 200.0, 0.25
     torus = CurvatureLineTube(NaturalAxis("0.001", "0", (0.0, 2 * math.pi * R)), r)
-    mesh = shell_mesh(torus, NetLayout.equal(torus, 9, 8), thickness=t, settings=MeshSettings("S8R", size_along=40.0,
-                      size_around=40.0))  # fmt: skip
+    mesh = shell_mesh(
+        torus,
+        NetLayout.equal(torus, 9, 8),
+        thickness=t,
+        settings=MeshSettings("S8R", size_along=40.0, size_around=40.0),
+    )
     res = solve(mesh, STEEL, pressure_step(mesh, P, "free", torus))
     # sin theta: the node's offset from the axis circle, along the circle's outward radius
     centre = np.array([0.0, R, 0.0])
     x = mesh.nodes - centre
     planar = x * np.array([1.0, 1.0, 0.0])
-    sin = np.einsum("ij,ij->i", x - R * planar / np.linalg.norm(planar, axis=1)[:, None],
-                    planar / np.linalg.norm(planar, axis=1)[:, None]) / r  # fmt: skip
+    sin = (
+        np.einsum(
+            "ij,ij->i",
+            x - R * planar / np.linalg.norm(planar, axis=1)[:, None],
+            planar / np.linalg.norm(planar, axis=1)[:, None],
+        )
+        / r
+    )
     ring = P * r / (2 * t) * (2 * R + r * sin) / (R + r * sin)
     stringer = P * r / (2 * t)
     assert np.abs(res.ring_stress / ring - 1).max() < 0.02  # measured 0.62 %
@@ -136,10 +155,12 @@ def test_a_capped_cone_carries_p_rho_over_t_round_and_half_along():
 
     t = 0.5
     cone = CanalSurface(NaturalAxis("0", "0", (0.0, 1000.0)), "80 + 0.04 * s")  # rho from 80 to 120
-    mesh = shell_mesh(cone, NetLayout.equal(cone, 5, 4), thickness=t, settings=MeshSettings("S8", size_along=20.0,
-                      size_around=20.0))  # fmt: skip
-    res = solve(mesh, STEEL, pressure_step(mesh, P, "capped", cone, (mesh.node_sets["start_ring"],
-                                                                      mesh.node_sets["end_ring"])))  # fmt: skip
+    mesh = shell_mesh(
+        cone, NetLayout.equal(cone, 5, 4), thickness=t, settings=MeshSettings("S8", size_along=20.0, size_around=20.0)
+    )
+    res = solve(
+        mesh, STEEL, pressure_step(mesh, P, "capped", cone, (mesh.node_sets["start_ring"], mesh.node_sets["end_ring"]))
+    )
     mid = middle(mesh)
     rho = 80.0 + 0.04 * mesh.parameters[mid, 1]
     assert np.abs(res.ring_stress[mid] / (P * rho / t) - 1).max() < 0.01  # measured 0.44 %
@@ -153,10 +174,16 @@ def test_stringers_share_the_axial_load_by_their_area():
     r, t, nu = 100.0, 0.5, 0.3
     stringers = StiffenerPlan([], [0, 1, 2, 3, 4, 5, 6, 7], Profile("flat", 10.0, 2.0), "outside")
     tube = straight_tube(r)
-    mesh = shell_mesh(tube, NetLayout.equal(tube, 5, 8), thickness=t, settings=MeshSettings("S4", size_along=10.0,
-                      size_around=10.0), stiffeners=stringers)  # fmt: skip
-    res = solve(mesh, STEEL, pressure_step(mesh, P, "capped", tube, (mesh.node_sets["start_ring"],
-                                                                      mesh.node_sets["end_ring"])))  # fmt: skip
+    mesh = shell_mesh(
+        tube,
+        NetLayout.equal(tube, 5, 8),
+        thickness=t,
+        settings=MeshSettings("S4", size_along=10.0, size_around=10.0),
+        stiffeners=stringers,
+    )
+    res = solve(
+        mesh, STEEL, pressure_step(mesh, P, "capped", tube, (mesh.node_sets["start_ring"], mesh.node_sets["end_ring"]))
+    )
     e_eps = P * math.pi * r**2 * (1 - 2 * nu) / (2 * math.pi * r * t + 8 * 10.0 * 2.0)
     # the wall between the stringers: a node beside a stringer's node sees its knot (measured 5 %)
     step = 2 * math.pi / mesh.info["elements_around"]
@@ -168,7 +195,7 @@ def test_stringers_share_the_axial_load_by_their_area():
 
 
 def run_cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "tubecad.interfaces.console", *args], capture_output=True, text=True)
+    return subprocess.run([sys.executable, "-m", "tubecad.cli.console", *args], capture_output=True, text=True)
 
 
 def test_the_torus_sample_analyses_from_the_command_line(tmp_path):
@@ -187,15 +214,23 @@ def test_the_torus_sample_analyses_from_the_command_line(tmp_path):
 BASE = (ROOT / "samples" / "torus_pressure.toml").read_text()
 
 
-@pytest.mark.parametrize("change, says", [
-    (("size = 40.0", "size = 0.0"), "[mesh] size must be a finite length in (0, 1e+09]"),
-    (("size = 40.0", "size = 0.5"), "give 38,001,600 elements (15080 along x 2520 around"),  # 2 pi 1200 / 0.5, 2 pi 200 / 0.5
-    (('element = "S8R"', 'element = "S3"'), "[mesh] element must be one of S4, S4R, S8, S8R"),
-    (('ends = "free"', 'ends = "fixed"'), "[analysis] ends = 'fixed' needs end rings"),
-    (("pressure = 1.0 ", "pressure = nan "), "[analysis] pressure must be finite"),
-    (("[analysis]", "[stiffeners]\nrings = [1]\nheight = 900.0\nthickness = 2.0\n\n[analysis]"),
-     "[stiffeners] height"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "change, says",
+    [
+        (("size = 40.0", "size = 0.0"), "[mesh] size must be a finite length in (0, 1e+09]"),
+        (
+            ("size = 40.0", "size = 0.5"),
+            "give 38,001,600 elements (15080 along x 2520 around",
+        ),  # 2 pi 1200 / 0.5, 2 pi 200 / 0.5
+        (('element = "S8R"', 'element = "S3"'), "[mesh] element must be one of S4, S4R, S8, S8R"),
+        (('ends = "free"', 'ends = "fixed"'), "[analysis] ends = 'fixed' needs end rings"),
+        (("pressure = 1.0 ", "pressure = nan "), "[analysis] pressure must be finite"),
+        (
+            ("[analysis]", "[stiffeners]\nrings = [1]\nheight = 900.0\nthickness = 2.0\n\n[analysis]"),
+            "[stiffeners] height",
+        ),
+    ],
+)
 def test_bad_input_is_refused_with_one_line_and_no_file(tmp_path, change, says):
     spec = tmp_path / "bad.toml"
     spec.write_text(BASE.replace(*change))

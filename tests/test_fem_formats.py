@@ -15,9 +15,9 @@ import pytest
 meshio = pytest.importorskip("meshio")
 
 from tubecad.brep.layout import NetLayout  # noqa: E402
+from tubecad.core.errors import ParameterError  # noqa: E402
 from tubecad.curves import Helix  # noqa: E402
 from tubecad.curves.natural import NaturalAxis  # noqa: E402
-from tubecad.errors import ParameterError  # noqa: E402
 from tubecad.fem import MeshSettings, StiffenerPlan, shell_mesh  # noqa: E402
 from tubecad.fem.inp import write_inp  # noqa: E402
 from tubecad.fem.meshio_formats import msh_text, panel_names, to_meshio, write_msh, write_vtu  # noqa: E402
@@ -26,8 +26,16 @@ from tubecad.surface import CurvatureLineTube  # noqa: E402
 
 #: written here, not taken from the module: meshio's cell type and gmsh's element type number
 #: (3 4-node quadrangle, 16 8-node quadrangle, 1 2-node line, 8 3-node line) per element
-MESHIO_TYPE = {"S4": "quad", "S4R": "quad", "S8": "quad8", "S8R": "quad8",
-               "B31": "line", "B31R": "line", "B32": "line3", "B32R": "line3"}  # fmt: skip
+MESHIO_TYPE = {
+    "S4": "quad",
+    "S4R": "quad",
+    "S8": "quad8",
+    "S8R": "quad8",
+    "B31": "line",
+    "B31R": "line",
+    "B32": "line3",
+    "B32R": "line3",
+}
 GMSH_TYPE = {"S4": 3, "S4R": 3, "S8": 16, "S8R": 16, "B31": 1, "B31R": 1, "B32": 8, "B32R": 8}
 #: gmsh and meshio put a 3-node line's middle node last; ours (Abaqus) is end, middle, end
 MIDDLE_LAST = [0, 2, 1]
@@ -50,8 +58,13 @@ def _torus():
     R, r = 1000.0, 200.0
     tube = CurvatureLineTube(NaturalAxis("0.001", "0", (0.0, 2 * math.pi * R)), r)
     layout = NetLayout.equal(tube, 9, 8)
-    mesh = shell_mesh(tube, layout, thickness=4.0, settings=MeshSettings(element="S8R", size_along=100, size_around=80),
-                      stiffeners=StiffenerPlan([1, 3], [0, 2], Profile("T", 40, 4, 30, 4), "outside"))  # fmt: skip
+    mesh = shell_mesh(
+        tube,
+        layout,
+        thickness=4.0,
+        settings=MeshSettings(element="S8R", size_along=100, size_around=80),
+        stiffeners=StiffenerPlan([1, 3], [0, 2], Profile("T", 40, 4, 30, 4), "outside"),
+    )
     return mesh, layout
 
 
@@ -59,16 +72,26 @@ def _helix():
     tube = CurvatureLineTube(Helix(0.002, 10.0, (0.0, 2000.0)), 100.0)
     layout = NetLayout.equal(tube, 5, 4)
     settings = MeshSettings(element="S4", surface="both", size_along=40, size_around=40)
-    mesh = shell_mesh(tube, layout, thickness=4.0, settings=settings,
-                      stiffeners=StiffenerPlan([1, 2], [0], Profile("L", 20, 2, 15, 2), "inside"))  # fmt: skip
+    mesh = shell_mesh(
+        tube,
+        layout,
+        thickness=4.0,
+        settings=settings,
+        stiffeners=StiffenerPlan([1, 2], [0], Profile("L", 20, 2, 15, 2), "inside"),
+    )
     return mesh, layout
 
 
 def _straight():
     tube = CurvatureLineTube(NaturalAxis("0", "0", (0.0, 1000.0)), 100.0)
     layout = NetLayout.equal(tube, 4, 6)
-    mesh = shell_mesh(tube, layout, thickness=3.0, settings=MeshSettings(element="S8", beam="B32R", size_along=50),
-                      stiffeners=StiffenerPlan([1], [0, 3], Profile("flat", 20, 3), "outside"))  # fmt: skip
+    mesh = shell_mesh(
+        tube,
+        layout,
+        thickness=3.0,
+        settings=MeshSettings(element="S8", beam="B32R", size_along=50),
+        stiffeners=StiffenerPlan([1], [0, 3], Profile("flat", 20, 3), "outside"),
+    )
     return mesh, layout
 
 
@@ -83,8 +106,11 @@ def written(tmp_path_factory):
     for name, make in MESHES.items():
         mesh, layout = make()
         folder = tmp_path_factory.mktemp(name)
-        paths = {"msh": write_msh(mesh, folder / "m.msh"), "vtu": write_vtu(mesh, folder / "m.vtu"),
-                 "inp": write_inp(mesh, folder / "m.inp")}  # fmt: skip
+        paths = {
+            "msh": write_msh(mesh, folder / "m.msh"),
+            "vtu": write_vtu(mesh, folder / "m.vtu"),
+            "inp": write_inp(mesh, folder / "m.inp"),
+        }
         out[name] = (mesh, layout, paths)
     return out
 
@@ -93,8 +119,11 @@ def test_meshes_are_what_the_tests_assume(written):
     counts = {name: mesh.element_count for name, (mesh, _, _) in written.items()}
     assert all(200 <= c <= 5000 for c in counts.values()), counts
     kinds = {name: sorted({b.element for b in mesh.blocks}) for name, (mesh, _, _) in written.items()}
-    assert kinds == {"torus_S8R_B32": ["B32", "S8R"], "helix_S4_B31_both": ["B31", "S4"],
-                     "straight_S8_B32R": ["B32R", "S8"]}  # fmt: skip
+    assert kinds == {
+        "torus_S8R_B32": ["B32", "S8R"],
+        "helix_S4_B31_both": ["B31", "S4"],
+        "straight_S8_B32R": ["B32R", "S8"],
+    }
     helix = written["helix_S4_B31_both"][0]
     assert [b.name for b in helix.shell_blocks] == ["wall_inner", "wall_outer"]
 
@@ -120,8 +149,9 @@ def _gmsh_read(path):
         elements = {}
         for dim, tag in gmsh.model.getEntities():
             types, etags, ntags = gmsh.model.mesh.getElements(dim, tag)
-            elements[(dim, tag)] = [(int(t), np.asarray(e), np.asarray(n).reshape(len(e), -1))
-                                    for t, e, n in zip(types, etags, ntags)]  # fmt: skip
+            elements[(dim, tag)] = [
+                (int(t), np.asarray(e), np.asarray(n).reshape(len(e), -1)) for t, e, n in zip(types, etags, ntags)
+            ]
         return np.asarray(tags), np.asarray(xyz).reshape(-1, 3), names, members, elements
     finally:
         gmsh.finalize()
@@ -143,7 +173,7 @@ def test_msh_read_by_gmsh(written, name):
         block = mesh.block(group)
         assert dim == (2 if block.shell else 1)
         (entity,) = members[(dim, tag)]
-        (etype, etags, enodes), = elements[(dim, entity)]
+        ((etype, etags, enodes),) = elements[(dim, entity)]
         assert etype == GMSH_TYPE[block.element]
         assert np.array_equal(etags, block.ids + 1)  # the .inp's element numbers
         assert np.array_equal(enodes, _expected_cells(block) + 1)
@@ -168,8 +198,9 @@ def test_msh_read_by_meshio(written, name):
         assert cells.type == MESHIO_TYPE[block.element]
         assert np.array_equal(cells.data, _expected_cells(block))
         assert np.all(m.cell_data["gmsh:physical"][k] == k + 1)
-    assert {n: v.tolist() for n, v in m.field_data.items()} == \
-        {b.name: [k + 1, 2 if b.shell else 1] for k, b in enumerate(mesh.blocks)}  # fmt: skip
+    assert {n: v.tolist() for n, v in m.field_data.items()} == {
+        b.name: [k + 1, 2 if b.shell else 1] for k, b in enumerate(mesh.blocks)
+    }
 
 
 def _on_rings(mesh, layout) -> np.ndarray:
@@ -189,8 +220,11 @@ def test_vtu_round_trip(written, name):
     mesh, layout, paths = written[name]
     v = meshio.read(paths["vtu"], file_format="vtu")
     assert np.array_equal(v.points, mesh.nodes)
-    for key, values in (("normal", mesh.normals), ("ring_tangent", mesh.ring_tangents),
-                        ("stringer_tangent", mesh.stringer_tangents)):  # fmt: skip
+    for key, values in (
+        ("normal", mesh.normals),
+        ("ring_tangent", mesh.ring_tangents),
+        ("stringer_tangent", mesh.stringer_tangents),
+    ):
         assert np.array_equal(v.point_data[key], values), key
     ring = v.point_data["ring"]
     assert np.array_equal(ring, _on_rings(mesh, layout))

@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from tubecad.brep.layout import NetLayout
+from tubecad.core.errors import ParameterError
 from tubecad.curves.natural import NaturalAxis
-from tubecad.errors import ParameterError
 from tubecad.fem import MeshSettings, StiffenerPlan, mesh_settings, shell_mesh
 from tubecad.stiffeners.profiles import Profile
 from tubecad.surface import CurvatureLineTube
@@ -47,8 +47,13 @@ def torus_frame(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 @pytest.fixture(scope="module")
 def torus_mesh(torus):
     layout = NetLayout.equal(torus, 9, 8)
-    return shell_mesh(torus, layout, thickness=T, settings=MeshSettings("S8R", size_along=60.0, size_around=60.0),
-                      stiffeners=StiffenerPlan([1, 3], [0, 2], Profile("T", 40.0, 4.0, 30.0, 4.0), "outside"))
+    return shell_mesh(
+        torus,
+        layout,
+        thickness=T,
+        settings=MeshSettings("S8R", size_along=60.0, size_around=60.0),
+        stiffeners=StiffenerPlan([1, 3], [0, 2], Profile("T", 40.0, 4.0, 30.0, 4.0), "outside"),
+    )
 
 
 def test_nodes_lie_on_the_exact_torus_and_normals_are_its_normals(torus_mesh):
@@ -93,8 +98,9 @@ def test_a_closed_torus_mesh_is_watertight(torus_mesh):
 
 def test_an_open_tube_is_bounded_by_its_two_end_rings():
     tube = CurvatureLineTube(NaturalAxis("0.002", "0.001", (0.0, 800.0)), 50.0)
-    mesh = shell_mesh(tube, NetLayout.equal(tube, 5, 4), thickness=2.0, settings=MeshSettings("S4", size_along=25.0,
-                                                                                                size_around=25.0))  # fmt: skip
+    mesh = shell_mesh(
+        tube, NetLayout.equal(tube, 5, 4), thickness=2.0, settings=MeshSettings("S4", size_along=25.0, size_around=25.0)
+    )
     e, counts = np.unique(edges(mesh.block("wall").connectivity), axis=0, return_counts=True)
     boundary = np.unique(e[counts == 1])
     ends = np.union1d(mesh.node_sets["start_ring"], mesh.node_sets["end_ring"])
@@ -112,8 +118,9 @@ def test_skew_is_the_turn_of_the_parallels_across_an_element(torus, h, rel):
     isosceles trapezoid: its corners are off 90 deg by half the angle d phi = 2 pi / n_along
     the element spans round the big circle (largest at the crown, cos theta = 1): first
     order in h (the elements' own span round the small circle adds the second order)."""
-    mesh = shell_mesh(torus, NetLayout.equal(torus, 9, 8), thickness=T, settings=MeshSettings("S4", size_along=h,
-                                                                                                size_around=h))  # fmt: skip
+    mesh = shell_mesh(
+        torus, NetLayout.equal(torus, 9, 8), thickness=T, settings=MeshSettings("S4", size_along=h, size_around=h)
+    )
     n_along = 8 * math.ceil(2 * math.pi * (R + RHO) / 8 / h)  # the outer equator sets the count
     assert mesh.info["elements_along"] == n_along
     assert mesh.info["quality"]["skew_deg_max"] == pytest.approx(math.degrees(math.pi / n_along), rel=rel)
@@ -145,17 +152,20 @@ def test_panel_sets_cover_the_wall_once(torus_mesh):
     assert np.array_equal(every, torus_mesh.block("wall").ids)
 
 
-@pytest.mark.parametrize("section, says", [
-    ({"size": 0.0}, "[mesh] size must be a finite length in (0, 1e+09]"),
-    ({"size": float("nan")}, "[mesh] size must be a finite length"),
-    ({"size_along": -1.0}, "[mesh] size_along must be a finite length"),
-    ({"element": "S3"}, "[mesh] element must be one of S4, S4R, S8, S8R"),
-    ({"beam": "B33"}, "[mesh] beam must be one of B31, B31R, B32, B32R"),
-    ({"element": "S4", "beam": "B32"}, "[mesh] beam must be B31 or B31R with S4 shells"),
-    ({"surface": "middle"}, "[mesh] surface must be one of mid, inner, outer, both"),
-    ({"max_elements": 0}, "[mesh] max_elements must be a whole number in [1, 20000000]"),
-    ({"sizes": 3.0}, "[mesh] has unknown key 'sizes'"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "section, says",
+    [
+        ({"size": 0.0}, "[mesh] size must be a finite length in (0, 1e+09]"),
+        ({"size": float("nan")}, "[mesh] size must be a finite length"),
+        ({"size_along": -1.0}, "[mesh] size_along must be a finite length"),
+        ({"element": "S3"}, "[mesh] element must be one of S4, S4R, S8, S8R"),
+        ({"beam": "B33"}, "[mesh] beam must be one of B31, B31R, B32, B32R"),
+        ({"element": "S4", "beam": "B32"}, "[mesh] beam must be B31 or B31R with S4 shells"),
+        ({"surface": "middle"}, "[mesh] surface must be one of mid, inner, outer, both"),
+        ({"max_elements": 0}, "[mesh] max_elements must be a whole number in [1, 20000000]"),
+        ({"sizes": 3.0}, "[mesh] has unknown key 'sizes'"),
+    ],
+)
 def test_bad_mesh_settings_name_the_key(section, says):
     with pytest.raises(ParameterError, match=None) as info:
         mesh_settings(section)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from tubecad.interfaces.cli import cli
+from tubecad.cli.app import cli
 
 ROOT = Path(__file__).resolve().parent.parent
 SAMPLES = ROOT / "samples"
@@ -70,11 +70,21 @@ def test_a_finer_tolerance_gives_more_triangles_closer_to_the_tube(two_tolerance
 def test_every_mesh_format_holds_the_same_triangles_within_the_tolerance(wall_spec, tmp_path):
     from tubecad.export.mesh import read_mesh_triangles
     from tubecad.export.tessellate import mesh_deviation
-    from tubecad.interfaces.spec import load_spec
+    from tubecad.spec.parse import load_spec
 
     outs = [tmp_path / f"w.{ext}" for ext in MESHES]
-    result = run("build", wall_spec, *[a for o in outs for a in ("-o", o)], "--mesh-tolerance", "0.02",
-                 "--mesh-angle", "10", "--report", tmp_path / "r.json", "-q")  # fmt: skip
+    result = run(
+        "build",
+        wall_spec,
+        *[a for o in outs for a in ("-o", o)],
+        "--mesh-tolerance",
+        "0.02",
+        "--mesh-angle",
+        "10",
+        "--report",
+        tmp_path / "r.json",
+        "-q",
+    )
     assert result.exit_code == 0, result.output
     exports = json.loads((tmp_path / "r.json").read_text())["exports"]
     counts = {exports[str(o)]["triangles"] for o in outs}
@@ -86,7 +96,9 @@ def test_every_mesh_format_holds_the_same_triangles_within_the_tolerance(wall_sp
         assert info["max_triangle_deviation"] <= 0.02 + info["max_vertex_deviation"]
         vertices, triangles = read_mesh_triangles(out, "gltf" if out.suffix == ".glb" else out.suffix[1:])
         assert len(triangles) == info["triangles"]
-        assert mesh_deviation(axis, [12.5, 11.5], vertices, triangles)[1] == pytest.approx(info["max_triangle_deviation"])
+        assert mesh_deviation(axis, [12.5, 11.5], vertices, triangles)[1] == pytest.approx(
+            info["max_triangle_deviation"]
+        )
         assert f"{out}: " in result.output and "tolerance 0.02 and 10 deg" in result.output
 
 

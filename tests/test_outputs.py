@@ -16,9 +16,9 @@ from click.testing import CliRunner
 
 from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
-from tubecad.export.cad import export_shape, step_names
-from tubecad.export.registry import EXTENSIONS, FORMAT_NAMES, allowed, markdown_table, output_format
-from tubecad.interfaces.cli import cli
+from tubecad.cli.app import cli
+from tubecad.export.cad import step_names
+from tubecad.export.registry import EXTENSIONS, FORMAT_NAMES, allowed, export_shape, markdown_table, output_format
 
 ROOT = Path(__file__).parent.parent
 SAMPLES = ROOT / "samples"
@@ -43,8 +43,9 @@ def file_schema(path: Path) -> str:
 
 
 def test_names_read_back_unique_from_a_wall_file_and_the_stiffened_assembly(tmp_path, wall):
+    from tubecad.export.cad import export_named_step
     from tubecad.stiffeners import net_lines
-    from tubecad.stiffeners.assembly import build_stiffeners, export_named_step, named_assembly
+    from tubecad.stiffeners.assembly import build_stiffeners, named_assembly
     from tubecad.stiffeners.panels import split_into_panels
     from tubecad.stiffeners.profiles import Profile
 
@@ -76,8 +77,9 @@ def test_paper_stiffened_step_names_are_unique(tmp_path):
     tree = step_names(tmp_path / "paper_stiffened.step")
     names = [n for _, n in tree]
     assert len(names) == len(set(names)) and names[0] == "paper_stiffened"
-    assert [n for d, n in tree if d == 1] == ["wall"] + [f"ring_{i:02d}" for i in range(1, 10)] + \
-        [f"stringer_{j:02d}" for j in (0, 2, 4, 6)] + ["curvature_lines"]  # fmt: skip
+    assert [n for d, n in tree if d == 1] == ["wall"] + [f"ring_{i:02d}" for i in range(1, 10)] + [
+        f"stringer_{j:02d}" for j in (0, 2, 4, 6)
+    ] + ["curvature_lines"]
     assert names.count("line_ring_01") == names.count("line_ring_01_inner") == 1
     assert step_names(tmp_path / "paper.step") == [(0, "paper")]
     csv_lines = {row.split(",", 1)[0] for row in (tmp_path / "paper_lines.csv").read_text().splitlines()[1:]}
@@ -86,16 +88,17 @@ def test_paper_stiffened_step_names_are_unique(tmp_path):
 
 # ---------------------------------------------------------------- STEP schema (item 5)
 
-SCHEMA_SCRIPT = textwrap.dedent('''
+SCHEMA_SCRIPT = textwrap.dedent("""
     import json, sys
     from pathlib import Path
     from OCP.Interface import Interface_Static
     from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
     from tubecad import paper_tube
     from tubecad.brep import NetLayout, build_wall_solid
-    from tubecad.export.cad import export_shape
+    from tubecad.export.registry import export_shape
     from tubecad.stiffeners import net_lines
-    from tubecad.stiffeners.assembly import export_named_step, named_assembly
+    from tubecad.stiffeners.assembly import named_assembly
+    from tubecad.export.cad import export_named_step
 
     out = Path(sys.argv[1])
     tube = paper_tube()
@@ -132,13 +135,14 @@ SCHEMA_SCRIPT = textwrap.dedent('''
     seen["again242.step"] = schema(out / "again242.step")
     seen["static after"] = Interface_Static.CVal_s("write.step.schema")
     print(json.dumps(seen))
-''')
+""")
 
 
 def test_step_schema_holds_on_every_write_and_never_leaks(tmp_path):
     """One fresh process: the first write of the process too, and other writers after."""
-    done = subprocess.run([sys.executable, "-c", SCHEMA_SCRIPT, str(tmp_path)], capture_output=True, text=True,
-                          timeout=300)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, "-c", SCHEMA_SCRIPT, str(tmp_path)], capture_output=True, text=True, timeout=300
+    )
     assert done.returncode == 0, done.stderr
     seen = json.loads(done.stdout.strip().splitlines()[-1])
     ap242, ap214 = "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING", "AUTOMOTIVE_DESIGN"
@@ -149,12 +153,27 @@ def test_step_schema_holds_on_every_write_and_never_leaks(tmp_path):
     assert seen["static after"] == "AP203"
 
 
-@pytest.mark.parametrize("schema, expected", [("AP242", "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING"),
-                                              ("AP214", "AUTOMOTIVE_DESIGN")])  # fmt: skip
+@pytest.mark.parametrize(
+    "schema, expected", [("AP242", "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING"), ("AP214", "AUTOMOTIVE_DESIGN")]
+)
 def test_cli_step_schema_on_the_first_write(tmp_path, schema, expected):
     out = tmp_path / "h.step"
-    done = subprocess.run([sys.executable, "-m", "tubecad.interfaces.cli", "build", str(SAMPLES / "helix.toml"), "-o",
-                           str(out), "--step-schema", schema], capture_output=True, text=True, timeout=300)  # fmt: skip
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "tubecad.cli.app",
+            "build",
+            str(SAMPLES / "helix.toml"),
+            "-o",
+            str(out),
+            "--step-schema",
+            schema,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stderr
     assert expected in file_schema(out)
     assert step_names(out) == [(0, "h")]
@@ -174,7 +193,19 @@ def test_stiffened_spec_writes_its_assembly_in_the_schema_asked(tmp_path):
 
 
 def test_registry_lists_every_format_once_and_the_error_names_them_all(tmp_path):
-    assert set(EXTENSIONS) == {".step", ".stp", ".iges", ".igs", ".brep", ".stl", ".3mf", ".gltf", ".glb", ".csv", ".json"}
+    assert set(EXTENSIONS) == {
+        ".step",
+        ".stp",
+        ".iges",
+        ".igs",
+        ".brep",
+        ".stl",
+        ".3mf",
+        ".gltf",
+        ".glb",
+        ".csv",
+        ".json",
+    }
     assert FORMAT_NAMES == tuple(e[1:] for e in EXTENSIONS)
     assert output_format("A.STP").name == "step" and output_format("x.glb").kind == "mesh"
     result = run("build", SAMPLES / "helix.toml", "-o", tmp_path / "x.obj")
@@ -188,7 +219,7 @@ def test_registry_lists_every_format_once_and_the_error_names_them_all(tmp_path)
 
 
 def test_batch_plans_every_registry_format(tmp_path):
-    from tubecad.interfaces.batch import plan_jobs
+    from tubecad.batch.jobs import plan_jobs
 
     jobs = plan_jobs([SAMPLES / "helix.toml"], [], tmp_path, ["stl", "3mf", "glb", "gltf", "brep", "csv"])
     assert [Path(o).suffix for o in jobs[0].outputs] == [".stl", ".3mf", ".glb", ".gltf", ".brep", ".csv"]
@@ -198,11 +229,13 @@ def test_meshes_are_written_and_read_back_within_the_deflection(tmp_path):
     """STL, 3MF and glTF are visual: read back by independent readers (OCCT RWStl and
     RWGltf_CafReader, lib3mf), their vertices lie on the exact tubes within the deflection."""
     from tubecad.export.mesh import read_mesh
-    from tubecad.interfaces.spec import load_spec
+    from tubecad.spec.parse import load_spec
     from tubecad.surface.checks import distance_to_axis
 
     spec = tmp_path / "wall.toml"
-    spec.write_text((SAMPLES / "helix.toml").read_text() + "\n[layout]\nrings = 4\nstringers = 3\n\n[wall]\nthickness = 1.0\n")
+    spec.write_text(
+        (SAMPLES / "helix.toml").read_text() + "\n[layout]\nrings = 4\nstringers = 3\n\n[wall]\nthickness = 1.0\n"
+    )
     outs = [tmp_path / f"w.{ext}" for ext in ("stl", "3mf", "gltf", "glb")]
     result = run("build", spec, *[a for o in outs for a in ("-o", o)], "--report", tmp_path / "r.json")
     assert result.exit_code == 0, result.output
@@ -268,12 +301,14 @@ def test_step_at_large_coordinates_is_refused_or_passes_honestly(tmp_path):
     does not hold."""
     from tubecad.brep.measure import measure_tube_faces
     from tubecad.export.cad import import_shape
-    from tubecad.interfaces.spec import load_spec
+    from tubecad.spec.parse import load_spec
 
     spec = tmp_path / "far.toml"
     spec.write_text(LOG_SPIRAL_LARGE)
     axis = load_spec(spec).tube.axis
-    result = run("build", spec, "-o", tmp_path / "far.brep", "-o", tmp_path / "far.step", "--report", tmp_path / "r.json")
+    result = run(
+        "build", spec, "-o", tmp_path / "far.brep", "-o", tmp_path / "far.step", "--report", tmp_path / "r.json"
+    )
     if result.exit_code == 0:  # then the file itself must hold the tolerance
         measured = measure_tube_faces(import_shape(tmp_path / "far.step"), axis, [1e5], 20_000)
         assert measured.faces == 8 and measured.max_deviation <= 2.7e-7
@@ -308,9 +343,9 @@ def test_iges_of_a_large_involute_holds_it_as_closely_as_step(tmp_path):
 
 
 def test_file_orthogonality_is_checked_against_the_fitted_target(tmp_path, wall, monkeypatch):
-    import tubecad.fitting.tolerance as policy
+    import tubecad.core.tolerance as policy
+    from tubecad.export.readback import FileAccuracyError, readback_report
     from tubecad.export.registry import Exportable, write_output
-    from tubecad.interfaces.readback import FileAccuracyError, readback_report
 
     def check(tmp, fmt):
         return readback_report(tmp, wall.shape, wall, tmp_path / "w.iges")

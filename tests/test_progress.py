@@ -1,4 +1,4 @@
-"""Progress of a long `tubecad build` on stderr (tubecad.interfaces.progress), and the batch's
+"""Progress of a long `tubecad build` on stderr (tubecad.core.progress), and the batch's
 line per job naming what was built. No assertion depends on how long anything takes: the
 threshold is forced to 0 (TUBECAD_PROGRESS_AFTER) or the clock is a counter."""
 
@@ -13,14 +13,23 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from tubecad.interfaces.batch import what_was_built
-from tubecad.interfaces.cli import cli
-from tubecad.interfaces.progress import AFTER_VARIABLE, Progress
+from tubecad.batch.jobs import what_was_built
+from tubecad.cli.app import cli
+from tubecad.core.progress import AFTER_VARIABLE, Progress
 
 ROOT = Path(__file__).resolve().parent.parent
 SAMPLES = ROOT / "samples"
-STIFFENERS = ["ring_01", "ring_02", "ring_03", "ring_04", "ring_05",
-              "stringer_00", "stringer_01", "stringer_02", "stringer_03"]  # fmt: skip
+STIFFENERS = [
+    "ring_01",
+    "ring_02",
+    "ring_03",
+    "ring_04",
+    "ring_05",
+    "stringer_00",
+    "stringer_01",
+    "stringer_02",
+    "stringer_03",
+]
 SMALL = """
 [axis]
 curve = "helix"
@@ -114,8 +123,9 @@ def test_plain_progress_lines_name_each_stiffener_on_stderr_only(stiffened):
     lines = result.stderr.splitlines()
     assert all(line.startswith("tubecad: ") for line in lines), lines
     built = [line for line in lines if line.startswith("tubecad: building stiffeners ")]
-    assert built[-len(STIFFENERS):] == [f"tubecad: building stiffeners {i}/9 ({name})"
-                                       for i, name in enumerate(STIFFENERS, start=1)]  # fmt: skip
+    assert built[-len(STIFFENERS) :] == [
+        f"tubecad: building stiffeners {i}/9 ({name})" for i, name in enumerate(STIFFENERS, start=1)
+    ]
     assert "tubecad: building the wall 4/4 (solid)" in lines
     assert f"tubecad: writing and reading back files 2/2 (checked {out.name})" in lines
     assert "tubecad:" not in result.stdout and result.stdout.startswith("wall: ")  # stdout: the summary only
@@ -143,9 +153,14 @@ def test_a_terminal_gets_one_redrawn_bar(tmp_path):
     spec.write_text(SMALL)
     master, slave = pty.openpty()
     env = {**os.environ, AFTER_VARIABLE: "0"}
-    process = subprocess.Popen([sys.executable, "-m", "tubecad.interfaces.console", "build", str(spec), "-o",
-                                str(tmp_path / "x.step")], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                               stderr=slave, env=env, cwd=tmp_path)  # fmt: skip
+    process = subprocess.Popen(
+        [sys.executable, "-m", "tubecad.cli.console", "build", str(spec), "-o", str(tmp_path / "x.step")],
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.PIPE,
+        stderr=slave,
+        env=env,
+        cwd=tmp_path,
+    )
     os.close(slave)
     chunks = []
     while True:
@@ -175,15 +190,20 @@ def test_batch_line_names_the_wall_and_its_stiffeners(tmp_path):
     result = run("build", SAMPLES / "helix_stiffened.toml", "-d", out, "-j", "1")
     assert result.exit_code == 0, result.output
     line = next(line for line in result.stderr.splitlines() if line.startswith("[1/1] "))
-    assert re.fullmatch(r"\[1/1\] helix_stiffened: wall 50 faces valid \+ 5 ring \+ 4 stringer stiffeners \(T\), "
-                        r"2 files, \d+\.\d s; [\d.e+-]+ jobs/s", line), line  # fmt: skip
+    assert re.fullmatch(
+        r"\[1/1\] helix_stiffened: wall 50 faces valid \+ 5 ring \+ 4 stringer stiffeners \(T\), "
+        r"2 files, \d+\.\d s; [\d.e+-]+ jobs/s",
+        line,
+    ), line
     quiet = run("build", SAMPLES / "helix.toml", "-d", tmp_path / "quiet", "-j", "1", "-q")
     assert quiet.exit_code == 0 and quiet.stderr.splitlines()[0].startswith("1 jobs: 1 ok, 0 failed")
 
 
 def test_what_was_built_reads_the_report():
-    report = {"brep": {"kind": "wall", "faces": 88},
-              "stiffeners": {"stiffeners": [{"kind": "ring", "profile": "flat"}, {"kind": "stringer", "profile": "L"}]},
-              "panels": [{}, {}, {}]}  # fmt: skip
+    report = {
+        "brep": {"kind": "wall", "faces": 88},
+        "stiffeners": {"stiffeners": [{"kind": "ring", "profile": "flat"}, {"kind": "stringer", "profile": "L"}]},
+        "panels": [{}, {}, {}],
+    }
     assert what_was_built(report) == "wall 88 faces valid + 1 ring + 1 stringer stiffeners (flat, L) + 3 panels"
     assert what_was_built({"brep": {"kind": "tube_solid", "faces": 6}}, False) == "tube_solid 6 faces NOT VALID"

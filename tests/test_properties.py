@@ -28,7 +28,8 @@ from hypothesis import strategies as st
 from tubecad import CircleInvolute, Clothoid, CurvatureLineTube, CustomCurvature, Helix, LogSpiral, RegularityError
 from tubecad.brep import NetLayout, build_tube_solid, build_wall_solid
 from tubecad.brep import properties as props
-from tubecad.export.cad import export_shape, import_shape
+from tubecad.export.cad import import_shape
+from tubecad.export.registry import export_shape
 from tubecad.surface.checks import area_by_quadrature
 
 #: the largest rho * max|k| drawn: a margin below the fold at 1
@@ -38,8 +39,13 @@ MIN_RHO = 0.2
 #: volumes of the fitted B-rep: the fit is within 1e-8 of the exact tube, rho >= MIN_RHO
 VOLUME_REL = 1e-6
 
-FAST = settings(max_examples=40, deadline=None, derandomize=True, database=None,
-                suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])  # fmt: skip
+FAST = settings(
+    max_examples=40,
+    deadline=None,
+    derandomize=True,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+)
 OCCT = settings(FAST, max_examples=15)
 
 finite = {"allow_nan": False, "allow_infinity": False}
@@ -66,9 +72,15 @@ def axes(draw):
     c0 = draw(st.floats(-0.02, 0.02, **finite))
     c1 = draw(st.floats(0.0, 0.01, **finite))
     period = draw(st.floats(100.0, 1000.0, **finite))
-    form = draw(st.sampled_from([f"{c0!r} + {c1!r} * sin(2 * pi * s / {period!r})",
-                                 f"{c0!r} + {c1 / 500!r} * s",
-                                 f"{c0!r} * exp(-((s - {s0!r}) / {period!r}) ** 2) + {c1!r}"]))  # fmt: skip
+    form = draw(
+        st.sampled_from(
+            [
+                f"{c0!r} + {c1!r} * sin(2 * pi * s / {period!r})",
+                f"{c0!r} + {c1 / 500!r} * s",
+                f"{c0!r} * exp(-((s - {s0!r}) / {period!r}) ** 2) + {c1!r}",
+            ]
+        )
+    )
     return family, CustomCurvature(form, beta, (s0, s0 + length))
 
 
@@ -137,8 +149,11 @@ def test_capped_tube_solid_encloses_pi_rho2_L_and_survives_step(tube):
 
 
 @OCCT
-@given(tube=regular_tubes(most=0.75), fraction=st.floats(0.05, 0.3, **finite),
-       side=st.sampled_from(["centered", "inside", "outside"]))  # fmt: skip
+@given(
+    tube=regular_tubes(most=0.75),
+    fraction=st.floats(0.05, 0.3, **finite),
+    side=st.sampled_from(["centered", "inside", "outside"]),
+)
 def test_wall_solid_encloses_the_annulus_times_L_and_survives_step(tube, fraction, side):
     thickness = fraction * tube.radius
     try:

@@ -40,9 +40,10 @@ import tokenize
 import tomllib
 import traceback
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import pytest
@@ -55,11 +56,9 @@ QUICKSTART_BEGIN, QUICKSTART_END = "<!-- ci:quickstart:begin -->", "<!-- ci:quic
 
 #: blocks that are not code, keyed by their first line, with the reason
 NOT_RUNNABLE = {
-    "S(u, s) = c(s) + rho (cos u r1(s) + sin u r2(s))":
-        "an equation, not code: tests/test_symbolic.py proves its forms with sympy",
-    "c(s) = (cos b Int cos psi ds, cos b Int sin psi ds, s sin b)":
-        "equations, not code: tests/test_symbolic.py proves them with sympy",
-}  # fmt: skip
+    "S(u, s) = c(s) + rho (cos u r1(s) + sin u r2(s))": "an equation, not code: tests/test_symbolic.py proves its forms with sympy",
+    "c(s) = (cos b Int cos psi ds, cos b Int sin psi ds, s sin b)": "equations, not code: tests/test_symbolic.py proves them with sympy",
+}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -83,7 +82,9 @@ class Block:
         return f"{self.index:02d}-{self.lang or 'plain'}-{slug}"
 
     def where(self) -> str:
-        return f"README.md block {self.index} ({self.lang or 'no language'}, line {self.line}: {self.first_line[:60]!r})"
+        return (
+            f"README.md block {self.index} ({self.lang or 'no language'}, line {self.line}: {self.first_line[:60]!r})"
+        )
 
 
 def readme_blocks(text: str) -> list[Block]:
@@ -125,8 +126,9 @@ def quickstart_lines() -> tuple[int, int]:
     lines = README.read_text(encoding="utf-8").splitlines()
     begin = [n for n, ln in enumerate(lines, 1) if ln.strip() == QUICKSTART_BEGIN]
     end = [n for n, ln in enumerate(lines, 1) if ln.strip() == QUICKSTART_END]
-    assert len(begin) == 1 and len(end) == 1 and begin[0] < end[0], \
-        f"README.md must hold one {QUICKSTART_BEGIN} ... {QUICKSTART_END} pair, in that order"  # fmt: skip
+    assert len(begin) == 1 and len(end) == 1 and begin[0] < end[0], (
+        f"README.md must hold one {QUICKSTART_BEGIN} ... {QUICKSTART_END} pair, in that order"
+    )
     return begin[0], end[0]
 
 
@@ -246,8 +248,12 @@ def _subject(run: PythonRun, ns: dict[str, Any], line: int) -> tuple[bool, Any]:
     """The value a comment on ``line`` talks about: what the print there printed (first
     argument), or what the assignment there bound. (False, None) if neither."""
     stmt = _statement_at(run.tree, line)
-    if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call) and \
-            isinstance(stmt.value.func, ast.Name) and stmt.value.func.id == "print":  # fmt: skip
+    if (
+        isinstance(stmt, ast.Expr)
+        and isinstance(stmt.value, ast.Call)
+        and isinstance(stmt.value.func, ast.Name)
+        and stmt.value.func.id == "print"
+    ):
         printed = run.prints.get(stmt.lineno)
         assert printed, f"README.md line {line}: the print there printed nothing"
         return True, printed[-1][0]
@@ -262,16 +268,20 @@ def check_comment(run: PythonRun, ns: dict[str, Any], line: int, comment: str) -
     if not (approx or shape):
         return False
     found, value = _subject(run, ns, line)
-    assert found, (f"README.md line {line}: the comment {comment!r} states a value, but the line neither prints "
-                   f"nor assigns one name; add a rule for it to CLAIMS in tests/test_readme.py")  # fmt: skip
+    assert found, (
+        f"README.md line {line}: the comment {comment!r} states a value, but the line neither prints "
+        f"nor assigns one name; add a rule for it to CLAIMS in tests/test_readme.py"
+    )
     if approx:
         stated, actual = float(approx.group(1)), abs(float(np.max(value)))
-        assert stated != 0 and actual != 0 and abs(math.log10(actual / abs(stated))) <= 1, \
-            f"README.md line {line}: the comment says ~{approx.group(1)}, the snippet gives {actual:.3g}"  # fmt: skip
+        assert stated != 0 and actual != 0 and abs(math.log10(actual / abs(stated))) <= 1, (
+            f"README.md line {line}: the comment says ~{approx.group(1)}, the snippet gives {actual:.3g}"
+        )
     if shape:
         stated_shape = tuple(int(n) for n in shape.group(1).split(","))
-        assert np.shape(value) == stated_shape, \
-            f"README.md line {line}: the comment says shape {stated_shape}, the snippet gives {np.shape(value)}"  # fmt: skip
+        assert np.shape(value) == stated_shape, (
+            f"README.md line {line}: the comment says shape {stated_shape}, the snippet gives {np.shape(value)}"
+        )
     return True
 
 
@@ -279,7 +289,7 @@ def check_comment(run: PythonRun, ns: dict[str, Any], line: int, comment: str) -
 
 
 def _refuses_irregular(ns, workdir):
-    from tubecad.errors import RegularityError
+    from tubecad.core.errors import RegularityError
 
     with pytest.raises(RegularityError, match=r"s = \d"):  # the message says where
         ns["CurvatureLineTube"](ns["axis"], radius=25.0)
@@ -323,7 +333,8 @@ def _is_build123d_solid(ns, workdir):
 
 def _export_formats(ns, workdir):
     from tubecad.brep import properties as props
-    from tubecad.export.cad import cad_format, export_shape, import_shape
+    from tubecad.export.cad import import_shape
+    from tubecad.export.registry import cad_format, export_shape
 
     assert {cad_format(f"x{ext}") for ext in (".step", ".stp")} == {"step"}
     assert {cad_format(f"x{ext}") for ext in (".iges", ".igs")} == {"iges"} and cad_format("x.brep") == "brep"
@@ -350,7 +361,9 @@ def _wires_and_faces(ns, workdir):
 
 def _inner_lines(ns, workdir):
     lines, layout = ns["lines"], ns["build"].layout
-    assert sorted(line.kind for line in lines) == sorted(["ring"] * len(layout.s_rings) + ["stringer"] * len(layout.stringers_deg))
+    assert sorted(line.kind for line in lines) == sorted(
+        ["ring"] * len(layout.s_rings) + ["stringer"] * len(layout.stringers_deg)
+    )
     assert {line.radius for line in lines} == {ns["build"].radii[1]} == {ns["tube"].radius - 1.0}  # the inner wall
 
 
@@ -442,7 +455,8 @@ def check_python_block(session: PythonSession, block: Block) -> None:
         hint = f"\n(README python block(s) {earlier} failed before this one)" if earlier else ""
         pytest.fail(f"{block.where()} raised:\n{run.traceback}{hint}", pytrace=False)
     assert not run.warnings, f"{block.where()} warns: " + "; ".join(
-        f"{w.category.__name__}: {w.message} ({Path(w.filename).name}:{w.lineno})" for w in run.warnings)
+        f"{w.category.__name__}: {w.message} ({Path(w.filename).name}:{w.lineno})" for w in run.warnings
+    )
     ns, workdir = session.ns, session.workdir
     # files the snippet names
     for node in ast.walk(run.tree):
@@ -458,8 +472,10 @@ def check_python_block(session: PythonSession, block: Block) -> None:
                 check(ns, workdir)
         checked = check_comment(run, ns, line, comment)
         if not (checked or claims) and STATES_A_NUMBER.search(comment):
-            pytest.fail(f"README.md line {line}: the comment {comment!r} states a number no rule checks; "
-                        f"make it ~VALUE or (shape), or add a rule to CLAIMS in tests/test_readme.py")  # fmt: skip
+            pytest.fail(
+                f"README.md line {line}: the comment {comment!r} states a number no rule checks; "
+                f"make it ~VALUE or (shape), or add a rule to CLAIMS in tests/test_readme.py"
+            )
     # claims on lines without a comment
     commented = {line for line, _ in _comments(block)}
     for n, code in enumerate(code_lines, start=block.line):
@@ -481,7 +497,7 @@ def test_every_claim_rule_matches_a_readme_line():
 
 
 def _spec_keys() -> dict[str, dict[str, Any]]:
-    from tubecad.interfaces import spec
+    from tubecad.spec import parse as spec
 
     axis = dict(spec.AXIS_COMMON)
     for keys in spec.FAMILY_KEYS.values():
@@ -507,7 +523,7 @@ def _toml_sections(text: str) -> dict[str, list[str]]:
 
 
 def check_toml_block(block: Block, workdir: Path) -> None:
-    from tubecad.interfaces.spec import parse_spec
+    from tubecad.spec.parse import parse_spec
 
     data = tomllib.loads(block.text)
     parse_spec(data, block.where())
@@ -524,12 +540,16 @@ def check_toml_block(block: Block, workdir: Path) -> None:
                     loader = re.search(r"\w+(?:\s*\|\s*\w+)+", keys[section][key].help)
                     assert loader, f"{block.where()}: [{section}] {key}: the loader's help lists no choices"
                     said, allowed = (set(re.split(r"\s*\|\s*", m.group(0))) for m in (stated, loader))
-                    assert said == allowed, f"{block.where()}: [{section}] {key} choices {said}, the loader allows {allowed}"
+                    assert said == allowed, (
+                        f"{block.where()}: [{section}] {key} choices {said}, the loader allows {allowed}"
+                    )
             # "# key = value" (an alternative) is accepted by the loader when uncommented
             alternative = re.match(r"^#\s*(\w+)\s*=\s*([^#]+?)\s*(?:#.*)?$", line)
             if alternative and section:
                 key, value = alternative.groups()
-                assert key in keys[section], f"{block.where()}: commented-out key [{section}] {key} is unknown to the loader"
+                assert key in keys[section], (
+                    f"{block.where()}: commented-out key [{section}] {key} is unknown to the loader"
+                )
                 changed = json.loads(json.dumps(data))
                 changed[section][key] = tomllib.loads(f"v = {value}")["v"]
                 changed[section].pop(REPLACES.get(key, ""), None)
@@ -545,7 +565,7 @@ def check_toml_block(block: Block, workdir: Path) -> None:
 
 def tubecad_command() -> list[str]:
     script = Path(sys.executable).parent / "tubecad"
-    return [str(script)] if script.is_file() else [sys.executable, "-m", "tubecad.interfaces.console"]
+    return [str(script)] if script.is_file() else [sys.executable, "-m", "tubecad.cli.console"]
 
 
 def run_spec_through_cli(block: Block, data: dict, workdir: Path) -> None:
@@ -553,14 +573,20 @@ def run_spec_through_cli(block: Block, data: dict, workdir: Path) -> None:
     import build123d as bd
 
     from tubecad.brep import properties as props
-    from tubecad.interfaces.layout_section import layout_from_section
-    from tubecad.interfaces.spec import parse_spec
+    from tubecad.spec.layout import layout_from_section
+    from tubecad.spec.parse import parse_spec
 
     spec = workdir / f"block{block.index}.toml"
     spec.write_text(block.text)
     env = {**os.environ, "MPLBACKEND": "Agg"}
-    start = lambda *args: subprocess.Popen([*tubecad_command(), *args], cwd=workdir, env=env, text=True,  # noqa: E731
-                                           stdout=subprocess.PIPE, stderr=subprocess.PIPE)  # fmt: skip
+    start = lambda *args: subprocess.Popen(
+        [*tubecad_command(), *args],
+        cwd=workdir,
+        env=env,
+        text=True,  # noqa: E731
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     report, build = start("report", spec.name), start("build", spec.name, "-o", "x.step")
     (report_out, report_err), (build_out, build_err) = report.communicate(timeout=600), build.communicate(timeout=600)
     assert report.returncode == 0, f"tubecad report of {block.where()} failed: {report_err}"
@@ -576,13 +602,14 @@ def run_spec_through_cli(block: Block, data: dict, workdir: Path) -> None:
         names = [c.label for c in top.children]
         assert names[0] == "wall", names
         if stiffeners:
+
             def chosen(key, count):
                 value = stiffeners.get(key, [])
                 return list(range(count)) if value == "all" else value
 
             expected = [f"ring_{i:02d}" for i in chosen("rings", len(layout.s_rings))]
             expected += [f"stringer_{j:02d}" for j in chosen("stringers", len(layout.stringers_deg))]
-            assert names[1:1 + len(expected)] == expected, names
+            assert names[1 : 1 + len(expected)] == expected, names
         if panels:
             labels = [c.label for c in top.children[0].children]
             assert labels and all(re.fullmatch(r"panel_r\d+_s\d+", label) for label in labels), labels
@@ -607,7 +634,7 @@ def tubecad_help(*args: str) -> str:
     if args not in _HELP:
         from click.testing import CliRunner
 
-        from tubecad.interfaces.cli import cli
+        from tubecad.cli.app import cli
 
         result = CliRunner().invoke(cli, [*args, "--help"], prog_name="tubecad")
         assert result.exit_code == 0, f"tubecad {' '.join(args)} --help failed: {result.output}"
@@ -667,7 +694,7 @@ def check_tubecad(args: list[str], where: str) -> None:
                     wrong = [v for v in inline.split("|") if v.lower() not in {c.lower() for c in option.choices}]
                     assert not wrong, f"{where}: {name} {inline}: {wrong} not among {option.choices}"
                 if name == "--sweep" and not inline.partition("=")[0].isupper():  # not the SECTION.KEY placeholder
-                    from tubecad.interfaces.batch import parse_sweep
+                    from tubecad.batch.jobs import parse_sweep
 
                     parse_sweep(inline)
             else:
@@ -675,8 +702,9 @@ def check_tubecad(args: list[str], where: str) -> None:
         else:
             positional.append(token)
         i += 1
-    assert least <= len(positional) <= most, \
-        f"{where}: tubecad {sub} takes {least} to {most} arguments, the README gives {positional}"  # fmt: skip
+    assert least <= len(positional) <= most, (
+        f"{where}: tubecad {sub} takes {least} to {most} arguments, the README gives {positional}"
+    )
 
 
 def check_python_command(argv: list[str], comment: str, where: str) -> None:
@@ -696,8 +724,9 @@ def check_python_command(argv: list[str], comment: str, where: str) -> None:
     assert script.is_file(), f"{where}: {argv[1]} does not exist"
     used = [a.partition("=")[0] for a in argv[2:] if a.startswith("-")] + re.findall(r"(?<![\w-])--[\w-]+", comment)
     if used:
-        done = subprocess.run([sys.executable, str(script), "--help"], cwd=ROOT, capture_output=True, text=True,
-                              timeout=300)  # fmt: skip
+        done = subprocess.run(
+            [sys.executable, str(script), "--help"], cwd=ROOT, capture_output=True, text=True, timeout=300
+        )
         assert done.returncode == 0, f"{where}: {argv[1]} --help failed: {done.stderr}"
         listed = set(re.findall(r"(?<![\w-])(--?[\w][\w-]*)", done.stdout))
         assert set(used) <= listed, f"{where}: {argv[1]} --help lists no {sorted(set(used) - listed)}"
@@ -749,15 +778,19 @@ def check_command_line(line: str, where: str, described: bool = False) -> int:
 
 
 def check_commands(block: Block, described: bool) -> int:
-    return sum(check_command_line(line, f"{block.where()}, line {block.line + n}", described)
-               for n, line in enumerate(block.text.splitlines()) if line.strip())  # fmt: skip
+    return sum(
+        check_command_line(line, f"{block.where()}, line {block.line + n}", described)
+        for n, line in enumerate(block.text.splitlines())
+        if line.strip()
+    )
 
 
 def check_bash_block(block: Block) -> None:
     begin, end = quickstart_lines()
     if not begin < block.line < end:
-        assert block.first_line in NOT_RUNNABLE, \
-            f"{block.where()}: a bash block outside the quick start, which nothing runs; list it in NOT_RUNNABLE"  # fmt: skip
+        assert block.first_line in NOT_RUNNABLE, (
+            f"{block.where()}: a bash block outside the quick start, which nothing runs; list it in NOT_RUNNABLE"
+        )
         check_commands(block, described=False)
         return
     # the quick start: .ci/run extracts exactly these lines and runs them
@@ -765,19 +798,22 @@ def check_bash_block(block: Block) -> None:
     extract = re.search(r"^commands=\$\((.*)\)\s*$", ci, re.M)
     assert extract, ".ci/run no longer extracts the quick start as commands=$(...)"
     assert re.search(r'^bash -euo pipefail -c "\$commands"', ci, re.M), ".ci/run no longer runs the extracted commands"
-    done = subprocess.run(["bash", "-c", f"set -euo pipefail; {extract.group(1)}"], cwd=ROOT, capture_output=True,
-                          text=True, timeout=60)  # fmt: skip
+    done = subprocess.run(
+        ["bash", "-c", f"set -euo pipefail; {extract.group(1)}"], cwd=ROOT, capture_output=True, text=True, timeout=60
+    )
     assert done.returncode == 0, done.stderr
-    assert done.stdout.splitlines() == block.text.splitlines(), \
-        f".ci/run extracts\n{done.stdout}\nbut the quick-start block is\n{block.text}"  # fmt: skip
+    assert done.stdout.splitlines() == block.text.splitlines(), (
+        f".ci/run extracts\n{done.stdout}\nbut the quick-start block is\n{block.text}"
+    )
     assert check_commands(block, described=False) >= 2
 
 
 def check_indented_block(block: Block) -> None:
     lines = [ln for ln in block.text.splitlines() if ln.strip()]
     if any(re.match(r"^(tubecad|\S*python\S*|\S*pip) ", ln) for ln in lines):
-        assert all(re.match(r"^(tubecad|\S*python\S*|\S*pip) ", ln) for ln in lines), \
-            f"{block.where()}: mixes command lines with other text"  # fmt: skip
+        assert all(re.match(r"^(tubecad|\S*python\S*|\S*pip) ", ln) for ln in lines), (
+            f"{block.where()}: mixes command lines with other text"
+        )
         check_commands(block, described=True)
     elif all(re.match(r"^[\w./-]+/\s", ln) for ln in lines):  # a listing of folders
         missing = [ln.split()[0] for ln in lines if not (ROOT / ln.split()[0]).is_dir()]
@@ -805,7 +841,8 @@ def test_readme_block(block: Block, python_session: PythonSession, tmp_path: Pat
     else:
         assert block.first_line in NOT_RUNNABLE, (
             f"{block.where()}: blocks of this language are not run; make it python, toml or bash, "
-            f"or list it in NOT_RUNNABLE in tests/test_readme.py with the reason")
+            f"or list it in NOT_RUNNABLE in tests/test_readme.py with the reason"
+        )
 
 
 def test_readme_has_the_blocks_it_should():
@@ -847,14 +884,15 @@ def test_inline_commands_and_options_exist():
             assert name in options, f"{where}: no tubecad subcommand has the option {name}"
             assert bool(value) <= options[name].takes_value, f"{where}: {name} takes no value"
             if name == "--sweep" and value:
-                from tubecad.interfaces.batch import parse_sweep
+                from tubecad.batch.jobs import parse_sweep
 
                 sweep = parse_sweep(value)
                 span = re.fullmatch(rf".*=({NUMBER}):({NUMBER}):(\d+)", value)
                 if span:  # START:STOP:COUNT, both ends included
                     start, stop, count = float(span.group(1)), float(span.group(2)), int(span.group(3))
-                    assert len(sweep.values) == count and sweep.values[0] == start and sweep.values[-1] == stop, \
-                        f"{where}: gives {sweep.values}"  # fmt: skip
+                    assert len(sweep.values) == count and sweep.values[0] == start and sweep.values[-1] == stop, (
+                        f"{where}: gives {sweep.values}"
+                    )
             checked += 1
     assert checked >= 5
 

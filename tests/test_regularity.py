@@ -25,7 +25,10 @@ def test_fold_inside_the_span_is_found_between_samples():
         CurvatureLineTube(Clothoid(100.0, 0.0, (-1200.0, 1100.0)), 10.0, allow_irregular=False)
     where = re.search(r"for s in (.*?)\)", str(info.value)).group(1)
     intervals = re.findall(r"\[([-\d.e+]+), ([-\d.e+]+)\]", where)
-    assert [(float(a), float(b)) for a, b in intervals] == [pytest.approx((-1200.0, -1000.0)), pytest.approx((1000.0, 1100.0))]
+    assert [(float(a), float(b)) for a, b in intervals] == [
+        pytest.approx((-1200.0, -1000.0)),
+        pytest.approx((1000.0, 1100.0)),
+    ]
 
 
 def test_coiling_axis_closer_than_two_rho_is_refused_with_closest_approach():

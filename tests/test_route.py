@@ -12,16 +12,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
-
 from conftest import assert_build_refused
+
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep.measure import measure_tube_faces
 from tubecad.brep.properties import ANALYZER_MODES, analyzer_findings, is_valid, volume
+from tubecad.cli.app import cli
+from tubecad.core.errors import ParameterError
 from tubecad.curves.route import RouteAxis
-from tubecad.errors import ParameterError
 from tubecad.fitting import fit_frame
 from tubecad.fitting.frame_spline import exact_frame
-from tubecad.interfaces.cli import cli
 from tubecad.surface import CurvatureLineTube
 
 SAMPLES = Path(__file__).parent.parent / "samples"
@@ -50,8 +50,9 @@ def test_pieces_and_joints(route):
     assert [s for s, _ in route.joints] == [p.s0 for p in route.pieces[1:]]
     assert {c for _, c in route.joints} == {0}
     # the route passes through the tangent points and ends at the last point
-    assert np.allclose(route.position(np.array([0.0, 240.0, route.span[1]])), [[0, 0, 0], [240, 0, 0], POINTS[-1]],
-                       atol=1e-12)
+    assert np.allclose(
+        route.position(np.array([0.0, 240.0, route.span[1]])), [[0, 0, 0], [240, 0, 0], POINTS[-1]], atol=1e-12
+    )
 
 
 def test_frame_is_the_closed_form_rmf(route):
@@ -184,28 +185,52 @@ BASE = '[axis]\ncurve = "route"\npoints = [[0, 0, 0], [100, 0, 0], [100, 100, 0]
 TUBE = "[tube]\nradius = 5.0\n"
 
 
-@pytest.mark.parametrize("text, says", [
-    (BASE.replace("[100, 0, 0], [100, 100, 0]", "[100, 0, 0], [100, 0, 0]"),
-     "[axis] points[2] [100, 0, 0] repeats points[1]"),
-    (BASE.replace("[100, 100, 0], [100, 100, 100]", "[200, 0, 0], [200, 100, 0]"),
-     "[axis] points[1] [100, 0, 0] makes no bend: points[0], points[1] and points[2] are collinear"),
-    (BASE.replace("bend_radius = 20", "bend_radius = [20, 90]"),
-     "[axis] bend_radius 90 at points[2] [100, 100, 0] does not fit: the leg points[1]-points[2] is 100 long but its "
-     "bends need 20 (the bend at points[1]) + 90 (the bend at points[2])"),
-    (BASE.replace("bend_radius = 20", "bend_radius = [20, 20, 20]"), "[axis] bend_radius must be one number or 2"),
-    (BASE.replace("bend_radius = 20", 'bend_radius = "20"'), "[axis] bend_radius must be a number or a non-empty list"),
-    (BASE.replace("bend_radius = 20", "bend_radius = [20, -1]"), "[axis] bend_radius at points[2] must be a finite number > 0"),
-    (BASE.replace("bend_radius = 20", "bend_radius = 4"), "[tube] radius 5: tube is not regular: the bend at points[1] "),
-    (BASE.replace("bend_radius = 20", "bend_radius = [20, 5]"), "the bend at points[2] [100, 100, 0] has bend_radius 5, "
-     "not above the tube radius 5 (set [tube] allow_irregular = true to build it anyway)"),
-    (BASE.replace("[100, 100, 100]", "[100, 50, 0]"), "[axis] points[2] [100, 100, 0] turns the route back on itself"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "text, says",
+    [
+        (
+            BASE.replace("[100, 0, 0], [100, 100, 0]", "[100, 0, 0], [100, 0, 0]"),
+            "[axis] points[2] [100, 0, 0] repeats points[1]",
+        ),
+        (
+            BASE.replace("[100, 100, 0], [100, 100, 100]", "[200, 0, 0], [200, 100, 0]"),
+            "[axis] points[1] [100, 0, 0] makes no bend: points[0], points[1] and points[2] are collinear",
+        ),
+        (
+            BASE.replace("bend_radius = 20", "bend_radius = [20, 90]"),
+            "[axis] bend_radius 90 at points[2] [100, 100, 0] does not fit: the leg points[1]-points[2] is 100 long but its "
+            "bends need 20 (the bend at points[1]) + 90 (the bend at points[2])",
+        ),
+        (BASE.replace("bend_radius = 20", "bend_radius = [20, 20, 20]"), "[axis] bend_radius must be one number or 2"),
+        (
+            BASE.replace("bend_radius = 20", 'bend_radius = "20"'),
+            "[axis] bend_radius must be a number or a non-empty list",
+        ),
+        (
+            BASE.replace("bend_radius = 20", "bend_radius = [20, -1]"),
+            "[axis] bend_radius at points[2] must be a finite number > 0",
+        ),
+        (
+            BASE.replace("bend_radius = 20", "bend_radius = 4"),
+            "[tube] radius 5: tube is not regular: the bend at points[1] ",
+        ),
+        (
+            BASE.replace("bend_radius = 20", "bend_radius = [20, 5]"),
+            "the bend at points[2] [100, 100, 0] has bend_radius 5, "
+            "not above the tube radius 5 (set [tube] allow_irregular = true to build it anyway)",
+        ),
+        (
+            BASE.replace("[100, 100, 100]", "[100, 50, 0]"),
+            "[axis] points[2] [100, 100, 0] turns the route back on itself",
+        ),
+    ],
+)
 def test_bad_routes_exit_2_in_one_line_and_write_nothing(text, says, tmp_path):
     assert_build_refused(tmp_path, text + TUBE, says)
 
 
 def test_points_from_a_csv_file(tmp_path):
-    from tubecad.interfaces.spec import load_spec
+    from tubecad.spec.parse import load_spec
 
     (tmp_path / "route.csv").write_text("x,y,z\n" + "\n".join(",".join(map(str, p)) for p in POINTS) + "\n")
     spec = tmp_path / "s.toml"

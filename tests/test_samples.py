@@ -15,8 +15,12 @@ def test_build123d_sample_writes_the_curvature_net_to_step(tmp_path):
     import build123d as bd
 
     out = tmp_path / "net.step"
-    done = subprocess.run([sys.executable, str(SAMPLES / "build123d_curvature_net.py"), str(out),
-                           "--rings", "5", "--stringers", "4"], capture_output=True, text=True, timeout=300)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, str(SAMPLES / "build123d_curvature_net.py"), str(out), "--rings", "5", "--stringers", "4"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stderr
     worst = float(re.search(r"crossings: ([\d.e+-]+)", done.stdout).group(1))
     # the library's own edges: rings and stringers cross at right angles to the fit's
@@ -38,7 +42,9 @@ def test_wall_samples_write_valid_step(tmp_path, script, faces):
     from tubecad.export.cad import import_shape
 
     out = tmp_path / "wall.step"
-    done = subprocess.run([sys.executable, str(SAMPLES / script), str(out)], capture_output=True, text=True, timeout=300)
+    done = subprocess.run(
+        [sys.executable, str(SAMPLES / script), str(out)], capture_output=True, text=True, timeout=300
+    )
     assert done.returncode == 0, done.stderr
     assert "valid=True" in done.stdout
     shape = import_shape(out)
@@ -58,8 +64,12 @@ def test_build123d_spline_sample_builds_a_stiffened_wall_around_the_edge(tmp_pat
     import build123d as bd
 
     out = tmp_path / "spline.step"
-    done = subprocess.run([sys.executable, str(SAMPLES / "build123d_spline_wall.py"), str(out)],
-                          capture_output=True, text=True, timeout=300)  # fmt: skip
+    done = subprocess.run(
+        [sys.executable, str(SAMPLES / "build123d_spline_wall.py"), str(out)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stderr
     with bd.BuildLine() as model:
         bd.Spline((0, 0, 0), (60, 25, 10), (120, 10, 45), (180, -30, 40), (230, -20, 0))

@@ -25,10 +25,10 @@ from click.testing import CliRunner
 from jsonschema import Draft202012Validator
 
 from tubecad import SpecError
-from tubecad.interfaces.cli import cli
-from tubecad.interfaces.schema import SCHEMA_DIALECT, schema_text, spec_schema
-from tubecad.interfaces.spec import EXTRA_SECTIONS, FAMILY_KEYS, AXIS_COMMON, TUBE_KEYS, parse_spec
-from tubecad.units import LENGTH_UNITS, steel_density
+from tubecad.cli.app import cli
+from tubecad.core.units import LENGTH_UNITS, steel_density
+from tubecad.spec.parse import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS, parse_spec
+from tubecad.spec.schema import SCHEMA_DIALECT, schema_text, spec_schema
 
 ROOT = Path(__file__).resolve().parent.parent
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
@@ -103,9 +103,11 @@ def test_schema_to_a_missing_folder_exits_2_with_one_line(tmp_path):
 
 
 def test_schema_command_loads_neither_numpy_nor_occt():
-    code = ("import sys\nfrom tubecad.interfaces.cli import cli\ntry:\n    cli.main(['schema'], standalone_mode=False)\n"
-            "except SystemExit:\n    pass\n"
-            "print('LOADED', sorted(m for m in ('numpy', 'OCP', 'build123d') if m in sys.modules))")  # fmt: skip
+    code = (
+        "import sys\nfrom tubecad.cli.app import cli\ntry:\n    cli.main(['schema'], standalone_mode=False)\n"
+        "except SystemExit:\n    pass\n"
+        "print('LOADED', sorted(m for m in ('numpy', 'OCP', 'build123d') if m in sys.modules))"
+    )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert json.loads(done.stdout.rsplit("LOADED", 1)[0])["title"] == "tubecad spec"
@@ -133,7 +135,7 @@ FAKE_BUILD = SimpleNamespace(layout=SimpleNamespace(s_rings=list(range(11)), str
 def checker_message(data: dict) -> str:
     """The checker's one-line message for ``data``: the spec check and, for [stiffeners], the
     profile and density check of the build (run on a stand-in layout, nothing is built)."""
-    from tubecad.interfaces.build import stiffener_selection
+    from tubecad.spec.build import stiffener_selection
 
     with pytest.raises(SpecError) as caught:
         spec = parse_spec(data, "bad.toml")
@@ -157,7 +159,11 @@ BAD = {
     "unknown_key": (FULL, lambda d: d["tube"].update(radus=1.0), "unknown key [tube] radus"),
     "unknown_units_key": (FULL, lambda d: d["units"].update(angle="deg"), "unknown key [units] angle"),
     "wrong_type": (FULL, lambda d: d["tube"].update(radius=True), "[tube] radius must be a number"),
-    "bool_as_number": (FULL, lambda d: d["tube"].update(allow_irregular=1), "[tube] allow_irregular must be true or false"),
+    "bool_as_number": (
+        FULL,
+        lambda d: d["tube"].update(allow_irregular=1),
+        "[tube] allow_irregular must be true or false",
+    ),
     "three_numbers_for_a_pair": (FULL, lambda d: d["axis"].update(s=[1.0, 2.0, 3.0]), "[axis] s must be a list of two"),
     "selection_word": (FULL, lambda d: d["stiffeners"].update(rings="some"), "[stiffeners] rings must be a list"),
     "missing_required": (FULL, lambda d: d["tube"].pop("radius"), "[tube] radius is missing"),
@@ -166,14 +172,25 @@ BAD = {
     "custom_k_as_number": (sample_data("custom"), lambda d: d["axis"].update(k=0.01), "[axis] k must be a string"),
     "helix_k_as_text": (sample_data("helix"), lambda d: d["axis"].update(k="0.01"), "[axis] k must be a number"),
     "bad_curve": (FULL, lambda d: d["axis"].update(curve="spiral"), "[axis] curve must be one of log_spiral | helix"),
-    "bad_units": (FULL, lambda d: d["units"].update(length="km"),
-                  "[units] length must be one of mm, cm, m, in, ft, got 'km'"),
+    "bad_units": (
+        FULL,
+        lambda d: d["units"].update(length="km"),
+        "[units] length must be one of mm, cm, m, in, ft, got 'km'",
+    ),
     "units_as_number": (FULL, lambda d: d["units"].update(length=1000), "[units] length must be a string"),
     "units_in_capitals": (FULL, lambda d: d["units"].update(length="MM"), "[units] length must be one of mm, cm"),
-    "wall_side": (FULL, lambda d: d["wall"].update(side="middle"), "[wall] side must be one of centered, inside, outside"),
+    "wall_side": (
+        FULL,
+        lambda d: d["wall"].update(side="middle"),
+        "[wall] side must be one of centered, inside, outside",
+    ),
     "profile": (FULL, lambda d: d["stiffeners"].update(profile="I"), "[stiffeners] profile must be one of flat, T, L"),
-    "stiffener_side": (FULL, lambda d: d["stiffeners"].update(side="under"), "[stiffeners] side must be one of outside, inside"),
-}  # fmt: skip
+    "stiffener_side": (
+        FULL,
+        lambda d: d["stiffeners"].update(side="under"),
+        "[stiffeners] side must be one of outside, inside",
+    ),
+}
 
 
 @pytest.mark.parametrize("name", BAD)
@@ -189,7 +206,9 @@ def ranged_keys():
     """(section, key, Key, base spec) for every key the schema gives a range."""
     out = []
     for family, keys in FAMILY_KEYS.items():
-        out += [("axis", key, k, sample_data(family)) for key, k in keys.items() if k.low is not None or k.high is not None]
+        out += [
+            ("axis", key, k, sample_data(family)) for key, k in keys.items() if k.low is not None or k.high is not None
+        ]
     for section, keys in {"axis": AXIS_COMMON, "tube": TUBE_KEYS, **EXTRA_SECTIONS}.items():
         out += [(section, key, k, FULL) for key, k in keys.items() if k.low is not None or k.high is not None]
     return out
@@ -200,7 +219,9 @@ def outside(k) -> list[float]:
     step = 1 if k.kind == "integer" else None
     values = []
     if k.low is not None:
-        values.append(k.low if k.low_open else (k.low - step if step else k.low * (1 - 1e-3) if k.low > 0 else k.low - 1e-3))
+        values.append(
+            k.low if k.low_open else (k.low - step if step else k.low * (1 - 1e-3) if k.low > 0 else k.low - 1e-3)
+        )
     if k.high is not None:
         values.append(k.high if k.high_open else (k.high + step if step else k.high * (1 + 1e-3)))
     return values
@@ -217,15 +238,25 @@ def test_every_range_the_schema_states_is_one_the_checker_enforces(section, key,
 
 def test_the_schema_limits_are_the_rules_own():
     from tubecad.brep.layout import MAX_RINGS, MAX_STRINGERS
-    from tubecad.fitting.tolerance import MIN_SIZE
-    from tubecad.validation import MAX_LENGTH
+    from tubecad.core.tolerance import MIN_SIZE
+    from tubecad.core.validation import MAX_LENGTH
 
     layout, tube = EXTRA_SECTIONS["layout"], TUBE_KEYS
     assert (layout["rings"].high, layout["stringers"].high) == (MAX_RINGS, MAX_STRINGERS)
-    assert (tube["radius"].low, tube["radius"].high, EXTRA_SECTIONS["wall"]["thickness"].low) == (MIN_SIZE, MAX_LENGTH, MIN_SIZE)
+    assert (tube["radius"].low, tube["radius"].high, EXTRA_SECTIONS["wall"]["thickness"].low) == (
+        MIN_SIZE,
+        MAX_LENGTH,
+        MIN_SIZE,
+    )
     # the values just inside are taken by both
-    data = edit(FULL, lambda d: (d["layout"].update(rings=2, stringers=1000), d["stiffeners"].update(rings=[1]),
-                                 d["panels"].update(rings=[0, 1])))  # fmt: skip
+    data = edit(
+        FULL,
+        lambda d: (
+            d["layout"].update(rings=2, stringers=1000),
+            d["stiffeners"].update(rings=[1]),
+            d["panels"].update(rings=[0, 1]),
+        ),
+    )
     parse_spec(data)
     assert schema_errors(data) == []
 
@@ -253,7 +284,7 @@ thickness = 1.0
 
 
 def with_units(text: str, unit: str | None) -> str:
-    return text if unit is None else f"{text}\n[units]\nlength = \"{unit}\"\n"
+    return text if unit is None else f'{text}\n[units]\nlength = "{unit}"\n'
 
 
 @pytest.fixture(scope="module")
@@ -265,7 +296,13 @@ def built(tmp_path_factory):
         spec = folder / f"{unit}.toml"
         spec.write_text(with_units(SMALL, None if unit == "mm" else unit))
         files = {ext: folder / f"{unit}.{ext}" for ext in ("step", "iges", "glb", "3mf", "json")}
-        args = ["build", spec, *sum((["-o", p] for p in files.values()), []), "--report", folder / f"{unit}.report.json"]
+        args = [
+            "build",
+            spec,
+            *sum((["-o", p] for p in files.values()), []),
+            "--report",
+            folder / f"{unit}.report.json",
+        ]
         result = run(*args)
         assert result.exit_code == 0, result.output
         out[unit] = SimpleNamespace(**files, report=json.loads((folder / f"{unit}.report.json").read_text()))
@@ -305,7 +342,9 @@ def test_build123d_reads_a_metre_step_in_millimetres(built):
     import build123d as bd
 
     size_mm, size_m = (bd.import_step(built[u].step).bounding_box().size for u in ("mm", "m"))
-    assert size_m.X == pytest.approx(1000 * size_mm.X, rel=1e-6) and size_m.Z == pytest.approx(1000 * size_mm.Z, rel=1e-6)
+    assert size_m.X == pytest.approx(1000 * size_mm.X, rel=1e-6) and size_m.Z == pytest.approx(
+        1000 * size_mm.Z, rel=1e-6
+    )
 
 
 def iges_global(path: Path) -> list[str]:
@@ -317,7 +356,7 @@ def iges_global(path: Path) -> list[str]:
         if m and not current.strip():
             n = int(m.group(1))
             start = i + len(m.group(0))
-            current, i = text[start:start + n], start + n
+            current, i = text[start : start + n], start + n
             continue
         if text[i] in ",;":
             params.append(current.strip())
@@ -348,7 +387,7 @@ def test_meshes_polylines_and_report_state_the_unit(built):
     def glb_max(path: Path) -> float:  # glTF is in metres: the largest coordinate of its meshes
         data = path.read_bytes()
         length = struct.unpack_from("<I", data, 12)[0]
-        doc = json.loads(data[20:20 + length])
+        doc = json.loads(data[20 : 20 + length])
         return max(abs(v) for a in doc["accessors"] if len(a.get("max", [])) == 3 for v in a["max"] + a["min"])
 
     assert glb_max(built["m"].glb) == pytest.approx(1000 * glb_max(built["mm"].glb), rel=1e-5)
@@ -362,23 +401,27 @@ def test_meshes_polylines_and_report_state_the_unit(built):
         assert report["units"] == {"length": unit}
         assert report["brep"]["volume"] == pytest.approx(built["mm"].report["brep"]["volume"], rel=1e-12)
         for info in report["exports"].values():  # every file read back in the model's unit, on the tube
-            assert info.get("max_deviation", 0) < 1e-8 and info.get("max_vertex_deviation", 0) < info.get("deflection", 1)
+            assert info.get("max_deviation", 0) < 1e-8 and info.get("max_vertex_deviation", 0) < info.get(
+                "deflection", 1
+            )
 
 
-STIFFENED = SMALL + """
+STIFFENED = (
+    SMALL
+    + """
 [stiffeners]
 rings = [1]
 profile = "flat"
 height = 2.0
 thickness = 1.0
 """
+)
 
 
 def test_density_is_per_cubic_unit_and_the_default_steel_is_converted():
-    from tubecad.interfaces.build import build_and_export
+    from tubecad.spec.build import build_and_export
 
-    reports = {u: build_and_export(parse_spec(tomllib.loads(with_units(STIFFENED, u)), u), [])
-               for u in ("mm", "m")}  # fmt: skip
+    reports = {u: build_and_export(parse_spec(tomllib.loads(with_units(STIFFENED, u)), u), []) for u in ("mm", "m")}
     mm, m = reports["mm"]["stiffeners"], reports["m"]["stiffeners"]
     assert (mm["density"], mm["density_unit"]) == (7.85e-6, "kg/mm^3")
     assert (m["density"], m["density_unit"]) == (7850.0, "kg/m^3")
@@ -387,7 +430,9 @@ def test_density_is_per_cubic_unit_and_the_default_steel_is_converted():
     assert steel_density("in") == pytest.approx(7850 * 0.0254**3, rel=1e-11)
     # a density given in the spec is taken as it is, per cubic unit
     given = build_and_export(parse_spec(tomllib.loads(with_units(STIFFENED + "density = 1000.0\n", "m"))), [])
-    assert given["stiffeners"]["total_stiffener_mass_kg"] == pytest.approx(1000.0 * m["stiffeners"][0]["volume"], rel=1e-12)
+    assert given["stiffeners"]["total_stiffener_mass_kg"] == pytest.approx(
+        1000.0 * m["stiffeners"][0]["volume"], rel=1e-12
+    )
 
 
 def test_dxf_flat_patterns_state_the_unit(tmp_path):
@@ -412,8 +457,11 @@ def test_bad_units_exit_2_with_one_line_and_write_nothing(tmp_path):
     spec.write_text(with_units(SMALL, "km"))
     out = tmp_path / "out"
     out.mkdir()
-    for args in (["build", spec, "-o", out / "x.step", "--report", out / "r.json"], ["report", spec],
-                 ["flat", spec, "-o", out / "flat"]):  # fmt: skip
+    for args in (
+        ["build", spec, "-o", out / "x.step", "--report", out / "r.json"],
+        ["report", spec],
+        ["flat", spec, "-o", out / "flat"],
+    ):
         result = run(*args)
         assert result.exit_code == 2, result.output
         lines = result.output.strip().splitlines()

@@ -15,7 +15,7 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
 from tubecad import CurvatureLineTube, Helix, NaturalAxis
-from tubecad.errors import ParameterError
+from tubecad.core.errors import ParameterError
 from tubecad.shop.bending import (
     BendingTable,
     bending_table,
@@ -34,8 +34,10 @@ def circle_table(radius, theta, arc_length):
     towards the arc's middle (its farthest point),
         x = R sin(phi - theta/2) + R sin(theta/2),  y = R cos(phi - theta/2) - R cos(theta/2)."""
     phi = arc_length / radius
-    return (radius * np.sin(phi - theta / 2) + radius * math.sin(theta / 2),
-            radius * np.cos(phi - theta / 2) - radius * math.cos(theta / 2))  # fmt: skip
+    return (
+        radius * np.sin(phi - theta / 2) + radius * math.sin(theta / 2),
+        radius * np.cos(phi - theta / 2) - radius * math.cos(theta / 2),
+    )
 
 
 @pytest.mark.parametrize("pieces", [2, 3, 5])
@@ -104,11 +106,14 @@ def helix_tube_points(s, rho):
     psi = K * s / math.cos(B)
     phi = U - psi * math.sin(B)
     cb2k = math.cos(B) ** 2 / K  # cos b Int cos psi ds = cb2k sin psi
-    return np.stack([
-        cb2k * np.sin(psi) - rho * (np.sin(psi) * np.cos(phi) + math.sin(B) * np.cos(psi) * np.sin(phi)),
-        cb2k * (1 - np.cos(psi)) + rho * (np.cos(psi) * np.cos(phi) - math.sin(B) * np.sin(psi) * np.sin(phi)),
-        s * math.sin(B) + rho * math.cos(B) * np.sin(phi),
-    ], axis=-1)  # fmt: skip
+    return np.stack(
+        [
+            cb2k * np.sin(psi) - rho * (np.sin(psi) * np.cos(phi) + math.sin(B) * np.cos(psi) * np.sin(phi)),
+            cb2k * (1 - np.cos(psi)) + rho * (np.cos(psi) * np.cos(phi) - math.sin(B) * np.sin(psi) * np.sin(phi)),
+            s * math.sin(B) + rho * math.cos(B) * np.sin(phi),
+        ],
+        axis=-1,
+    )
 
 
 def helix_arc_length(s, rho):

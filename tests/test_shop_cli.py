@@ -12,7 +12,7 @@ import pytest
 from click.testing import CliRunner
 from shapely.geometry import Polygon
 
-from tubecad.interfaces.cli import cli
+from tubecad.cli.app import cli
 
 SAMPLE = Path("samples/shop_duct.toml")
 
@@ -46,7 +46,9 @@ def test_webs_and_flanges_nested_without_overlap(shop):
     out, index, _ = shop
     for kind in ("webs", "flanges"):
         nesting = index[kind]["nesting"]
-        assert nesting["valid"] and nesting["smallest_gap"] >= 2 * 2.0 - 1e-9 and nesting["smallest_margin"] >= 2.0 - 1e-9
+        assert (
+            nesting["valid"] and nesting["smallest_gap"] >= 2 * 2.0 - 1e-9 and nesting["smallest_margin"] >= 2.0 - 1e-9
+        )
         assert nesting["pieces"] == len(index[kind]["pieces"])
         assert 0.05 < nesting["utilisation"] < 1.0
         assert all(p["plate"] is not None for p in index[kind]["pieces"])
@@ -69,8 +71,11 @@ def test_the_split_stiffeners_read_back_from_step_with_their_pieces_names(shop):
     assert pieces <= names and {"stringer_00", "ring_00"}.isdisjoint(names)
     import build123d as bd
 
-    solids = {c.label: c for c in bd.import_step(out / "webs" / "webs_pieces.step").children
-              if c.label.startswith(("ring_", "stringer_"))}  # fmt: skip
+    solids = {
+        c.label: c
+        for c in bd.import_step(out / "webs" / "webs_pieces.step").children
+        if c.label.startswith(("ring_", "stringer_"))
+    }
     assert set(solids) == pieces
     assert all(is_valid(s) for s in solids.values())
     for solid in index["webs"]["solids"]:
@@ -83,7 +88,7 @@ def test_marking_lines_lie_on_the_panel_surface(shop):
     import build123d as bd
     from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 
-    from tubecad.interfaces.spec import load_spec
+    from tubecad.spec.parse import load_spec
     from tubecad.surface.checks import distance_to_axis
 
     out, index, _ = shop
@@ -93,8 +98,11 @@ def test_marking_lines_lie_on_the_panel_surface(shop):
         shape = bd.import_step(out / "marking" / f"{entry['panel']}_marking.step")
         panel = next(c for c in shape.children if c.label == entry["panel"])
         marks = next(c for c in shape.children if c.label == "marking_lines")
-        edges = {e.label: e for e in marks.edges()} if marks.edges()[0].label else dict(zip(
-            [line["name"] for line in entry["lines"]], marks.edges()))  # fmt: skip
+        edges = (
+            {e.label: e for e in marks.edges()}
+            if marks.edges()[0].label
+            else dict(zip([line["name"] for line in entry["lines"]], marks.edges()))
+        )
         assert len(edges) == len(entry["lines"]) >= 3
         faces = bd.Compound(children=[f for f in panel.faces()])
         for edge in edges.values():
@@ -141,15 +149,18 @@ def without_fabrication(extra: str) -> str:
     return BASE[: BASE.index("[fabrication]")] + "[fabrication]\n" + extra
 
 
-@pytest.mark.parametrize("extra, says", [
-    ("plate_size = [3000.0, 60.0]\n", "[fabrication] plate_size [3000.0, 60.0] is too small for ring_01's web"),
-    ("kerf = -1.0\n", "[fabrication] kerf must be a finite number >= 0"),
-    ("kerf = nan\n", "[fabrication] kerf must be finite"),
-    ("joint_gap = inf\n", "[fabrication] joint_gap must be finite"),
-    ("max_strain = 0.0\n", "[fabrication] max_strain must be a finite number > 0"),
-    ("joints = { stringer_02 = [7000.0] }\n", "[fabrication] joints.stringer_02: 7000 is outside the stringer"),
-    ("joints = { stringer_01 = [700.0] }\n", "[fabrication] joints.stringer_01: no such stiffener"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "extra, says",
+    [
+        ("plate_size = [3000.0, 60.0]\n", "[fabrication] plate_size [3000.0, 60.0] is too small for ring_01's web"),
+        ("kerf = -1.0\n", "[fabrication] kerf must be a finite number >= 0"),
+        ("kerf = nan\n", "[fabrication] kerf must be finite"),
+        ("joint_gap = inf\n", "[fabrication] joint_gap must be finite"),
+        ("max_strain = 0.0\n", "[fabrication] max_strain must be a finite number > 0"),
+        ("joints = { stringer_02 = [7000.0] }\n", "[fabrication] joints.stringer_02: 7000 is outside the stringer"),
+        ("joints = { stringer_01 = [700.0] }\n", "[fabrication] joints.stringer_01: no such stiffener"),
+    ],
+)
 def test_bad_fabrication_input_is_refused_with_one_line_and_no_file(tmp_path, extra, says):
     spec = tmp_path / "spec.toml"
     spec.write_text(without_fabrication(extra))

@@ -14,7 +14,7 @@ import pytest
 from conftest import fit_circle
 
 from tubecad import CurvatureLineTube, Helix, NaturalAxis
-from tubecad.errors import ParameterError
+from tubecad.core.errors import ParameterError
 from tubecad.shop.flanges import flange_rates, ring_flange_flat_pattern, stringer_flange_flat_pattern
 from tubecad.stiffeners.flat import polygon_area
 from tubecad.stiffeners.profiles import Profile
@@ -43,8 +43,13 @@ def strip_3d(surface, u, span, w0, w1, n=10001):
     """(edge w0 length, edge w1 length, area) of the 3-D strip X + w E, E = T x N, on ``surface``
     (already the offset one) along the stringer u: polylines and quads of n and 2n - 1 stations,
     each O(h^2), Richardson-extrapolated (4 fine - coarse) / 3."""
-    return tuple((4 * np.array(_strip_3d(surface, u, span, w0, w1, 2 * n - 1))
-                  - np.array(_strip_3d(surface, u, span, w0, w1, n))) / 3)  # fmt: skip
+    return tuple(
+        (
+            4 * np.array(_strip_3d(surface, u, span, w0, w1, 2 * n - 1))
+            - np.array(_strip_3d(surface, u, span, w0, w1, n))
+        )
+        / 3
+    )
 
 
 def _strip_3d(surface, u, span, w0, w1, n):
@@ -87,8 +92,11 @@ def test_helix_stringer_flange_matches_the_3d_strip(helix_tube, profile, side, t
     assert np.abs(speed(s) - (1 - Rp * K * np.cos(th - c * s))).max() < 2e-15  # measured 4.4e-16
 
     def edge(w):  # Int_0^L [1 - R' k cos(th - c s) - w k sin(c s - th)] ds
-        return (LENGTH - Rp * K * (math.sin(th) - math.sin(th - c * LENGTH)) / c
-                - w * K * (math.cos(th) - math.cos(c * LENGTH - th)) / c)  # fmt: skip
+        return (
+            LENGTH
+            - Rp * K * (math.sin(th) - math.sin(th - c * LENGTH)) / c
+            - w * K * (math.cos(th) - math.cos(c * LENGTH - th)) / c
+        )
 
     area = (w1 - w0) * edge(0.0) - 0.5 * (w1**2 - w0**2) * K * (math.cos(th) - math.cos(c * LENGTH - th)) / c
     assert pattern.base_length == pytest.approx(edge(w0), rel=2e-15)  # measured <= 6.3e-16

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from tubecad import CurvatureLineTube, NaturalAxis, ParameterError
-from tubecad.surface.canal import CanalSurface
 from tubecad.shop.panel_development import develop_panel, write_panel_dxf, write_panel_picture
+from tubecad.surface.canal import CanalSurface
 
 # torus: the axis is the circle of radius A about (0, A, 0) in the xy-plane (k = 1 / A), r1 points
 # to its centre, r2 = z; the tube of radius RT is the torus whose parallels (u = const) are the
@@ -80,8 +80,18 @@ def test_cylinder_panel_is_an_exact_rectangle(cylinder):
     assert dev.surface_area == pytest.approx(area, rel=1e-14)  # measured 5.6e-16
     assert dev.flat_area == pytest.approx(area, rel=1e-14)  # measured 6.7e-16
     corners = dev.outline()[[0, 16, 16 + 32, 2 * 16 + 32]]
-    assert np.abs(corners - [[-R * math.radians(45), 0], [R * math.radians(45), 0], [R * math.radians(45), 50],
-                             [-R * math.radians(45), 50]]).max() < 2e-13  # fmt: skip
+    assert (
+        np.abs(
+            corners
+            - [
+                [-R * math.radians(45), 0],
+                [R * math.radians(45), 0],
+                [R * math.radians(45), 50],
+                [-R * math.radians(45), 50],
+            ]
+        ).max()
+        < 2e-13
+    )
 
 
 # --- cone ----------------------------------------------------------------------------------------
@@ -101,7 +111,9 @@ def test_cone_panel_develops_without_strain(cone):
     # rings are arcs of length r q (chi_b - chi_a); the middle stringer a straight generator
     for s in (s_a, 17.3, s_b):
         ring = dev.ring_line(s)
-        assert arc_length(ring) == pytest.approx((R0 + SLOPE * s) * Q * math.radians(u_b - u_a), rel=1e-13)  # measured 3.6e-15
+        assert arc_length(ring) == pytest.approx(
+            (R0 + SLOPE * s) * Q * math.radians(u_b - u_a), rel=1e-13
+        )  # measured 3.6e-15
         centre, radius = circle_through(ring)
         assert np.abs(np.linalg.norm(ring - centre, axis=1) - radius).max() < 1e-13  # measured 7.1e-15
     line = dev.stringer_line(15.0)
@@ -141,9 +153,16 @@ def test_torus_panel_matches_the_tangent_cone_development(torus_panel):
     assert dev.max_strain == pytest.approx(strain[i, 0], rel=1e-12)  # 0.0354331..., measured 2.2e-14 relative
     assert dev.max_strain_at[0] == pytest.approx(u_a + (u_b - u_a) * i / 32, abs=1e-12)
     assert dev.max_strain_at[1] == s_a  # the strain does not vary along the panel; ties go to the first node
-    assert np.abs(dev.max_strain_point - torus_point(math.radians(dev.max_strain_at[0]), s_a)).max() < 1e-12  # measured 3.6e-14
+    assert (
+        np.abs(dev.max_strain_point - torus_point(math.radians(dev.max_strain_at[0]), s_a)).max() < 1e-12
+    )  # measured 3.6e-14
     # areas: the patch Int Int RT (A - RT cos u) / A du ds, the flat annular sector
-    area = RT * (s_b - s_a) / A * (A * math.radians(u_b - u_a) - RT * (math.sin(math.radians(u_b)) - math.sin(math.radians(u_a))))
+    area = (
+        RT
+        * (s_b - s_a)
+        / A
+        * (A * math.radians(u_b - u_a) - RT * (math.sin(math.radians(u_b)) - math.sin(math.radians(u_a))))
+    )
     assert dev.surface_area == pytest.approx(area, rel=1e-14)  # measured 8.9e-16
     slants = torus_development(np.radians([u_a, u_b]), np.array([s_a]), math.radians(60.0), s_a)[0]
     ell = np.linalg.norm(slants, axis=-1)
@@ -169,9 +188,13 @@ def test_torus_lengths_are_kept(torus_panel):
         assert np.abs(offsets).max() < 1e-13  # measured 1.2e-14
     middle = dev.stringer_line(60.0)  # the middle parallel: an arc of the tangent cone's slant
     centre, radius = circle_through(middle)
-    assert radius == pytest.approx((A - RT * math.cos(math.radians(60.0))) / math.sin(math.radians(60.0)), rel=1e-13)  # 1.6e-15
+    assert radius == pytest.approx(
+        (A - RT * math.cos(math.radians(60.0))) / math.sin(math.radians(60.0)), rel=1e-13
+    )  # 1.6e-15
     assert np.abs(np.linalg.norm(middle - centre, axis=1) - radius).max() < 2e-13  # measured 1.4e-14
-    assert arc_length(middle) == pytest.approx((A - RT * math.cos(math.radians(60.0))) * 100.0 / A, rel=1e-14)  # 5.6e-16
+    assert arc_length(middle) == pytest.approx(
+        (A - RT * math.cos(math.radians(60.0))) * 100.0 / A, rel=1e-14
+    )  # 5.6e-16
 
 
 def test_small_torus_panel_strain_is_gaussian_curvature_times_half_distance_squared(torus):
@@ -181,7 +204,9 @@ def test_small_torus_panel_strain_is_gaussian_curvature_times_half_distance_squa
     assert abs(dev.max_strain_at[0] - u_m) == pytest.approx(half)
     gauss = -math.cos(u_edge) / (RT * (A - RT * math.cos(u_edge)))  # K of the torus, in this u
     d = RT * math.radians(half)
-    assert dev.max_strain == pytest.approx(abs(gauss) * d * d / 2.0, rel=0.01)  # measured 9.5e-3 (1.8e-2 at 2 deg: the d^3 term)
+    assert dev.max_strain == pytest.approx(
+        abs(gauss) * d * d / 2.0, rel=0.01
+    )  # measured 9.5e-3 (1.8e-2 at 2 deg: the d^3 term)
 
 
 def test_outline_and_map(torus_panel):
@@ -230,7 +255,9 @@ def test_canal_lengths_and_strain_against_finite_differences(curved_canal):
         a, b = base.points(math.radians(u_a), s) - centre, base.points(math.radians(u_b), s) - centre
         angle = math.atan2(float(np.cross(a, b) @ t), float(a @ b))
         angle = angle if angle > 0 else angle + 2 * math.pi
-        assert arc_length(dev.ring_line(s)) == pytest.approx(r * math.sqrt(1 - dr * dr) * angle, rel=1e-13)  # measured 1.9e-15
+        assert arc_length(dev.ring_line(s)) == pytest.approx(
+            r * math.sqrt(1 - dr * dr) * angle, rel=1e-13
+        )  # measured 1.9e-15
     u_m = 0.5 * (u_a + u_b)
     length_3d = polyline_length(lambda s: base.points(math.radians(u_m), s), s_a, s_b)
     length_flat = polyline_length(lambda s: dev.map(u_m, s), s_a, s_b)
@@ -241,8 +268,9 @@ def test_canal_lengths_and_strain_against_finite_differences(curved_canal):
     h_u, h_s = 1e-3, 1e-2
 
     def diff(f, du, ds):
-        return (-f(u + 2 * du, s + 2 * ds) + 8 * f(u + du, s + ds) - 8 * f(u - du, s - ds)
-                + f(u - 2 * du, s - 2 * ds)) / 12.0  # fmt: skip
+        return (
+            -f(u + 2 * du, s + 2 * ds) + 8 * f(u + du, s + ds) - 8 * f(u - du, s - ds) + f(u - 2 * du, s - 2 * ds)
+        ) / 12.0
 
     surf = lambda ud, ss: base.points(np.radians(ud), ss)  # noqa: E731
     X_u, X_s = diff(surf, h_u, 0) / math.radians(h_u), diff(surf, 0, h_s) / h_s
@@ -250,10 +278,20 @@ def test_canal_lengths_and_strain_against_finite_differences(curved_canal):
     tangents = dev.tangents(u, s)
     assert np.abs(tangents[0] - P_u).max() < 1e-9 * np.abs(P_u).max()  # measured 3.3e-11 (the differences' error)
     assert np.abs(tangents[1] - P_s).max() < 1e-11  # measured 7.9e-13
-    g = np.stack([np.stack([(X_u * X_u).sum(-1), (X_u * X_s).sum(-1)], -1),
-                  np.stack([(X_u * X_s).sum(-1), (X_s * X_s).sum(-1)], -1)], -2)  # fmt: skip
-    a = np.stack([np.stack([(P_u * P_u).sum(-1), (P_u * P_s).sum(-1)], -1),
-                  np.stack([(P_u * P_s).sum(-1), (P_s * P_s).sum(-1)], -1)], -2)  # fmt: skip
+    g = np.stack(
+        [
+            np.stack([(X_u * X_u).sum(-1), (X_u * X_s).sum(-1)], -1),
+            np.stack([(X_u * X_s).sum(-1), (X_s * X_s).sum(-1)], -1),
+        ],
+        -2,
+    )
+    a = np.stack(
+        [
+            np.stack([(P_u * P_u).sum(-1), (P_u * P_s).sum(-1)], -1),
+            np.stack([(P_u * P_s).sum(-1), (P_s * P_s).sum(-1)], -1),
+        ],
+        -2,
+    )
     stretch = np.sqrt(np.linalg.eigvals(np.linalg.solve(g, a)).real)
     expected = np.abs(stretch - 1.0).max(axis=-1)
     assert expected.max() > 1e-3  # a doubly curved panel: measured 0.0122

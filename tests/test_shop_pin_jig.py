@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from tubecad import CurvatureLineTube, NaturalAxis, ParameterError
-from tubecad.surface.canal import CanalSurface
 from tubecad.shop.pin_jig import pin_jig, write_pin_jig_csv, write_pin_jig_picture
+from tubecad.surface.canal import CanalSurface
 
 R = 10.0  # cylinder about the x axis (r1 = y, r2 = z: u = atan2(z, y), s = x)
 A, RT = 100.0, 30.0  # torus: centre circle of radius A about (0, A, 0) in the xy-plane, tube radius RT
@@ -73,8 +73,12 @@ def torus_hits(foot: np.ndarray, up: np.ndarray) -> list[tuple[float, float, flo
     q = p - (0, A, 0): a quartic in t, solved with numpy.roots and polished by Newton."""
     q0 = foot - np.array([0.0, A, 0.0])
     norm2 = np.array([up @ up, 2.0 * q0 @ up, q0 @ q0 + A * A - RT * RT])
-    planar = 4.0 * A * A * np.array([up[0] ** 2 + up[1] ** 2, 2.0 * (q0[0] * up[0] + q0[1] * up[1]),
-                                     q0[0] ** 2 + q0[1] ** 2])  # fmt: skip
+    planar = (
+        4.0
+        * A
+        * A
+        * np.array([up[0] ** 2 + up[1] ** 2, 2.0 * (q0[0] * up[0] + q0[1] * up[1]), q0[0] ** 2 + q0[1] ** 2])
+    )
     quartic = np.polysub(np.polymul(norm2, norm2), planar)
     out = []
     for root in np.roots(quartic):
@@ -164,8 +168,13 @@ def test_csv_reads_back(cylinder_jig, tmp_path):
     assert list(rows[0]) == ["pin", "i", "j", "x", "y", "height", "u_deg", "s"]
     assert [int(r["pin"]) for r in rows] == list(range(1, len(jig.heights) + 1))
     assert np.array_equal([[int(r["i"]), int(r["j"])] for r in rows], jig.indices)
-    for key, values in (("x", jig.xy[:, 0]), ("y", jig.xy[:, 1]), ("height", jig.heights), ("u_deg", jig.angles_deg),
-                        ("s", jig.s)):  # fmt: skip
+    for key, values in (
+        ("x", jig.xy[:, 0]),
+        ("y", jig.xy[:, 1]),
+        ("height", jig.heights),
+        ("u_deg", jig.angles_deg),
+        ("s", jig.s),
+    ):
         assert np.array_equal([float(r[key]) for r in rows], values)  # repr: exact
     with open(write_pin_jig_csv(jig, tmp_path / "m.csv", length_unit="m"), encoding="utf-8") as f:
         assert f.readline() == "# units: m\n"

@@ -17,12 +17,12 @@ from shapely.geometry import Point, Polygon, box
 from tubecad import CurvatureLineTube, paper_tube
 from tubecad.brep import build_wall_solid
 from tubecad.brep.properties import analyzer_findings, is_valid, volume
-from tubecad.examples import PAPER_LAYOUT, PAPER_WALL_THICKNESS, paper_stiffeners
-from tubecad.errors import ParameterError
+from tubecad.core.errors import ParameterError
 from tubecad.shop.drawings import write_plate_dxf, write_plate_svg
 from tubecad.shop.fabrication import fabrication_settings
 from tubecad.shop.nesting import check_nesting, nest
 from tubecad.shop.webs import piece_names, piece_solids, ring_pieces, stringer_pieces
+from tubecad.spec.paper import PAPER_LAYOUT, PAPER_WALL_THICKNESS, paper_stiffeners
 from tubecad.stiffeners.flat import stringer_flat_pattern
 
 
@@ -92,7 +92,9 @@ def test_chosen_joints_come_first_and_the_solids_are_split_there(paper):
     fab = fabrication_settings({"joints": {"stringer_00": [640.0]}})
     pieces = stringer_pieces(st, fab)
     assert [p.name for p in pieces] == ["stringer_00_a", "stringer_00_b"]
-    assert pieces[0].span == (200.0, pytest.approx(640.0, abs=1e-9)) and pieces[1].span[0] == pytest.approx(640.0, abs=1e-9)
+    assert pieces[0].span == (200.0, pytest.approx(640.0, abs=1e-9)) and pieces[1].span[0] == pytest.approx(
+        640.0, abs=1e-9
+    )
     solids = piece_solids(st, pieces, build.tolerance)
     assert [s.name for s in solids] == ["stringer_00_a", "stringer_00_b"]
     for s in solids:
@@ -123,8 +125,12 @@ def dxf_parts(path):
 
     doc = ezdxf.readfile(path)
     msp = doc.modelspace()
-    polygons = [Polygon([tuple(p)[:2] for p in make_path(e).flattening(1e-4)]) for e in msp.query('LWPOLYLINE[layer=="PARTS"]')]
-    circles = [Point(e.dxf.center.x, e.dxf.center.y).buffer(e.dxf.radius, 180) for e in msp.query('CIRCLE[layer=="PARTS"]')]
+    polygons = [
+        Polygon([tuple(p)[:2] for p in make_path(e).flattening(1e-4)]) for e in msp.query('LWPOLYLINE[layer=="PARTS"]')
+    ]
+    circles = [
+        Point(e.dxf.center.x, e.dxf.center.y).buffer(e.dxf.radius, 180) for e in msp.query('CIRCLE[layer=="PARTS"]')
+    ]
     circles.sort(key=lambda c: (round(c.centroid.x, 6), round(c.centroid.y, 6), -c.area))
     for outer, inner in zip(circles[::2], circles[1::2]):  # each annulus: its two concentric circles
         polygons.append(outer.difference(inner))
@@ -135,8 +141,11 @@ def dxf_parts(path):
 def test_every_web_of_the_paper_nested_without_overlap(paper, tmp_path):
     _, stiffeners = paper
     fab = fabrication_settings({"plate_size": [700.0, 420.0], "kerf": 1.0})
-    pieces = [p for st in stiffeners.values()
-              for p in (stringer_pieces(st, fab) if st.kind == "stringer" else ring_pieces(st, fab))]  # fmt: skip
+    pieces = [
+        p
+        for st in stiffeners.values()
+        for p in (stringer_pieces(st, fab) if st.kind == "stringer" else ring_pieces(st, fab))
+    ]
     plates = nest(pieces, fab)
     report = check_nesting(plates, fab)
     assert report["valid"] and report["pieces"] == len(pieces)
@@ -149,7 +158,7 @@ def test_every_web_of_the_paper_nested_without_overlap(paper, tmp_path):
         for i, polygon in enumerate(polygons):
             assert polygon.is_valid and sheet.contains(polygon)
             assert polygon.exterior.distance(sheet.exterior) >= fab.kerf - 1e-9
-            for other in polygons[i + 1:]:
+            for other in polygons[i + 1 :]:
                 assert polygon.distance(other) >= 2 * fab.kerf - 1e-9  # measured: exactly 2 kerf where shelves touch
         placed_area += sum(p.area for p in polygons)
     assert placed_area / (len(plates) * 700 * 420) == pytest.approx(report["utilisation"], rel=1e-4)
@@ -167,7 +176,9 @@ def test_the_svg_is_1_to_1_in_millimetres_without_axes(paper, tmp_path):
     assert {"PLATE", "PARTS", "CUT", "JOINTS", "TEXT"} <= set(groups)
     names = [t.text for t in groups["TEXT"].findall("svg:text", ns)]
     assert {"stringer_06_a", "stringer_06_b"} <= set(names)
-    plate_path = groups["PLATE"].find("svg:path", ns).get("d").replace("M", "").replace("L", "").replace("Z", "").split()
+    plate_path = (
+        groups["PLATE"].find("svg:path", ns).get("d").replace("M", "").replace("L", "").replace("Z", "").split()
+    )
     xy = np.array(plate_path, dtype=float).reshape(-1, 2)
     assert np.ptp(xy, axis=0) == pytest.approx([700.0, 420.0], rel=1e-12)  # in the mm user units, scaled by 1
     joints = sum(sum(placed.piece.joints) for placed in plates[0].pieces)  # the butt-joint ends on this plate
@@ -184,14 +195,17 @@ def test_a_plate_too_small_for_the_web_height_is_refused_naming_the_key(paper):
         ring_pieces(stiffeners["ring_03"], fabrication_settings({"joints": {"ring_03": [400.0]}}))
 
 
-@pytest.mark.parametrize("section, says", [
-    ({"kerf": -1.0}, "[fabrication] kerf must be a finite number >= 0"),
-    ({"kerf": math.nan}, "[fabrication] kerf must be a finite number >= 0"),
-    ({"joint_gap": math.inf}, "[fabrication] joint_gap must be a finite number >= 0"),
-    ({"max_strain": 0.0}, "[fabrication] max_strain must be a finite number > 0"),
-    ({"pin_spacing": -5.0}, "[fabrication] pin_spacing must be a finite number > 0"),
-    ({"plate_size": [10.0, 3.0], "kerf": 2.0}, "[fabrication] plate_size [10.0, 3.0] leaves no room"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "section, says",
+    [
+        ({"kerf": -1.0}, "[fabrication] kerf must be a finite number >= 0"),
+        ({"kerf": math.nan}, "[fabrication] kerf must be a finite number >= 0"),
+        ({"joint_gap": math.inf}, "[fabrication] joint_gap must be a finite number >= 0"),
+        ({"max_strain": 0.0}, "[fabrication] max_strain must be a finite number > 0"),
+        ({"pin_spacing": -5.0}, "[fabrication] pin_spacing must be a finite number > 0"),
+        ({"plate_size": [10.0, 3.0], "kerf": 2.0}, "[fabrication] plate_size [10.0, 3.0] leaves no room"),
+    ],
+)
 def test_bad_settings_name_the_key(section, says):
     with pytest.raises(ParameterError) as caught:
         fabrication_settings(section)

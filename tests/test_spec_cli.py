@@ -9,11 +9,11 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-
 from conftest import PAPER_SPEC
+
 from tubecad import SpecError
-from tubecad.interfaces.cli import cli
-from tubecad.interfaces.spec import load_spec
+from tubecad.cli.app import cli
+from tubecad.spec.parse import load_spec
 
 SAMPLES = Path(__file__).parent.parent / "samples"
 SAMPLE_SPECS = sorted(SAMPLES.glob("*.toml"))
@@ -27,8 +27,18 @@ def run(*args):
 
 def test_every_family_has_a_sample_spec():
     curves = {load_spec(p).axis.family for p in SAMPLE_SPECS}
-    assert curves == {"log_spiral", "helix", "clothoid", "involute", "custom", "natural", "parametric", "points", "edge",
-                      "route"}
+    assert curves == {
+        "log_spiral",
+        "helix",
+        "clothoid",
+        "involute",
+        "custom",
+        "natural",
+        "parametric",
+        "points",
+        "edge",
+        "route",
+    }
 
 
 @pytest.mark.parametrize("spec", SAMPLE_SPECS, ids=lambda p: p.stem)
@@ -87,7 +97,10 @@ def write(tmp_path, text, name="spec.toml"):
         (lambda t: t.replace("a = 10.0", "a = -10.0"), "[axis] a must be in (0, inf), got -10"),
         (lambda t: t.replace("a = 10.0", "a = 'ten'"), "[axis] a must be a number"),
         (lambda t: t.replace("a = 10.0\n", ""), "[axis] a is missing"),
-        (lambda t: t.replace("a = 10.0", "a = 10.0\nb = 3"), "unknown key [axis] b; allowed keys are curve, a, beta_deg, s"),
+        (
+            lambda t: t.replace("a = 10.0", "a = 10.0\nb = 3"),
+            "unknown key [axis] b; allowed keys are curve, a, beta_deg, s",
+        ),
         (lambda t: t.replace("log_spiral", "spiral"), "[axis] curve must be one of log_spiral | helix"),
         (lambda t: t.replace("beta_deg = 10.0", "beta_deg = 90"), "[axis] beta_deg must be in (-90, 90), got 90"),
         (lambda t: t.replace("beta_deg = 10.0", "beta_deg = nan"), "[axis] beta_deg must be finite"),
@@ -101,8 +114,10 @@ def write(tmp_path, text, name="spec.toml"):
         (lambda t: t.replace("[200.0, 1200.0]", "[100.0, 1200.0]"), "rho*k reaches 1.5 at s = 100"),
         (lambda t: t + "\n[axis.extra]\nx = 1\n", "unknown key [axis] extra"),
         (lambda t: t.replace("[tube]", "tube = 3\n[tubex]"), "unknown section [tubex]"),
-        (lambda t: t.replace('"log_spiral"', '"custom"').replace("a = 10.0", 'k = "__import__(\'os\')"'),
-         "function '__import__' is not allowed"),
+        (
+            lambda t: t.replace('"log_spiral"', '"custom"').replace("a = 10.0", "k = \"__import__('os')\""),
+            "function '__import__' is not allowed",
+        ),
         (lambda t: t.replace('"log_spiral"', '"custom"').replace("a = 10.0", 'k = "s.real"'), "attribute access"),
         (lambda t: t.replace('"log_spiral"', '"custom"').replace("a = 10.0", 'k = "9**9**9"'), "nested powers"),
         (lambda t: t.replace("[axis]", "[axis"), "not valid TOML"),
@@ -120,7 +135,9 @@ def test_bad_specs_exit_2_naming_the_key_without_traceback(tmp_path, edit, says)
 
 
 def test_irregular_spec_can_be_allowed(tmp_path):
-    text = GOOD.replace("[200.0, 1200.0]", "[100.0, 1200.0]").replace("radius = 15.0", "radius = 15.0\nallow_irregular = true")
+    text = GOOD.replace("[200.0, 1200.0]", "[100.0, 1200.0]").replace(
+        "radius = 15.0", "radius = 15.0\nallow_irregular = true"
+    )
     report = json.loads(run("report", write(tmp_path, text), "--nu", 16, "--ns", 101).output)
     assert report["regular"] is False and report["max_rho_k"] == pytest.approx(1.5)
 
@@ -143,15 +160,21 @@ def test_unwritable_output_folder_is_a_clear_error(tmp_path):
 def test_console_script_is_installed_and_runs():
     """The `tubecad` entry point of a real install, in a subprocess."""
     exe = Path(sys.executable).parent / "tubecad"
-    command = [str(exe)] if exe.exists() else [sys.executable, "-m", "tubecad.interfaces.cli"]
-    done = subprocess.run(command + ["report", str(SAMPLES / "helix.toml"), "--nu", "16", "--ns", "101"],
-                          capture_output=True, text=True, env={**os.environ, "MPLBACKEND": "Agg"}, timeout=120)  # fmt: skip
+    command = [str(exe)] if exe.exists() else [sys.executable, "-m", "tubecad.cli.app"]
+    done = subprocess.run(
+        command + ["report", str(SAMPLES / "helix.toml"), "--nu", "16", "--ns", "101"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "MPLBACKEND": "Agg"},
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     assert json.loads(done.stdout)["parameters"]["axis"]["curve"] == "helix"
 
 
-@pytest.mark.parametrize("args", [["--help"], ["build", "--help"], ["paper", "--help"], ["report", "SAMPLE"],
-                                  ["report", "STIFFENED"]])  # fmt: skip
+@pytest.mark.parametrize(
+    "args", [["--help"], ["build", "--help"], ["paper", "--help"], ["report", "SAMPLE"], ["report", "STIFFENED"]]
+)
 def test_help_loads_no_occt(args):
     """`tubecad --help` and `tubecad report` start without OCCT, build123d or matplotlib (lazy
     imports): the report's spec check (sizes, layout, wall, stiffener heights) uses light modules."""
@@ -160,9 +183,11 @@ def test_help_loads_no_occt(args):
 
     samples = {"SAMPLE": str(SAMPLES / "helix.toml"), "STIFFENED": str(SAMPLES / "helix_stiffened.toml")}
     args = [samples.get(a, a) for a in args]
-    code = ("import sys\nfrom tubecad.interfaces.cli import cli\ntry:\n    cli.main(%r, standalone_mode=False)\n"
-            "except SystemExit:\n    pass\nprint('LOADED', sorted(m for m in ('OCP', 'build123d', 'matplotlib') if m in sys.modules))"
-            % (args,))  # fmt: skip
+    code = (
+        "import sys\nfrom tubecad.cli.app import cli\ntry:\n    cli.main(%r, standalone_mode=False)\n"
+        "except SystemExit:\n    pass\nprint('LOADED', sorted(m for m in ('OCP', 'build123d', 'matplotlib') if m in sys.modules))"
+        % (args,)
+    )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip().splitlines()[-1] == "LOADED []"

@@ -6,13 +6,13 @@ import build123d as bd
 import numpy as np
 import pytest
 from click.testing import CliRunner
-
 from conftest import PAPER_SPEC, SMALL_STIFFENED_WALL
 from test_stiffeners import section_moments
+
 from tubecad import CurvatureLineTube, ParameterError, paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
-from tubecad.interfaces.cli import cli
+from tubecad.cli.app import cli
 from tubecad.stiffeners.assembly import build_stiffeners
 from tubecad.stiffeners.panels import split_into_panels
 from tubecad.stiffeners.profiles import Profile
@@ -82,7 +82,9 @@ def test_stiffeners_pass_the_pre_boolean_check():
     axis = paper_tube().axis
     ring = ring_stiffener(CurvatureLineTube(axis, 16.0), 640.0, PROFILES["T"](6.0), "outside").solid
     assert props.analyzer_findings(ring) == {}
-    stringer = stringer_stiffener(CurvatureLineTube(axis, 14.0), 37.0, PROFILES["T"](13.9), "inside", span=(400.0, 450.0))
+    stringer = stringer_stiffener(
+        CurvatureLineTube(axis, 14.0), 37.0, PROFILES["T"](13.9), "inside", span=(400.0, 450.0)
+    )
     assert props.analyzer_findings(stringer.solid) == {}
     tube = paper_tube()
     build = build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 3, 8))
@@ -107,26 +109,35 @@ def test_inside_stringers_up_to_the_wall_radius(kind, height):
 def test_readme_stiffeners_build_inside():
     tube = paper_tube()
     build = build_wall_solid(tube, 2.0, layout=NetLayout.equal(tube, rings=11, stringers=8))
-    stiffeners = build_stiffeners(build, rings=[1, 2], stringers=[0, 4], profile=Profile("T", 6, 1, 4, 1), side="inside")
+    stiffeners = build_stiffeners(
+        build, rings=[1, 2], stringers=[0, 4], profile=Profile("T", 6, 1, 4, 1), side="inside"
+    )
     assert [s.name for s in stiffeners] == ["ring_01", "ring_02", "stringer_00", "stringer_04"]
     assert all(props.is_valid(s.solid) for s in stiffeners)
     s1 = build.layout.s_rings[1]
-    assert props.volume(stiffeners[0].solid) == pytest.approx(ring_volume(Profile("T", 6, 1, 4, 1), s1, 14.0, "inside",
-                                                                          tube.span), rel=1e-9)  # fmt: skip
+    assert props.volume(stiffeners[0].solid) == pytest.approx(
+        ring_volume(Profile("T", 6, 1, 4, 1), s1, 14.0, "inside", tube.span), rel=1e-9
+    )
 
 
 def test_outside_stiffeners_beyond_the_limit_are_refused_before_fitting():
     axis = paper_tube().axis
     base = CurvatureLineTube(axis, 16.0)
     # a ring sees the curvature of its own span: k = 10 / 639.5 at its start, 1 / k - 16 = 47.95
-    with pytest.raises(ParameterError, match=r"height must be < 47\.95 for side = 'outside' on this wall: "
-                                             r"\(R \+ height\) max\|k\| must stay < 1 \(R = 16, max\|k\| = 0\.0156372 "
-                                             r"at s = 639\.5\), got 48$"):  # fmt: skip
+    with pytest.raises(
+        ParameterError,
+        match=r"height must be < 47\.95 for side = 'outside' on this wall: "
+        r"\(R \+ height\) max\|k\| must stay < 1 \(R = 16, max\|k\| = 0\.0156372 "
+        r"at s = 639\.5\), got 48$",
+    ):
         ring_stiffener(base, 640.0, Profile("flat", 48.0, 1.0), "outside")
     # a stringer's corners at w = +-0.5: sqrt((16 + h)^2 + 0.25) k(200) < 1, h < sqrt(400 - 0.25) - 16
     limit = math.sqrt(400 - 0.25) - 16
-    with pytest.raises(ParameterError, match=rf"height must be < {limit:.6g} for side = 'outside' on this wall: .*"
-                                             r"\(R = 16, max\|k\| = 0\.05 at s = 200\), got 4$"):  # fmt: skip
+    with pytest.raises(
+        ParameterError,
+        match=rf"height must be < {limit:.6g} for side = 'outside' on this wall: .*"
+        r"\(R = 16, max\|k\| = 0\.05 at s = 200\), got 4$",
+    ):
         stringer_stiffener(base, 0.0, Profile("flat", 4.0, 1.0), "outside")
     with pytest.raises(ParameterError, match=r"height must be < R = 14 for side = 'inside'"):
         stringer_stiffener(CurvatureLineTube(axis, 14.0), 0.0, Profile("flat", 14.0, 1.0), "inside")
@@ -138,22 +149,32 @@ def test_outside_stiffeners_beyond_the_limit_are_refused_before_fitting():
     assert props.is_valid(stringer)
 
 
-STIFFENED = SMALL_STIFFENED_WALL + """profile = "T"
+STIFFENED = (
+    SMALL_STIFFENED_WALL
+    + """profile = "T"
 height = HEIGHT
 thickness = 1.0
 flange_width = 4.0
 flange_thickness = 1.0
 side = "SIDE"
 """
+)
 
 
-@pytest.mark.parametrize("side, height, says", [
-    ("outside", 5.0, "[stiffeners] height must be < 3.89975 for side = 'outside' on this wall: the stringer's outer "
-                     "corners, sqrt((R + height)^2 + 2^2) from the axis, times max|k| must stay < 1 (R = 16, "
-                     "max|k| = 0.05 at s = 200), got 5"),
-    ("inside", 14.0, "[stiffeners] height must be < R = 14 for side = 'inside' on this wall"),
-    ("inside", 6.0, None),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "side, height, says",
+    [
+        (
+            "outside",
+            5.0,
+            "[stiffeners] height must be < 3.89975 for side = 'outside' on this wall: the stringer's outer "
+            "corners, sqrt((R + height)^2 + 2^2) from the axis, times max|k| must stay < 1 (R = 16, "
+            "max|k| = 0.05 at s = 200), got 5",
+        ),
+        ("inside", 14.0, "[stiffeners] height must be < R = 14 for side = 'inside' on this wall"),
+        ("inside", 6.0, None),
+    ],
+)
 def test_stiffener_heights_on_the_command_line(tmp_path, side, height, says):
     spec = tmp_path / "s.toml"
     spec.write_text(PAPER_SPEC + STIFFENED.replace("HEIGHT", str(height)).replace("SIDE", side))
@@ -161,7 +182,12 @@ def test_stiffener_heights_on_the_command_line(tmp_path, side, height, says):
     result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(out)])
     if says is None:
         assert result.exit_code == 0, result.output
-        assert [c.label for c in bd.import_step(out).children][1:5] == ["ring_01", "ring_02", "stringer_00", "stringer_02"]
+        assert [c.label for c in bd.import_step(out).children][1:5] == [
+            "ring_01",
+            "ring_02",
+            "stringer_00",
+            "stringer_02",
+        ]
     else:
         assert result.exit_code == 2 and says in result.output, result.output
         assert len(result.output.strip().splitlines()) == 1 and "Traceback" not in result.output

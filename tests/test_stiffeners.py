@@ -7,20 +7,20 @@ import math
 import build123d as bd
 import numpy as np
 import pytest
+from conftest import SMALL_STIFFENED_WALL
 from OCP.BRepAdaptor import BRepAdaptor_Curve
-from tubecad.occ_compat import as_edge
+from test_brep import edges_of
 
 from tubecad import CurvatureLineTube, ParameterError, paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
-from tubecad.export.cad import export_shape, import_shape
+from tubecad.export.cad import import_shape
+from tubecad.export.registry import export_shape
+from tubecad.occ_compat import as_edge
 from tubecad.stiffeners import lines_compound, net_lines, polylines_csv, polylines_json
 from tubecad.stiffeners.profiles import Profile
 from tubecad.stiffeners.solids import ring_stiffener, stringer_stiffener
 from tubecad.surface.checks import distance_to_axis
-
-from test_brep import edges_of
-from conftest import SMALL_STIFFENED_WALL
 
 
 @pytest.fixture(scope="module")
@@ -31,14 +31,24 @@ def wall():
 
 def test_lines_lie_on_the_surfaces_and_export_as_curves(tmp_path, wall):
     lines = net_lines(wall.surfaces[0], wall.layout) + net_lines(wall.surfaces[1], wall.layout, "_inner")
-    assert [ln.name for ln in lines[:5]] == ["line_ring_00", "line_ring_01", "line_ring_02", "line_ring_03", "line_stringer_00"]
+    assert [ln.name for ln in lines[:5]] == [
+        "line_ring_00",
+        "line_ring_01",
+        "line_ring_02",
+        "line_ring_03",
+        "line_stringer_00",
+    ]
     for line in lines:
         curve = BRepAdaptor_Curve(line.edge().wrapped)
         tube = line.surface.tube
         for p in np.linspace(curve.FirstParameter(), curve.LastParameter(), 25):
             q = curve.Value(p)
             # a ring is a Geom_Circle whose parameter is the angle from the surface's origin
-            th, s = (p + math.radians(line.surface.origin_deg), line.value) if line.kind == "ring" else (math.radians(line.value), p)
+            th, s = (
+                (p + math.radians(line.surface.origin_deg), line.value)
+                if line.kind == "ring"
+                else (math.radians(line.value), p)
+            )
             assert np.linalg.norm(np.array([q.X(), q.Y(), q.Z()]) - tube.points(th, s)) < 1e-8
     compound = lines_compound(lines)
     step = import_shape(export_shape(compound, tmp_path / "lines.step"))
@@ -63,8 +73,11 @@ def test_polylines_carry_position_tangent_and_normal(tmp_path, wall):
         assert np.abs(np.einsum("ij,ij->i", t, n)).max() < 1e-12
         chords = np.diff(p, axis=0)
         mid = t[:-1] + t[1:]
-        cos = np.einsum("ij,ij->i", chords / np.linalg.norm(chords, axis=1, keepdims=True),
-                        mid / np.linalg.norm(mid, axis=1, keepdims=True))  # fmt: skip
+        cos = np.einsum(
+            "ij,ij->i",
+            chords / np.linalg.norm(chords, axis=1, keepdims=True),
+            mid / np.linalg.norm(mid, axis=1, keepdims=True),
+        )
         assert cos.min() > 0.999  # the tangent points along the line
     first = rows[0]
     assert first["line"] == "line_ring_00_inner" and float(first["surface_radius"]) == 14.0
@@ -73,6 +86,7 @@ def test_polylines_carry_position_tangent_and_normal(tmp_path, wall):
 def unique_edges(shape):
     from OCP.TopAbs import TopAbs_EDGE
     from OCP.TopExp import TopExp
+
     from tubecad.occ_compat import IndexedMapOfShape
 
     found = IndexedMapOfShape()
@@ -156,8 +170,9 @@ def test_stiffener_input_errors():
 
 
 def test_named_step_assembly_keeps_names_colours_and_solids(tmp_path):
+    from tubecad.export.cad import export_named_step
     from tubecad.stiffeners import net_lines
-    from tubecad.stiffeners.assembly import build_stiffeners, export_named_step, named_assembly
+    from tubecad.stiffeners.assembly import build_stiffeners, named_assembly
 
     tube = paper_tube()
     build = build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 4, 4))
@@ -218,22 +233,27 @@ def test_ring_flat_pattern_is_the_annulus_of_the_ring_web(tmp_path):
     assert [p.suffix for p in paths] == [".svg", ".png"] and paths[1].read_bytes().startswith(b"\x89PNG")
 
 
-STIFFENED = SMALL_STIFFENED_WALL + """profile = "flat"
+STIFFENED = (
+    SMALL_STIFFENED_WALL
+    + """profile = "flat"
 height = 3.0
 thickness = 1.0
 side = "inside"
 """
+)
 
 
 def test_build_and_flat_commands_with_stiffeners(tmp_path):
     from click.testing import CliRunner
-
     from conftest import PAPER_SPEC
-    from tubecad.interfaces.cli import cli
+
+    from tubecad.cli.app import cli
 
     spec = tmp_path / "s.toml"
     spec.write_text(PAPER_SPEC + STIFFENED)
-    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "a.step"), "--report", str(tmp_path / "r.json")])
+    result = CliRunner().invoke(
+        cli, ["build", str(spec), "-o", str(tmp_path / "a.step"), "--report", str(tmp_path / "r.json")]
+    )
     assert result.exit_code == 0, result.output
     names = [c.label for c in bd.import_step(tmp_path / "a.step").children]
     assert names == ["wall", "ring_01", "ring_02", "stringer_00", "stringer_02", "curvature_lines"]
@@ -250,20 +270,29 @@ def test_build_and_flat_commands_with_stiffeners(tmp_path):
 @pytest.mark.parametrize(
     "edit, says",
     [
-        (lambda t: t.replace("rings = [1, 2]", "rings = [1, 9]"), "[stiffeners] rings must be indices in [0, 3], got [9]"),
-        (lambda t: t.replace("rings = [1, 2]", 'rings = "some"'), '[stiffeners] rings must be a list of whole-number indices or "all"'),
+        (
+            lambda t: t.replace("rings = [1, 2]", "rings = [1, 9]"),
+            "[stiffeners] rings must be indices in [0, 3], got [9]",
+        ),
+        (
+            lambda t: t.replace("rings = [1, 2]", 'rings = "some"'),
+            '[stiffeners] rings must be a list of whole-number indices or "all"',
+        ),
         (lambda t: t.replace('profile = "flat"', 'profile = "I"'), "[stiffeners] profile must be one of flat, T, L"),
         (lambda t: t.replace('side = "inside"', 'side = "under"'), "[stiffeners] side must be one of outside, inside"),
         (lambda t: t.replace("height = 3.0\n", ""), "[stiffeners] height is missing"),
-        (lambda t: t.replace('profile = "flat"', 'profile = "T"'), "[stiffeners] flange_thickness must be in (0, 3), got 0"),
+        (
+            lambda t: t.replace('profile = "flat"', 'profile = "T"'),
+            "[stiffeners] flange_thickness must be in (0, 3), got 0",
+        ),
         (lambda t: t.replace("height = 3.0", "height = 30.0"), "[stiffeners] height must be < R"),
     ],
 )
 def test_stiffener_spec_errors(tmp_path, edit, says):
     from click.testing import CliRunner
-
     from conftest import PAPER_SPEC
-    from tubecad.interfaces.cli import cli
+
+    from tubecad.cli.app import cli
 
     spec = tmp_path / "s.toml"
     spec.write_text(PAPER_SPEC + edit(STIFFENED))
@@ -274,9 +303,9 @@ def test_stiffener_spec_errors(tmp_path, edit, says):
 
 def test_flat_needs_a_stiffeners_section(tmp_path):
     from click.testing import CliRunner
-
     from conftest import PAPER_SPEC
-    from tubecad.interfaces.cli import cli
+
+    from tubecad.cli.app import cli
 
     spec = tmp_path / "s.toml"
     spec.write_text(PAPER_SPEC)
@@ -300,9 +329,9 @@ def test_stiffeners_fuse_into_the_wall():
 
 def test_panels_fit_together_into_the_wall_with_exact_areas(tmp_path):
     from click.testing import CliRunner
-
     from conftest import PAPER_SPEC
-    from tubecad.interfaces.cli import cli
+
+    from tubecad.cli.app import cli
     from tubecad.stiffeners.panels import split_into_panels
 
     tube = paper_tube()
@@ -321,11 +350,20 @@ def test_panels_fit_together_into_the_wall_with_exact_areas(tmp_path):
         assert p.outer_area == pytest.approx(exact, rel=1e-6)
         assert p.mass(7.85e-6) == pytest.approx(props.volume(p.solid) * 7.85e-6)
     spec = tmp_path / "p.toml"
-    spec.write_text(PAPER_SPEC + "\n[layout]\nrings = 3\nstringers = 4\n\n[wall]\nthickness = 2.0\n\n[panels]\nseams = [0, 2]\n")
-    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "p.step"), "--report", str(tmp_path / "r.json")])
+    spec.write_text(
+        PAPER_SPEC + "\n[layout]\nrings = 3\nstringers = 4\n\n[wall]\nthickness = 2.0\n\n[panels]\nseams = [0, 2]\n"
+    )
+    result = CliRunner().invoke(
+        cli, ["build", str(spec), "-o", str(tmp_path / "p.step"), "--report", str(tmp_path / "r.json")]
+    )
     assert result.exit_code == 0, result.output
     wall = bd.import_step(tmp_path / "p.step").children[0]
-    assert wall.label == "wall" and [c.label for c in wall.children] == ["panel_r0_s0", "panel_r0_s1", "panel_r1_s0", "panel_r1_s1"]
+    assert wall.label == "wall" and [c.label for c in wall.children] == [
+        "panel_r0_s0",
+        "panel_r0_s1",
+        "panel_r1_s0",
+        "panel_r1_s1",
+    ]
     assert len(json.loads((tmp_path / "r.json").read_text())["panels"]) == 4
     with pytest.raises(ParameterError, match="seams must be one or more stringer indices"):
         split_into_panels(build, [8])
@@ -333,17 +371,24 @@ def test_panels_fit_together_into_the_wall_with_exact_areas(tmp_path):
 
 def test_build_writes_polylines_by_extension(tmp_path):
     from click.testing import CliRunner
-
     from conftest import PAPER_SPEC
-    from tubecad.interfaces.cli import cli
+
+    from tubecad.cli.app import cli
 
     spec = tmp_path / "s.toml"
     spec.write_text(PAPER_SPEC + "\n[layout]\nrings = 3\nstringers = 2\n\n[wall]\nthickness = 2.0\n")
-    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "n.csv"), "-o", str(tmp_path / "n.json")])
+    result = CliRunner().invoke(
+        cli, ["build", str(spec), "-o", str(tmp_path / "n.csv"), "-o", str(tmp_path / "n.json")]
+    )
     assert result.exit_code == 0, result.output
     data = json.loads((tmp_path / "n.json").read_text())
-    assert [ln["name"] for ln in data["lines"]][:5] == ["line_ring_00", "line_ring_01", "line_ring_02", "line_stringer_00",
-                                                        "line_stringer_01"]  # fmt: skip
+    assert [ln["name"] for ln in data["lines"]][:5] == [
+        "line_ring_00",
+        "line_ring_01",
+        "line_ring_02",
+        "line_stringer_00",
+        "line_stringer_01",
+    ]
     assert {ln["surface_radius"] for ln in data["lines"]} == {16.0, 14.0}
     rows = (tmp_path / "n.csv").read_text().splitlines()
     assert rows[0].startswith("line,kind,index") and len(rows) == 1 + 200 * 10

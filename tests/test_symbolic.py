@@ -32,10 +32,14 @@ def forms(phi):
     normal = sp.cos(phi) * NRM + sp.sin(phi) * BN  # outward unit normal of the tube
     simplify = lambda e: sp.simplify(sp.trigsimp(sp.expand(e)))  # noqa: E731
     return {
-        "E": simplify(Su.dot(Su)), "F": simplify(Su.dot(Ss)), "G": simplify(Ss.dot(Ss)),
-        "L": simplify(Suu.dot(normal)), "M": simplify(Sus.dot(normal)), "N": simplify(Sss.dot(normal)),
+        "E": simplify(Su.dot(Su)),
+        "F": simplify(Su.dot(Ss)),
+        "G": simplify(Ss.dot(Ss)),
+        "L": simplify(Suu.dot(normal)),
+        "M": simplify(Sus.dot(normal)),
+        "N": simplify(Sss.dot(normal)),
         "normal_is_normal": (simplify(normal.dot(Su)), simplify(normal.dot(Ss))),
-    }  # fmt: skip
+    }
 
 
 def test_curvature_line_parameterisation_general_slope_curve():
@@ -78,4 +82,7 @@ def test_rotation_minimising_tube_on_any_axis():
     assert simplify(radial.dot(Su)) == 0 and simplify(radial.dot(Ss)) == 0  # the radial unit vector is the normal
     assert simplify(Suu.dot(radial) + rho) == 0
     assert simplify(Sus.dot(radial)) == 0
-    assert simplify(Sss.dot(radial) - (k1 * sp.cos(u) + k2 * sp.sin(u)) * (1 - rho * (k1 * sp.cos(u) + k2 * sp.sin(u)))) == 0
+    assert (
+        simplify(Sss.dot(radial) - (k1 * sp.cos(u) + k2 * sp.sin(u)) * (1 - rho * (k1 * sp.cos(u) + k2 * sp.sin(u))))
+        == 0
+    )

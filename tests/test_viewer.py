@@ -39,7 +39,7 @@ def free_port() -> int:
 
 def tubecad_command() -> list[str]:
     exe = Path(sys.executable).parent / "tubecad"
-    return [str(exe)] if exe.exists() else [sys.executable, "-m", "tubecad.interfaces.console"]
+    return [str(exe)] if exe.exists() else [sys.executable, "-m", "tubecad.cli.console"]
 
 
 def clean_env(home: Path, **extra: str) -> dict[str, str]:
@@ -68,8 +68,12 @@ def sent_parts(shown) -> dict[str, dict]:
             shape = part["shape"]
             flat = instances[shape["ref"]]["vertices"] if "ref" in shape else shape.get("edges", shape.get("vertices"))
             points = np.asarray(flat, dtype=float).reshape(-1, 3)
-            out[part["name"]] = {"type": part["type"], "color": part["color"], "alpha": part.get("alpha", 1.0),
-                                 "bbox": (points.min(axis=0), points.max(axis=0))}  # fmt: skip
+            out[part["name"]] = {
+                "type": part["type"],
+                "color": part["color"],
+                "alpha": part.get("alpha", 1.0),
+                "bbox": (points.min(axis=0), points.max(axis=0)),
+            }
 
     walk(shapes)
     return out
@@ -108,8 +112,8 @@ def small_wall():
 def test_show_records_the_named_coloured_tree(monkeypatch, small_wall):
     """Names, colours, the wall's alpha and the bounding boxes of what would be sent."""
     import tubecad
+    from tubecad.integrations.viewer import LINE_RING_RGB, LINE_STRINGER_RGB, WALL_ALPHA
     from tubecad.stiffeners.assembly import RING_COLOUR, STRINGER_COLOUR, WALL_COLOUR
-    from tubecad.interfaces.viewer import LINE_RING_RGB, LINE_STRINGER_RGB, WALL_ALPHA
 
     monkeypatch.setenv("OCP_VSCODE_PYTEST", "1")
     monkeypatch.delenv("OCP_VIEWER_PYTEST", raising=False)
@@ -125,7 +129,8 @@ def test_show_records_the_named_coloured_tree(monkeypatch, small_wall):
     assert set(parts) == {"wall", "ring_01", "ring_03", "stringer_00", "stringer_02", "curvature_lines", *lines}
     assert shown.names[:5] == ["wall", "ring_01", "ring_03", "stringer_00", "stringer_02"]
     assert shown.recorded and shown.summary().startswith(
-        f"tubecad: wall, 2 ring and 2 stringer stiffeners, {len(lines)} curvature lines recorded")
+        f"tubecad: wall, 2 ring and 2 stringer stiffeners, {len(lines)} curvature lines recorded"
+    )
 
     # colours: the wall translucent, rings and stringers (stiffeners and lines) each their own
     wall = parts["wall"]
@@ -156,8 +161,9 @@ def test_show_records_the_named_coloured_tree(monkeypatch, small_wall):
         s_i = layout.s_rings[i]  # its faces in the normal planes at s_i -+ width / 2: wider outside the bend
         tangent = axis.frame(s_i)[0]
         lo, hi = parts[f"ring_{i:02d}"]["bbox"]
-        np.testing.assert_allclose((hi - lo) / 2, circle_half_extent(r_in, tangent) + width / 2 * np.abs(tangent),
-                                   atol=0.02)  # fmt: skip
+        np.testing.assert_allclose(
+            (hi - lo) / 2, circle_half_extent(r_in, tangent) + width / 2 * np.abs(tangent), atol=0.02
+        )
         off_centre = width / 2 * r_in * float(axis.curvature(s_i))  # measured 0.107 at s = 450
         assert np.abs((lo + hi) / 2 - axis.position(s_i)).max() < off_centre + 0.02
     for name, part in parts.items():  # everything lies within the wall's box
@@ -167,13 +173,14 @@ def test_show_records_the_named_coloured_tree(monkeypatch, small_wall):
 
 def test_show_of_a_spec_with_panels(monkeypatch, tmp_path):
     """A spec path: [panels] become the wall's children, each translucent."""
-    import tubecad
-
     from conftest import PAPER_SPEC
 
+    import tubecad
+
     spec = tmp_path / "panelled.toml"
-    spec.write_text(PAPER_SPEC + "\n[layout]\nrings = 3\nstringers = 4\n\n[wall]\nthickness = 2.0\n\n"
-                    "[panels]\nseams = [0, 2]\n")  # fmt: skip
+    spec.write_text(
+        PAPER_SPEC + "\n[layout]\nrings = 3\nstringers = 4\n\n[wall]\nthickness = 2.0\n\n[panels]\nseams = [0, 2]\n"
+    )
     monkeypatch.setenv("OCP_VSCODE_PYTEST", "1")
     shown = tubecad.show(spec)
     parts = sent_parts(shown)
@@ -215,10 +222,17 @@ def test_show_refuses_what_it_cannot_show(monkeypatch):
 def test_no_viewer_is_one_line_and_exit_2_before_anything_is_built(tmp_path):
     """The port is checked first: nothing heavy (OCCT, build123d, ocp_vscode) is imported."""
     port = free_port()
-    code = ("import sys\nfrom tubecad.interfaces.cli import main\ntry:\n    main()\nexcept SystemExit as exc:\n"
-            "    print('EXIT', exc.code, sorted(m for m in ('OCP', 'build123d', 'ocp_vscode', 'numpy') if m in sys.modules))")  # fmt: skip
-    done = subprocess.run([sys.executable, "-c", code, "view", "paper", "--port", str(port)], capture_output=True,
-                          text=True, timeout=60, env=clean_env(tmp_path))  # fmt: skip
+    code = (
+        "import sys\nfrom tubecad.cli.app import main\ntry:\n    main()\nexcept SystemExit as exc:\n"
+        "    print('EXIT', exc.code, sorted(m for m in ('OCP', 'build123d', 'ocp_vscode', 'numpy') if m in sys.modules))"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code, "view", "paper", "--port", str(port)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env=clean_env(tmp_path),
+    )
     assert done.stdout.strip().splitlines()[-1] == "EXIT 2 []", done.stdout + done.stderr
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and f"no viewer on 127.0.0.1:{port}" in lines[0], done.stderr
@@ -229,8 +243,13 @@ def test_no_viewer_console_script_and_ocp_port(tmp_path):
     """The installed console script, the port taken from OCP_PORT; a generous guard only
     (the check itself is a socket connect with a 0.5 s timeout; measured ~0.1 s in all)."""
     port = free_port()
-    done = subprocess.run([*tubecad_command(), "view", str(ROOT / "samples" / "helix_stiffened.toml")],
-                          capture_output=True, text=True, timeout=30, env=clean_env(tmp_path, OCP_PORT=str(port)))  # fmt: skip
+    done = subprocess.run(
+        [*tubecad_command(), "view", str(ROOT / "samples" / "helix_stiffened.toml")],
+        capture_output=True,
+        text=True,
+        timeout=30,
+        env=clean_env(tmp_path, OCP_PORT=str(port)),
+    )
     assert done.returncode == 2 and done.stdout == ""
     assert done.stderr.count("\n") == 1 and f"127.0.0.1:{port}" in done.stderr, done.stderr
 
@@ -240,9 +259,19 @@ def test_no_viewer_console_script_and_ocp_port(tmp_path):
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 #: headless as root with a closed network; WebGL runs on SwiftShader
-CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                  "--enable-unsafe-swiftshader", "--window-size=1200,800", "--remote-debugging-port=0"]  # fmt: skip
+CHROMIUM_FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--enable-unsafe-swiftshader",
+    "--window-size=1200,800",
+    "--remote-debugging-port=0",
+]
 
 
 def wait_for(condition, what, timeout: float = 60.0, process: subprocess.Popen | None = None):
@@ -312,7 +341,7 @@ def pixel_counts(png: bytes) -> dict[str, int]:
 
     rgb = np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)[60:, 270:]
     r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
-    near = lambda colour, tol=25: (np.abs(rgb - np.array(colour)).max(axis=-1) < tol)  # noqa: E731
+    near = lambda colour, tol=25: np.abs(rgb - np.array(colour)).max(axis=-1) < tol  # noqa: E731
     return {
         "logo": int(near((0x5F, 0xA8, 0xF0)).sum()),  # the splash's blue "OCP"
         "wall": int(((b > r + 15) & (r > 140)).sum()),  # the translucent blue-grey wall over white
@@ -333,15 +362,25 @@ def test_view_paper_in_the_standalone_viewer(tmp_path):
     processes: list[subprocess.Popen] = []
     try:
         with open(viewer_log, "w") as log:
-            viewer = subprocess.Popen([sys.executable, "-m", "ocp_viewer", "--host", "127.0.0.1", "--port", str(port)],
-                                      stdout=log, stderr=subprocess.STDOUT, env=env, start_new_session=True)  # fmt: skip
+            viewer = subprocess.Popen(
+                [sys.executable, "-m", "ocp_viewer", "--host", "127.0.0.1", "--port", str(port)],
+                stdout=log,
+                stderr=subprocess.STDOUT,
+                env=env,
+                start_new_session=True,
+            )
         processes.append(viewer)
         url = f"http://127.0.0.1:{port}/viewer"
         wait_for(lambda: "OCP Viewer runs at" in viewer_log.read_text(), "the viewer starts", process=viewer)
 
         profile = tmp_path / "chromium-profile"
-        browser = subprocess.Popen([CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", url], env=env,
-                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)  # fmt: skip
+        browser = subprocess.Popen(
+            [CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", url],
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+        )
         processes.append(browser)
         active = profile / "DevToolsActivePort"
         wait_for(lambda: active.is_file() and active.read_text().strip(), "Chromium's DevTools port", process=browser)
@@ -364,11 +403,18 @@ def test_view_paper_in_the_standalone_viewer(tmp_path):
             (tmp_path / "empty.png").write_bytes(empty)
             before = pixel_counts(empty)
 
-            done = subprocess.run([*tubecad_command(), "view", "paper", "--port", str(port)], capture_output=True,
-                                  text=True, timeout=600, env=env)  # fmt: skip
+            done = subprocess.run(
+                [*tubecad_command(), "view", "paper", "--port", str(port)],
+                capture_output=True,
+                text=True,
+                timeout=600,
+                env=env,
+            )
             assert done.returncode == 0, done.stderr
-            assert done.stdout.strip() == (f"paper: wall, 9 ring and 4 stringer stiffeners, 38 curvature lines "
-                                           f"sent to the viewer on 127.0.0.1:{port}")  # fmt: skip
+            assert done.stdout.strip() == (
+                f"paper: wall, 9 ring and 4 stringer stiffeners, 38 curvature lines "
+                f"sent to the viewer on 127.0.0.1:{port}"
+            )
 
             seen: dict[str, int] = {}
 
@@ -376,14 +422,19 @@ def test_view_paper_in_the_standalone_viewer(tmp_path):
                 png = page.screenshot()
                 counts = pixel_counts(png)
                 seen.update(counts)
-                shown = counts["logo"] < 50 and counts["wall"] > 3000 and counts["stringer_lines"] > 3000 \
-                    and counts["rings"] > 500  # fmt: skip
+                shown = (
+                    counts["logo"] < 50
+                    and counts["wall"] > 3000
+                    and counts["stringer_lines"] > 3000
+                    and counts["rings"] > 500
+                )
                 return (png, counts) if shown else None
 
             # thresholds: measured empty (splash) ~22000 logo, 0 wall, ~1200 blue, ~10 ring pixels;
             # the paper ~0 logo, ~17500 wall, ~14900 blue, ~1900 ring pixels (1200 x 657 page)
-            png, after = wait_for(model_on_screen, lambda: f"the paper on screen (empty: {before}, last: {seen})",
-                                  timeout=120)  # fmt: skip
+            png, after = wait_for(
+                model_on_screen, lambda: f"the paper on screen (empty: {before}, last: {seen})", timeout=120
+            )
             print("pixel counts, empty viewer:", before, "with the paper:", after)
             (tmp_path / "paper.png").write_bytes(png)
             with contextlib.suppress(OSError):

@@ -9,26 +9,45 @@ The pipeline, one folder per stage:
 - :mod:`tubecad.brep`: shells and solids whose edges are the chosen curvature lines;
 - :mod:`tubecad.stiffeners`: curvature lines, stiffeners, panels and flat patterns;
 - :mod:`tubecad.export`: CAD files, meshes and pictures;
-- :mod:`tubecad.interfaces`: spec files, reports, the ``tubecad`` command line, plugins.
+- :mod:`tubecad.fem` and :mod:`tubecad.shop`: analysis meshes and shop-floor outputs;
+- :mod:`tubecad.spec` and :mod:`tubecad.batch`: spec files, their builds and reports, batches;
+- :mod:`tubecad.cli` and :mod:`tubecad.integrations`: the ``tubecad`` command line, the viewer
+  and the CadQuery plugin;
+- :mod:`tubecad.core`: errors, units, validation, the tolerance policy, atomic writes.
 
 Names are imported on first use (PEP 562), so ``tubecad --help`` and a Ctrl-C at
 start-up load no numpy, scipy or OCCT.
 """
 
-from ._lazy import lazy_exports
+from tubecad.core.lazy import lazy_exports
 
 _PUBLIC = {
-    "SlopeCurve": ".curves", "LogSpiral": ".curves", "Helix": ".curves", "Clothoid": ".curves",
-    "CircleInvolute": ".curves", "CustomCurvature": ".curves", "Axis": ".curves",
-    "NaturalAxis": ".curves.natural", "ParametricAxis": ".curves.parametric", "expression_curve": ".curves.parametric",
-    "points_axis": ".curves.points", "edge_axis": ".curves.edge",
-    "CurvatureLineTube": ".surface", "FundamentalForms": ".surface", "paper_tube": ".examples",
-    "CanalSurface": ".surface.canal", "tube_or_canal": ".surface.canal", "radius_law": ".curves.radius_law",
-    "RadiusLaw": ".curves.radius_law",
-    "TubecadError": ".errors", "ParameterError": ".errors", "ExpressionError": ".errors",
-    "RegularityError": ".errors", "SpecError": ".errors",
-    "show": ".interfaces.viewer",
-}  # fmt: skip
+    "SlopeCurve": "tubecad.curves",
+    "LogSpiral": "tubecad.curves",
+    "Helix": "tubecad.curves",
+    "Clothoid": "tubecad.curves",
+    "CircleInvolute": "tubecad.curves",
+    "CustomCurvature": "tubecad.curves",
+    "Axis": "tubecad.curves",
+    "NaturalAxis": "tubecad.curves.natural",
+    "ParametricAxis": "tubecad.curves.parametric",
+    "expression_curve": "tubecad.curves.parametric",
+    "points_axis": "tubecad.curves.points",
+    "edge_axis": "tubecad.curves.edge",
+    "CurvatureLineTube": "tubecad.surface",
+    "FundamentalForms": "tubecad.surface",
+    "paper_tube": "tubecad.spec.paper",
+    "CanalSurface": "tubecad.surface.canal",
+    "tube_or_canal": "tubecad.surface.canal",
+    "radius_law": "tubecad.curves.radius_law",
+    "RadiusLaw": "tubecad.curves.radius_law",
+    "TubecadError": "tubecad.core.errors",
+    "ParameterError": "tubecad.core.errors",
+    "ExpressionError": "tubecad.core.errors",
+    "RegularityError": "tubecad.core.errors",
+    "SpecError": "tubecad.core.errors",
+    "show": "tubecad.integrations.viewer",
+}
 
 __all__ = list(_PUBLIC)
 __getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())

@@ -13,13 +13,29 @@ from __future__ import annotations
 try:  # OCP 8
     from OCP.collections import (
         Array1_double as Array1OfReal,
+    )
+    from OCP.collections import (
         Array1_gp_Pnt as Array1OfPnt,
+    )
+    from OCP.collections import (
         Array1_gp_Pnt2d as Array1OfPnt2d,
+    )
+    from OCP.collections import (
         Array1_int as Array1OfInteger,
+    )
+    from OCP.collections import (
         Array2_double as Array2OfReal,
+    )
+    from OCP.collections import (
         Array2_gp_Pnt as Array2OfPnt,
+    )
+    from OCP.collections import (
         IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedDataMapOfShapeListOfShape,
+    )
+    from OCP.collections import (
         IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedMapOfShape,
+    )
+    from OCP.collections import (
         Sequence_TDF_Label as LabelSequence,
     )
 
@@ -31,9 +47,9 @@ except ImportError:  # OCP 7.9
     from OCP.TColStd import TColStd_Array1OfInteger as Array1OfInteger
     from OCP.TColStd import TColStd_Array1OfReal as Array1OfReal
     from OCP.TColStd import TColStd_Array2OfReal as Array2OfReal
+    from OCP.TDF import TDF_LabelSequence as LabelSequence
     from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape as IndexedDataMapOfShapeListOfShape
     from OCP.TopTools import TopTools_IndexedMapOfShape as IndexedMapOfShape
-    from OCP.TDF import TDF_LabelSequence as LabelSequence
 
     OCP_GENERATION = 7
 
@@ -67,6 +83,19 @@ def as_wire(shape: TopoDS_Shape) -> TopoDS_Wire:
     return _wire(shape)
 
 
-__all__ = ["OCP_GENERATION", "Array1OfInteger", "Array1OfPnt", "Array1OfPnt2d", "Array1OfReal", "Array2OfPnt",
-           "Array2OfReal", "IndexedDataMapOfShapeListOfShape", "IndexedMapOfShape", "LabelSequence", "as_edge", "as_face", "as_solid",
-           "as_wire"]  # fmt: skip
+__all__ = [
+    "OCP_GENERATION",
+    "Array1OfInteger",
+    "Array1OfPnt",
+    "Array1OfPnt2d",
+    "Array1OfReal",
+    "Array2OfPnt",
+    "Array2OfReal",
+    "IndexedDataMapOfShapeListOfShape",
+    "IndexedMapOfShape",
+    "LabelSequence",
+    "as_edge",
+    "as_face",
+    "as_solid",
+    "as_wire",
+]

@@ -16,8 +16,8 @@ direction x S_s, so its face is the natural one (S_u x S_s) exactly when u0 < u1
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 from OCP.BRep import BRep_Builder
@@ -29,8 +29,8 @@ from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid, TopoDS_Vertex, TopoDS_Wire
 
-from ..errors import TubecadError
-from ..fitting.tolerance import EDGE_TOLERANCE
+from tubecad.core.errors import TubecadError
+from tubecad.core.tolerance import EDGE_TOLERANCE
 
 #: edge, vertex and face tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = EDGE_TOLERANCE
@@ -57,10 +57,20 @@ def iso_pcurve(u: float | None = None, s: float | None = None) -> Geom2d_Line:
     return Geom2d_Line(gp_Pnt2d(0.0, s), gp_Dir2d(1.0, 0.0))
 
 
-def patch_face(surface: Geom_BSplineSurface, u0: float, u1: float, s0: float, s1: float, bottom: TopoDS_Edge,
-               right: TopoDS_Edge, top: TopoDS_Edge, left: TopoDS_Edge, reverse: bool = False,
-               ring_pcurves: tuple[Geom2d_Curve, Geom2d_Curve] | None = None,
-               ring_tolerance: float = TOLERANCE) -> TopoDS_Face:  # fmt: skip
+def patch_face(
+    surface: Geom_BSplineSurface,
+    u0: float,
+    u1: float,
+    s0: float,
+    s1: float,
+    bottom: TopoDS_Edge,
+    right: TopoDS_Edge,
+    top: TopoDS_Edge,
+    left: TopoDS_Edge,
+    reverse: bool = False,
+    ring_pcurves: tuple[Geom2d_Curve, Geom2d_Curve] | None = None,
+    ring_tolerance: float = TOLERANCE,
+) -> TopoDS_Face:
     """The face [u0, u1] x [s0, s1] (u0 < u1, s0 < s1) of ``surface`` bounded by its isolines:
     ``bottom``/``top`` at s0/s1 (parameter u), ``left``/``right`` at u0/u1 (parameter s).
     Edges whose 3D curve has another parameter (an exact circle, by angle) come with their
@@ -82,16 +92,21 @@ def patch_face(surface: Geom_BSplineSurface, u0: float, u1: float, s0: float, s1
     builder.UpdateEdge(right, iso_pcurve(u=u1), face, TOLERANCE)
     wire = TopoDS_Wire()
     builder.MakeWire(wire)  # counter-clockwise in (u, s)
-    for e, orientation in ((bottom, TopAbs_FORWARD), (right, TopAbs_FORWARD), (top, TopAbs_REVERSED),
-                           (left, TopAbs_REVERSED)):  # fmt: skip
+    for e, orientation in (
+        (bottom, TopAbs_FORWARD),
+        (right, TopAbs_FORWARD),
+        (top, TopAbs_REVERSED),
+        (left, TopAbs_REVERSED),
+    ):
         builder.Add(wire, e.Oriented(orientation))
     wire.Closed(True)
     builder.Add(face, wire)
     return TopoDS_Face.Reversed(face) if reverse else face
 
 
-def plane_face(origin: np.ndarray, normal: np.ndarray, x_dir: np.ndarray,
-               loops: Sequence[Sequence[tuple[TopoDS_Edge, bool]]]) -> TopoDS_Face:  # fmt: skip
+def plane_face(
+    origin: np.ndarray, normal: np.ndarray, x_dir: np.ndarray, loops: Sequence[Sequence[tuple[TopoDS_Edge, bool]]]
+) -> TopoDS_Face:
     """A planar face through ``origin`` with unit ``normal``, bounded by ``loops``: each a
     list of (edge, forward) in traversal order, the first counter-clockwise about the
     normal, the others (holes) clockwise."""
@@ -161,8 +176,14 @@ class CapPlane:
     x_dir: np.ndarray
 
 
-def strip_solid(strips: Sequence[Strip], s0: float, s1: float, caps: tuple[CapPlane, CapPlane],
-                counter_clockwise: bool, cuts: Sequence[float] = ()) -> tuple[TopoDS_Solid, list[TopoDS_Face]]:  # fmt: skip
+def strip_solid(
+    strips: Sequence[Strip],
+    s0: float,
+    s1: float,
+    caps: tuple[CapPlane, CapPlane],
+    counter_clockwise: bool,
+    cuts: Sequence[float] = (),
+) -> tuple[TopoDS_Solid, list[TopoDS_Face]]:
     """The solid between s0 and s1 bounded by ``strips`` (a closed cycle, see the module) and
     planar caps in ``caps`` (at s0, s1); ``counter_clockwise``: the cycle runs counter-
     clockwise about +S_s. Each strip is cut into faces at the arc lengths ``cuts`` (where
@@ -182,8 +203,9 @@ def strip_solid(strips: Sequence[Strip], s0: float, s1: float, caps: tuple[CapPl
     return closed_solid(faces + cap_faces), faces
 
 
-def closed_strip_solid(strips: Sequence[Strip], s0: float, s1: float, counter_clockwise: bool,
-                       cuts: Sequence[float] = ()) -> tuple[TopoDS_Solid, list[TopoDS_Face]]:  # fmt: skip
+def closed_strip_solid(
+    strips: Sequence[Strip], s0: float, s1: float, counter_clockwise: bool, cuts: Sequence[float] = ()
+) -> tuple[TopoDS_Solid, list[TopoDS_Face]]:
     """Like :func:`strip_solid` round a closed axis whose frame comes back unturned: the
     cross-section at s1 is the one at s0, so there are no caps; the edges at s0 close the
     strips at s1 too. A strip with no cut is cut at s_mid as well (no face meets itself
@@ -193,8 +215,9 @@ def closed_strip_solid(strips: Sequence[Strip], s0: float, s1: float, counter_cl
     return closed_solid(faces), faces
 
 
-def _strip_faces(strips: Sequence[Strip], bands: list[float], counter_clockwise: bool,
-                 closed: bool) -> tuple[list[TopoDS_Face], list[list[TopoDS_Edge]]]:  # fmt: skip
+def _strip_faces(
+    strips: Sequence[Strip], bands: list[float], counter_clockwise: bool, closed: bool
+) -> tuple[list[TopoDS_Face], list[list[TopoDS_Edge]]]:
     """The faces of every strip between consecutive arc lengths ``bands`` with shared edges,
     and crosses[k][c]: strip k's edge at bands[c] along +u (``closed``: the edges at
     bands[0] serve at bands[-1] as well)."""
@@ -204,8 +227,19 @@ def _strip_faces(strips: Sequence[Strip], bands: list[float], counter_clockwise:
     corners = [[vertex(st.surface.Value(st.u0, s)) for s in bands[:rows]] for st in strips]
     # each long edge on its own band's piece of the surface: its curve then has no C0 knot
     # (e.g. a route's joint) outside the edge, which OCCT's continuity check would report
-    longs = [[edge(_band(st, bands[b], bands[b + 1]).UIso(st.u0), corners[k][at[b]], corners[k][at[b + 1]], bands[b],
-                   bands[b + 1]) for b in range(len(bands) - 1)] for k, st in enumerate(strips)]  # fmt: skip
+    longs = [
+        [
+            edge(
+                _band(st, bands[b], bands[b + 1]).UIso(st.u0),
+                corners[k][at[b]],
+                corners[k][at[b + 1]],
+                bands[b],
+                bands[b + 1],
+            )
+            for b in range(len(bands) - 1)
+        ]
+        for k, st in enumerate(strips)
+    ]
     faces, crosses = [], []
     for k, st in enumerate(strips):
         nxt = (k + 1) % n
@@ -222,8 +256,20 @@ def _strip_faces(strips: Sequence[Strip], bands: list[float], counter_clockwise:
         lo, hi = (st.u0, st.u1) if forward else (st.u1, st.u0)
         for b in range(len(bands) - 1):
             left, right = (longs[k][b], longs[nxt][b]) if forward else (longs[nxt][b], longs[k][b])
-            faces.append(patch_face(st.surface, lo, hi, bands[b], bands[b + 1], crosses[k][b], right,
-                                    crosses[k][b + 1], left, reverse=forward != counter_clockwise))  # fmt: skip
+            faces.append(
+                patch_face(
+                    st.surface,
+                    lo,
+                    hi,
+                    bands[b],
+                    bands[b + 1],
+                    crosses[k][b],
+                    right,
+                    crosses[k][b + 1],
+                    left,
+                    reverse=forward != counter_clockwise,
+                )
+            )
     return faces, crosses
 
 

@@ -22,11 +22,10 @@ last band alike (:func:`_canal_closing_ring`, :func:`canal_arc_pcurve`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Callable, Sequence
-
 import functools
 import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
 
 import numpy as np
 from OCP.BRep import BRep_Builder
@@ -34,18 +33,18 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.Geom import Geom_Circle
 from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Line
 from OCP.gp import gp_Ax2, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec2d
-from ..occ_compat import Array1OfPnt2d
-from scipy.interpolate import BSpline, make_lsq_spline
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
+from scipy.interpolate import BSpline, make_lsq_spline
 
-from ..errors import TubecadError
-from ..fitting import TubeSurface
-from ..fitting.canal_section import CanalSectionSurface
-from ..fitting.circle import CircleSpline
-from ..fitting.occ_arrays import integers, knots_and_multiplicities, reals
-from ..fitting.tolerance import EDGE_TOLERANCE
-from .layout import stringer_parameters
+from tubecad.brep.layout import stringer_parameters
+from tubecad.core.errors import TubecadError
+from tubecad.core.tolerance import EDGE_TOLERANCE
+from tubecad.fitting import TubeSurface
+from tubecad.fitting.canal_section import CanalSectionSurface
+from tubecad.fitting.circle import CircleSpline
+from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, reals
+from tubecad.occ_compat import Array1OfPnt2d
 
 #: edge and vertex tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = EDGE_TOLERANCE
@@ -67,8 +66,13 @@ class PatchFaces:
         return [f for row in self.faces for f in row]
 
 
-def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_deg: Sequence[float],
-                reverse: bool = False, closing: float | None = None) -> PatchFaces:  # fmt: skip
+def patch_faces(
+    tube_surface: TubeSurface,
+    s_rings: Sequence[float],
+    stringers_deg: Sequence[float],
+    reverse: bool = False,
+    closing: float | None = None,
+) -> PatchFaces:
     """Faces of ``tube_surface`` between rings ``s_rings`` and the stringers at angles
     ``stringers_deg`` (increasing, the first at the surface's origin); ``reverse`` flips
     every face (for the inner wall of a solid). ``closing``: on a closed axis its holonomy
@@ -96,10 +100,12 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
             circle, gap = ring_circle(tube_surface, s)
             tolerance = max(TOLERANCE, 2.0 * gap)
             cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
-        rings.append([
-            _edge(circle, vertices[i][j], vertices[i][(j + 1) % n_stringers], cuts[j], cuts[j + 1])
-            for j in range(n_stringers)
-        ])  # fmt: skip
+        rings.append(
+            [
+                _edge(circle, vertices[i][j], vertices[i][(j + 1) % n_stringers], cuts[j], cuts[j + 1])
+                for j in range(n_stringers)
+            ]
+        )
         bounds.append([[(rings[i][j], pcurves[j], tolerance)] for j in range(n_stringers)])
     if closing is not None:
         arcs, first, last, ends = _closing_ring(tube_surface, s_rings[0], s_rings[-1], angles, vertices[0], closing)
@@ -113,8 +119,13 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
         band = surface.Copy()
         band.Segment(u_cuts[0], u_cuts[-1], s0, s1)
         bands.append(band)
-    stringers = [[_edge(band.UIso(u_cuts[j]), vertices[i][j], vertices[i + 1][j], s_rings[i], s_rings[i + 1])
-                  for i, band in enumerate(bands)] for j in range(n_stringers)]  # fmt: skip
+    stringers = [
+        [
+            _edge(band.UIso(u_cuts[j]), vertices[i][j], vertices[i + 1][j], s_rings[i], s_rings[i + 1])
+            for i, band in enumerate(bands)
+        ]
+        for j in range(n_stringers)
+    ]
 
     faces = []
     for i, band in enumerate(bands):
@@ -138,8 +149,12 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
                 builder.UpdateEdge(left, _line(u0, 0.0, 0, 1), face, TOLERANCE)
             wire = TopoDS_Wire()
             builder.MakeWire(wire)  # counter-clockwise in (u, s): outward normal S_u x S_s
-            for edge, orientation in ([(e, TopAbs_FORWARD) for e, _, _ in bottom] + [(right, TopAbs_FORWARD)]
-                                      + [(e, TopAbs_REVERSED) for e, _, _ in top[::-1]] + [(left, TopAbs_REVERSED)]):  # fmt: skip
+            for edge, orientation in (
+                [(e, TopAbs_FORWARD) for e, _, _ in bottom]
+                + [(right, TopAbs_FORWARD)]
+                + [(e, TopAbs_REVERSED) for e, _, _ in top[::-1]]
+                + [(left, TopAbs_REVERSED)]
+            ):
                 builder.Add(wire, edge.Oriented(orientation))
             wire.Closed(True)
             builder.Add(face, wire)
@@ -154,8 +169,14 @@ def patch_faces(tube_surface: TubeSurface, s_rings: Sequence[float], stringers_d
 CLOSING_MERGE = 0.1 * TOLERANCE
 
 
-def _closing_ring(tube_surface: TubeSurface, s_first: float, s_last: float, angles: list[float],
-                  start_vertices: list[TopoDS_Vertex], holonomy: float):  # fmt: skip
+def _closing_ring(
+    tube_surface: TubeSurface,
+    s_first: float,
+    s_last: float,
+    angles: list[float],
+    start_vertices: list[TopoDS_Vertex],
+    holonomy: float,
+):
     """The ring where a closed tube closes: the circle at ``s_first`` (= the one at
     ``s_last``), cut where stringer j starts (angle a_j) and where it ends, turned by the
     holonomy: b_j = a_j + holonomy, since r1(L) = cos(h) r1(0) + sin(h) r2(0). Returns its
@@ -175,28 +196,52 @@ def _closing_ring(tube_surface: TubeSurface, s_first: float, s_last: float, angl
     circle, gap = ring_circle(tube_surface, s_first)
     theta = np.linspace(0.0, two_pi, 16, endpoint=False) + 0.1  # how far the s_last isoline is from that circle
     u_last = tube_surface.circle.u_of_theta(np.mod(theta - holonomy, two_pi))
-    gap = max([gap] + [circle.Value(float(th)).Distance(tube_surface.surface.Value(float(u), s_last))
-                       for th, u in zip(theta, u_last)])  # fmt: skip
+    gap = max(
+        [gap]
+        + [
+            circle.Value(float(th)).Distance(tube_surface.surface.Value(float(u), s_last))
+            for th, u in zip(theta, u_last)
+        ]
+    )
     tolerance = max(TOLERANCE, 2.0 * gap)
-    arcs, ends = _cut_closing_ring(circle, rho, angles[:n], [float(np.mod(a + holonomy, two_pi)) for a in angles[:n]],
-                                   start_vertices)  # fmt: skip
+    arcs, ends = _cut_closing_ring(
+        circle, rho, angles[:n], [float(np.mod(a + holonomy, two_pi)) for a in angles[:n]], start_vertices
+    )
 
     first, last = [], []
     for j in range(n):
         a0, a1 = angles[j], angles[j + 1]
-        first.append([(edge, ring_pcurve(tube_surface.circle, lo, hi).Translated(gp_Vec2d(0.0, s_first)), tolerance)
-                      for lo, hi, edge in _first_column(arcs, a0, a1)])  # fmt: skip
+        first.append(
+            [
+                (edge, ring_pcurve(tube_surface.circle, lo, hi).Translated(gp_Vec2d(0.0, s_first)), tolerance)
+                for lo, hi, edge in _first_column(arcs, a0, a1)
+            ]
+        )
         b0 = ends[j][0]
         shift = b0 - a0  # theta on the ring = the last band's own angle + shift
         column = _last_column(arcs, b0, a1 - a0, j, holonomy)
-        last.append([(edge, ring_pcurve(tube_surface.circle, start - shift, start - shift + _width(arcs, edge),
-                                        moved=shift - lift).Translated(gp_Vec2d(0.0, s_last)), tolerance)
-                     for start, edge, lift in column])  # fmt: skip
+        last.append(
+            [
+                (
+                    edge,
+                    ring_pcurve(
+                        tube_surface.circle, start - shift, start - shift + _width(arcs, edge), moved=shift - lift
+                    ).Translated(gp_Vec2d(0.0, s_last)),
+                    tolerance,
+                )
+                for start, edge, lift in column
+            ]
+        )
     return arcs, first, last, ends
 
 
-def _canal_closing_ring(tube_surface: CanalSectionSurface, s_first: float, s_last: float, angles: list[float],
-                        start_vertices: list[TopoDS_Vertex]):  # fmt: skip
+def _canal_closing_ring(
+    tube_surface: CanalSectionSurface,
+    s_first: float,
+    s_last: float,
+    angles: list[float],
+    start_vertices: list[TopoDS_Vertex],
+):
     """:func:`_closing_ring` of a canal surface on a closed axis (its law closes: the circle
     at ``s_last`` is the circle at ``s_first``). The ring's circle counts theta from the
     origin stringer's start; stringer j starts at a_j and ends at b_j = phi(o + a_j) - o
@@ -212,8 +257,9 @@ def _canal_closing_ring(tube_surface: CanalSectionSurface, s_first: float, s_las
     exact = tube_surface.tube
     origin = math.radians(tube_surface.origin_deg)
     centre, radius, t, x_dir, chi_first = tube_surface.ring(s_first)
-    circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
-                         radius)  # fmt: skip
+    circle = Geom_Circle(
+        gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), radius
+    )
     phi = exact.closing_angle(origin + np.asarray(angles[:n], dtype=float)) - origin
     arcs, ends = _cut_closing_ring(circle, radius, angles[:n], [float(b) for b in np.mod(phi, two_pi)], start_vertices)
     crossings = tube_surface.ring_angles(s_last, angles)  # the stringers' ends in the last band's own angle
@@ -234,18 +280,28 @@ def _canal_closing_ring(tube_surface: CanalSectionSurface, s_first: float, s_las
         column = []
         for start, edge, lift in _last_column(arcs, b0, float(widths[j]), j, None):
             lo, hi = start - lift, start - lift + _width(arcs, edge)  # the edge's own parameters
-            pcurve, arc_gap = canal_arc_pcurve(tube_surface, s_last, angles, j, lo, hi, circle, chi_last, m_last,
-                                               moved=shift - lift)  # fmt: skip
+            pcurve, arc_gap = canal_arc_pcurve(
+                tube_surface, s_last, angles, j, lo, hi, circle, chi_last, m_last, moved=shift - lift
+            )
             column.append((edge, pcurve))
             gap = max(gap, arc_gap)
         last.append(column)
     tolerance = max(TOLERANCE, 2.0 * gap)
-    return (arcs, [[(e, p, tolerance) for e, p in col] for col in first],
-            [[(e, p, tolerance) for e, p in col] for col in last], ends)  # fmt: skip
+    return (
+        arcs,
+        [[(e, p, tolerance) for e, p in col] for col in first],
+        [[(e, p, tolerance) for e, p in col] for col in last],
+        ends,
+    )
 
 
-def _cut_closing_ring(circle: Geom_Circle, radius: float, starts: Sequence[float], ends_at: Sequence[float],
-                      start_vertices: list[TopoDS_Vertex]):  # fmt: skip
+def _cut_closing_ring(
+    circle: Geom_Circle,
+    radius: float,
+    starts: Sequence[float],
+    ends_at: Sequence[float],
+    start_vertices: list[TopoDS_Vertex],
+):
     """The closing ring's arcs (theta_a, theta_b, edge) in +theta order, cut at the stringers'
     starts ``starts`` (with their vertices) and their ends ``ends_at`` (in [0, 2 pi)); an end
     within CLOSING_MERGE of a cut shares its vertex. Returns the arcs and each stringer's
@@ -261,8 +317,10 @@ def _cut_closing_ring(circle: Geom_Circle, radius: float, starts: Sequence[float
         ends.append(near[0])
     cuts.sort(key=lambda cut: cut[0])
     stops = [c for c, _ in cuts] + [cuts[0][0] + two_pi]
-    arcs = [(stops[k], stops[k + 1], _edge(circle, cuts[k][1], cuts[(k + 1) % len(cuts)][1], stops[k], stops[k + 1]))
-            for k in range(len(cuts))]  # fmt: skip
+    arcs = [
+        (stops[k], stops[k + 1], _edge(circle, cuts[k][1], cuts[(k + 1) % len(cuts)][1], stops[k], stops[k + 1]))
+        for k in range(len(cuts))
+    ]
     return arcs, ends
 
 
@@ -334,7 +392,9 @@ def fit_angle_map(to_u: Callable[[np.ndarray], np.ndarray], a: float, b: float, 
         knots, samples = [a] * (degree + 1), []
         for k, (lo, hi) in enumerate(zip(segments[:-1], segments[1:])):
             spans = refine * math.ceil((hi - lo) / ANGLE_FIT_SPAN)
-            knots += list(np.linspace(lo, hi, spans + 1)[1:-1]) + ([joints[k]] * (degree - 1) if k < len(joints) else [])
+            knots += list(np.linspace(lo, hi, spans + 1)[1:-1]) + (
+                [joints[k]] * (degree - 1) if k < len(joints) else []
+            )
             samples.append(lo + (hi - lo) * 0.5 * (1 - np.cos(np.linspace(0, math.pi, 4 * spans + degree + 4))))
         knots += [b] * (degree + 1)
         x = np.unique(np.concatenate(samples))
@@ -364,8 +424,9 @@ def ring_circle(tube_surface: TubeSurface, s: float, samples: int = 16) -> tuple
     _, r1, r2 = tube.axis.rotation_minimising_frame(np.array([s]))
     centre, t = tube.axis.position(np.array([s]))[0], tube.axis.rotation_minimising_frame(np.array([s]))[0][0]
     x_dir = math.cos(a) * r1[0] + math.sin(a) * r2[0]
-    circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
-                         tube.radius)  # fmt: skip
+    circle = Geom_Circle(
+        gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), tube.radius
+    )
     theta = np.linspace(0.0, 2 * math.pi, samples, endpoint=False) + 0.1
     gap = 0.0
     for th, u in zip(theta, tube_surface.circle.u_of_theta(theta)):
@@ -377,8 +438,9 @@ def ring_circle(tube_surface: TubeSurface, s: float, samples: int = 16) -> tuple
 CANAL_GAP_SAMPLES = 6
 
 
-def canal_ring(tube_surface: CanalSectionSurface, s: float, angles: list[float]
-               ) -> tuple[Geom_Circle, np.ndarray, list[Geom2d_BSplineCurve], float]:  # fmt: skip
+def canal_ring(
+    tube_surface: CanalSectionSurface, s: float, angles: list[float]
+) -> tuple[Geom_Circle, np.ndarray, list[Geom2d_BSplineCurve], float]:
     """A canal surface's ring at ``s``: the exact characteristic circle (parameter: the angle
     from the origin stringer's point), the angles where the stringers ``angles`` (chi0 -
     origin, radians, the last 2 pi) cross it, the pcurve (u(theta), s) of each arc between
@@ -387,22 +449,33 @@ def canal_ring(tube_surface: CanalSectionSurface, s: float, angles: list[float]
     theta -> chi0 with the circle spline's u(chi0), fitted per arc (C1 where the spline's
     sub-arcs join)."""
     centre, radius, t, x_dir, chi_o = tube_surface.ring(s)
-    circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
-                         radius)  # fmt: skip
+    circle = Geom_Circle(
+        gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), radius
+    )
     cuts = tube_surface.ring_angles(s, angles)
     pcurves, gap = [], 0.0
     moebius = tube_surface.tube.moebius_matrix(np.array([s]))[0]
     for j in range(len(angles) - 1):
-        pcurve, arc_gap = canal_arc_pcurve(tube_surface, s, angles, j, float(cuts[j]), float(cuts[j + 1]), circle,
-                                           chi_o, moebius)  # fmt: skip
+        pcurve, arc_gap = canal_arc_pcurve(
+            tube_surface, s, angles, j, float(cuts[j]), float(cuts[j + 1]), circle, chi_o, moebius
+        )
         pcurves.append(pcurve)
         gap = max(gap, arc_gap)
     return circle, cuts, pcurves, max(TOLERANCE, 2.0 * gap)
 
 
-def canal_arc_pcurve(tube_surface: CanalSectionSurface, s: float, angles: Sequence[float], column: int, lo: float,
-                     hi: float, circle: Geom_Circle, chi_o: float, moebius: np.ndarray, moved: float = 0.0
-                     ) -> tuple[Geom2d_BSplineCurve, float]:  # fmt: skip
+def canal_arc_pcurve(
+    tube_surface: CanalSectionSurface,
+    s: float,
+    angles: Sequence[float],
+    column: int,
+    lo: float,
+    hi: float,
+    circle: Geom_Circle,
+    chi_o: float,
+    moebius: np.ndarray,
+    moved: float = 0.0,
+) -> tuple[Geom2d_BSplineCurve, float]:
     """The pcurve (u(theta), s) on ``tube_surface`` of the arc theta in [lo, hi] of ``circle``
     (its 3-D curve, parameterised by theta), which lies on the surface's ring at ``s`` in face
     column ``column`` (between the stringers ``angles[column]`` and ``angles[column + 1]``,
@@ -425,8 +498,11 @@ def canal_arc_pcurve(tube_surface: CanalSectionSurface, s: float, angles: Sequen
     starts = [arc.start for arc in spline_circle.arcs if a0 + 1e-12 < arc.start < a1 - 1e-12]
     if starts:  # where the sub-arcs join, in theta: the forward map of chi0
         chi = tube_surface.tube.stringer_angle(origin + np.array(starts), np.full(len(starts), s))
-        joints = [float(x) for x in band_lo + np.mod(chi - chi_o - band_lo, 2.0 * math.pi) + moved
-                  if lo + 1e-12 < x < hi - 1e-12]  # fmt: skip
+        joints = [
+            float(x)
+            for x in band_lo + np.mod(chi - chi_o - band_lo, 2.0 * math.pi) + moved
+            if lo + 1e-12 < x < hi - 1e-12
+        ]
     else:
         joints = []
     spline = fit_angle_map(to_u, lo, hi, joints)
@@ -435,8 +511,10 @@ def canal_arc_pcurve(tube_surface: CanalSectionSurface, s: float, angles: Sequen
         poles.SetValue(k + 1, gp_Pnt2d(float(u), float(s)))
     knots, mults = knots_and_multiplicities(spline.t)
     pcurve = Geom2d_BSplineCurve(poles, reals(knots), integers(mults), int(spline.k))
-    gap = max(circle.Value(float(theta)).Distance(surface.Value(float(spline(theta)), s))
-              for theta in np.linspace(lo, hi, CANAL_GAP_SAMPLES + 2))  # fmt: skip
+    gap = max(
+        circle.Value(float(theta)).Distance(surface.Value(float(spline(theta)), s))
+        for theta in np.linspace(lo, hi, CANAL_GAP_SAMPLES + 2)
+    )
     return pcurve, gap
 
 

@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..surface import CurvatureLineTube
+from tubecad.core.errors import ParameterError
+from tubecad.surface import CurvatureLineTube
 
 DEFAULT_RINGS = 11
 DEFAULT_STRINGERS = 8
@@ -28,7 +28,9 @@ class NetLayout:
     stringers_deg: tuple[float, ...]
 
     @classmethod
-    def equal(cls, tube: CurvatureLineTube, rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS) -> "NetLayout":
+    def equal(
+        cls, tube: CurvatureLineTube, rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS
+    ) -> NetLayout:
         """``rings`` frames equally spaced in s (ends included), ``stringers`` at 360 j / M deg
         (a route's joints are added, see :meth:`explicit`)."""
         _whole("rings", rings, 2, MAX_RINGS)
@@ -37,7 +39,7 @@ class NetLayout:
         return cls.explicit(tube, np.linspace(*tube.span, rings), 360.0 * np.arange(stringers) / stringers)
 
     @classmethod
-    def explicit(cls, tube: CurvatureLineTube, s_rings: Sequence[float], stringers_deg: Sequence[float]) -> "NetLayout":
+    def explicit(cls, tube: CurvatureLineTube, s_rings: Sequence[float], stringers_deg: Sequence[float]) -> NetLayout:
         """Given lists; the span ends are added to the rings if missing, and on an axis whose
         joints are rings (a route) its joints (a ring within 1e-6 of the span from one moves onto it)."""
         s0, s1 = tube.span
@@ -46,7 +48,9 @@ class NetLayout:
         if rings.size == 0 or not np.all(np.isfinite(rings)):
             raise ParameterError(f"s_rings must be finite arc lengths in [{s0:g}, {s1:g}], got {_shown(rings)}")
         if rings.min() < s0 - 1e-9 * (s1 - s0) or rings.max() > s1 + 1e-9 * (s1 - s0):
-            raise ParameterError(f"s_rings must lie in the span [{s0:g}, {s1:g}], got [{rings.min():g}, {rings.max():g}]")
+            raise ParameterError(
+                f"s_rings must lie in the span [{s0:g}, {s1:g}], got [{rings.min():g}, {rings.max():g}]"
+            )
         rings = np.unique(np.clip(np.concatenate([[s0, s1], rings]), s0, s1))
         if tube.axis.rings_at_joints:  # a route's line-bend joints are always rings (faces lie on one piece)
             joints = np.array([s for s, _ in tube.axis.joints], dtype=float)
@@ -76,8 +80,10 @@ def _whole(name: str, value: object, least: int, most: int) -> None:
 def _face_count(rings: int, stringers: int) -> None:
     faces = (int(rings) - 1) * int(stringers)
     if faces > MAX_FACES:
-        raise ParameterError(f"the layout has (rings - 1) x stringers = {rings - 1} x {stringers} = {faces} faces; "
-                             f"at most {MAX_FACES} are allowed")  # fmt: skip
+        raise ParameterError(
+            f"the layout has (rings - 1) x stringers = {rings - 1} x {stringers} = {faces} faces; "
+            f"at most {MAX_FACES} are allowed"
+        )
 
 
 def _numbers(name: str, values: object, wanted: str, most: int) -> np.ndarray:

@@ -11,15 +11,15 @@ sampled on a grid inside its UV bounds (off any knot lattice) and, at every samp
   each isoline direction, projected into the tangent plane, is compared with the nearer
   of the two: 0 means the isolines are lines of curvature.
 
-Used by the read-back check of every CAD file tubecad writes (tubecad.interfaces.readback)
+Used by the read-back check of every CAD file tubecad writes (tubecad.export.readback)
 and by the benchmarks (benchmarks/measure.py).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Callable, Iterator, Sequence
 
 import numpy as np
 from OCP.BRep import BRep_Tool
@@ -31,10 +31,10 @@ from OCP.gp import gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS_Face
-from ..occ_compat import as_face
 
-from ..surface.checks import distance_to_axis
-from .properties import topods
+from tubecad.brep.properties import topods
+from tubecad.occ_compat import as_face
+from tubecad.surface.checks import distance_to_axis
 
 
 def tube_faces(shape) -> Iterator[TopoDS_Face]:
@@ -89,8 +89,10 @@ def net_against_tube(tube, points: np.ndarray, d1: np.ndarray, d2: np.ndarray) -
         w = w - np.einsum("ij,ij->i", w, e)[:, None] * e
         w = w / np.linalg.norm(w, axis=1)[:, None]
         # atan2(|w x d|, |w . d|): arccos of a cosine near 1 would floor at ~1e-6 deg
-        angles = [np.arctan2(np.linalg.norm(np.cross(w, d), axis=1), np.abs(np.einsum("ij,ij->i", w, d)))
-                  for d in (axis.t, circle_dir)]  # fmt: skip
+        angles = [
+            np.arctan2(np.linalg.norm(np.cross(w, d), axis=1), np.abs(np.einsum("ij,ij->i", w, d)))
+            for d in (axis.t, circle_dir)
+        ]
         return np.degrees(np.minimum(*angles))
 
     angle = np.maximum(angle_from_principal(d1), angle_from_principal(d2))
@@ -115,8 +117,8 @@ def surface_levels(build) -> tuple[Callable, list[float]]:
     axis and the surfaces' levels their radii; for a canal surface's build it is the
     distance outside the first surface's sphere envelope (:func:`envelope_distance`) and the
     levels are each surface's offset from it (0 and -thickness for a wall)."""
-    from ..surface import CanalSurface
-    from ..surface.checks import envelope_distance
+    from tubecad.surface import CanalSurface
+    from tubecad.surface.checks import envelope_distance
 
     first = build.surfaces[0].tube
     if not isinstance(first, CanalSurface):
@@ -126,9 +128,15 @@ def surface_levels(build) -> tuple[Callable, list[float]]:
     return (lambda p, g=None, iters=12: envelope_distance(first, p, g, iters)), levels
 
 
-def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
-                       every_face: bool = True, level: Callable | None = None,
-                       size: float | None = None) -> TubeFacesMeasure:  # fmt: skip
+def measure_tube_faces(
+    shape,
+    axis,
+    radii: Sequence[float],
+    samples: int = 3000,
+    every_face: bool = True,
+    level: Callable | None = None,
+    size: float | None = None,
+) -> TubeFacesMeasure:
     """Sample every tube face of ``shape`` (about ``samples`` points in all, at least one per
     face) and measure it against the exact tube of the radius in ``radii`` it lies on
     (``level``: measured otherwise, e.g. a canal surface's, with ``radii`` its levels: see
@@ -174,6 +182,8 @@ def measure_tube_faces(shape, axis, radii: Sequence[float], samples: int = 3000,
     return TubeFacesMeasure(
         max_deviation=max((e[1] for e in per_radius.values()), default=0.0),
         max_orthogonality=max((e[2] for e in per_radius.values()), default=0.0),
-        faces=measured, samples=measured * nu * nv, skipped=len(faces) - measured,
+        faces=measured,
+        samples=measured * nu * nv,
+        skipped=len(faces) - measured,
         per_radius={r: tuple(e) for r, e in per_radius.items()},
-    )  # fmt: skip
+    )

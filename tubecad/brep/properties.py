@@ -13,7 +13,8 @@ from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SOLID, TopAbs_VERTEX
 from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
-from ..occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge
+
+from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge
 
 EPS = 1e-10
 KINDS = {"solid": TopAbs_SOLID, "face": TopAbs_FACE, "edge": TopAbs_EDGE, "vertex": TopAbs_VERTEX}
@@ -42,8 +43,9 @@ def count_circle_edges(shape) -> int:
 
     found = IndexedMapOfShape()
     TopExp.MapShapes_s(topods(shape), TopAbs_EDGE, found)
-    return sum(BRepAdaptor_Curve(as_edge(found.FindKey(i))).GetType() == GeomAbs_Circle
-               for i in range(1, found.Extent() + 1))  # fmt: skip
+    return sum(
+        BRepAdaptor_Curve(as_edge(found.FindKey(i))).GetType() == GeomAbs_Circle for i in range(1, found.Extent() + 1)
+    )
 
 
 def free_edges(shape) -> int:
@@ -74,11 +76,19 @@ def faces_area(faces, eps: float = EPS) -> float:
     return area(compound, eps)
 
 
-
 #: BOPAlgo_ArgumentAnalyzer's checks, all switched on (FreeCAD's "Check geometry" with
 #: "BOP check" and every option): what OCCT tests before a boolean operation
-ANALYZER_MODES = ("ArgumentTypeMode", "SelfInterMode", "SmallEdgeMode", "RebuildFaceMode", "TangentMode",
-                  "MergeVertexMode", "MergeEdgeMode", "ContinuityMode", "CurveOnSurfaceMode")  # fmt: skip
+ANALYZER_MODES = (
+    "ArgumentTypeMode",
+    "SelfInterMode",
+    "SmallEdgeMode",
+    "RebuildFaceMode",
+    "TangentMode",
+    "MergeVertexMode",
+    "MergeEdgeMode",
+    "ContinuityMode",
+    "CurveOnSurfaceMode",
+)
 
 
 def analyzer_findings(shape, modes: tuple[str, ...] = ANALYZER_MODES) -> dict[str, int]:

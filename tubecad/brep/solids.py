@@ -24,31 +24,31 @@ Each returns a :class:`TubeBuild` whose ``shape`` is a build123d Shell or Solid.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import build123d as bd
 import numpy as np
 from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepGProp import BRepGProp_Face
 from OCP.BRepLib import BRepLib
+from OCP.BRepTools import BRepTools
 from OCP.Geom import Geom_ConicalSurface, Geom_Plane
 from OCP.Geom2d import Geom2d_Line
-from OCP.BRepGProp import BRepGProp_Face
-from OCP.BRepTools import BRepTools
 from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Wire
 
-from ..errors import ParameterError, RegularityError
-from ..fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
-from ..fitting.canal_section import CanalSpline, canal_section_surface, fit_canal
-from ..fitting.tolerance import DEFAULT_TOLERANCE, MIN_SIZE, orthogonality_for  # noqa: F401  (re-exported)
-from ..surface import CanalSurface, CurvatureLineTube
-from .assembled import closed_solid, shell_of
-from .faces import TOLERANCE, PatchFaces, _edge, patch_faces
-from .layout import NetLayout
-from .wall import WALL_SIDES, wall_offsets, wall_radii  # noqa: F401  (re-exported)
+from tubecad.brep.assembled import closed_solid, shell_of
+from tubecad.brep.faces import TOLERANCE, PatchFaces, _edge, patch_faces
+from tubecad.brep.layout import NetLayout
+from tubecad.brep.wall import WALL_SIDES, wall_offsets, wall_radii  # noqa: F401  (re-exported)
+from tubecad.core.errors import ParameterError, RegularityError
+from tubecad.core.tolerance import DEFAULT_TOLERANCE, MIN_SIZE, orthogonality_for  # noqa: F401  (re-exported)
+from tubecad.fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
+from tubecad.fitting.canal_section import CanalSpline, canal_section_surface, fit_canal
+from tubecad.surface import CanalSurface, CurvatureLineTube
 
 #: progress(step, done, total), called as a build advances (the library never prints)
 Progress = Callable[[str, int, int], None]
@@ -100,24 +100,36 @@ def _checked(tube: object, layout: object) -> NetLayout:
     if layout is None:
         layout = NetLayout.equal(tube)  # type: ignore[arg-type]
     elif not isinstance(layout, NetLayout):
-        raise ParameterError(f"layout must be a NetLayout (NetLayout.equal or NetLayout.explicit), got {type(layout).__name__}")
+        raise ParameterError(
+            f"layout must be a NetLayout (NetLayout.equal or NetLayout.explicit), got {type(layout).__name__}"
+        )
     s0, s1 = tube.span
-    if not (math.isclose(layout.s_rings[0], s0, abs_tol=1e-9 * (s1 - s0))
-            and math.isclose(layout.s_rings[-1], s1, abs_tol=1e-9 * (s1 - s0))):  # fmt: skip
-        raise ParameterError(f"layout rings must run from the tube's span start {s0:g} to its end {s1:g}, got "
-                             f"[{layout.s_rings[0]:g}, {layout.s_rings[-1]:g}] (a layout made for another tube?)")  # fmt: skip
+    if not (
+        math.isclose(layout.s_rings[0], s0, abs_tol=1e-9 * (s1 - s0))
+        and math.isclose(layout.s_rings[-1], s1, abs_tol=1e-9 * (s1 - s0))
+    ):
+        raise ParameterError(
+            f"layout rings must run from the tube's span start {s0:g} to its end {s1:g}, got "
+            f"[{layout.s_rings[0]:g}, {layout.s_rings[-1]:g}] (a layout made for another tube?)"
+        )
     if tube.length < MIN_SIZE:
-        raise ParameterError(f"the span must be at least {MIN_SIZE:g} model units long for a B-rep, got {tube.length:g}")
+        raise ParameterError(
+            f"the span must be at least {MIN_SIZE:g} model units long for a B-rep, got {tube.length:g}"
+        )
     if canal:
         law = tube.radius_law
         if law.min_radius < MIN_SIZE:
-            raise ParameterError(f"radius: r must stay >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge "
-                                 f"precision 1e-7), got {law.min_radius:g} at s = {law.s_at_min_radius:g}")  # fmt: skip
+            raise ParameterError(
+                f"radius: r must stay >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge "
+                f"precision 1e-7), got {law.min_radius:g} at s = {law.s_at_min_radius:g}"
+            )
         if tube.axis.closed:  # (checked when the CanalSurface was made; a law made elsewhere is checked here)
             law.check_closes()
     elif tube.radius < MIN_SIZE:
-        raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
-                             f"got {tube.radius:g}")  # fmt: skip
+        raise ParameterError(
+            f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
+            f"got {tube.radius:g}"
+        )
     if tube.axis.closed:
         if len(layout.s_rings) < 3:
             raise ParameterError("a closed tube needs a ring frame besides the closing one: rings must be >= 3")
@@ -125,29 +137,43 @@ def _checked(tube: object, layout: object) -> NetLayout:
     ends = tube.axis.position(np.array(tube.span))
     gap = float(np.linalg.norm(ends[1] - ends[0]))
     if gap <= 1e-6 * tube.length:  # its end discs would coincide
-        raise ParameterError(f"the axis' ends meet ({gap:.3g} apart) but it is not a closed loop (its tangents differ "
-                             "there, or closed = false): the end caps would coincide; shorten the span")  # fmt: skip
+        raise ParameterError(
+            f"the axis' ends meet ({gap:.3g} apart) but it is not a closed loop (its tangents differ "
+            "there, or closed = false): the end caps would coincide; shorten the span"
+        )
     return layout
 
 
-def build_tube_shell(tube: CurvatureLineTube | CanalSurface, layout: NetLayout | None = None,
-                     tolerance: float = DEFAULT_TOLERANCE) -> TubeBuild:  # fmt: skip
+def build_tube_shell(
+    tube: CurvatureLineTube | CanalSurface, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE
+) -> TubeBuild:
     """The tube's shell: faces between rings and stringers (open, or closed round a closed axis)."""
     tube = _as_tube(tube)
     layout = _checked(tube, layout)
     if isinstance(tube, CanalSurface):
         fit, built = _canal_surfaces(tube, (0.0,), layout, tolerance)
-        (surface, patches), = built
-        return TubeBuild(bd.Shell(shell_of(patches.all_faces(), closed=tube.axis.closed)), [surface], [patches],
-                         layout, fit, tolerance, [_mean_radius(surface.tube)])  # fmt: skip
+        ((surface, patches),) = built
+        return TubeBuild(
+            bd.Shell(shell_of(patches.all_faces(), closed=tube.axis.closed)),
+            [surface],
+            [patches],
+            layout,
+            fit,
+            tolerance,
+            [_mean_radius(surface.tube)],
+        )
     frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
     surface, patches = _tube_faces(tube, frame, layout)
     shell = shell_of(patches.all_faces(), closed=tube.axis.closed)
     return TubeBuild(bd.Shell(shell), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
 
-def build_tube_solid(tube: CurvatureLineTube | CanalSurface, layout: NetLayout | None = None,
-                     tolerance: float = DEFAULT_TOLERANCE, progress: Progress | None = None) -> TubeBuild:  # fmt: skip
+def build_tube_solid(
+    tube: CurvatureLineTube | CanalSurface,
+    layout: NetLayout | None = None,
+    tolerance: float = DEFAULT_TOLERANCE,
+    progress: Progress | None = None,
+) -> TubeBuild:
     """The tube closed by planar discs in the normal planes at both ends (a closed axis:
     the closed tube, no caps). ``progress(step, done, total)`` is called after the frame
     fit, the surface and the solid."""
@@ -157,9 +183,12 @@ def build_tube_solid(tube: CurvatureLineTube | CanalSurface, layout: NetLayout |
     if isinstance(tube, CanalSurface):
         done = iter(range(1, 3))
         fit, built = _canal_surfaces(tube, (0.0,), layout, tolerance, step=lambda step: report(step, next(done), 3))
-        (surface, patches), = built
-        caps = [] if tube.axis.closed else [_canal_cap(surface, layout.s_rings[k], patches.rings[k], None,
-                                                       outward=k == -1) for k in (0, -1)]  # fmt: skip
+        ((surface, patches),) = built
+        caps = (
+            []
+            if tube.axis.closed
+            else [_canal_cap(surface, layout.s_rings[k], patches.rings[k], None, outward=k == -1) for k in (0, -1)]
+        )
         solid = _solid([patches.all_faces() + caps], tube)
         report("solid", 3, 3)
         return TubeBuild(bd.Solid(solid), [surface], [patches], layout, fit, tolerance, [_mean_radius(surface.tube)])
@@ -167,16 +196,27 @@ def build_tube_solid(tube: CurvatureLineTube | CanalSurface, layout: NetLayout |
     report("frame fit", 1, 3)
     surface, patches = _tube_faces(tube, frame, layout)
     report("surface", 2, 3)
-    caps = [] if tube.axis.closed else [_cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
-                                        _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True)]  # fmt: skip
+    caps = (
+        []
+        if tube.axis.closed
+        else [
+            _cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
+            _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True),
+        ]
+    )
     solid = _solid([patches.all_faces() + caps], tube)
     report("solid", 3, 3)
     return TubeBuild(bd.Solid(solid), [surface], [patches], layout, frame, tolerance, [tube.radius])
 
 
-def build_wall_solid(tube: CurvatureLineTube | CanalSurface, thickness: float, side: str = "centered",
-                     layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE,
-                     progress: Progress | None = None) -> TubeBuild:  # fmt: skip
+def build_wall_solid(
+    tube: CurvatureLineTube | CanalSurface,
+    thickness: float,
+    side: str = "centered",
+    layout: NetLayout | None = None,
+    tolerance: float = DEFAULT_TOLERANCE,
+    progress: Progress | None = None,
+) -> TubeBuild:
     """The wall between the tubes of radii r_in < r_out on ``tube``'s axis, with annular caps
     (a closed axis: no caps; the solid is bounded by the two closed tubes, the inner one a
     cavity). ``progress(step, done, total)`` is called after the frame fit, each surface and
@@ -191,10 +231,12 @@ def build_wall_solid(tube: CurvatureLineTube | CanalSurface, thickness: float, s
     try:
         outer_tube, inner_tube = CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)
     except RegularityError as exc:
-        raise RegularityError(f"thickness {float(thickness):g} (side = {side!r}) gives a wall between radii {r_in:g} "
-                              f"and {r_out:g}: {exc}") from None  # fmt: skip
-    frame = fit_frame(tube.axis, r_out, tolerance, orthogonality_for(tolerance), rings=layout.s_rings,
-                      radii=(r_out, r_in))  # fmt: skip
+        raise RegularityError(
+            f"thickness {float(thickness):g} (side = {side!r}) gives a wall between radii {r_in:g} and {r_out:g}: {exc}"
+        ) from None
+    frame = fit_frame(
+        tube.axis, r_out, tolerance, orthogonality_for(tolerance), rings=layout.s_rings, radii=(r_out, r_in)
+    )
     report("frame fit", 1, 4)
     outer, outer_patches = _tube_faces(outer_tube, frame, layout)
     report("outer surface", 2, 4)
@@ -203,35 +245,50 @@ def build_wall_solid(tube: CurvatureLineTube | CanalSurface, thickness: float, s
     if tube.axis.closed:
         shells = [outer_patches.all_faces(), inner_patches.all_faces()]
     else:
-        shells = [outer_patches.all_faces() + inner_patches.all_faces() + [
-            _cap(tube, layout.s_rings[0], [outer_patches.rings[0], inner_patches.rings[0]], outward=False),
-            _cap(tube, layout.s_rings[-1], [outer_patches.rings[-1], inner_patches.rings[-1]], outward=True),
-        ]]  # fmt: skip
+        shells = [
+            outer_patches.all_faces()
+            + inner_patches.all_faces()
+            + [
+                _cap(tube, layout.s_rings[0], [outer_patches.rings[0], inner_patches.rings[0]], outward=False),
+                _cap(tube, layout.s_rings[-1], [outer_patches.rings[-1], inner_patches.rings[-1]], outward=True),
+            ]
+        ]
     solid = _solid(shells, tube)
     report("solid", 4, 4)
-    return TubeBuild(bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, frame, tolerance,
-                     [r_out, r_in])  # fmt: skip
+    return TubeBuild(
+        bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, frame, tolerance, [r_out, r_in]
+    )
 
 
-def tube_shell(tube: CurvatureLineTube, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE) -> bd.Shell:
+def tube_shell(
+    tube: CurvatureLineTube, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE
+) -> bd.Shell:
     """build123d Shell of the tube (see :func:`build_tube_shell`)."""
     return build_tube_shell(tube, layout, tolerance).shape
 
 
-def tube_solid(tube: CurvatureLineTube, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE) -> bd.Solid:
+def tube_solid(
+    tube: CurvatureLineTube, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE
+) -> bd.Solid:
     """build123d Solid of the capped tube (see :func:`build_tube_solid`)."""
     return build_tube_solid(tube, layout, tolerance).shape
 
 
-def wall_solid(tube: CurvatureLineTube, thickness: float, side: str = "centered", layout: NetLayout | None = None,
-               tolerance: float = DEFAULT_TOLERANCE) -> bd.Solid:  # fmt: skip
+def wall_solid(
+    tube: CurvatureLineTube,
+    thickness: float,
+    side: str = "centered",
+    layout: NetLayout | None = None,
+    tolerance: float = DEFAULT_TOLERANCE,
+) -> bd.Solid:
     """build123d Solid of the wall (see :func:`build_wall_solid`)."""
     return build_wall_solid(tube, thickness, side, layout, tolerance).shape
 
 
 # --- construction ------------------------------------------------------------------------
-def _tube_faces(tube: CurvatureLineTube, frame: FrameSpline, layout: NetLayout,
-                reverse: bool = False) -> tuple[TubeSurface, PatchFaces]:  # fmt: skip
+def _tube_faces(
+    tube: CurvatureLineTube, frame: FrameSpline, layout: NetLayout, reverse: bool = False
+) -> tuple[TubeSurface, PatchFaces]:
     surface = exact_section_surface(tube, frame, stringers_deg=layout.stringers_deg)
     closing = tube.axis.holonomy if tube.axis.closed else None
     return surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=reverse, closing=closing)
@@ -244,8 +301,9 @@ def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outw
     return _plane_cap(a.position[0], a.t[0], a.r1[0], rings, outward)
 
 
-def _plane_cap(centre: np.ndarray, t: np.ndarray, x_dir: np.ndarray, rings: list[list[TopoDS_Edge]],
-               outward: bool) -> TopoDS_Face:  # fmt: skip
+def _plane_cap(
+    centre: np.ndarray, t: np.ndarray, x_dir: np.ndarray, rings: list[list[TopoDS_Edge]], outward: bool
+) -> TopoDS_Face:
     """The planar face through ``centre`` normal to ``t`` bounded by ``rings`` (outer first, then
     the hole), its normal +t (``outward``) or -t."""
     builder = BRep_Builder()
@@ -331,9 +389,14 @@ def _mean_radius(canal: CanalSurface) -> float:
     return float((canal.radius_law.r(s) * (half[:, None] * w).ravel()).sum() / (s1 - s0))
 
 
-def _canal_surfaces(canal: CanalSurface, offsets: tuple[float, ...], layout: NetLayout, tolerance: float,
-                    exact: list[CanalSurface] | None = None, step: Callable[[str], None] = lambda _: None
-                    ) -> tuple[CanalSpline, list[tuple[TubeSurface, PatchFaces]]]:  # fmt: skip
+def _canal_surfaces(
+    canal: CanalSurface,
+    offsets: tuple[float, ...],
+    layout: NetLayout,
+    tolerance: float,
+    exact: list[CanalSurface] | None = None,
+    step: Callable[[str], None] = lambda _: None,
+) -> tuple[CanalSpline, list[tuple[TubeSurface, PatchFaces]]]:
     """Fit ``canal`` once for all ``offsets`` (``exact``: those offset surfaces, if made) and
     build the patch faces of each (outer first; the second reversed, the inner wall of a
     solid), calling ``step(name)`` after the fit and each surface."""
@@ -344,40 +407,58 @@ def _canal_surfaces(canal: CanalSurface, offsets: tuple[float, ...], layout: Net
     closing = canal.axis.holonomy if canal.axis.closed else None
     for k, d in enumerate(offsets):
         surface = canal_section_surface(canal, fit, d, layout.stringers_deg, exact[k] if exact else None)
-        built.append((surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=k > 0,
-                                           closing=closing)))  # fmt: skip
+        built.append(
+            (surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=k > 0, closing=closing))
+        )
         step(names[k])
     return fit, built
 
 
-def _canal_wall(canal: CanalSurface, thickness: float, side: str, layout: NetLayout, tolerance: float,
-                report: Progress) -> TubeBuild:  # fmt: skip
+def _canal_wall(
+    canal: CanalSurface, thickness: float, side: str, layout: NetLayout, tolerance: float, report: Progress
+) -> TubeBuild:
     d_in, d_out = wall_offsets(thickness, side)
     law = canal.radius_law
     if law.min_radius + d_in < MIN_SIZE:  # (side centered or inside)
         limit = 2 * law.min_radius if side == "centered" else law.min_radius
-        raise ParameterError(f"thickness must be < {limit:g} for side = {side!r} (the radius law's smallest r is "
-                             f"{law.min_radius:g} at s = {law.s_at_min_radius:g}; the inner surface's r must stay >= "
-                             f"{MIN_SIZE:g}), got {float(thickness):g}")  # fmt: skip
+        raise ParameterError(
+            f"thickness must be < {limit:g} for side = {side!r} (the radius law's smallest r is "
+            f"{law.min_radius:g} at s = {law.s_at_min_radius:g}; the inner surface's r must stay >= "
+            f"{MIN_SIZE:g}), got {float(thickness):g}"
+        )
     try:  # a surface built with allow_irregular=True has its offsets allowed too
         exact = [canal if d == 0.0 else canal.offset(d, allow_irregular=not canal.regularity.ok) for d in (d_out, d_in)]
     except RegularityError as exc:
-        raise RegularityError(f"thickness {float(thickness):g} (side = {side!r}) gives a wall between the canal "
-                              f"surfaces of r {d_in:+g} and r {d_out:+g}: {exc}") from None  # fmt: skip
+        raise RegularityError(
+            f"thickness {float(thickness):g} (side = {side!r}) gives a wall between the canal "
+            f"surfaces of r {d_in:+g} and r {d_out:+g}: {exc}"
+        ) from None
     done = iter(range(1, 4))
-    fit, built = _canal_surfaces(canal, (d_out, d_in), layout, tolerance, exact,
-                                 lambda step: report(step, next(done), 4))  # fmt: skip
+    fit, built = _canal_surfaces(
+        canal, (d_out, d_in), layout, tolerance, exact, lambda step: report(step, next(done), 4)
+    )
     (outer, outer_patches), (inner, inner_patches) = built
     if canal.axis.closed:  # no caps: the outer closed shell and the inner one, its cavity
         shells = [outer_patches.all_faces(), inner_patches.all_faces()]
     else:
-        caps = [_canal_cap(outer, layout.s_rings[k], outer_patches.rings[k], (inner, inner_patches.rings[k]),
-                           outward=k == -1) for k in (0, -1)]  # fmt: skip
+        caps = [
+            _canal_cap(
+                outer, layout.s_rings[k], outer_patches.rings[k], (inner, inner_patches.rings[k]), outward=k == -1
+            )
+            for k in (0, -1)
+        ]
         shells = [outer_patches.all_faces() + inner_patches.all_faces() + caps]
     solid = _solid(shells, canal)
     report("solid", 4, 4)
-    return TubeBuild(bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, fit, tolerance,
-                     [_mean_radius(outer.tube), _mean_radius(inner.tube)])  # fmt: skip
+    return TubeBuild(
+        bd.Solid(solid),
+        [outer, inner],
+        [outer_patches, inner_patches],
+        layout,
+        fit,
+        tolerance,
+        [_mean_radius(outer.tube), _mean_radius(inner.tube)],
+    )
 
 
 #: below this |r'| at an end a wall's cap is the plane annulus (the cone would be within
@@ -395,8 +476,9 @@ def _canal_cap(outer, s: float, outer_ring: list[TopoDS_Edge], inner: tuple | No
     return normal_cone_face(s, inner[0], inner[1], outer, outer_ring, outward)
 
 
-def normal_cone_face(s: float, low, low_ring: list[TopoDS_Edge], high, high_ring: list[TopoDS_Edge],
-                     outward: bool) -> TopoDS_Face:  # fmt: skip
+def normal_cone_face(
+    s: float, low, low_ring: list[TopoDS_Edge], high, high_ring: list[TopoDS_Edge], outward: bool
+) -> TopoDS_Face:
     """The face between the circles at ``s`` of two offsets of one canal surface, ``low`` of
     the smaller law and ``high`` (CanalSectionSurfaces with the same origin stringer, their
     ring edges ``low_ring``/``high_ring`` from it along +theta): the piece of the normal cone
@@ -418,25 +500,38 @@ def normal_cone_face(s: float, low, low_ring: list[TopoDS_Edge], high, high_ring
     r_low = float(low.tube.radius_law.r(np.array([s]))[0])
     q = math.sqrt(1.0 - dr * dr)
     k = -math.copysign(1.0, dr)
-    cone = Geom_ConicalSurface(gp_Ax3(gp_Pnt(*map(float, c_lo)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
-                               k * math.atan2(q, abs(dr)), radius_lo)  # fmt: skip
+    cone = Geom_ConicalSurface(
+        gp_Ax3(gp_Pnt(*map(float, c_lo)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+        k * math.atan2(q, abs(dr)),
+        radius_lo,
+    )
     builder.MakeFace(face, cone, TOLERANCE)
     v_high = k * (r_high - r_low)
-    (first, v_first), (second, v_second) = ((low_ring, 0.0), (high_ring, v_high)) if v_high > 0 else (
-        (high_ring, v_high), (low_ring, 0.0))  # fmt: skip
+    (first, v_first), (second, v_second) = (
+        ((low_ring, 0.0), (high_ring, v_high)) if v_high > 0 else ((high_ring, v_high), (low_ring, 0.0))
+    )
     # a seam along the generator u = 0 (OCCT wants one on a closed surface): from the lower
     # circle's point at theta = 0 (the origin stringer's vertex) to the upper one's
     seam = _edge(cone.UIso(0.0), TopExp.FirstVertex_s(first[0]), TopExp.FirstVertex_s(second[0]), v_first, v_second)
     wire = TopoDS_Wire()
     builder.MakeWire(wire)  # counter-clockwise in (u, v): the lower circle along +u, the seam up, the upper back
     for edge in first:
-        builder.UpdateEdge(edge, Geom2d_Line(gp_Pnt2d(0.0, v_first), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge))
+        builder.UpdateEdge(
+            edge, Geom2d_Line(gp_Pnt2d(0.0, v_first), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge)
+        )
         builder.Add(wire, edge.Oriented(TopAbs_FORWARD))
-    builder.UpdateEdge(seam, Geom2d_Line(gp_Pnt2d(2.0 * math.pi, 0.0), gp_Dir2d(0.0, 1.0)),
-                       Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(0.0, 1.0)), face, TOLERANCE)  # fmt: skip
+    builder.UpdateEdge(
+        seam,
+        Geom2d_Line(gp_Pnt2d(2.0 * math.pi, 0.0), gp_Dir2d(0.0, 1.0)),
+        Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(0.0, 1.0)),
+        face,
+        TOLERANCE,
+    )
     builder.Add(wire, seam.Oriented(TopAbs_FORWARD))
     for edge in second[::-1]:
-        builder.UpdateEdge(edge, Geom2d_Line(gp_Pnt2d(0.0, v_second), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge))
+        builder.UpdateEdge(
+            edge, Geom2d_Line(gp_Pnt2d(0.0, v_second), gp_Dir2d(1.0, 0.0)), face, BRep_Tool.Tolerance_s(edge)
+        )
         builder.Add(wire, edge.Oriented(TopAbs_REVERSED))
     builder.Add(wire, seam.Oriented(TopAbs_REVERSED))
     wire.Closed(True)

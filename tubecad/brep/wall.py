@@ -4,9 +4,9 @@ Light on purpose (no OCCT): the spec checker uses it before anything is built.""
 
 from __future__ import annotations
 
-from ..errors import ParameterError
-from ..fitting.tolerance import MIN_SIZE
-from ..validation import bounded_length
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import MIN_SIZE
+from tubecad.core.validation import bounded_length
 
 WALL_SIDES = ("centered", "inside", "outside")
 
@@ -19,8 +19,9 @@ def wall_offsets(thickness: float, side: str) -> tuple[float, float]:
     if not isinstance(side, str) or side not in WALL_SIDES:
         raise ParameterError(f"side must be one of {', '.join(WALL_SIDES)}, got {side!r:.80}")
     if thickness < MIN_SIZE:
-        raise ParameterError(f"thickness must be >= {MIN_SIZE:g} model units (100 x OCCT's edge precision 1e-7), "
-                             f"got {thickness:g}")  # fmt: skip
+        raise ParameterError(
+            f"thickness must be >= {MIN_SIZE:g} model units (100 x OCCT's edge precision 1e-7), got {thickness:g}"
+        )
     return {"centered": (-thickness / 2, thickness / 2), "inside": (-thickness, 0.0), "outside": (0.0, thickness)}[side]
 
 
@@ -34,6 +35,8 @@ def wall_radii(radius: float, thickness: float, side: str) -> tuple[float, float
         if side == "outside":
             raise ParameterError(f"radius must be >= {MIN_SIZE:g} model units for a B-rep, got {radius:g}")
         limit = {"centered": 2 * radius, "inside": radius}[side]
-        raise ParameterError(f"thickness must be < {limit:g} for side = {side!r} (radius {radius:g}; the inner "
-                             f"radius must stay >= {MIN_SIZE:g}), got {thickness:g}")  # fmt: skip
+        raise ParameterError(
+            f"thickness must be < {limit:g} for side = {side!r} (radius {radius:g}; the inner "
+            f"radius must stay >= {MIN_SIZE:g}), got {thickness:g}"
+        )
     return r_in, r_out

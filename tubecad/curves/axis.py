@@ -18,14 +18,15 @@ from __future__ import annotations
 import copy
 import math
 from abc import ABC, abstractmethod
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import ParameterError
-from ..validation import span_pair
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import span_pair
 
 FloatArray = NDArray[np.float64]
 
@@ -60,6 +61,9 @@ class Axis(ABC):
     rings_at_joints: ClassVar[bool] = False
 
     span: tuple[float, float]
+    #: the axis as exact straight lines and circular arcs (a route's ``Piece`` list), or None
+    #: for a smooth curve: the fit then takes the exact rational frame instead of fitting one
+    pieces: Sequence[Any] | None = None
 
     # --- what a kind provides ----------------------------------------------------------
     @abstractmethod
@@ -141,7 +145,7 @@ class Axis(ABC):
             raise ParameterError(f"s must lie in the span [{s0:g}, {s1:g}] of the axis, got [{s.min():g}, {s.max():g}]")
         return s
 
-    def restricted(self, span: tuple[float, float]) -> "Axis":
+    def restricted(self, span: tuple[float, float]) -> Axis:
         """The same axis over a sub-span of its span (e.g. one ring frame's width), with the
         same frame (r1, r2 are not re-started)."""
         s0, s1 = span_pair("span", span, self.s_lower_bound)
@@ -179,8 +183,11 @@ def closing(axis: Axis, closed: bool | None, key: str = "closed") -> bool:
         return True
     if closed:
         if gap > allowed:
-            raise ParameterError(f"{key} = true, but the axis' ends are {gap:.6g} apart (at most {allowed:.3g} for a "
-                                 "closed loop)")  # fmt: skip
-        raise ParameterError(f"{key} = true, but the tangents at the axis' ends differ by {math.degrees(angle):.6g} deg: "
-                             "the closing rings would not lie in one plane (a kink); the ends must meet tangentially")  # fmt: skip
+            raise ParameterError(
+                f"{key} = true, but the axis' ends are {gap:.6g} apart (at most {allowed:.3g} for a closed loop)"
+            )
+        raise ParameterError(
+            f"{key} = true, but the tangents at the axis' ends differ by {math.degrees(angle):.6g} deg: "
+            "the closing rings would not lie in one plane (a kink); the ends must meet tangentially"
+        )
     return False

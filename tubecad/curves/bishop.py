@@ -15,13 +15,13 @@ known to ~1e-14: unlike a fixed-step Runge-Kutta scheme, no step size limits the
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 from numpy.polynomial import chebyshev as C
 
-from ..errors import ParameterError
-from .chebyshev import PiecewiseChebyshev
+from tubecad.core.errors import ParameterError
+from tubecad.curves.chebyshev import PiecewiseChebyshev
 
 #: the series degree per panel
 DEGREE = 24
@@ -69,7 +69,7 @@ def solve_linear_ode(
             raise ParameterError(f"{name}: the equations are not finite at {x[i]:.6g}")
         system = np.kron(2.0 / (hi - lo) * D, np.eye(m))
         for i in range(degree + 1):
-            system[i * m:(i + 1) * m, i * m:(i + 1) * m] -= A[i]
+            system[i * m : (i + 1) * m, i * m : (i + 1) * m] -= A[i]
         system[:m] = 0.0
         system[:m, :m] = np.eye(m)
         rhs = np.zeros(((degree + 1) * m, q))
@@ -85,7 +85,9 @@ def solve_linear_ode(
             mid = 0.5 * (lo + hi)
             todo += [(mid, hi), (lo, mid)]
         if len(done_coeffs) + len(todo) > MAX_PANELS:
-            raise ParameterError(f"{name} could not be resolved with {MAX_PANELS} panels near {lo:.6g}: the "
-                                 "curve must be smooth there (a kink, a cusp or a curvature that blows up?)")  # fmt: skip
+            raise ParameterError(
+                f"{name} could not be resolved with {MAX_PANELS} panels near {lo:.6g}: the "
+                "curve must be smooth there (a kink, a cusp or a curvature that blows up?)"
+            )
     coeffs = np.array(done_coeffs).reshape(len(done_coeffs), degree + 1, *value_shape)
     return PiecewiseChebyshev(np.array(done_breaks), coeffs)

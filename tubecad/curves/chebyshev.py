@@ -10,12 +10,12 @@ vectors (a curve x(t) in 3-D, a frame): the coefficients then carry trailing axe
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 from numpy.polynomial import chebyshev as C
 
-from ..errors import ParameterError
+from tubecad.core.errors import ParameterError
 
 FloatFunction = Callable[[np.ndarray], np.ndarray]
 
@@ -40,7 +40,7 @@ class PiecewiseChebyshev:
         tol: float = 1e-15,
         max_panels: int = 2048,
         breaks: np.ndarray | None = None,
-    ) -> "PiecewiseChebyshev":
+    ) -> PiecewiseChebyshev:
         """Resolve ``f`` on [a, b] adaptively, starting from the panels between ``breaks``
         (e.g. a spline's knots; default [a, b]). ``f`` takes an array of x and returns an
         array of that shape, or of that shape + a value shape (vectors: all resolved)."""
@@ -55,7 +55,7 @@ class PiecewiseChebyshev:
             x = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * nodes
             with np.errstate(all="ignore"):
                 y = np.asarray(f(x), dtype=float)
-                y = y * np.ones(x.shape + y.shape[x.ndim:])
+                y = y * np.ones(x.shape + y.shape[x.ndim :])
             bad = ~np.isfinite(y)
             if bad.any():
                 where = np.argwhere(bad)[0]
@@ -102,7 +102,7 @@ class PiecewiseChebyshev:
             b1, b2 = self.coeffs[i, j] + 2.0 * z * b1 - b2, b1
         return self.coeffs[i, 0] + z * b1 - b2
 
-    def antiderivative(self, value_at_start: float | np.ndarray = 0.0) -> "PiecewiseChebyshev":
+    def antiderivative(self, value_at_start: float | np.ndarray = 0.0) -> PiecewiseChebyshev:
         """The continuous antiderivative F with F(breaks[0]) = value_at_start."""
         half_widths = 0.5 * np.diff(self.breaks)
         integ = np.array([C.chebint(c, lbnd=-1.0, scl=h) for c, h in zip(self.coeffs, half_widths)])
@@ -112,7 +112,7 @@ class PiecewiseChebyshev:
         integ[:, 0] += offsets
         return PiecewiseChebyshev(self.breaks, integ)
 
-    def derivative(self) -> "PiecewiseChebyshev":
+    def derivative(self) -> PiecewiseChebyshev:
         """dF/dx, panel by panel (one degree lower)."""
         half_widths = 0.5 * np.diff(self.breaks)
         return PiecewiseChebyshev(

@@ -10,16 +10,17 @@ c(s0) = ``origin``.
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import ParameterError
-from ..validation import coordinates, finite_number
-from .chebyshev import PiecewiseChebyshev
-from .expression import compile_expression
-from .slope_curve import FloatArray, SlopeCurve
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import coordinates, finite_number
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.curves.expression import compile_expression
+from tubecad.curves.slope_curve import FloatArray, SlopeCurve
 
 
 class CustomCurvature(SlopeCurve):
@@ -57,8 +58,12 @@ class CustomCurvature(SlopeCurve):
         # on round-off noise without end once the plan has turned a few dozen times
         tol = max(1e-15, 8.0 * np.finfo(float).eps * float(np.abs(psi).max()))
         try:
-            self._x = PiecewiseChebyshev.fit(lambda s: np.cos(self.psi(s)), s0, s1, name="cos psi", tol=tol).antiderivative(x0)
-            self._y = PiecewiseChebyshev.fit(lambda s: np.sin(self.psi(s)), s0, s1, name="sin psi", tol=tol).antiderivative(y0)
+            self._x = PiecewiseChebyshev.fit(
+                lambda s: np.cos(self.psi(s)), s0, s1, name="cos psi", tol=tol
+            ).antiderivative(x0)
+            self._y = PiecewiseChebyshev.fit(
+                lambda s: np.sin(self.psi(s)), s0, s1, name="sin psi", tol=tol
+            ).antiderivative(y0)
         except ParameterError:  # k itself was resolved: the plan turns too often
             turns = float(np.abs(np.diff(psi)).sum()) / (2.0 * math.pi)
             raise ParameterError(
@@ -75,13 +80,16 @@ class CustomCurvature(SlopeCurve):
         except Exception as exc:  # noqa: BLE001
             raise ParameterError(f"k(s) raised {type(exc).__name__}: {exc}"[:300]) from exc
         if value.dtype.kind not in "iuf":
-            raise ParameterError(f"k(s) must return real numbers (an array shaped like s, or a scalar), "
-                                 f"got {value.dtype} values {value.ravel()[:3]!r:.80}")  # fmt: skip
+            raise ParameterError(
+                f"k(s) must return real numbers (an array shaped like s, or a scalar), "
+                f"got {value.dtype} values {value.ravel()[:3]!r:.80}"
+            )
         try:
             return value.astype(float) * np.ones_like(s)
         except ValueError:
-            raise ParameterError(f"k(s) must return an array shaped like s {np.shape(s)} or a scalar, "
-                                 f"got shape {value.shape}") from None  # fmt: skip
+            raise ParameterError(
+                f"k(s) must return an array shaped like s {np.shape(s)} or a scalar, got shape {value.shape}"
+            ) from None
 
     def _inside(self, s: ArrayLike) -> FloatArray:
         s = np.asarray(s, dtype=float)

@@ -12,12 +12,13 @@ tangent turning at a point) is refused: no tube follows it.
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from .parametric import ParametricAxis
+from tubecad.core.errors import ParameterError
+from tubecad.curves.parametric import ParametricAxis
 
 
 def _adaptor(curve: Any):
@@ -28,7 +29,7 @@ def _adaptor(curve: Any):
     from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE
     from OCP.TopoDS import TopoDS_Shape
 
-    from ..occ_compat import as_edge, as_wire
+    from tubecad.occ_compat import as_edge, as_wire
 
     shape = getattr(curve, "wrapped", curve)  # build123d and CadQuery objects hold the OCCT shape
     if isinstance(shape, TopoDS_Shape) and not shape.IsNull():
@@ -38,24 +39,28 @@ def _adaptor(curve: Any):
             return BRepAdaptor_CompCurve(as_wire(shape), False), "wire"
     if isinstance(shape, Geom_Curve):
         return GeomAdaptor_Curve(shape), type(shape).__name__
-    raise ParameterError(f"edge must be a build123d/CadQuery Edge or Wire, a TopoDS edge or wire, or a Geom curve, "
-                         f"got {type(curve).__name__}")  # fmt: skip
+    raise ParameterError(
+        f"edge must be a build123d/CadQuery Edge or Wire, a TopoDS edge or wire, or a Geom curve, "
+        f"got {type(curve).__name__}"
+    )
 
 
-def edge_axis(curve: Any, *, normal: Sequence[float] | None = None, source: str | None = None,
-              closed: bool | None = None) -> ParametricAxis:  # fmt: skip
+def edge_axis(
+    curve: Any, *, normal: Sequence[float] | None = None, source: str | None = None, closed: bool | None = None
+) -> ParametricAxis:
     """The axis along ``curve`` (see the module docstring), from its first parameter to its
     last. ``closed``: a closed loop (None: detected, e.g. a periodic B-spline or a closed
     wire meeting itself tangentially; True: demanded; False: kept open)."""
     from OCP.GeomAbs import GeomAbs_C1, GeomAbs_C2, GeomAbs_C3
     from OCP.gp import gp_Pnt
 
-    from ..occ_compat import Array1OfReal
+    from tubecad.occ_compat import Array1OfReal
 
     adaptor, kind = _adaptor(curve)
     t0, t1 = adaptor.FirstParameter(), adaptor.LastParameter()
     if not (np.isfinite(t0) and np.isfinite(t1) and t1 > t0):
         raise ParameterError(f"edge: the {kind} must be bounded, got parameters [{t0:g}, {t1:g}]")
+
     def intervals(order) -> np.ndarray:
         n = adaptor.NbIntervals(order)
         values = Array1OfReal(1, n + 1)
@@ -70,8 +75,10 @@ def edge_axis(curve: Any, *, normal: Sequence[float] | None = None, source: str 
             p = gp_Pnt()
             adaptor.D0(float(t), p)
             angle = np.degrees(np.arccos(np.clip(before @ after, -1.0, 1.0)))
-            raise ParameterError(f"edge: the {kind} has a kink at ({p.X():.6g}, {p.Y():.6g}, {p.Z():.6g}), its tangent "
-                                 f"turns {angle:.3g} deg there; a tube needs a tangent-continuous axis")  # fmt: skip
+            raise ParameterError(
+                f"edge: the {kind} has a kink at ({p.X():.6g}, {p.Y():.6g}, {p.Z():.6g}), its tangent "
+                f"turns {angle:.3g} deg there; a tube needs a tangent-continuous axis"
+            )
     joints = [(float(t), 0 if (t in below_c2 or t in below_c1) else 1) for t in breaks[1:-1]]
     point = gp_Pnt()
 
@@ -84,8 +91,16 @@ def edge_axis(curve: Any, *, normal: Sequence[float] | None = None, source: str 
         return out
 
     description = {"curve": "edge", "kind": kind, "source": source or type(curve).__name__, "t": [t0, t1]}
-    return ParametricAxis(x, (t0, t1), breaks=breaks, joints=joints, normal=normal, description=description,
-                          name=f"the {kind}", closed=closed)  # fmt: skip
+    return ParametricAxis(
+        x,
+        (t0, t1),
+        breaks=breaks,
+        joints=joints,
+        normal=normal,
+        description=description,
+        name=f"the {kind}",
+        closed=closed,
+    )
 
 
 def _tangent(adaptor, t: float) -> np.ndarray:

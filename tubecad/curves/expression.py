@@ -13,33 +13,49 @@ import ast
 import math
 import operator
 import sys
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
-from ..errors import ExpressionError
+from tubecad.core.errors import ExpressionError
 
 MAX_LENGTH = 1000
 MAX_NODES = 400
 MAX_LITERAL_EXPONENT = 64.0
 
 FUNCTIONS: dict[str, Callable[[np.ndarray], np.ndarray]] = {
-    "sin": np.sin, "cos": np.cos, "tan": np.tan,
-    "asin": np.arcsin, "acos": np.arccos, "atan": np.arctan,
-    "sinh": np.sinh, "cosh": np.cosh, "tanh": np.tanh,
-    "exp": np.exp, "log": np.log, "ln": np.log, "log10": np.log10,
-    "sqrt": np.sqrt, "abs": np.abs,
-}  # fmt: skip
+    "sin": np.sin,
+    "cos": np.cos,
+    "tan": np.tan,
+    "asin": np.arcsin,
+    "acos": np.arccos,
+    "atan": np.arctan,
+    "sinh": np.sinh,
+    "cosh": np.cosh,
+    "tanh": np.tanh,
+    "exp": np.exp,
+    "log": np.log,
+    "ln": np.log,
+    "log10": np.log10,
+    "sqrt": np.sqrt,
+    "abs": np.abs,
+}
 CONSTANTS = {"pi": math.pi, "e": math.e}
-BINARY = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
-          ast.Div: operator.truediv, ast.Pow: operator.pow}  # fmt: skip
+BINARY = {
+    ast.Add: operator.add,
+    ast.Sub: operator.sub,
+    ast.Mult: operator.mul,
+    ast.Div: operator.truediv,
+    ast.Pow: operator.pow,
+}
 UNARY = {ast.USub: operator.neg, ast.UAdd: operator.pos}
 
 Compiled = Callable[[np.ndarray], np.ndarray]
 
 
-def compile_expression(text: str, name: str = "k", variable: str = "s",
-                       derived: dict[str, Compiled] | None = None) -> Compiled:  # fmt: skip
+def compile_expression(
+    text: str, name: str = "k", variable: str = "s", derived: dict[str, Compiled] | None = None
+) -> Compiled:
     """Turn ``text`` (e.g. ``"10 / s"``, ``"0.02 + 1e-5 * s"``) into a vectorised f(s).
 
     ``derived``: further names, each a function of the variable (e.g. the axis point's x,
@@ -125,8 +141,10 @@ def _check_numbers(tree: ast.AST, text: str, name: str) -> None:
             if not finite:
                 shown = ast.get_source_segment(text, node) or "?"
                 shown = shown if len(shown) <= 30 else f"{shown[:15]}... ({len(shown)} digits)"
-                raise ExpressionError(f"{name}: number {shown} is out of range; numbers must be finite and at most "
-                                      f"{sys.float_info.max:.4g} in magnitude")  # fmt: skip
+                raise ExpressionError(
+                    f"{name}: number {shown} is out of range; numbers must be finite and at most "
+                    f"{sys.float_info.max:.4g} in magnitude"
+                )
 
 
 def _check_exponent(node: ast.AST, where: str) -> None:

@@ -13,9 +13,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import fresnel
 
-from ..errors import ParameterError
-from ..validation import bounded_length, finite_number, number_in_range
-from .slope_curve import FloatArray, SlopeCurve
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import bounded_length, finite_number, number_in_range
+from tubecad.curves.slope_curve import FloatArray, SlopeCurve
 
 
 class LogSpiral(SlopeCurve):
@@ -72,13 +72,15 @@ class Helix(SlopeCurve):
     def __init__(self, k: float, beta_deg: float, span: tuple[float, float]) -> None:
         self.k = finite_number("k", k)
         if 0.0 < abs(self.k) < self.MIN_CURVATURE:
-            raise ParameterError(f"k must be 0 (a straight axis) or at least {self.MIN_CURVATURE:g} in magnitude "
-                                 f"(the helix lies on a cylinder of radius cos^2(beta) / |k| about the z axis), "
-                                 f"got {self.k:g}")  # fmt: skip
+            raise ParameterError(
+                f"k must be 0 (a straight axis) or at least {self.MIN_CURVATURE:g} in magnitude "
+                f"(the helix lies on a cylinder of radius cos^2(beta) / |k| about the z axis), "
+                f"got {self.k:g}"
+            )
         super().__init__(beta_deg, span)
 
     @classmethod
-    def from_radius_pitch(cls, radius: float, pitch: float, span: tuple[float, float]) -> "Helix":
+    def from_radius_pitch(cls, radius: float, pitch: float, span: tuple[float, float]) -> Helix:
         """The helix on a cylinder of ``radius`` rising ``pitch`` per turn (pitch may be 0)."""
         radius = bounded_length("radius", radius, 0.0)
         pitch = bounded_length("pitch", pitch)

@@ -13,17 +13,18 @@ A slope curve is the case tau = k tan(beta) (Lancret); a circular helix has k, t
 
 from __future__ import annotations
 
-from typing import Any, Callable, Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import ParameterError
-from ..validation import coordinates, span_pair
-from .axis import Axis, FloatArray, closing
-from .bishop import solve_linear_ode
-from .chebyshev import PiecewiseChebyshev
-from .expression import compile_expression
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import coordinates, span_pair
+from tubecad.curves.axis import Axis, FloatArray, closing
+from tubecad.curves.bishop import solve_linear_ode
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.curves.expression import compile_expression
 
 Function = Callable[[np.ndarray], np.ndarray]
 
@@ -102,7 +103,8 @@ class NaturalAxis(Axis):
         breaks = np.union1d(self._k.breaks, self._tau.breaks)
         self._frame = solve_linear_ode(bishop, breaks, frame0, name="the natural equations' frame")
         self._position = PiecewiseChebyshev(self._frame.breaks, self._frame.coeffs[:, :, 0, :]).antiderivative(
-            np.array(self.origin))
+            np.array(self.origin)
+        )
         self._closed = closing(self, closed)
 
     def position(self, s: ArrayLike) -> FloatArray:
@@ -134,9 +136,16 @@ class NaturalAxis(Axis):
         return self._tau(self._inside(s))
 
     def describe(self) -> dict[str, Any]:
-        return {"curve": self.family, "k": self.k_text or repr(self._k), "tau": self.tau_text or repr(self._tau),
-                "s": list(self.span), "origin": list(self.origin), "tangent": list(self.tangent),
-                "normal": list(self.normal), **({"closed": True} if self.closed else {})}  # fmt: skip
+        return {
+            "curve": self.family,
+            "k": self.k_text or repr(self._k),
+            "tau": self.tau_text or repr(self._tau),
+            "s": list(self.span),
+            "origin": list(self.origin),
+            "tangent": list(self.tangent),
+            "normal": list(self.normal),
+            **({"closed": True} if self.closed else {}),
+        }
 
     def __repr__(self) -> str:
         return f"NaturalAxis(k={self.k_text!r}, tau={self.tau_text!r}, span={self.span!r})"

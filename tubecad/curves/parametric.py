@@ -17,18 +17,19 @@ A zero speed |x'| = 0 anywhere (a cusp, a stop) is refused.
 
 from __future__ import annotations
 
-from typing import Any, Callable, Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import ParameterError
-from ..validation import span_pair
-from .axis import Axis, FloatArray, closing
-from .bishop import solve_linear_ode
-from .chebyshev import PiecewiseChebyshev
-from .expression import compile_expression
-from .natural import unit_vector
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import span_pair
+from tubecad.curves.axis import Axis, FloatArray, closing
+from tubecad.curves.bishop import solve_linear_ode
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.curves.expression import compile_expression
+from tubecad.curves.natural import unit_vector
 
 #: the smallest speed |x'| accepted, relative to the largest on the curve
 MIN_RELATIVE_SPEED = 1e-6
@@ -73,13 +74,19 @@ class ParametricAxis(Axis):
         t0, t1 = self.t_span
         if not callable(curve):
             raise ParameterError(f"curve must be a callable x(t) returning points (..., 3), got {curve!r:.80}")
-        self._x = PiecewiseChebyshev.fit(lambda t: _points(curve, t, name), t0, t1, name=name,
-                                         breaks=None if breaks is None else np.asarray(breaks, dtype=float))  # fmt: skip
+        self._x = PiecewiseChebyshev.fit(
+            lambda t: _points(curve, t, name),
+            t0,
+            t1,
+            name=name,
+            breaks=None if breaks is None else np.asarray(breaks, dtype=float),
+        )
         self._dx = self._x.derivative()
         self._ddx = self._dx.derivative()
         self._check_speed(name)
-        self._s = PiecewiseChebyshev.fit(self._speed, t0, t1, name=f"the speed of {name}", breaks=self._x.breaks
-                                         ).antiderivative(0.0)  # fmt: skip
+        self._s = PiecewiseChebyshev.fit(
+            self._speed, t0, t1, name=f"the speed of {name}", breaks=self._x.breaks
+        ).antiderivative(0.0)
         self.span = (0.0, float(self._s(np.array(t1))))
         r1_start = self._start_normal(normal)
 
@@ -91,12 +98,24 @@ class ParametricAxis(Axis):
         s_breaks = self._s(self._r1.breaks)
         s_breaks[0], s_breaks[-1] = self.span
         L = self.span[1]
-        self._c_s = PiecewiseChebyshev.fit(lambda x: self._x(self.parameter(x)), 0.0, L, breaks=s_breaks,
-                                           name=f"{name} in arc length")  # fmt: skip
-        self._frame_s = PiecewiseChebyshev.fit(lambda x: np.concatenate(self._frame_in_t(self.parameter(x))[:2], axis=-1),
-                                               0.0, L, breaks=s_breaks, name=f"the frame of {name} in arc length")  # fmt: skip
-        self._development_s = PiecewiseChebyshev.fit(lambda x: self._development_in_t(self.parameter(x)), 0.0, L,
-                                                     breaks=s_breaks, tol=1e-13, name=f"the curvature of {name}")  # fmt: skip
+        self._c_s = PiecewiseChebyshev.fit(
+            lambda x: self._x(self.parameter(x)), 0.0, L, breaks=s_breaks, name=f"{name} in arc length"
+        )
+        self._frame_s = PiecewiseChebyshev.fit(
+            lambda x: np.concatenate(self._frame_in_t(self.parameter(x))[:2], axis=-1),
+            0.0,
+            L,
+            breaks=s_breaks,
+            name=f"the frame of {name} in arc length",
+        )
+        self._development_s = PiecewiseChebyshev.fit(
+            lambda x: self._development_in_t(self.parameter(x)),
+            0.0,
+            L,
+            breaks=s_breaks,
+            tol=1e-13,
+            name=f"the curvature of {name}",
+        )
         self._development_rate_s = self._development_s.derivative()
         self._joints = tuple((float(self._s(np.array(t))), int(c)) for t, c in joints if t0 < t < t1)
         self._description = description or {"curve": self.family, "t": list(self.t_span)}
@@ -147,12 +166,18 @@ class ParametricAxis(Axis):
         speed = self._speed(t)
         i = int(np.argmin(speed))
         lo, hi = t[max(i - 1, 0)], t[min(i + 1, len(t) - 1)]
-        best = minimize_scalar(lambda x: float(self._speed(np.array(x))), bounds=(lo, hi), method="bounded",
-                               options={"xatol": 1e-12 * (t[-1] - t[0])})  # fmt: skip
+        best = minimize_scalar(
+            lambda x: float(self._speed(np.array(x))),
+            bounds=(lo, hi),
+            method="bounded",
+            options={"xatol": 1e-12 * (t[-1] - t[0])},
+        )
         t_min, v_min = (float(best.x), float(best.fun)) if best.fun < speed[i] else (float(t[i]), float(speed[i]))
         if not v_min > MIN_RELATIVE_SPEED * speed.max():
-            raise ParameterError(f"{name} is degenerate: its speed |dx/dt| is {v_min:.3g} at t = {t_min:.6g} "
-                                 f"(at most {speed.max():.3g} elsewhere); a tube needs a regular curve, |dx/dt| > 0")  # fmt: skip
+            raise ParameterError(
+                f"{name} is degenerate: its speed |dx/dt| is {v_min:.3g} at t = {t_min:.6g} "
+                f"(at most {speed.max():.3g} elsewhere); a tube needs a regular curve, |dx/dt| > 0"
+            )
 
     def _start_normal(self, normal: Sequence[float] | None) -> np.ndarray:
         t0 = np.array([self.t_span[0]])
@@ -204,5 +229,7 @@ def _points(curve: CurveFunction, t: np.ndarray, name: str) -> np.ndarray:
     except (TypeError, ValueError) as exc:
         raise ParameterError(f"{name} must return real points: {exc}"[:300]) from None
     if out.shape != t.shape + (3,):
-        raise ParameterError(f"{name} must return points of shape {t.shape + (3,)} for t of shape {t.shape}, got {out.shape}")
+        raise ParameterError(
+            f"{name} must return points of shape {t.shape + (3,)} for t of shape {t.shape}, got {out.shape}"
+        )
     return out

@@ -11,14 +11,14 @@ instead: C2 all round, the closing point included.
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from ..errors import ParameterError
-from ..validation import MAX_LENGTH
-from .parametric import ParametricAxis
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import MAX_LENGTH
+from tubecad.curves.parametric import ParametricAxis
 
 PARAMETERISATIONS = {"centripetal": 0.5, "chord": 1.0}
 MAX_POINTS = 100_000
@@ -41,7 +41,9 @@ def checked_points(points: object, least: int) -> np.ndarray:
     repeated = np.flatnonzero(steps <= 1e-12 * (float(np.abs(p).max()) or 1.0))
     if repeated.size:
         i = int(repeated[0])
-        raise ParameterError(f"points[{i + 1}] {shown(p[i + 1])} repeats points[{i}]; every point must differ from the next")
+        raise ParameterError(
+            f"points[{i + 1}] {shown(p[i + 1])} repeats points[{i}]; every point must differ from the next"
+        )
     return p
 
 
@@ -64,14 +66,21 @@ def shown(point: np.ndarray) -> str:
     return "[" + ", ".join(f"{v:g}" for v in point) + "]"
 
 
-def points_axis(points: Sequence[Sequence[float]], *, parameterisation: str = "centripetal",
-                normal: Sequence[float] | None = None, closed: bool | None = None) -> ParametricAxis:  # fmt: skip
+def points_axis(
+    points: Sequence[Sequence[float]],
+    *,
+    parameterisation: str = "centripetal",
+    normal: Sequence[float] | None = None,
+    closed: bool | None = None,
+) -> ParametricAxis:
     """The axis through ``points`` (n x 3), interpolated by a C2 cubic spline. ``closed``: a
     closed loop (None: when the last point repeats the first; True: the first point is
     appended if the last differs; False: an open spline even so), interpolated by the
     periodic cubic spline through 3 or more distinct points."""
     if parameterisation not in PARAMETERISATIONS:
-        raise ParameterError(f"parameterisation must be one of {', '.join(PARAMETERISATIONS)}, got {parameterisation!r:.80}")
+        raise ParameterError(
+            f"parameterisation must be one of {', '.join(PARAMETERISATIONS)}, got {parameterisation!r:.80}"
+        )
     p = checked_points(points, 3)
     given = len(p)
     loop = closed_loop(p, closed)
@@ -83,10 +92,21 @@ def points_axis(points: Sequence[Sequence[float]], *, parameterisation: str = "c
     steps = np.linalg.norm(np.diff(p, axis=0), axis=1)
     t = np.concatenate([[0.0], np.cumsum(steps ** PARAMETERISATIONS[parameterisation])])
     spline = CubicSpline(t, p, bc_type="periodic" if loop else "not-a-knot", axis=0)
-    interpolation = (f"periodic cubic spline (C2, closed), {parameterisation} parameterisation" if loop else
-                     f"cubic spline (C2), {parameterisation} parameterisation, not-a-knot ends")  # fmt: skip
+    interpolation = (
+        f"periodic cubic spline (C2, closed), {parameterisation} parameterisation"
+        if loop
+        else f"cubic spline (C2), {parameterisation} parameterisation, not-a-knot ends"
+    )
     description = {"curve": "points", "points": given, "interpolation": interpolation}
     # the third derivative jumps at the knots: c is C2 there, k only C0, so the frame (c, r1, r2) is C1
     joints = [(float(x), 1) for x in t[1:-1]]
-    return ParametricAxis(spline, (float(t[0]), float(t[-1])), breaks=t, joints=joints, normal=normal,
-                          description=description, name="the spline through the points", closed=loop)  # fmt: skip
+    return ParametricAxis(
+        spline,
+        (float(t[0]), float(t[-1])),
+        breaks=t,
+        joints=joints,
+        normal=normal,
+        description=description,
+        name="the spline through the points",
+        closed=loop,
+    )

@@ -28,17 +28,19 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
-from ..errors import ParameterError
-from ..validation import bounded_length, finite_number, span_pair
-from .chebyshev import PiecewiseChebyshev
-from .expression import compile_expression
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import bounded_length, finite_number, span_pair
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.curves.expression import compile_expression
 
 FloatArray = np.ndarray
 RadiusValue = float | str | Callable[[np.ndarray], np.ndarray] | Sequence[Sequence[float]]
 
 TABLE_INTERPOLATION = "cubic spline through the points, C2, not-a-knot ends (2 points: a straight line, 3: a parabola)"
-PERIODIC_TABLE_INTERPOLATION = ("periodic cubic spline through the points (a closed axis: the last r repeats the "
-                                "first), C2 all round the loop, the closing point included")
+PERIODIC_TABLE_INTERPOLATION = (
+    "periodic cubic spline through the points (a closed axis: the last r repeats the "
+    "first), C2 all round the loop, the closing point included"
+)
 #: on a closed axis r(s1) must equal r(s0) to this relative difference, and r'(s1) r'(s0) to CLOSING_SLOPE
 CLOSING_RADIUS = 1e-9
 CLOSING_SLOPE = 1e-8
@@ -54,9 +56,19 @@ class RadiusLaw:
     panels at. Construct with :func:`radius_law`.
     """
 
-    def __init__(self, kind: str, span: tuple[float, float], name: str, source: Any,
-                 pieces: tuple[Callable[[np.ndarray], np.ndarray], ...] | None, *, breaks: Sequence[float] = (),
-                 resolution: int = 1, offset: float = 0.0, periodic: bool = False) -> None:  # fmt: skip
+    def __init__(
+        self,
+        kind: str,
+        span: tuple[float, float],
+        name: str,
+        source: Any,
+        pieces: tuple[Callable[[np.ndarray], np.ndarray], ...] | None,
+        *,
+        breaks: Sequence[float] = (),
+        resolution: int = 1,
+        offset: float = 0.0,
+        periodic: bool = False,
+    ) -> None:
         self.kind, self.span, self.name, self.source, self.offset = kind, span, name, source, offset
         #: set once the law is known to close round a closed axis (a periodic table, or checked by check_closes)
         self.periodic = periodic
@@ -103,16 +115,32 @@ class RadiusLaw:
         if self._pieces is None:
             return radius_law(float(self.source) + d, self.span, self.name)
         r, dr, ddr, dddr = self._pieces
-        return RadiusLaw(self.kind, self.span, self.name, self.source, (lambda s: r(s) + d, dr, ddr, dddr),
-                         breaks=self.breaks, resolution=self._resolution, offset=self.offset + d,
-                         periodic=self.periodic)  # fmt: skip
+        return RadiusLaw(
+            self.kind,
+            self.span,
+            self.name,
+            self.source,
+            (lambda s: r(s) + d, dr, ddr, dddr),
+            breaks=self.breaks,
+            resolution=self._resolution,
+            offset=self.offset + d,
+            periodic=self.periodic,
+        )
 
     def restricted(self, span: tuple[float, float]) -> RadiusLaw:
         """The same law on a sub-span (e.g. one stiffener's): the same r(s), checked there."""
         if self._pieces is None:
             return radius_law(float(self.source), span, self.name)
-        return RadiusLaw(self.kind, span, self.name, self.source, self._pieces, breaks=self.breaks,
-                         resolution=self._resolution, offset=self.offset)  # fmt: skip
+        return RadiusLaw(
+            self.kind,
+            span,
+            self.name,
+            self.source,
+            self._pieces,
+            breaks=self.breaks,
+            resolution=self._resolution,
+            offset=self.offset,
+        )
 
     # --- checks ------------------------------------------------------------------------
     def check_closes(self) -> None:
@@ -126,11 +154,13 @@ class RadiusLaw:
         (r0, r1), (d0, d1) = self.r(ends), self.dr(ends)
         dr_gap, slope_gap = abs(r1 - r0), abs(d1 - d0)
         if dr_gap > CLOSING_RADIUS * max(abs(r0), abs(r1)) or slope_gap > CLOSING_SLOPE:
-            raise ParameterError(f"{self.name}: on a closed axis the law must close (r and r' at s = {s1:g} equal to "
-                                 f"those at s = {s0:g}), but r = {r0:.10g}, r' = {d0:.6g} at s = {s0:g} and r = "
-                                 f"{r1:.10g}, r' = {d1:.6g} at s = {s1:g} (they differ by {dr_gap:.3g} in r, "
-                                 f"{slope_gap:.3g} in r'); give a periodic law, e.g. in cos(2 * pi * s / "
-                                 f"{s1 - s0:.12g}), or open the axis (closed = false)")  # fmt: skip
+            raise ParameterError(
+                f"{self.name}: on a closed axis the law must close (r and r' at s = {s1:g} equal to "
+                f"those at s = {s0:g}), but r = {r0:.10g}, r' = {d0:.6g} at s = {s0:g} and r = "
+                f"{r1:.10g}, r' = {d1:.6g} at s = {s1:g} (they differ by {dr_gap:.3g} in r, "
+                f"{slope_gap:.3g} in r'); give a periodic law, e.g. in cos(2 * pi * s / "
+                f"{s1 - s0:.12g}), or open the axis (closed = false)"
+            )
         self.periodic = True
 
     def _samples(self) -> np.ndarray:
@@ -150,13 +180,17 @@ class RadiusLaw:
         s0, s1 = self.span
         self.s_at_min_radius, self.min_radius = self.extreme(self.r, largest=False)
         if not self.min_radius > 0.0:
-            raise ParameterError(f"{self.name}: r reaches {self.min_radius:.6g} at s = {self.s_at_min_radius:.6g}; "
-                                 f"the radius must stay > 0 over the span [{s0:g}, {s1:g}]")  # fmt: skip
+            raise ParameterError(
+                f"{self.name}: r reaches {self.min_radius:.6g} at s = {self.s_at_min_radius:.6g}; "
+                f"the radius must stay > 0 over the span [{s0:g}, {s1:g}]"
+            )
         self.s_at_max_radius, self.max_radius = self.extreme(self.r, largest=True)
         self.s_at_max_slope, self.max_slope = self.extreme(lambda x: np.abs(self.dr(x)), largest=True)
         if not self.max_slope < 1.0:
-            raise ParameterError(f"{self.name}: |r'| reaches {self.max_slope:.6g} at s = {self.s_at_max_slope:.6g}; "
-                                 "a canal surface needs |r'| < 1 (the spheres would not have an envelope)")  # fmt: skip
+            raise ParameterError(
+                f"{self.name}: |r'| reaches {self.max_slope:.6g} at s = {self.s_at_max_slope:.6g}; "
+                "a canal surface needs |r'| < 1 (the spheres would not have an envelope)"
+            )
 
     # --- report ------------------------------------------------------------------------
     def describe(self) -> dict[str, Any]:
@@ -173,9 +207,16 @@ class RadiusLaw:
             out["periodic"] = "r(s1) = r(s0) and r'(s1) = r'(s0): the law closes round the closed axis"
         if self.offset:
             out["offset"] = self.offset
-        out.update({"min": self.min_radius, "s_at_min": self.s_at_min_radius, "max": self.max_radius,
-                    "s_at_max": self.s_at_max_radius, "max_abs_slope": self.max_slope,
-                    "s_at_max_abs_slope": self.s_at_max_slope})  # fmt: skip
+        out.update(
+            {
+                "min": self.min_radius,
+                "s_at_min": self.s_at_min_radius,
+                "max": self.max_radius,
+                "s_at_max": self.s_at_max_radius,
+                "max_abs_slope": self.max_slope,
+                "s_at_max_abs_slope": self.s_at_max_slope,
+            }
+        )
         return out
 
     def __repr__(self) -> str:
@@ -183,8 +224,9 @@ class RadiusLaw:
         return f"RadiusLaw({self.kind}: {shown!r:.80}, span={self.span!r})"
 
 
-def refined_extreme(f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, largest: bool, name: str = "f"
-                    ) -> tuple[float, float]:  # fmt: skip
+def refined_extreme(
+    f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, largest: bool, name: str = "f"
+) -> tuple[float, float]:
     """(s*, f(s*)) at the smallest (or largest) value of ``f`` over the sorted samples ``s``:
     the best sample, refined by a bounded scalar search between its neighbours (an extreme
     between two samples is found, not stepped over). A non-finite value is a ParameterError."""
@@ -198,15 +240,20 @@ def refined_extreme(f: Callable[[np.ndarray], np.ndarray], s: np.ndarray, larges
     i = int(np.argmin(v))
     best = (float(s[i]), float(v[i]))
     if 0 < i < len(s) - 1:
-        res = minimize_scalar(lambda x: sign * float(f(np.array(x))), bounds=(s[i - 1], s[i + 1]), method="bounded",
-                              options={"xatol": 1e-12 * (s[-1] - s[0])})  # fmt: skip
+        res = minimize_scalar(
+            lambda x: sign * float(f(np.array(x))),
+            bounds=(s[i - 1], s[i + 1]),
+            method="bounded",
+            options={"xatol": 1e-12 * (s[-1] - s[0])},
+        )
         if res.fun < best[1]:
             best = (float(res.x), float(res.fun))
     return best[0], sign * best[1]
 
 
-def radius_law(value: RadiusValue | RadiusLaw, span: tuple[float, float], name: str = "radius",
-               axis: Any = None) -> RadiusLaw:  # fmt: skip
+def radius_law(
+    value: RadiusValue | RadiusLaw, span: tuple[float, float], name: str = "radius", axis: Any = None
+) -> RadiusLaw:
     """The radius law ``value`` (a number, an expression in s, a callable of s, or a table
     [[s, r], ...]) on ``span``, checked there; ParameterError naming ``name`` otherwise.
     With the ``axis``, an expression may also use x, y, z: the axis point c(s) (a Dupin
@@ -214,8 +261,10 @@ def radius_law(value: RadiusValue | RadiusLaw, span: tuple[float, float], name: 
     span = span_pair("span", span)
     if isinstance(value, RadiusLaw):
         if value.span != span:
-            raise ParameterError(f"{name}: the law is given on [{value.span[0]:g}, {value.span[1]:g}], "
-                                 f"the axis' span is [{span[0]:g}, {span[1]:g}]")  # fmt: skip
+            raise ParameterError(
+                f"{name}: the law is given on [{value.span[0]:g}, {value.span[1]:g}], "
+                f"the axis' span is [{span[0]:g}, {span[1]:g}]"
+            )
         return value
     if isinstance(value, str):
         try:
@@ -228,17 +277,22 @@ def radius_law(value: RadiusValue | RadiusLaw, span: tuple[float, float], name: 
         return _series_law(value, span, name, axis)
     if isinstance(value, (list, tuple, np.ndarray)):
         return _table_law(value, span, name, periodic=bool(getattr(axis, "closed", False)))
-    raise ParameterError(f"{name} must be a number, an expression in s, a callable r(s) or a table [[s, r], ...], "
-                         f"got {value!r:.80}")  # fmt: skip
+    raise ParameterError(
+        f"{name} must be a number, an expression in s, a callable r(s) or a table [[s, r], ...], got {value!r:.80}"
+    )
 
 
-def _series_law(value: str | Callable[[np.ndarray], np.ndarray], span: tuple[float, float], name: str,
-                axis: Any = None) -> RadiusLaw:  # fmt: skip
+def _series_law(
+    value: str | Callable[[np.ndarray], np.ndarray], span: tuple[float, float], name: str, axis: Any = None
+) -> RadiusLaw:
     """An expression (in s, and x, y, z of the axis point if the ``axis`` is given) or a
     callable, resolved as a Chebyshev series with exact derivatives."""
     text = value if isinstance(value, str) else None
-    derived = None if axis is None else {
-        coordinate: (lambda s, k=k: axis.position(s)[..., k]) for k, coordinate in enumerate("xyz")}  # fmt: skip
+    derived = (
+        None
+        if axis is None
+        else {coordinate: (lambda s, k=k: axis.position(s)[..., k]) for k, coordinate in enumerate("xyz")}
+    )
     func = compile_expression(value, name, derived=derived) if text is not None else value
 
     def values(s: np.ndarray) -> np.ndarray:
@@ -251,18 +305,26 @@ def _series_law(value: str | Callable[[np.ndarray], np.ndarray], span: tuple[flo
         try:
             return out.astype(float) * np.ones_like(s)
         except ValueError:
-            raise ParameterError(f"{name}(s) must return an array shaped like s {np.shape(s)} or a scalar, "
-                                 f"got shape {out.shape}") from None  # fmt: skip
+            raise ParameterError(
+                f"{name}(s) must return an array shaped like s {np.shape(s)} or a scalar, got shape {out.shape}"
+            ) from None
 
     r = PiecewiseChebyshev.fit(values, *span, name=f"{name}(s)")
     dr = r.derivative()
     ddr = dr.derivative()
-    return RadiusLaw("expression" if text is not None else "callable", span, name, value,
-                     (r, dr, ddr, ddr.derivative()), resolution=len(r.coeffs))  # fmt: skip
+    return RadiusLaw(
+        "expression" if text is not None else "callable",
+        span,
+        name,
+        value,
+        (r, dr, ddr, ddr.derivative()),
+        resolution=len(r.coeffs),
+    )
 
 
-def _table_law(value: Sequence[Sequence[float]], span: tuple[float, float], name: str,
-               periodic: bool = False) -> RadiusLaw:  # fmt: skip
+def _table_law(
+    value: Sequence[Sequence[float]], span: tuple[float, float], name: str, periodic: bool = False
+) -> RadiusLaw:
     """The not-a-knot cubic spline through the rows [s, r] (strictly increasing s, r > 0);
     ``periodic`` (a closed axis): the periodic cubic spline, the rows running from the
     span's start to its end and the last r repeating the first (else refused, naming them)."""
@@ -288,26 +350,35 @@ def _table_law(value: Sequence[Sequence[float]], span: tuple[float, float], name
     slack = 1e-9 * (s1 - s0)
     if data[0, 0] > s0 + slack or data[-1, 0] < s1 - slack:
         end = s0 if data[0, 0] > s0 + slack else s1
-        raise ParameterError(f"{name}: the table covers s in [{data[0, 0]:g}, {data[-1, 0]:g}], which misses "
-                             f"s = {end:g} of the span [{s0:g}, {s1:g}]; its rows must reach both ends "
-                             "(no extrapolation)")  # fmt: skip
+        raise ParameterError(
+            f"{name}: the table covers s in [{data[0, 0]:g}, {data[-1, 0]:g}], which misses "
+            f"s = {end:g} of the span [{s0:g}, {s1:g}]; its rows must reach both ends "
+            "(no extrapolation)"
+        )
     # only tables need it: importing tubecad.curves stays light
     from scipy.interpolate import CubicSpline
 
     if periodic:
         last = len(data) - 1
         if abs(data[0, 0] - s0) > slack or abs(data[-1, 0] - s1) > slack:
-            raise ParameterError(f"{name}: on a closed axis the table must run from the span's start to its end (one "
-                                 f"loop, [{s0:g}, {s1:g}]), but row 0 is at s = {data[0, 0]:g} and row {last} at s = "
-                                 f"{data[-1, 0]:g}")  # fmt: skip
+            raise ParameterError(
+                f"{name}: on a closed axis the table must run from the span's start to its end (one "
+                f"loop, [{s0:g}, {s1:g}]), but row 0 is at s = {data[0, 0]:g} and row {last} at s = "
+                f"{data[-1, 0]:g}"
+            )
         r0, r1 = data[0, 1], data[-1, 1]
         if len(data) < 3 or abs(r1 - r0) > CLOSING_RADIUS * max(r0, r1):
-            why = ("it needs at least 3 rows" if len(data) < 3 else
-                   f"row 0 has r = {r0:.10g} at s = {data[0, 0]:g} but row {last} has r = {r1:.10g} at s = "
-                   f"{data[-1, 0]:g}")  # fmt: skip
-            raise ParameterError(f"{name}: on a closed axis a table must close ({why}); make the last row's r "
-                                 "equal the first's (the law is then the periodic cubic spline through the rows), "
-                                 "or open the axis (closed = false)")  # fmt: skip
+            why = (
+                "it needs at least 3 rows"
+                if len(data) < 3
+                else f"row 0 has r = {r0:.10g} at s = {data[0, 0]:g} but row {last} has r = {r1:.10g} at s = "
+                f"{data[-1, 0]:g}"
+            )
+            raise ParameterError(
+                f"{name}: on a closed axis a table must close ({why}); make the last row's r "
+                "equal the first's (the law is then the periodic cubic spline through the rows), "
+                "or open the axis (closed = false)"
+            )
         data[-1, 1] = r0  # exactly, as the periodic spline demands
         spline = CubicSpline(data[:, 0], data[:, 1], bc_type="periodic")
     else:

@@ -26,17 +26,18 @@ closing is a joint like the others, and the frame comes back turned by the holon
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import ParameterError
-from ..validation import MAX_LENGTH
-from .axis import Axis, FloatArray, closing
-from .natural import unit_vector
-from .points import checked_points, closed_loop, same_point, shown
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import MAX_LENGTH
+from tubecad.curves.axis import Axis, FloatArray, closing
+from tubecad.curves.natural import unit_vector
+from tubecad.curves.points import checked_points, closed_loop, same_point, shown
 
 #: turning angles below this (radians) make no bend: the vertex is refused as collinear
 MIN_TURN = 1e-9
@@ -91,8 +92,14 @@ class RouteAxis(Axis):
     family = "route"
     rings_at_joints = True
 
-    def __init__(self, points: Sequence[Sequence[float]], bend_radius: float | Sequence[float], *,
-                 normal: Sequence[float] | None = None, closed: bool | None = None) -> None:  # fmt: skip
+    def __init__(
+        self,
+        points: Sequence[Sequence[float]],
+        bend_radius: float | Sequence[float],
+        *,
+        normal: Sequence[float] | None = None,
+        closed: bool | None = None,
+    ) -> None:
         p = checked_points(points, 2)
         loop = closed_loop(p, closed)
         v = p[:-1] if loop and same_point(p[0], p[-1], p) else p  # the distinct vertices
@@ -114,11 +121,15 @@ class RouteAxis(Axis):
             turn[i] = math.acos(min(max(float(d[i - 1] @ d[i]), -1.0), 1.0))  # d[-1]: a loop's last leg
             before, after = (i - 1) % n, (i + 1) % n
             if turn[i] < MIN_TURN:
-                raise ParameterError(f"points[{i}] {shown(v[i])} makes no bend: points[{before}], points[{i}] and "
-                                     f"points[{after}] are collinear; remove it")  # fmt: skip
+                raise ParameterError(
+                    f"points[{i}] {shown(v[i])} makes no bend: points[{before}], points[{i}] and "
+                    f"points[{after}] are collinear; remove it"
+                )
             if turn[i] > MAX_TURN:
-                raise ParameterError(f"points[{i}] {shown(v[i])} turns the route back on itself (by "
-                                     f"{math.degrees(turn[i]):.6g} deg); a bend must turn by less than 180 deg")  # fmt: skip
+                raise ParameterError(
+                    f"points[{i}] {shown(v[i])} turns the route back on itself (by "
+                    f"{math.degrees(turn[i]):.6g} deg); a bend must turn by less than 180 deg"
+                )
         tangent = radius * np.tan(turn / 2)  # per vertex; 0 at an open route's ends
         for j, length in enumerate(lengths):
             k = (j + 1) % n
@@ -126,9 +137,11 @@ class RouteAxis(Axis):
             if need > length * (1 + 1e-12):
                 at = k if tangent[k] >= tangent[j] else j
                 detail = " + ".join(f"{tangent[i]:.6g} (the bend at points[{i}])" for i in (j, k) if tangent[i] > 0)
-                raise ParameterError(f"bend_radius {radius[at]:g} at points[{at}] {shown(v[at])} does not fit: "
-                                     f"the leg points[{j}]-points[{k}] is {length:.6g} long but its bends need "
-                                     f"{detail}")  # fmt: skip
+                raise ParameterError(
+                    f"bend_radius {radius[at]:g} at points[{at}] {shown(v[at])} does not fit: "
+                    f"the leg points[{j}]-points[{k}] is {length:.6g} long but its bends need "
+                    f"{detail}"
+                )
         self.points, self.bend_radii = p, radii
         self.pieces = self._build(v, d, lengths, turn, tangent, radius, loop, normal)
         self.span = (0.0, self.pieces[-1].s1)
@@ -136,8 +149,17 @@ class RouteAxis(Axis):
         self._closed = closing(self, True) if loop else False  # the loop's ends agree to round-off
 
     # --- construction -------------------------------------------------------------------
-    def _build(self, v: np.ndarray, d: np.ndarray, lengths: np.ndarray, turn: np.ndarray, tangent: np.ndarray,
-               radius: np.ndarray, loop: bool, normal: Sequence[float] | None) -> list[Piece]:  # fmt: skip
+    def _build(
+        self,
+        v: np.ndarray,
+        d: np.ndarray,
+        lengths: np.ndarray,
+        turn: np.ndarray,
+        tangent: np.ndarray,
+        radius: np.ndarray,
+        loop: bool,
+        normal: Sequence[float] | None,
+    ) -> list[Piece]:
         """The pieces leg by leg: leg j's line, then the bend at its end vertex (if it has
         one). A loop starts after the bend at vertex 0 and ends with it."""
         n = len(v)
@@ -234,14 +256,22 @@ class RouteAxis(Axis):
         for piece in self.pieces:
             if piece.kind == "bend" and piece.radius <= radius:
                 v = piece.vertex
-                return (f"tube is not regular: the bend at points[{v}] {shown(self.points[v])} has bend_radius "
-                        f"{piece.radius:g}, not above the tube radius {radius:g}")
+                return (
+                    f"tube is not regular: the bend at points[{v}] {shown(self.points[v])} has bend_radius "
+                    f"{piece.radius:g}, not above the tube radius {radius:g}"
+                )
         return None
 
     def describe(self) -> dict[str, Any]:
-        return {"curve": self.family, "points": self.points.tolist(), "bend_radius": self.bend_radii.tolist(),
-                "bends": sum(p.kind == "bend" for p in self.pieces), "lines": sum(p.kind == "line" for p in self.pieces),
-                "s": list(self.span), **({"closed": True} if self.closed else {})}  # fmt: skip
+        return {
+            "curve": self.family,
+            "points": self.points.tolist(),
+            "bend_radius": self.bend_radii.tolist(),
+            "bends": sum(p.kind == "bend" for p in self.pieces),
+            "lines": sum(p.kind == "line" for p in self.pieces),
+            "s": list(self.span),
+            **({"closed": True} if self.closed else {}),
+        }
 
     def __repr__(self) -> str:
         return f"RouteAxis({len(self.points)} points, length={self.length:.6g})"
@@ -256,13 +286,17 @@ def _checked_radii(bend_radius: object, inner: int, first: int = 1) -> np.ndarra
     except (TypeError, ValueError):
         radii = np.zeros(0)
     if isinstance(bend_radius, (bool, str, bytes)) or radii.size == 0:
-        raise ParameterError(f"bend_radius must be a number or a list of one number per inner vertex, got {bend_radius!r:.80}")
+        raise ParameterError(
+            f"bend_radius must be a number or a list of one number per inner vertex, got {bend_radius!r:.80}"
+        )
     if radii.size == 1:
         radii = np.full(inner, radii[0])
     elif radii.size != inner:
         which = "inner vertex" if first else "vertex of the loop"
-        raise ParameterError(f"bend_radius must be one number or {inner} (one per {which} points[{first}].."
-                             f"points[{first + inner - 1}]), got {radii.size}")  # fmt: skip
+        raise ParameterError(
+            f"bend_radius must be one number or {inner} (one per {which} points[{first}].."
+            f"points[{first + inner - 1}]), got {radii.size}"
+        )
     for i, r in enumerate(radii, first):
         if not (math.isfinite(r) and 0 < r <= MAX_LENGTH):
             raise ParameterError(f"bend_radius at points[{i}] must be a finite number > 0, got {r:g}")

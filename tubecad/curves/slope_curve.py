@@ -29,8 +29,8 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..validation import number_in_range, span_pair
-from .axis import Axis, FloatArray
+from tubecad.core.validation import number_in_range, span_pair
+from tubecad.curves.axis import Axis, FloatArray
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ would reset it), and restores the previous value afterwards.
 IGES is written through OCCT's IGES writer with its numbers to 13 significant digits
 (:data:`IGES_REAL`; the writer's own 9 decimals would lose a canal surface's weights).
 
-Length units (tubecad.units): the coordinates are written as they are, in the model's
+Length units (tubecad.core.units): the coordinates are written as they are, in the model's
 unit (``length_unit``, default mm), and the file says which unit that is: STEP's
 SI_UNIT / CONVERSION_BASED_UNIT (the XCAF document's length unit and ``write.step.unit``
 both set to it, so OCCT scales nothing) and the IGES global section's unit flag and name
@@ -26,8 +26,10 @@ does); :func:`import_shape` reads in the unit asked.
 from __future__ import annotations
 
 import contextlib
+from collections.abc import Iterator
+from datetime import UTC
 from pathlib import Path
-from typing import Iterator
+from typing import TYPE_CHECKING
 
 from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
 from OCP.BRep import BRep_Builder
@@ -47,12 +49,17 @@ from OCP.TopoDS import TopoDS_Shape
 from OCP.XCAFDoc import XCAFDoc_DocumentTool, XCAFDoc_ShapeTool
 from OCP.XSControl import XSControl_WorkSession
 
-from ..brep.properties import topods
-from ..errors import ParameterError, TubecadError
-from ..occ_compat import LabelSequence
-from ..units import DEFAULT_LENGTH_UNIT, length_unit as unit_of
+from tubecad.brep.properties import topods
+from tubecad.core.atomic import atomic_path
+from tubecad.core.errors import ParameterError, TubecadError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.core.units import length_unit as unit_of
+from tubecad.export.formats import cad_format
+from tubecad.occ_compat import LabelSequence
 
-FORMATS = {".step": "step", ".stp": "step", ".iges": "iges", ".igs": "iges", ".brep": "brep"}
+if TYPE_CHECKING:
+    import build123d as bd
+
 STEP_SCHEMAS = {"AP214": "AP214IS", "AP242": "AP242DIS"}
 
 #: how IGES writes a real: 13 significant digits, trailing zeros and E+00 dropped. OCCT's IGES
@@ -70,32 +77,14 @@ class ExportError(TubecadError):
     """OCCT failed to write or read a CAD file."""
 
 
-def cad_format(path: str | Path) -> str:
-    """'step', 'iges' or 'brep' from the extension; a ParameterError listing every extension
-    tubecad writes (tubecad.export.registry) for any other."""
-    fmt = FORMATS.get(Path(path).suffix.lower())
-    if fmt is None:
-        from .registry import output_format
-
-        output_format(path)  # an unknown extension: the error lists them all
-        raise ParameterError(f"output {str(path)!r}: {Path(path).suffix} is not a B-rep format; "
-                             f"use one of {', '.join(FORMATS)}")  # fmt: skip
-    return fmt
-
-
-def export_shape(shape, path: str | Path, step_schema: str = "AP214", name: str | None = None,
-                 length_unit: str = DEFAULT_LENGTH_UNIT) -> Path:  # fmt: skip
-    """Write ``shape`` (OCCT or build123d/CadQuery) to ``path`` in the format of its extension:
-    STEP, IGES, BREP, or a mesh for visual use (STL, 3MF, glTF), see tubecad.export.registry.
-    ``name``: the product name in STEP (default: the file's stem); ``length_unit``: the unit of
-    the shape's coordinates, which the file states (mm, cm, m, in, ft; tubecad.units)."""
-    from .registry import Exportable, write_output
-
-    return write_output(Exportable(shape, step_schema=step_schema, name=name, length_unit=length_unit), path)[0]
-
-
-def write_cad(fmt: str, shape, path: str | Path, step_schema: str = "AP214", name: str = "tubecad",
-              length_unit: str = DEFAULT_LENGTH_UNIT) -> None:  # fmt: skip
+def write_cad(
+    fmt: str,
+    shape,
+    path: str | Path,
+    step_schema: str = "AP214",
+    name: str = "tubecad",
+    length_unit: str = DEFAULT_LENGTH_UNIT,
+) -> None:
     """Write ``shape`` in ``fmt`` ('step', 'iges' or 'brep') to ``path`` as it is (not atomic),
     its coordinates in ``length_unit`` (BREP holds no unit)."""
     _quiet()
@@ -131,8 +120,9 @@ def step_settings(schema: str = "AP214", length_unit: str = DEFAULT_LENGTH_UNIT)
             Interface_Static.SetCVal_s(key, value)
 
 
-def write_step(shape, path: str | Path, schema: str = "AP214", name: str = "tubecad",
-               length_unit: str = DEFAULT_LENGTH_UNIT) -> None:  # fmt: skip
+def write_step(
+    shape, path: str | Path, schema: str = "AP214", name: str = "tubecad", length_unit: str = DEFAULT_LENGTH_UNIT
+) -> None:
     """Write ``shape`` to STEP at ``path`` (not atomic) with OCCT's XCAF writer: names and
     colours of a build123d assembly are kept, and the top product is called ``name``. The
     coordinates are in ``length_unit``, and the file says so."""
@@ -177,19 +167,19 @@ def _source_date() -> str | None:
     """SOURCE_DATE_EPOCH (the reproducible-builds convention), as STEP's ISO 8601 time stamp,
     or None when it is not set (OCCT then writes the current time)."""
     import os
-    from datetime import datetime, timezone
+    from datetime import datetime
 
     value = os.environ.get("SOURCE_DATE_EPOCH")
     if not value or not value.strip().isdigit():
         return None
-    return datetime.fromtimestamp(int(value), tz=timezone.utc).strftime("%Y-%m-%dT%H:%M:%S")
+    return datetime.fromtimestamp(int(value), tz=UTC).strftime("%Y-%m-%dT%H:%M:%S")
 
 
 def step_names(path: str | Path) -> list[tuple[int, str]]:
     """The product and component names of a STEP file as OCCT's XCAF reader sees them:
     (depth, name) in tree order, depth 0 for the top products."""
-    from OCP.XCAFApp import XCAFApp_Application
     from OCP.TDocStd import TDocStd_Document
+    from OCP.XCAFApp import XCAFApp_Application
 
     _quiet()
     doc = TDocStd_Document(TCollection_ExtendedString("XmlOcaf"))
@@ -296,3 +286,18 @@ def _quiet() -> None:
     if not _quieted:
         Message.DefaultMessenger_s().RemovePrinters(Message_PrinterOStream.get_type_descriptor_s())
         _quieted = True
+
+
+def export_named_step(
+    assembly: bd.Compound,
+    path: str | Path,
+    step_schema: str = "AP214",
+    name: str | None = None,
+    length_unit: str = "mm",
+) -> Path:
+    """Write the assembly to STEP (``step_schema``, coordinates in ``length_unit``, which the
+    file states) with its names and colours, atomically; the top product is ``name``
+    (default: the file's stem)."""
+    with atomic_path(path) as tmp:
+        write_step(assembly, tmp, step_schema, name or Path(path).stem, length_unit)
+    return Path(path)

@@ -9,7 +9,7 @@ in all three formats). Use STEP or BREP for the exact geometry.
 A ``.gltf`` file is written self-contained (its binary buffer embedded as a base64 data URI),
 so that it is one file, written atomically like every other output.
 
-Units: 3MF records the model's length unit (``length_unit``, tubecad.units) and keeps the
+Units: 3MF records the model's length unit (``length_unit``, tubecad.core.units) and keeps the
 coordinates; glTF is always in metres, so its coordinates are scaled from the model's unit;
 STL records no unit (the coordinates are the model's).
 """
@@ -24,11 +24,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..brep.properties import topods
-from ..errors import TubecadError
-from ..units import DEFAULT_LENGTH_UNIT, length_unit as unit_of
-
-from .meshing import ANGULAR_DEFLECTION, RELATIVE_DEFLECTION  # noqa: F401  (the defaults, tubecad.export.meshing)
+from tubecad.brep.properties import topods
+from tubecad.core.errors import TubecadError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.core.units import length_unit as unit_of
+from tubecad.export.meshing import ANGULAR_DEFLECTION, RELATIVE_DEFLECTION  # noqa: F401  (the defaults, tubecad.export.meshing)
 
 
 class MeshError(TubecadError):
@@ -58,9 +58,15 @@ def _solids(shape) -> list:
     return [leaf for leaf in leaves if leaf.wrapped is not None and leaf.faces()]
 
 
-def write_mesh(fmt: str, shape, path: str | Path, deflection: float | None = None,
-               angular: float = ANGULAR_DEFLECTION, length_unit: str = DEFAULT_LENGTH_UNIT,
-               build=None) -> None:  # fmt: skip
+def write_mesh(
+    fmt: str,
+    shape,
+    path: str | Path,
+    deflection: float | None = None,
+    angular: float = ANGULAR_DEFLECTION,
+    length_unit: str = DEFAULT_LENGTH_UNIT,
+    build=None,
+) -> None:
     """Write ``shape`` as ``fmt`` ('stl', '3mf', 'gltf' or 'glb') to ``path`` (not atomic);
     its coordinates are in ``length_unit``. Its triangles stay within ``deflection`` (model
     units) and ``angular`` (radians) of the B-rep; ``build`` (a TubeBuild whose tube or wall
@@ -69,7 +75,7 @@ def write_mesh(fmt: str, shape, path: str | Path, deflection: float | None = Non
     from OCP.BRepTools import BRepTools
     from OCP.StlAPI import StlAPI_Writer
 
-    from .meshing import meshed_deflection, tessellate, write_3mf
+    from tubecad.export.meshing import meshed_deflection, tessellate, write_3mf
 
     unit = bd.Unit[unit_of(length_unit).build123d]
 
@@ -92,17 +98,22 @@ def write_mesh(fmt: str, shape, path: str | Path, deflection: float | None = Non
             node = shape if isinstance(shape, bd.Shape) else bd.Shape.cast(topods(shape))
             deflection = max(deflection, meshed_deflection(node.wrapped))  # build123d keeps a mesh within it
             if fmt == "glb":
-                ok = bd.export_gltf(node, str(path), unit=unit, binary=True, linear_deflection=deflection,
-                                    angular_deflection=angular)  # fmt: skip
+                ok = bd.export_gltf(
+                    node, str(path), unit=unit, binary=True, linear_deflection=deflection, angular_deflection=angular
+                )
             else:
                 with tempfile.TemporaryDirectory() as folder:
                     glb = Path(folder) / "mesh.glb"
-                    ok = bd.export_gltf(node, str(glb), unit=unit, binary=True, linear_deflection=deflection,
-                                        angular_deflection=angular)  # fmt: skip
+                    ok = bd.export_gltf(
+                        node, str(glb), unit=unit, binary=True, linear_deflection=deflection, angular_deflection=angular
+                    )
                     if ok:
                         path.write_text(glb_to_gltf(glb.read_bytes()), encoding="utf-8")
     finally:
-        for part in (*parts, *([build.shape] if build is not None else [])):  # meshing left triangulations on the caller's faces
+        for part in (
+            *parts,
+            *([build.shape] if build is not None else []),
+        ):  # meshing left triangulations on the caller's faces
             BRepTools.Clean_s(part.wrapped)
     if not ok:
         raise MeshError(f"build123d could not write {fmt.upper()} to {str(path)!r}")
@@ -137,8 +148,9 @@ def read_mesh(path: str | Path, fmt: str, length_unit: str = DEFAULT_LENGTH_UNIT
     return vertices, len(triangles)
 
 
-def read_mesh_triangles(path: str | Path, fmt: str, length_unit: str = DEFAULT_LENGTH_UNIT
-                        ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+def read_mesh_triangles(
+    path: str | Path, fmt: str, length_unit: str = DEFAULT_LENGTH_UNIT
+) -> tuple[np.ndarray, np.ndarray]:
     """As :func:`read_mesh`, with the triangles: (vertices n x 3, triangles m x 3 indices
     into them, 0-based)."""
     path = Path(path)
@@ -181,7 +193,7 @@ def _read_gltf(path: Path, metres: float = 1e-3) -> tuple[np.ndarray, np.ndarray
     from OCP.TDocStd import TDocStd_Document
     from OCP.XCAFApp import XCAFApp_Application
 
-    from .meshing import face_triangles
+    from tubecad.export.meshing import face_triangles
 
     doc = TDocStd_Document(TCollection_ExtendedString("BinXCAF"))
     XCAFApp_Application.GetApplication_s().NewDocument(TCollection_ExtendedString("BinXCAF"), doc)

@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ParameterError
+from tubecad.core.errors import ParameterError
 
 #: default linear deflection of a mesh, relative to the smallest tube radius (or size) meshed
 RELATIVE_DEFLECTION = 1e-3
@@ -37,8 +37,12 @@ LINEAR_RANGE = (1e-4, 1.0)
 ANGLE_RANGE_DEG = (1.0, 45.0)
 
 
-def checked_tolerance(linear: float | None, angle_deg: float | None, radius: float,
-                      names: tuple[str, str] = ("mesh tolerance", "mesh angle")) -> tuple[float, float]:  # fmt: skip
+def checked_tolerance(
+    linear: float | None,
+    angle_deg: float | None,
+    radius: float,
+    names: tuple[str, str] = ("mesh tolerance", "mesh angle"),
+) -> tuple[float, float]:
     """(linear deflection, angular deflection in radians) for a model whose smallest tube
     radius is ``radius``: the defaults where None, else the values checked against
     LINEAR_RANGE x ``radius`` and ANGLE_RANGE_DEG; a ParameterError names ``names[0]`` or
@@ -47,8 +51,10 @@ def checked_tolerance(linear: float | None, angle_deg: float | None, radius: flo
     if linear is None:
         linear = RELATIVE_DEFLECTION * radius
     elif not (isinstance(linear, (int, float)) and math.isfinite(linear) and lo <= linear <= hi):
-        raise ParameterError(f"{names[0]} must be in [{lo:.6g}, {hi:.6g}] (model units: {LINEAR_RANGE[0]:g} to "
-                             f"{LINEAR_RANGE[1]:g} x the smallest tube radius {radius:g}), got {linear:g}")  # fmt: skip
+        raise ParameterError(
+            f"{names[0]} must be in [{lo:.6g}, {hi:.6g}] (model units: {LINEAR_RANGE[0]:g} to "
+            f"{LINEAR_RANGE[1]:g} x the smallest tube radius {radius:g}), got {linear:g}"
+        )
     if angle_deg is None:
         return float(linear), ANGULAR_DEFLECTION
     a, b = ANGLE_RANGE_DEG
@@ -67,9 +73,8 @@ def tessellate(parts: list, deflection: float, angular: float, build=None) -> No
     from OCP.BRepTools import BRepTools
     from OCP.IMeshTools import IMeshTools_Parameters
 
-    from .tessellate import triangulate_build
-
-    from ..surface import CanalSurface, CurvatureLineTube
+    from tubecad.export.tessellate import triangulate_build
+    from tubecad.surface import CanalSurface, CurvatureLineTube
 
     # a canal surface's grid has its own step rules, measured on the exact surfaces (tessellate.canal_grid);
     # round a closed axis its stringers come back moved by a Moebius map, which the closing ring's
@@ -94,7 +99,7 @@ def meshed_deflection(shape) -> float:
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopLoc import TopLoc_Location
 
-    from ..occ_compat import as_face
+    from tubecad.occ_compat import as_face
 
     largest = 0.0
     explorer = TopExp_Explorer(shape, TopAbs_FACE)
@@ -114,7 +119,7 @@ def face_triangles(shape) -> tuple[np.ndarray, np.ndarray]:
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopLoc import TopLoc_Location
 
-    from ..occ_compat import as_face
+    from tubecad.occ_compat import as_face
 
     nodes, triangles, offset = [], [], 0
     explorer = TopExp_Explorer(shape, TopAbs_FACE)
@@ -147,7 +152,11 @@ def write_3mf(parts: list, path: Path, unit) -> None:
         vertices, triangles = face_triangles(part.wrapped)
         _, first, inverse = np.unique(np.round(vertices, 9), axis=0, return_index=True, return_inverse=True)
         triangles = inverse.reshape(-1)[triangles]
-        keep = (triangles[:, 0] != triangles[:, 1]) & (triangles[:, 1] != triangles[:, 2]) & (triangles[:, 2] != triangles[:, 0])
+        keep = (
+            (triangles[:, 0] != triangles[:, 1])
+            & (triangles[:, 1] != triangles[:, 2])
+            & (triangles[:, 2] != triangles[:, 0])
+        )
         mesh = model.AddMeshObject()
         positions = [Lib3MF.Position((ctypes.c_float * 3)(*v)) for v in vertices[first].tolist()]
         faces = [Lib3MF.Triangle((ctypes.c_uint * 3)(*t)) for t in triangles[keep].tolist()]
@@ -156,7 +165,9 @@ def write_3mf(parts: list, path: Path, unit) -> None:
             mesh.SetName(part.label)
         if part.color is not None:
             group = model.AddBaseMaterialGroup()
-            material = group.AddMaterial(Name=str(part.color), DisplayColor=wrapper.FloatRGBAToColor(*tuple(part.color)))
+            material = group.AddMaterial(
+                Name=str(part.color), DisplayColor=wrapper.FloatRGBAToColor(*tuple(part.color))
+            )
             mesh.SetObjectLevelProperty(group.GetResourceID(), material)
         model.AddBuildItem(mesh, wrapper.GetIdentityTransform())
     writer = model.QueryWriter("3mf")

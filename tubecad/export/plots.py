@@ -16,8 +16,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
-from ..surface import CurvatureLineTube  # noqa: E402
-from .atomic import save_figure  # noqa: E402
+from tubecad.core.atomic import save_figure  # noqa: E402
+from tubecad.surface import CurvatureLineTube  # noqa: E402
 
 #: (title, horizontal axis, vertical axis, viewing direction)
 VIEWS = {
@@ -46,8 +46,9 @@ def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int =
         shade = 0.35 + 0.6 * np.abs(cell_normals @ LIGHT)
         facing = (cell_normals @ view) < 0
         colours = np.where(facing[:, None], [[0.55, 0.72, 0.95]], [[0.75, 0.78, 0.85]]) * shade[:, None]
-        polys = PolyCollection(cells[order][:, :, [i, j]], facecolors=np.clip(colours[order], 0, 1),
-                               edgecolors="#1d2a44", linewidths=0.35)  # fmt: skip
+        polys = PolyCollection(
+            cells[order][:, :, [i, j]], facecolors=np.clip(colours[order], 0, 1), edgecolors="#1d2a44", linewidths=0.35
+        )
         ax.add_collection(polys)
         ax.plot(axis_line[:, i], axis_line[:, j], "-.", color="#b03030", linewidth=0.7, label="axis")
         ax.set_aspect("equal")
@@ -78,9 +79,16 @@ def _cell_outlines(pts: np.ndarray, nu_cells: int, ns_cells: int, sub: int) -> n
     for i in range(nu_cells):
         for j in range(ns_cells):
             u0, u1, s0, s1 = i * sub, (i + 1) * sub, j * sub, (j + 1) * sub
-            outlines.append(np.concatenate([
-                pts[u0:u1, s0], pts[u1, s0:s1], pts[u1:u0:-1, s1], pts[u0, s1:s0:-1],
-            ]))  # fmt: skip
+            outlines.append(
+                np.concatenate(
+                    [
+                        pts[u0:u1, s0],
+                        pts[u1, s0:s1],
+                        pts[u1:u0:-1, s1],
+                        pts[u0, s1:s0:-1],
+                    ]
+                )
+            )
     return np.array(outlines)
 
 

@@ -1,10 +1,5 @@
-"""Every output format tubecad writes, by file extension: the one table the command line
-(``-o``, batch ``-f``), :func:`tubecad.export.cad.export_shape`, the error messages and the
-README's list come from.
-
-- ``cad``: exact B-rep (STEP, IGES, BREP), read back and measured against the exact tube;
-- ``mesh``: triangles for visual use (STL, 3MF, glTF), read back and their vertices checked;
-- ``polylines``: the curvature lines as points with unit tangents and normals (CSV, JSON).
+"""Writing outputs: each format of :mod:`.formats` (the one table of extensions) mapped to its
+writer, and :func:`export_shape`, the front door for any shape.
 
 :func:`write_output` writes to a temporary file beside the target, runs an optional check
 on it, and only then moves it into place: a file that fails its check is never left behind.
@@ -12,13 +7,44 @@ on it, and only then moves it into place: a file that fails its check is never l
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
-from ..errors import ParameterError
-from ..units import DEFAULT_LENGTH_UNIT
-from .atomic import atomic_path
+from tubecad.core.atomic import atomic_path
+from tubecad.core.errors import ParameterError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.export.formats import (
+    EXTENSIONS,
+    FORMAT_NAMES,
+    FORMATS,
+    KIND_NAMES,
+    OutputFormat,
+    allowed,
+    cad_format,
+    markdown_table,
+    output_format,
+)
+
+__all__ = [
+    "Exportable",
+    "WRITERS",
+    "write_output",
+    "export_shape",
+    "EXTENSIONS",
+    "FORMAT_NAMES",
+    "FORMATS",
+    "KIND_NAMES",
+    "OutputFormat",
+    "allowed",
+    "cad_format",
+    "markdown_table",
+    "output_format",
+]
+
+#: (item, path, product name) -> None
+Writer = Callable[["Exportable", Path, str], None]
 
 
 @dataclass
@@ -26,7 +52,7 @@ class Exportable:
     """What an output is made from: the shape (a solid, or a build123d assembly with names
     and colours), the curvature lines for the polyline formats, and the writers' options.
 
-    ``length_unit``: the unit of the model's coordinates (tubecad.units), which every format
+    ``length_unit``: the unit of the model's coordinates (tubecad.core.units), which every format
     that records a unit states (STEP, IGES, 3MF; glTF is scaled to its metres); the
     coordinates themselves are written as they are."""
 
@@ -40,18 +66,9 @@ class Exportable:
     length_unit: str = DEFAULT_LENGTH_UNIT
 
 
-@dataclass(frozen=True)
-class OutputFormat:
-    name: str
-    extensions: tuple[str, ...]
-    kind: str  # cad | mesh | polylines
-    description: str
-    write: Callable[[Exportable, Path, str], None]  # (item, path, product name)
-
-
 def _cad(fmt: str):
     def write(item: Exportable, path: Path, name: str) -> None:
-        from .cad import write_cad
+        from tubecad.export.cad import write_cad
 
         write_cad(fmt, _shape(item, path), path, item.step_schema, name, item.length_unit)
 
@@ -60,9 +77,8 @@ def _cad(fmt: str):
 
 def _mesh(fmt: str):
     def write(item: Exportable, path: Path, name: str) -> None:
-        from .mesh import write_mesh
-
-        from .meshing import ANGULAR_DEFLECTION
+        from tubecad.export.mesh import write_mesh
+        from tubecad.export.meshing import ANGULAR_DEFLECTION
 
         angular = ANGULAR_DEFLECTION if item.mesh_angular is None else item.mesh_angular
         write_mesh(fmt, _shape(item, path), path, item.mesh_deflection, angular, item.length_unit, item.build)
@@ -72,7 +88,7 @@ def _mesh(fmt: str):
 
 def _polylines(fmt: str):
     def write(item: Exportable, path: Path, name: str) -> None:
-        from ..stiffeners.lines import polylines_csv_text, polylines_json_text
+        from tubecad.stiffeners.lines import polylines_csv_text, polylines_json_text
 
         if item.lines is None:
             raise ParameterError(f"output {path.name!r}: {fmt.upper()} holds curvature lines; this output has none")
@@ -89,62 +105,34 @@ def _shape(item: Exportable, path: Path):
     return item.shape
 
 
-FORMATS: tuple[OutputFormat, ...] = (
-    OutputFormat("step", (".step", ".stp"), "cad", "AP214 or AP242 (`--step-schema`), in `[units] length`, product "
-                 "names and colours; about 14 significant digits", _cad("step")),
-    OutputFormat("iges", (".iges", ".igs"), "cad", "B-rep entities (solids, shells), in `[units] length`; 13 "
-                 "significant digits (about as closely as STEP)", _cad("iges")),
-    OutputFormat("brep", (".brep",), "cad", "OCCT's own format: every digit of a double", _cad("brep")),
-    OutputFormat("stl", (".stl",), "mesh", "binary STL, 32-bit floats, for viewing and printing", _mesh("stl")),
-    OutputFormat("3mf", (".3mf",), "mesh", "one mesh per solid, with its name and colour, in `[units] length`",
-                 _mesh("3mf")),
-    OutputFormat("gltf", (".gltf",), "mesh", "glTF 2.0 text with the buffer embedded: one file (metres, Y up)",
-                 _mesh("gltf")),
-    OutputFormat("glb", (".glb",), "mesh", "glTF 2.0 binary (metres, Y up)", _mesh("glb")),
-    OutputFormat("csv", (".csv",), "polylines", "the curvature lines on every wall surface: points, unit tangents and "
-                 "normals, a row per point", _polylines("csv")),
-    OutputFormat("json", (".json",), "polylines", "the same, a list of lines", _polylines("json")),
-)  # fmt: skip
-
-#: every extension (with the dot, lower case) -> its format
-EXTENSIONS: dict[str, OutputFormat] = {ext: f for f in FORMATS for ext in f.extensions}
-#: what batch ``-f/--format`` accepts: the extensions without the dot
-FORMAT_NAMES: tuple[str, ...] = tuple(ext[1:] for ext in EXTENSIONS)
+#: format name -> its writer
+WRITERS: dict[str, Writer] = {
+    **{name: _cad(name) for name in ("step", "iges", "brep")},
+    **{name: _mesh(name) for name in ("stl", "3mf", "gltf", "glb")},
+    **{name: _polylines(name) for name in ("csv", "json")},
+}
+assert set(WRITERS) == {f.name for f in FORMATS}, "every format in tubecad.export.formats needs its writer"
 
 
-def allowed() -> str:
-    """The allowed extensions, for messages: '.step, .stp, .iges, ...'."""
-    return ", ".join(EXTENSIONS)
-
-
-def output_format(path: str | Path) -> OutputFormat:
-    """The format of an output path from its extension, or a ParameterError listing every one."""
-    suffix = Path(path).suffix.lower()
-    fmt = EXTENSIONS.get(suffix)
-    if fmt is None:
-        what = f"unknown extension {suffix!r}" if suffix else "no extension"
-        raise ParameterError(f"output {str(path)!r}: {what}; use one of {allowed()}")
-    return fmt
-
-
-def write_output(item: Exportable, path: str | Path, check: Callable[[Path, OutputFormat], Any] | None = None
-                 ) -> tuple[Path, Any]:  # fmt: skip
+def write_output(
+    item: Exportable, path: str | Path, check: Callable[[Path, OutputFormat], Any] | None = None
+) -> tuple[Path, Any]:
     """Write ``item`` to ``path`` in the format of its extension, atomically. ``check(tmp, fmt)``
     runs on the complete temporary file before it replaces ``path``; if it raises, no file is
     left. Returns (path, what check returned)."""
     path = Path(path)
     fmt = output_format(path)
     with atomic_path(path) as tmp:
-        fmt.write(item, tmp, item.name or path.stem)
+        WRITERS[fmt.name](item, tmp, item.name or path.stem)
         result = check(tmp, fmt) if check is not None else None
     return path, result
 
 
-KIND_NAMES = {"cad": "exact B-rep", "mesh": "mesh (visual)", "polylines": "polylines"}
-
-
-def markdown_table() -> str:
-    """The formats as the README's table (a test keeps the README equal to it)."""
-    rows = ["| extension | kind | what it holds |", "|---|---|---|"]
-    rows += [f"| {', '.join(f'`{e}`' for e in f.extensions)} | {KIND_NAMES[f.kind]} | {f.description} |" for f in FORMATS]
-    return "\n".join(rows)
+def export_shape(
+    shape, path: str | Path, step_schema: str = "AP214", name: str | None = None, length_unit: str = DEFAULT_LENGTH_UNIT
+) -> Path:
+    """Write ``shape`` (OCCT or build123d/CadQuery) to ``path`` in the format of its extension:
+    STEP, IGES, BREP, or a mesh for visual use (STL, 3MF, glTF), see :data:`FORMATS`.
+    ``name``: the product name in STEP (default: the file's stem); ``length_unit``: the unit of
+    the shape's coordinates, which the file states (mm, cm, m, in, ft; tubecad.core.units)."""
+    return write_output(Exportable(shape, step_schema=step_schema, name=name, length_unit=length_unit), path)[0]

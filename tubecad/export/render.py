@@ -20,8 +20,9 @@ Note: meshing stores the triangulation in the shape (as every OCCT mesher does).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import matplotlib
 
@@ -39,9 +40,9 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_SHELL  
 from OCP.TopExp import TopExp, TopExp_Explorer  # noqa: E402
 from OCP.TopLoc import TopLoc_Location  # noqa: E402
 from OCP.TopoDS import TopoDS_Shape  # noqa: E402
-from ..occ_compat import IndexedMapOfShape, as_edge, as_face  # noqa: E402
 
-from .atomic import atomic_path  # noqa: E402
+from tubecad.core.atomic import atomic_path  # noqa: E402
+from tubecad.occ_compat import IndexedMapOfShape, as_edge, as_face  # noqa: E402
 
 FACE_RGB = np.array([0.72, 0.78, 0.86])  # light blue-grey
 BACK_FACTOR = 0.75  # back sides are this much darker
@@ -52,9 +53,16 @@ DPI = 100
 SPLIT_LENGTH = 0.02  # painted triangles are cut to at most this x the bounding-box diagonal
 
 
-def render_shape_png(shape: Any, path: str | Path, *, title: str = "",
-                     view_dir: Sequence[float] = (1.0, -1.2, 0.8), size_px: tuple[int, int] = (1600, 1200),
-                     edge_color: str = "#10203a", deflection: float | None = None) -> Path:  # fmt: skip
+def render_shape_png(
+    shape: Any,
+    path: str | Path,
+    *,
+    title: str = "",
+    view_dir: Sequence[float] = (1.0, -1.2, 0.8),
+    size_px: tuple[int, int] = (1600, 1200),
+    edge_color: str = "#10203a",
+    deflection: float | None = None,
+) -> Path:
     """Render ``shape`` (TopoDS_Shape or an object with ``.wrapped``) to the PNG ``path``; return it."""
     shape = getattr(shape, "wrapped", shape)
     box = Bnd_Box()
@@ -83,8 +91,9 @@ def render_shape_png(shape: Any, path: str | Path, *, title: str = "",
         parts, owner = _bisect_long(tris[keep], SPLIT_LENGTH * diag)
         paint = colours[keep][owner]
         order = np.argsort(parts[:, :, 2].mean(axis=1))  # far first
-        ax.add_collection(PolyCollection(parts[order][:, :, :2], facecolors=paint[order],
-                                         edgecolors=paint[order], linewidths=0.6))  # fmt: skip
+        ax.add_collection(
+            PolyCollection(parts[order][:, :, :2], facecolors=paint[order], edgecolors=paint[order], linewidths=0.6)
+        )
     visible, hidden = _split_edges(edges, parts, diag)
     ax.add_collection(LineCollection(hidden, colors=edge_color, linewidths=0.4, alpha=0.22))
     ax.add_collection(LineCollection(visible, colors=edge_color, linewidths=0.9))
@@ -224,7 +233,7 @@ def _split_edges(edges: list[np.ndarray], tris: np.ndarray, diag: float) -> tupl
     z, lo, h = _zbuffer(tris, ZBUFFER_PX)
     padded = np.pad(z, 1, constant_values=-np.inf)
     nx, ny = z.shape  # nearest-surface depth allowing for one pixel of slack: min over 3x3
-    zmin = np.min([padded[i:i + nx, j:j + ny] for i in range(3) for j in range(3)], axis=0)
+    zmin = np.min([padded[i : i + nx, j : j + ny] for i in range(3) for j in range(3)], axis=0)
     mid = segs.mean(axis=1)  # test each segment at its midpoint and both ends
     vis = np.zeros(len(segs), dtype=int)
     for pt in (segs[:, 0], mid, segs[:, 1]):

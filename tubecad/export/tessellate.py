@@ -13,7 +13,7 @@ tolerance bounds the turn of the normal between neighbouring triangles: du, and 
 OCCT's own mesher (BRepMesh) places points isotropically in the parameter plane, so on these
 long B-spline faces it makes several times more triangles and still leaves a few beyond the
 deflection; the grid here is anisotropic, and its bound is checked on every file read back
-(tubecad.interfaces.readback). The triangulations are attached to the build's faces, with
+(tubecad.export.readback). The triangulations are attached to the build's faces, with
 the polygons of their edges, so the STL, 3MF and glTF writers use them as they are; caps are
 triangulated between the same ring points, so the mesh is closed.
 
@@ -38,8 +38,8 @@ lie on the cone's generators; a tube solid's end discs are strips across their c
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 from OCP.BRep import BRep_Builder
@@ -51,11 +51,11 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 
-from ..brep.faces import CLOSING_MERGE
-from ..brep.layout import stringer_parameters
-from ..errors import ParameterError, TubecadError
-from ..occ_compat import as_edge, as_face
-from ..surface import CanalSurface
+from tubecad.brep.faces import CLOSING_MERGE
+from tubecad.brep.layout import stringer_parameters
+from tubecad.core.errors import ParameterError, TubecadError
+from tubecad.occ_compat import as_edge, as_face
+from tubecad.surface import CanalSurface
 
 #: the share of the linear tolerance given to each grid direction (around, along)
 SHARE = 0.45
@@ -126,9 +126,11 @@ def triangulate_build(build, tolerance: float, angular: float) -> int:
     total = 2 * sum(len(a) - 1 for a in angles) * sum(len(s) - 1 for s in arcs) * len(build.surfaces)
     total += sum(2 * (len(ring) - len(columns)) for ring, _ in rings)  # a fan triangle per extra node, in both bands
     if total > MAX_TRIANGLES:
-        raise ParameterError(f"a mesh tolerance of {tolerance:g} needs {total:,} triangles for this "
-                             f"{'wall' if len(build.surfaces) > 1 else 'tube'}; at most {MAX_TRIANGLES:,} are "
-                             f"allowed: use a larger tolerance")  # fmt: skip
+        raise ParameterError(
+            f"a mesh tolerance of {tolerance:g} needs {total:,} triangles for this "
+            f"{'wall' if len(build.surfaces) > 1 else 'tube'}; at most {MAX_TRIANGLES:,} are "
+            f"allowed: use a larger tolerance"
+        )
     builder = BRep_Builder()
     grids = []
     for k, (surface, patches) in enumerate(zip(build.surfaces, build.patches)):
@@ -136,16 +138,20 @@ def triangulate_build(build, tolerance: float, angular: float) -> int:
         grid = np.concatenate([grid, grid[:1]])  # the first column again: the last sector closes on it
         grids.append(grid)
         u_cuts = stringer_parameters(build.layout.stringers_deg, surface.u_at)
-        closing = _ClosingRing(surface, patches, grid, rows[0], columns, first_column, build.radii[k],
-                               *rings[k]) if rings else None  # fmt: skip
+        closing = (
+            _ClosingRing(surface, patches, grid, rows[0], columns, first_column, build.radii[k], *rings[k])
+            if rings
+            else None
+        )
         last = len(patches.faces) - 1
         for i, row in enumerate(patches.faces):
             for j, face in enumerate(row):
                 block = grid[first_column[j] : first_column[j + 1] + 1, first_row[i] : first_row[i + 1] + 1]
                 bottom = closing.first(j) if closing is not None and i == 0 else None
                 top = closing.last(j) if closing is not None and i == last else None
-                _tube_face(builder, surface, patches, face, (i, j), block, angles[j], arcs[i], u_cuts, tolerance,
-                           bottom, top)  # fmt: skip
+                _tube_face(
+                    builder, surface, patches, face, (i, j), block, angles[j], arcs[i], u_cuts, tolerance, bottom, top
+                )
     for face, end, cone in _caps(build):
         rings = [grid[:-1, 0 if end == 0 else -1] for grid in grids]
         cap = _cone_cap_face if cone else _cap_face
@@ -203,8 +209,9 @@ def canal_grid(build, tolerance: float, angular: float) -> tuple[list[np.ndarray
             grow_u, grow_s = np.maximum(grow_u, 1.0), np.maximum(grow_s, 1.0)
         n_u = np.maximum(1, np.ceil(n_u * grow_u - 1e-9)).astype(int)
         n_s = np.maximum(1, np.ceil(n_s * grow_s - 1e-9)).astype(int)
-    raise TubecadError(f"the canal surface's mesh grid does not reach the mesh tolerance {tolerance:g} in "
-                       f"{CANAL_PASSES} passes")  # fmt: skip
+    raise TubecadError(
+        f"the canal surface's mesh grid does not reach the mesh tolerance {tolerance:g} in {CANAL_PASSES} passes"
+    )
 
 
 def _integrals(x: np.ndarray, density: np.ndarray) -> np.ndarray:
@@ -221,8 +228,9 @@ def _spaced(x: np.ndarray, density: np.ndarray, count: int) -> np.ndarray:
     return np.interp(np.linspace(0.0, cumulative[-1], count + 1), cumulative, x)
 
 
-def _canal_densities(exact: list, ends: np.ndarray, s_rings: np.ndarray, tolerance: float, angular: float
-                     ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:  # fmt: skip
+def _canal_densities(
+    exact: list, ends: np.ndarray, s_rings: np.ndarray, tolerance: float, angular: float
+) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
     """The grid intervals a canal surface needs per unit chi0 over each sector (``ends``,
     radians) and per unit s over each bay (``s_rings``), from |L|, |N| (and E, G) sampled on
     every surface, each the largest over the other direction (see :func:`canal_grid`):
@@ -243,8 +251,9 @@ def _canal_densities(exact: list, ends: np.ndarray, s_rings: np.ndarray, toleran
     return (chi0, around.reshape(chi0.shape)), (s, along.reshape(s.shape))
 
 
-def _canal_errors(exact: list, angles: list[np.ndarray], arcs: list[np.ndarray], tolerance: float,
-                  angular: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+def _canal_errors(
+    exact: list, angles: list[np.ndarray], arcs: list[np.ndarray], tolerance: float, angular: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """On the grid of ``angles`` (degrees) x ``arcs``, over every surface of ``exact``: per
     sector the largest error around (the ring chords' midpoints' distance from the surface
     over SHARE x ``tolerance``, or the normal's turn between neighbouring columns over
@@ -273,11 +282,14 @@ def _canal_errors(exact: list, angles: list[np.ndarray], arcs: list[np.ndarray],
     for surface in exact:
         p = surface.points(columns[:, None], rows[None, :])
         n = normal(surface, p, rows)
-        around = np.maximum(off(0.5 * (p[:-1] + p[1:]), mid_c, rows, surface) / (SHARE * tolerance),
-                            turn(n[:-1], n[1:]) / angular).max(axis=1)
+        around = np.maximum(
+            off(0.5 * (p[:-1] + p[1:]), mid_c, rows, surface) / (SHARE * tolerance), turn(n[:-1], n[1:]) / angular
+        ).max(axis=1)
         np.maximum.at(ring, sector, around)
-        up = np.maximum(off(0.5 * (p[:, :-1] + p[:, 1:]), columns, mid_r, surface) / (SHARE * tolerance),
-                        turn(n[:, :-1], n[:, 1:]) / angular).max(axis=0)
+        up = np.maximum(
+            off(0.5 * (p[:, :-1] + p[:, 1:]), columns, mid_r, surface) / (SHARE * tolerance),
+            turn(n[:, :-1], n[:, 1:]) / angular,
+        ).max(axis=0)
         np.maximum.at(along, bay, up)
         cell = off(0.5 * (p[:-1, :-1] + p[1:, 1:]), mid_c, mid_r, surface) / (DIAGONAL_SHARE * tolerance)
         np.maximum.at(diagonal, (bay[None, :], sector[:, None]), cell)
@@ -294,8 +306,9 @@ def closing_angles(columns: np.ndarray, holonomy: float, radius: float) -> tuple
     added = np.mod(columns + holonomy, two_pi)
     added[added >= two_pi] = 0.0
     at = np.searchsorted(columns, added)
-    gap = np.minimum(*(np.abs(np.remainder(added - columns[k] + math.pi, two_pi) - math.pi)
-                       for k in (at - 1, at % len(columns))))  # fmt: skip
+    gap = np.minimum(
+        *(np.abs(np.remainder(added - columns[k] + math.pi, two_pi) - math.pi) for k in (at - 1, at % len(columns)))
+    )
     added = added[radius * gap > CLOSING_MERGE]
     ring = np.concatenate([columns, added])
     order = np.argsort(ring, kind="stable")
@@ -320,8 +333,18 @@ class _ClosingRing:
     point at s0), and the rows they make on the first band's faces (at the ring's angles,
     s0) and on the last band's (at the faces' own angles theta - (b_j - a_j), s = L)."""
 
-    def __init__(self, surface, patches, grid: np.ndarray, s0: float, columns: np.ndarray, first_column: np.ndarray,
-                 rho: float, angles: np.ndarray, column: np.ndarray) -> None:  # fmt: skip
+    def __init__(
+        self,
+        surface,
+        patches,
+        grid: np.ndarray,
+        s0: float,
+        columns: np.ndarray,
+        first_column: np.ndarray,
+        rho: float,
+        angles: np.ndarray,
+        column: np.ndarray,
+    ) -> None:
         self.surface, self.patches, self.first_column, self.angles = surface, patches, first_column, angles
         self.columns = np.append(columns - columns[0], 2.0 * math.pi)  # from the origin; the last sector ends at 2 pi
         own = column >= 0
@@ -364,22 +387,35 @@ class _ClosingRing:
         off = np.abs(own[match] - regular).max()  # round-off, or a stringer's end merged onto a start
         ordered = match[0] == 0 and match[-1] == len(own) - 1 and np.all(np.diff(match) > 0)
         if not ordered or off > 2.0 * CLOSING_MERGE / self.rho + 1e-9:
-            raise TubecadError(f"the closing ring's mesh nodes do not match the grid columns of face {j} (off by "
-                               f"{off:.3g} rad)")  # fmt: skip
+            raise TubecadError(
+                f"the closing ring's mesh nodes do not match the grid columns of face {j} (off by {off:.3g} rad)"
+            )
         u = np.asarray(self.surface.circle.u_of_theta(np.clip(own, regular[0], regular[-1])), dtype=float)
         return _Row(self.points[nodes], u, ring, match)
 
 
-def _tube_face(builder, surface, patches, face, where: tuple[int, int], points: np.ndarray, angles: np.ndarray,
-               arcs: np.ndarray, u_cuts: list[float], tolerance: float, bottom: _Row | None = None,
-               top: _Row | None = None) -> None:  # fmt: skip
+def _tube_face(
+    builder,
+    surface,
+    patches,
+    face,
+    where: tuple[int, int],
+    points: np.ndarray,
+    angles: np.ndarray,
+    arcs: np.ndarray,
+    u_cuts: list[float],
+    tolerance: float,
+    bottom: _Row | None = None,
+    top: _Row | None = None,
+) -> None:
     """Face [i][j] = ``where``: its ``points`` (angles x arcs x 3), nodes (a, b) -> 1 + a m + b,
     UV (u, s), two triangles per grid cell. On a closed tube the first band's ``bottom`` row
     and the last band's ``top`` row are the closing ring's (a superset of the columns), joined
     to their neighbour rows by fans."""
     if bottom is not None or top is not None:
-        return _closing_face(builder, surface, patches, face, where, points, angles, arcs, u_cuts, tolerance,
-                             bottom, top)  # fmt: skip
+        return _closing_face(
+            builder, surface, patches, face, where, points, angles, arcs, u_cuts, tolerance, bottom, top
+        )
     i, j = where
     n, m = len(angles), len(arcs)
     u = np.asarray(surface.u_at(angles), dtype=float)
@@ -402,9 +438,20 @@ def _tube_face(builder, surface, patches, face, where: tuple[int, int], points: 
         _polygon(builder, right, [index[-1, :]], tri)
 
 
-def _closing_face(builder, surface, patches, face, where: tuple[int, int], points: np.ndarray, angles: np.ndarray,
-                  arcs: np.ndarray, u_cuts: list[float], tolerance: float, bottom: _Row | None,
-                  top: _Row | None) -> None:  # fmt: skip
+def _closing_face(
+    builder,
+    surface,
+    patches,
+    face,
+    where: tuple[int, int],
+    points: np.ndarray,
+    angles: np.ndarray,
+    arcs: np.ndarray,
+    u_cuts: list[float],
+    tolerance: float,
+    bottom: _Row | None,
+    top: _Row | None,
+) -> None:
     """:func:`_tube_face` for a face on the closing ring: the regular rows' nodes first
     (column-major), then the ``bottom`` and ``top`` rows'. Each regular interval [c_k, c_k+1]
     of an irregular row with its nodes p_0 = c_k, ..., p_m = c_k+1 is joined to the regular
@@ -505,14 +552,17 @@ def _caps(build):
         explorer.Next()
 
 
-def _cap_face(builder, build, face, end: int, rings: list[np.ndarray], first_column: np.ndarray,
-              tolerance: float) -> int:  # fmt: skip
+def _cap_face(
+    builder, build, face, end: int, rings: list[np.ndarray], first_column: np.ndarray, tolerance: float
+) -> int:
     """The planar cap at ``end`` of the span: a strip between the outer and inner ``rings``
     (a wall), or a fan from the centre (a tube); UV in the plane's own axes. Returns its
     triangle count."""
     count = len(rings[0])
     plane = BRepAdaptor_Surface(face, False).Plane().Position()
-    origin, x_dir, y_dir = (np.array([v.X(), v.Y(), v.Z()]) for v in (plane.Location(), plane.XDirection(), plane.YDirection()))
+    origin, x_dir, y_dir = (
+        np.array([v.X(), v.Y(), v.Z()]) for v in (plane.Location(), plane.XDirection(), plane.YDirection())
+    )
     a = np.arange(count)
     b = (a + 1) % count
     if len(rings) > 1:  # outer ring nodes 1..count, inner count+1..2 count
@@ -544,8 +594,9 @@ def _cap_face(builder, build, face, end: int, rings: list[np.ndarray], first_col
     return len(triangles)
 
 
-def _cone_cap_face(builder, build, face, end: int, rings: list[np.ndarray], first_column: np.ndarray,
-                   tolerance: float) -> int:  # fmt: skip
+def _cone_cap_face(
+    builder, build, face, end: int, rings: list[np.ndarray], first_column: np.ndarray, tolerance: float
+) -> int:
     """A canal wall's cap at ``end``, the piece of the normal cone through its outer and inner
     end circles (tubecad.brep.solids.normal_cone_face): the strip between the ``rings``' nodes.
     A node and its partner on the other ring lie on one generator (the stringers of r + d
@@ -614,8 +665,9 @@ def _polygon(builder, edge, node_lists: list[np.ndarray], tri: Poly_Triangulatio
     builder.UpdateEdge(edge, *polygons, tri, TopLoc_Location())
 
 
-def mesh_deviation(axis, radii: Sequence[float], vertices: np.ndarray, triangles: np.ndarray,
-                   level=None, scale: float | None = None) -> tuple[float, float]:  # fmt: skip
+def mesh_deviation(
+    axis, radii: Sequence[float], vertices: np.ndarray, triangles: np.ndarray, level=None, scale: float | None = None
+) -> tuple[float, float]:
     """(max vertex deviation, max triangle deviation) of a mesh of tubes of ``radii`` about
     ``axis``: how far its vertices, and its triangles, lie from the exact tube each triangle
     belongs to. A triangle is sampled at its edge midpoints, where a chord of a surface whose
@@ -623,7 +675,7 @@ def mesh_deviation(axis, radii: Sequence[float], vertices: np.ndarray, triangles
     8/9 as far). End caps (every vertex at the same end of the span) are not measured.
     ``level`` and ``scale``: a canal surface's measure (tubecad.brep.measure.surface_levels,
     ``radii`` then its levels) and its smallest radius."""
-    from ..surface.checks import distance_to_axis
+    from tubecad.surface.checks import distance_to_axis
 
     if level is None:
         level = lambda p, g=None, iters=12: distance_to_axis(axis, p, g, iters)  # noqa: E731

@@ -3,16 +3,19 @@ surface with stiffeners as beams (:func:`shell_mesh`), written for CalculiX/Abaq
 (:mod:`.inp`), gmsh and VTU (:mod:`.meshio_formats`), and solved with CalculiX
 (:mod:`.calculix`, :mod:`.analysis`).
 
-Exports are lazy (tubecad._lazy): the settings load without numpy, for the spec checker."""
+Exports are lazy (tubecad.core.lazy): the settings load without numpy, for the spec checker."""
 
-from .._lazy import lazy_exports
+from tubecad.core.lazy import lazy_exports
 
 _PUBLIC = {
-    **{name: ".model" for name in ("FEMesh", "ElementBlock", "ShellSection", "BeamSection")},
-    **{name: ".settings" for name in ("MeshSettings", "mesh_settings", "AnalysisSettings", "analysis_settings")},
-    **{name: ".shell" for name in ("StiffenerPlan", "shell_mesh")},
-    **{name: ".inp" for name in ("Material", "Step", "write_inp", "inp_text")},
-    **{name: ".calculix" for name in ("run_ccx", "read_frd", "CalculixError")},
+    **{name: "tubecad.fem.model" for name in ("FEMesh", "ElementBlock", "ShellSection", "BeamSection")},
+    **{
+        name: "tubecad.fem.settings"
+        for name in ("MeshSettings", "mesh_settings", "AnalysisSettings", "analysis_settings")
+    },
+    **{name: "tubecad.fem.shell" for name in ("StiffenerPlan", "shell_mesh")},
+    **{name: "tubecad.fem.inp" for name in ("Material", "Step", "write_inp", "inp_text")},
+    **{name: "tubecad.fem.calculix" for name in ("run_ccx", "read_frd", "CalculixError")},
 }
 
 __all__ = list(_PUBLIC)

@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .calculix import directional, read_frd, run_ccx, stress_tensors
-from .inp import Material, Step, write_inp
-from .model import FEMesh
+from tubecad.fem.calculix import directional, read_frd, run_ccx, stress_tensors
+from tubecad.fem.inp import Material, Step, write_inp
+from tubecad.fem.model import FEMesh
 
 
 @dataclass
@@ -41,13 +41,24 @@ class PressureResult:
             v = v[shells]
             return {"min": float(np.nanmin(v)), "max": float(np.nanmax(v)), "mean": float(np.nanmean(v))}
 
-        return {"nodes": len(self.mesh.nodes), "elements": self.mesh.element_count, "solve_seconds": self.seconds,
-                "max_displacement": float(u.max()), "ring_stress": extent(self.ring_stress),
-                "stringer_stress": extent(self.stringer_stress)}  # fmt: skip
+        return {
+            "nodes": len(self.mesh.nodes),
+            "elements": self.mesh.element_count,
+            "solve_seconds": self.seconds,
+            "max_displacement": float(u.max()),
+            "ring_stress": extent(self.ring_stress),
+            "stringer_stress": extent(self.stringer_stress),
+        }
 
 
-def solve(mesh: FEMesh, material: Material, step: Step, folder: str | Path | None = None, name: str = "model",
-          timeout: float = 1800.0) -> PressureResult:  # fmt: skip
+def solve(
+    mesh: FEMesh,
+    material: Material,
+    step: Step,
+    folder: str | Path | None = None,
+    name: str = "model",
+    timeout: float = 1800.0,
+) -> PressureResult:
     """Write ``mesh`` with ``material`` and ``step`` as ``name``.inp in ``folder`` (a temporary
     folder when None), solve it with ccx, and read the displacements and stresses back."""
     import time
@@ -63,5 +74,11 @@ def solve(mesh: FEMesh, material: Material, step: Step, folder: str | Path | Non
     disp = np.full((len(mesh.nodes), 3), np.nan)
     disp[blocks["DISP"].nodes] = blocks["DISP"].values[:, :3]
     stress = stress_tensors(blocks["STRESS"], len(mesh.nodes))
-    return PressureResult(mesh, disp, stress, directional(stress, mesh.ring_tangents),
-                          directional(stress, mesh.stringer_tangents), seconds)  # fmt: skip
+    return PressureResult(
+        mesh,
+        disp,
+        stress,
+        directional(stress, mesh.ring_tangents),
+        directional(stress, mesh.stringer_tangents),
+        seconds,
+    )

@@ -21,8 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..stiffeners.profiles import Profile
+from tubecad.core.errors import ParameterError
+from tubecad.stiffeners.profiles import Profile
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,9 @@ def clipped(rect: Rectangle, low: float, high: float) -> Rectangle | None:
     """``rect`` with w kept in [low, high] (a ring at the span's end: the part of its
     cross-section over the wall), or None if nothing is left."""
     w0, w1 = max(rect.w0, low), min(rect.w1, high)
-    return Rectangle(rect.name, w0, w1, rect.h0, rect.h1) if w1 - w0 > 1e-12 * max(1.0, abs(rect.w1 - rect.w0)) else None
+    return (
+        Rectangle(rect.name, w0, w1, rect.h0, rect.h1) if w1 - w0 > 1e-12 * max(1.0, abs(rect.w1 - rect.w0)) else None
+    )
 
 
 def section_centre(rect: Rectangle, base_offset: float, side: str, across: float) -> tuple[float, float]:

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import TubecadError
+from tubecad.core.errors import TubecadError
 
 
 class CalculixError(TubecadError):
@@ -38,8 +38,10 @@ def ccx_executable() -> str:
     """The path of ``ccx`` (CalculiX's solver), or a CalculixError saying how to install it."""
     exe = shutil.which("ccx")
     if exe is None:
-        raise CalculixError("CalculiX (ccx) is not installed: apt-get install calculix-ccx (Debian/Ubuntu), "
-                            "or conda install -c conda-forge calculix")  # fmt: skip
+        raise CalculixError(
+            "CalculiX (ccx) is not installed: apt-get install calculix-ccx (Debian/Ubuntu), "
+            "or conda install -c conda-forge calculix"
+        )
     return exe
 
 
@@ -52,8 +54,9 @@ def run_ccx(deck: str | Path, timeout: float = 600.0, threads: int | None = None
     env = dict(os.environ)
     if threads is not None:
         env["OMP_NUM_THREADS"] = env["CCX_NPROC_EQUATION_SOLVER"] = str(threads)
-    proc = subprocess.run([ccx_executable(), "-i", deck.stem], cwd=deck.parent, capture_output=True, text=True,
-                          timeout=timeout, env=env)  # fmt: skip
+    proc = subprocess.run(
+        [ccx_executable(), "-i", deck.stem], cwd=deck.parent, capture_output=True, text=True, timeout=timeout, env=env
+    )
     frd = deck.with_suffix(".frd")
     tail = (proc.stdout + proc.stderr)[-1500:]
     if proc.returncode != 0 or "*ERROR" in proc.stdout or not frd.exists():
@@ -75,7 +78,7 @@ def read_frd(path: str | Path) -> dict[str, FrdBlock]:
             elif key == " -1" and name is not None:
                 nodes.append(int(line[3:13]))
                 body = line[13:].rstrip("\n")
-                rows.append([float(body[i:i + 12]) for i in range(0, len(body) - len(body) % 12, 12)])
+                rows.append([float(body[i : i + 12]) for i in range(0, len(body) - len(body) % 12, 12)])
             elif key == " -3" and name is not None:
                 width = min(len(r) for r in rows) if rows else 0
                 values = np.array([r[:width] for r in rows]) if rows else np.zeros((0, 0))

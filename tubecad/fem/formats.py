@@ -2,25 +2,25 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 
 def _inp(mesh, path: Path, material=None, step=None, title: str = "tubecad mesh") -> None:
-    from .inp import write_inp
+    from tubecad.fem.inp import write_inp
 
     write_inp(mesh, path, material, step, title)
 
 
 def _msh(mesh, path: Path, **_) -> None:
-    from .meshio_formats import write_msh
+    from tubecad.fem.meshio_formats import write_msh
 
     write_msh(mesh, path)
 
 
 def _vtu(mesh, path: Path, **_) -> None:
-    from .meshio_formats import write_vtu
+    from tubecad.fem.meshio_formats import write_vtu
 
     write_vtu(mesh, path)
 
@@ -32,10 +32,21 @@ class FEFormat:
     write: Callable[..., None]
 
 
-FE_FORMATS = {f.extension: f for f in (
-    FEFormat(".inp", "CalculiX/Abaqus deck: nodes, elements, named node and element sets, exact normals (*NORMAL), "
-             "material, shell and beam sections, and the [analysis] step when the spec has one", _inp),
-    FEFormat(".msh", "gmsh 4.1: nodes, elements, one physical group per block (wall, ring_03_web, ...)", _msh),
-    FEFormat(".vtu", "VTK XML: nodes, elements, normals and principal directions per node, block and panel per "
-             "element (ParaView)", _vtu),
-)}  # fmt: skip
+FE_FORMATS = {
+    f.extension: f
+    for f in (
+        FEFormat(
+            ".inp",
+            "CalculiX/Abaqus deck: nodes, elements, named node and element sets, exact normals (*NORMAL), "
+            "material, shell and beam sections, and the [analysis] step when the spec has one",
+            _inp,
+        ),
+        FEFormat(".msh", "gmsh 4.1: nodes, elements, one physical group per block (wall, ring_03_web, ...)", _msh),
+        FEFormat(
+            ".vtu",
+            "VTK XML: nodes, elements, normals and principal directions per node, block and panel per "
+            "element (ParaView)",
+            _vtu,
+        ),
+    )
+}

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
+from tubecad.core.errors import ParameterError
 
 #: quadratures of the edge lengths
 _GAUSS = 8
@@ -80,8 +80,9 @@ def _counts(surface, s_rings, stringers_deg, size_along: float, size_around: flo
     angles = np.sort(np.radians(np.asarray(stringers_deg, dtype=float)) % (2 * math.pi))
     along = np.maximum(1, np.ceil(bay_lengths(surface, s_rings) / size_along - 1e-9)).astype(int)
     gaps = np.diff(np.concatenate([angles, [angles[0] + 2 * math.pi]]))
-    around = np.maximum(np.ceil(gap_lengths(surface, angles, s_rings) / size_around - 1e-9),
-                        np.ceil(gaps / MAX_ELEMENT_ANGLE - 1e-9)).astype(int)  # fmt: skip
+    around = np.maximum(
+        np.ceil(gap_lengths(surface, angles, s_rings) / size_around - 1e-9), np.ceil(gaps / MAX_ELEMENT_ANGLE - 1e-9)
+    ).astype(int)
     return s_rings, angles, along, around
 
 
@@ -92,8 +93,9 @@ def element_counts(surface, s_rings, stringers_deg, size_along: float, size_arou
     return int(along.sum()), int(around.sum())
 
 
-def parameter_grid(surface, s_rings, stringers_deg, order: int, size_along: float, size_around: float,
-                   closing=None) -> ParameterGrid:  # fmt: skip
+def parameter_grid(
+    surface, s_rings, stringers_deg, order: int, size_along: float, size_around: float, closing=None
+) -> ParameterGrid:
     """The node lattice of ``surface`` (a CurvatureLineTube or CanalSurface) for the layout's
     rings ``s_rings`` and stringers ``stringers_deg``. ``closing(angles)``: on a closed axis,
     where the stringers at these angles reach the closing ring (in s0's angles)."""
@@ -102,8 +104,10 @@ def parameter_grid(surface, s_rings, stringers_deg, order: int, size_along: floa
     cols = _refined(angles, around, order, cyclic=True)
     ring_rows = tuple(int(r) for r in order * np.concatenate([[0], np.cumsum(along)]))
     first = np.concatenate([[0], np.cumsum(around)[:-1]]) * order
-    stringer_columns = tuple(int(first[np.searchsorted(angles, a)]) for a in
-                             np.radians(np.asarray(stringers_deg, dtype=float)) % (2 * math.pi))  # fmt: skip
+    stringer_columns = tuple(
+        int(first[np.searchsorted(angles, a)])
+        for a in np.radians(np.asarray(stringers_deg, dtype=float)) % (2 * math.pi)
+    )
     closing_cols = None
     if closing is not None:
         reached = np.asarray(closing(cols), dtype=float)
@@ -112,10 +116,12 @@ def parameter_grid(surface, s_rings, stringers_deg, order: int, size_along: floa
         miss = np.abs(diff[np.arange(len(cols)), closing_cols]).max()
         if miss > CLOSING_MATCH or len(set(closing_cols.tolist())) != len(cols):
             shift = math.degrees(float(((reached[0] - cols[0] + math.pi) % (2 * math.pi)) - math.pi))
-            raise ParameterError(f"the closed axis' stringers come back to the closing ring turned by {shift:.6g} deg "
-                                 "(its holonomy), which does not carry the mesh's angles onto each other, so its "
-                                 "elements cannot close up; give the stringers equal spacing that divides the holonomy, "
-                                 "or mesh an open span")  # fmt: skip
+            raise ParameterError(
+                f"the closed axis' stringers come back to the closing ring turned by {shift:.6g} deg "
+                "(its holonomy), which does not carry the mesh's angles onto each other, so its "
+                "elements cannot close up; give the stringers equal spacing that divides the holonomy, "
+                "or mesh an open span"
+            )
     return ParameterGrid(s, cols, order, ring_rows, stringer_columns, closing_cols)
 
 

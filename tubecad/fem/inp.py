@@ -24,8 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ParameterError
-from .model import FEMesh
+from tubecad.core.errors import ParameterError
+from tubecad.fem.model import FEMesh
 
 
 @dataclass(frozen=True)
@@ -70,7 +70,7 @@ def number(x: float) -> str:
 def _ids(values: np.ndarray, per_line: int = 16) -> str:
     """1-based ids, ``per_line`` to a line."""
     v = np.asarray(values, dtype=np.int64) + 1
-    lines = [", ".join(map(str, v[i:i + per_line])) for i in range(0, len(v), per_line)]
+    lines = [", ".join(map(str, v[i : i + per_line])) for i in range(0, len(v), per_line)]
     return "\n".join(lines) + "\n"
 
 
@@ -80,7 +80,7 @@ def _rows(ids: np.ndarray, values: np.ndarray) -> str:
     text = [s if len(s) <= FIELD else number(float(s)) for s in text]
     width = values.shape[1]
     ids = (np.asarray(ids) + 1).tolist()
-    return "".join(f"{i}, " + ", ".join(text[k * width:(k + 1) * width]) + "\n" for k, i in enumerate(ids))
+    return "".join(f"{i}, " + ", ".join(text[k * width : (k + 1) * width]) + "\n" for k, i in enumerate(ids))
 
 
 def _direction_groups(directions: np.ndarray, tol: float = 1e-9) -> list[np.ndarray]:
@@ -93,14 +93,18 @@ def _direction_groups(directions: np.ndarray, tol: float = 1e-9) -> list[np.ndar
     return groups
 
 
-def inp_text(mesh: FEMesh, material: Material | None = None, step: Step | None = None, title: str = "tubecad mesh") -> str:
+def inp_text(
+    mesh: FEMesh, material: Material | None = None, step: Step | None = None, title: str = "tubecad mesh"
+) -> str:
     """The deck (module docstring). Without ``material`` the model data has nodes, elements,
     sets and normals only (no sections); a step needs a material."""
     if material is None and step is not None:
         raise ParameterError("a CalculiX step needs a material")
     if material is not None and not mesh.shell_sections:
-        raise ParameterError("[mesh] surface = 'both' gives two unconnected surface meshes with no shell section; "
-                             "a CalculiX model needs one reference surface: 'mid', 'inner' or 'outer'")  # fmt: skip
+        raise ParameterError(
+            "[mesh] surface = 'both' gives two unconnected surface meshes with no shell section; "
+            "a CalculiX model needs one reference surface: 'mid', 'inner' or 'outer'"
+        )
     out = io.StringIO()
     w = out.write
     w(f"** {title}\n** written by tubecad: nodes on the exact surface, element edges on its lines of curvature\n")
@@ -132,20 +136,26 @@ def inp_text(mesh: FEMesh, material: Material | None = None, step: Step | None =
         w("".join(map("%d, %d, %.17f, %.17f, %.17f\n".__mod__, rows)))
     if material is None:
         return out.getvalue()
-    w(f"*MATERIAL, NAME={material.name}\n*ELASTIC\n{number(material.youngs_modulus)}, {number(material.poisson_ratio)}\n")
+    w(
+        f"*MATERIAL, NAME={material.name}\n*ELASTIC\n{number(material.youngs_modulus)}, {number(material.poisson_ratio)}\n"
+    )
     if material.density is not None:
         w(f"*DENSITY\n{number(material.density)}\n")
     for sec in mesh.shell_sections:
-        w(f"*SHELL SECTION, ELSET={sec.block}, MATERIAL={material.name}, OFFSET={sec.offset:g}\n{number(sec.thickness)}\n")
+        w(
+            f"*SHELL SECTION, ELSET={sec.block}, MATERIAL={material.name}, OFFSET={sec.offset:g}\n{number(sec.thickness)}\n"
+        )
     for sec in mesh.beam_sections:
         o1, o2 = sec.offsets
         parts = groups[sec.block]
         for g, members in enumerate(parts):
             elset = sec.block if len(parts) == 1 else f"{sec.block}_{g:04d}"
             n1 = sec.directions[members[0]]
-            w(f"*BEAM SECTION, ELSET={elset}, MATERIAL={material.name}, SECTION=RECT, "
-              f"OFFSET1={number(o1)}, OFFSET2={number(o2)}\n{number(sec.width)}, {number(sec.height)}\n"
-              f"{number(n1[0])}, {number(n1[1])}, {number(n1[2])}\n")  # fmt: skip
+            w(
+                f"*BEAM SECTION, ELSET={elset}, MATERIAL={material.name}, SECTION=RECT, "
+                f"OFFSET1={number(o1)}, OFFSET2={number(o2)}\n{number(sec.width)}, {number(sec.height)}\n"
+                f"{number(n1[0])}, {number(n1[1])}, {number(n1[2])}\n"
+            )
     if step is not None:
         w(_step_text(mesh, step))
     return out.getvalue()
@@ -166,9 +176,14 @@ def _step_text(mesh: FEMesh, step: Step) -> str:
     return out.getvalue()
 
 
-def write_inp(mesh: FEMesh, path: str | Path, material: Material | None = None, step: Step | None = None,
-              title: str = "tubecad mesh") -> Path:  # fmt: skip
+def write_inp(
+    mesh: FEMesh,
+    path: str | Path,
+    material: Material | None = None,
+    step: Step | None = None,
+    title: str = "tubecad mesh",
+) -> Path:
     """Write :func:`inp_text` to ``path`` atomically."""
-    from ..export.atomic import write_text
+    from tubecad.core.atomic import write_text
 
     return write_text(path, inp_text(mesh, material, step, title))

@@ -18,9 +18,9 @@ import math
 
 import numpy as np
 
-from ..errors import ParameterError
-from .inp import Step
-from .model import FEMesh
+from tubecad.core.errors import ParameterError
+from tubecad.fem.inp import Step
+from tubecad.fem.model import FEMesh
 
 ENDS = ("fixed", "capped", "free")
 
@@ -35,12 +35,14 @@ def three_two_one(mesh: FEMesh, ring: np.ndarray) -> tuple[tuple[int, int], ...]
     b_dofs = np.argsort(np.abs(ab))[:2] + 1
     normal = np.cross(ab, mesh.nodes[c] - mesh.nodes[a])
     c_dof = int(np.argmax(np.abs(normal))) + 1
-    return tuple([(int(a), 1), (int(a), 2), (int(a), 3), (int(b), int(b_dofs[0])), (int(b), int(b_dofs[1])),
-                  (int(c), c_dof)])  # fmt: skip
+    return tuple(
+        [(int(a), 1), (int(a), 2), (int(a), 3), (int(b), int(b_dofs[0])), (int(b), int(b_dofs[1])), (int(c), c_dof)]
+    )
 
 
-def ring_forces(mesh: FEMesh, ring_block_nodes: np.ndarray, direction: np.ndarray, total: float, order: int
-                ) -> list[tuple[int, int, float]]:  # fmt: skip
+def ring_forces(
+    mesh: FEMesh, ring_block_nodes: np.ndarray, direction: np.ndarray, total: float, order: int
+) -> list[tuple[int, int, float]]:
     """``total`` spread along a closed ring of nodes (in order round it, mid-side nodes
     included for order 2) as consistent nodal forces along ``direction``."""
     nodes = mesh.nodes[ring_block_nodes]
@@ -63,12 +65,17 @@ def ring_forces(mesh: FEMesh, ring_block_nodes: np.ndarray, direction: np.ndarra
             forces[k + 1] += 2 * q * lengths[e] / 3
             forces[(k + 2) % n] += q * lengths[e] / 6
     del nodes
-    return [(int(node), d + 1, float(f * direction[d])) for node, f in zip(ring_block_nodes, forces) for d in range(3)
-            if abs(direction[d]) > 1e-15]  # fmt: skip
+    return [
+        (int(node), d + 1, float(f * direction[d]))
+        for node, f in zip(ring_block_nodes, forces)
+        for d in range(3)
+        if abs(direction[d]) > 1e-15
+    ]
 
 
-def pressure_step(mesh: FEMesh, pressure: float, ends: str, surface, lattice_rings: tuple[np.ndarray, np.ndarray] | None = None
-                  ) -> Step:  # fmt: skip
+def pressure_step(
+    mesh: FEMesh, pressure: float, ends: str, surface, lattice_rings: tuple[np.ndarray, np.ndarray] | None = None
+) -> Step:
     """The step for internal ``pressure`` with the ``ends`` condition (module docstring);
     ``surface``: the reference surface (for the axis tangents and circle radii at the ends);
     ``lattice_rings``: the end rings' nodes in order round them."""
@@ -79,8 +86,11 @@ def pressure_step(mesh: FEMesh, pressure: float, ends: str, surface, lattice_rin
     if mesh.closed and ends != "free":
         raise ParameterError(f"[analysis] ends = {ends!r} needs end rings; a closed tube has none: use ends = 'free'")
     if ends == "fixed":
-        held = [(int(n), d) for n in np.concatenate([mesh.node_sets["start_ring"], mesh.node_sets["end_ring"]])
-                for d in (1, 2, 3)]  # fmt: skip
+        held = [
+            (int(n), d)
+            for n in np.concatenate([mesh.node_sets["start_ring"], mesh.node_sets["end_ring"]])
+            for d in (1, 2, 3)
+        ]
         return Step(pressure, ends, tuple(held))
     held = three_two_one(mesh, mesh.node_sets["ring_00"])
     loads: list[tuple[int, int, float]] = []
@@ -89,6 +99,8 @@ def pressure_step(mesh: FEMesh, pressure: float, ends: str, surface, lattice_rin
         order = 2 if mesh.blocks[0].element.startswith("S8") else 1
         for s, ring, sign in ((s0, lattice_rings[0], -1.0), (s1, lattice_rings[1], 1.0)):
             t = surface.axis.at(np.array([s])).t[0]
-            a = float(np.mean(np.linalg.norm(np.cross(mesh.nodes[ring] - surface.axis.position(np.array([s]))[0], t), axis=1)))
+            a = float(
+                np.mean(np.linalg.norm(np.cross(mesh.nodes[ring] - surface.axis.position(np.array([s]))[0], t), axis=1))
+            )
             loads += ring_forces(mesh, ring, sign * t, pressure * math.pi * a * a, order)
     return Step(pressure, ends, held, tuple(loads))

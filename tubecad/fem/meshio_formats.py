@@ -45,15 +45,23 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import TubecadError
-from .model import ElementBlock, FEMesh
+from tubecad.core.errors import TubecadError
+from tubecad.fem.model import ElementBlock, FEMesh
 
 if TYPE_CHECKING:
     import meshio
 
 #: element -> (meshio cell type, gmsh element type number)
-CELL_TYPES = {"S4": ("quad", 3), "S4R": ("quad", 3), "S8": ("quad8", 16), "S8R": ("quad8", 16),
-              "B31": ("line", 1), "B31R": ("line", 1), "B32": ("line3", 8), "B32R": ("line3", 8)}  # fmt: skip
+CELL_TYPES = {
+    "S4": ("quad", 3),
+    "S4R": ("quad", 3),
+    "S8": ("quad8", 16),
+    "S8R": ("quad8", 16),
+    "B31": ("line", 1),
+    "B31R": ("line", 1),
+    "B32": ("line3", 8),
+    "B32R": ("line3", 8),
+}
 #: a 3-node beam's nodes (end, middle, end) in meshio's and gmsh's order (end, end, middle);
 #: the permutation is its own inverse
 LINE3_ORDER = [0, 2, 1]
@@ -99,7 +107,7 @@ def ring_index(mesh: FEMesh) -> np.ndarray:
 
 def _per_block(mesh: FEMesh, values: np.ndarray) -> list[np.ndarray]:
     """A per-element array (global order) split into the blocks' parts."""
-    return [values[b.first:b.first + len(b.connectivity)] for b in mesh.blocks]
+    return [values[b.first : b.first + len(b.connectivity)] for b in mesh.blocks]
 
 
 def _meshio():
@@ -110,7 +118,7 @@ def _meshio():
     return meshio
 
 
-def to_meshio(mesh: FEMesh) -> "meshio.Mesh":
+def to_meshio(mesh: FEMesh) -> meshio.Mesh:
     """The model as a meshio.Mesh (module docstring). Write a ``.msh`` with :func:`write_msh`:
     meshio's own gmsh writer cannot write it (shared nodes)."""
     meshio = _meshio()
@@ -124,36 +132,43 @@ def to_meshio(mesh: FEMesh) -> "meshio.Mesh":
         np.asarray(mesh.nodes, dtype=np.float64),
         [meshio.CellBlock(CELL_TYPES[b.element][0], cells(b)) for b in mesh.blocks],
         point_data=_point_data(mesh),
-        cell_data={"block": [np.full(len(b.connectivity), k, dtype=np.int64) for k, b in enumerate(mesh.blocks)],
-                   "panel": _per_block(mesh, panel_index(mesh)), "gmsh:physical": tags,
-                   "gmsh:geometrical": [t.copy() for t in tags]},
+        cell_data={
+            "block": [np.full(len(b.connectivity), k, dtype=np.int64) for k, b in enumerate(mesh.blocks)],
+            "panel": _per_block(mesh, panel_index(mesh)),
+            "gmsh:physical": tags,
+            "gmsh:geometrical": [t.copy() for t in tags],
+        },
         field_data={name: np.array(tag_dim) for name, tag_dim in groups.items()},
         point_sets={name: np.asarray(ids, dtype=np.int64) for name, ids in mesh.node_sets.items()},
         cell_sets=cell_sets,
-    )  # fmt: skip
+    )
 
 
 def _point_data(mesh: FEMesh) -> dict[str, np.ndarray]:
-    return {"normal": np.asarray(mesh.normals, dtype=np.float64),
-            "ring_tangent": np.asarray(mesh.ring_tangents, dtype=np.float64),
-            "stringer_tangent": np.asarray(mesh.stringer_tangents, dtype=np.float64),
-            "ring": ring_index(mesh)}  # fmt: skip
+    return {
+        "normal": np.asarray(mesh.normals, dtype=np.float64),
+        "ring_tangent": np.asarray(mesh.ring_tangents, dtype=np.float64),
+        "stringer_tangent": np.asarray(mesh.stringer_tangents, dtype=np.float64),
+        "ring": ring_index(mesh),
+    }
 
 
 def write_vtu(mesh: FEMesh, path: str | Path) -> Path:
     """Write the VTU (module docstring; binary, zlib-compressed) to ``path`` atomically.
     meshio's VTU writer has no sets (it would fold them into one cell array, overlapping
     sets lost) and drops field data, so only the arrays listed are written."""
-    from ..export.atomic import atomic_path
+    from tubecad.core.atomic import atomic_path
 
     meshio = _meshio()
     grid = meshio.Mesh(
         np.asarray(mesh.nodes, dtype=np.float64),
         [meshio.CellBlock(CELL_TYPES[b.element][0], cells(b)) for b in mesh.blocks],
         point_data=_point_data(mesh),
-        cell_data={"block": [np.full(len(b.connectivity), k, dtype=np.int64) for k, b in enumerate(mesh.blocks)],
-                   "panel": _per_block(mesh, panel_index(mesh))},
-    )  # fmt: skip
+        cell_data={
+            "block": [np.full(len(b.connectivity), k, dtype=np.int64) for k, b in enumerate(mesh.blocks)],
+            "panel": _per_block(mesh, panel_index(mesh)),
+        },
+    )
     with atomic_path(path) as tmp:
         meshio.write(tmp, grid, file_format="vtu", binary=True, compression="zlib")
     return Path(path)
@@ -203,6 +218,6 @@ def msh_text(mesh: FEMesh) -> str:
 
 def write_msh(mesh: FEMesh, path: str | Path) -> Path:
     """Write :func:`msh_text` to ``path`` atomically."""
-    from ..export.atomic import write_text
+    from tubecad.core.atomic import write_text
 
     return write_text(path, msh_text(mesh))

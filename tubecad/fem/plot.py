@@ -8,11 +8,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .analysis import PressureResult
+from tubecad.fem.analysis import PressureResult
 
 
-def deformed_figure(result: PressureResult, values: np.ndarray, label: str, exaggeration: float = 0.05,
-                    title: str = ""):  # fmt: skip
+def deformed_figure(
+    result: PressureResult, values: np.ndarray, label: str, exaggeration: float = 0.05, title: str = ""
+):
     """The matplotlib figure (module docstring); ``label`` names ``values`` on the colour bar."""
     import matplotlib
 
@@ -46,12 +47,13 @@ def deformed_figure(result: PressureResult, values: np.ndarray, label: str, exag
     return fig
 
 
-def save_deformed(result: PressureResult, values: np.ndarray, label: str, folder: str | Path, stem: str,
-                  title: str = "") -> list[Path]:  # fmt: skip
+def save_deformed(
+    result: PressureResult, values: np.ndarray, label: str, folder: str | Path, stem: str, title: str = ""
+) -> list[Path]:
     """:func:`deformed_figure` saved as ``stem``.png in ``folder``, atomically."""
     import matplotlib.pyplot as plt
 
-    from ..export.atomic import save_figure
+    from tubecad.core.atomic import save_figure
 
     fig = deformed_figure(result, values, label, title=title)
     try:

@@ -34,6 +34,10 @@ def element_quality(mesh, surface=None, grid=None) -> dict:
     corners = np.concatenate([b.connectivity[:, :4] for b in shells])
     aspect, skew = corner_measures(mesh.nodes, corners)
     ortho = np.abs(np.einsum("ij,ij->i", mesh.ring_tangents, mesh.stringer_tangents))
-    return {"aspect_ratio_max": float(aspect.max()), "aspect_ratio_mean": float(aspect.mean()),
-            "skew_deg_max": float(skew.max()), "skew_deg_mean": float(skew.mean()),
-            "orthogonality_max": float(ortho.max())}  # fmt: skip
+    return {
+        "aspect_ratio_max": float(aspect.max()),
+        "aspect_ratio_mean": float(aspect.mean()),
+        "skew_deg_max": float(skew.max()),
+        "skew_deg_mean": float(skew.mean()),
+        "orthogonality_max": float(ortho.max()),
+    }

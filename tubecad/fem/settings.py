@@ -9,8 +9,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..errors import ParameterError
-from ..validation import MAX_LENGTH, flag
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import MAX_LENGTH, flag
 
 #: shell elements (CalculiX/Abaqus names): 4-node linear, 8-node quadratic (serendipity); R: reduced integration
 SHELL_TYPES = ("S4", "S4R", "S8", "S8R")
@@ -55,9 +55,15 @@ class MeshSettings:
 def _size(key: str, value: object) -> float | None:
     if value is None:
         return None
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-            or not 0 < value <= MAX_LENGTH:  # fmt: skip
-        raise ParameterError(f"[mesh] {key} must be a finite length in (0, {MAX_LENGTH:g}] (model units), got {value!r:.40}")
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, (int, float))
+        or not math.isfinite(value)
+        or not 0 < value <= MAX_LENGTH
+    ):
+        raise ParameterError(
+            f"[mesh] {key} must be a finite length in (0, {MAX_LENGTH:g}] (model units), got {value!r:.40}"
+        )
     return float(value)
 
 
@@ -79,8 +85,10 @@ def mesh_settings(section: dict | None = None, **overrides: object) -> MeshSetti
     order = 2 if element.startswith("S8") else 1
     if beam is not None and (2 if beam.startswith("B32") else 1) != order:
         wanted = "B32 or B32R" if order == 2 else "B31 or B31R"
-        raise ParameterError(f"[mesh] beam must be {wanted} with {element} shells (the beams share the shells' "
-                             f"nodes, mid-side nodes included), got {beam!r}")  # fmt: skip
+        raise ParameterError(
+            f"[mesh] beam must be {wanted} with {element} shells (the beams share the shells' "
+            f"nodes, mid-side nodes included), got {beam!r}"
+        )
     size = _size("size", values.get("size"))
     along = _size("size_along", values.get("size_along", size))
     around = _size("size_around", values.get("size_around", size))
@@ -89,7 +97,9 @@ def mesh_settings(section: dict | None = None, **overrides: object) -> MeshSetti
         raise ParameterError(f"[mesh] surface must be one of {', '.join(SURFACES)}, got {surface!r:.40}")
     cap = values.get("max_elements", DEFAULT_MAX_ELEMENTS)
     if isinstance(cap, bool) or not isinstance(cap, int) or not 1 <= cap <= MAX_ELEMENTS_LIMIT:
-        raise ParameterError(f"[mesh] max_elements must be a whole number in [1, {MAX_ELEMENTS_LIMIT}], got {cap!r:.40}")
+        raise ParameterError(
+            f"[mesh] max_elements must be a whole number in [1, {MAX_ELEMENTS_LIMIT}], got {cap!r:.40}"
+        )
     beams = flag("[mesh] beams", values.get("beams", True))
     return MeshSettings(element, beam, along, around, surface, cap, beams)
 
@@ -113,7 +123,7 @@ class AnalysisSettings:
 
 def analysis_settings(section: dict | None, length_unit: str = "mm", closed: bool = False) -> AnalysisSettings:
     """The checked ``[analysis]`` section; a ParameterError names the key and its range."""
-    from ..units import length_unit as unit_of
+    from tubecad.core.units import length_unit as unit_of
 
     values = dict(section or {})
     known = {"pressure", "ends", "youngs_modulus", "poisson_ratio"}
@@ -123,11 +133,18 @@ def analysis_settings(section: dict | None, length_unit: str = "mm", closed: boo
 
     def real(key: str, default: float, low: float, high: float, low_open: bool = True) -> float:
         value = values.get(key, default)
-        ok = not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value) and \
-            (value > low if low_open else value >= low) and value < high  # fmt: skip
+        ok = (
+            not isinstance(value, bool)
+            and isinstance(value, (int, float))
+            and math.isfinite(value)
+            and (value > low if low_open else value >= low)
+            and value < high
+        )
         if not ok:
             bracket = "(" if low_open else "["
-            raise ParameterError(f"[analysis] {key} must be a finite number in {bracket}{low:g}, {high:g}), got {value!r:.40}")
+            raise ParameterError(
+                f"[analysis] {key} must be a finite number in {bracket}{low:g}, {high:g}), got {value!r:.40}"
+            )
         return float(value)
 
     steel = float(f"{STEEL_YOUNGS_MODULUS_PA * unit_of(length_unit).metres ** 2:.12g}")

@@ -15,21 +15,21 @@ with the same curvature-line net, so all share the lattice.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
-from ..brep.layout import NetLayout
-from ..brep.wall import wall_offsets
-from ..errors import ParameterError
-from ..stiffeners.profiles import SIDES, Profile
-from ..surface import CanalSurface, CurvatureLineTube
-from .beams import beam_directions, clipped, profile_rectangles, section_centre
-from .grid import ParameterGrid, element_counts, lattice_ids, parameter_grid
-from .model import BeamSection, ElementBlock, FEMesh, ShellSection
-from .quality import element_quality
-from .settings import DEFAULT_SIZE_PER_RADIUS, MeshSettings
+from tubecad.brep.layout import NetLayout
+from tubecad.brep.wall import wall_offsets
+from tubecad.core.errors import ParameterError
+from tubecad.fem.beams import beam_directions, clipped, profile_rectangles, section_centre
+from tubecad.fem.grid import ParameterGrid, element_counts, lattice_ids, parameter_grid
+from tubecad.fem.model import BeamSection, ElementBlock, FEMesh, ShellSection
+from tubecad.fem.quality import element_quality
+from tubecad.fem.settings import DEFAULT_SIZE_PER_RADIUS, MeshSettings
+from tubecad.stiffeners.profiles import SIDES, Profile
+from tubecad.surface import CanalSurface, CurvatureLineTube
 
 
 @dataclass(frozen=True)
@@ -48,10 +48,18 @@ def _smallest_radius(surface) -> float:
     return float(surface.radius_law.min_radius)
 
 
-def shell_mesh(surface: CurvatureLineTube | CanalSurface, layout: NetLayout, *, thickness: float | None = None,
-               wall_side: str = "centered", stiffeners: StiffenerPlan | None = None,
-               seams: Sequence[int] | None = None, panel_rings: Sequence[int] | None = None,
-               settings: MeshSettings | None = None, length_unit: str = "mm") -> FEMesh:  # fmt: skip
+def shell_mesh(
+    surface: CurvatureLineTube | CanalSurface,
+    layout: NetLayout,
+    *,
+    thickness: float | None = None,
+    wall_side: str = "centered",
+    stiffeners: StiffenerPlan | None = None,
+    seams: Sequence[int] | None = None,
+    panel_rings: Sequence[int] | None = None,
+    settings: MeshSettings | None = None,
+    length_unit: str = "mm",
+) -> FEMesh:
     """The wall of ``thickness`` placed ``wall_side`` of ``surface`` (no thickness: the
     surface alone, for a surface mesh) as shells on the layout's net, refined to
     ``settings``' sizes, with ``stiffeners`` as beams, and sets for the panels between the
@@ -60,13 +68,19 @@ def shell_mesh(surface: CurvatureLineTube | CanalSurface, layout: NetLayout, *, 
     closed = bool(surface.axis.closed)
     if thickness is None:
         if settings.surface != "mid":
-            raise ParameterError(f"[mesh] surface = {settings.surface!r} needs a wall ([wall] thickness); "
-                                 "a tube alone has only its own surface ('mid')")  # fmt: skip
+            raise ParameterError(
+                f"[mesh] surface = {settings.surface!r} needs a wall ([wall] thickness); "
+                "a tube alone has only its own surface ('mid')"
+            )
         d_in = d_out = 0.0
     else:
         d_in, d_out = wall_offsets(thickness, wall_side)
-    refs = {"mid": [("wall", 0.5 * (d_in + d_out), 0.0)], "inner": [("wall", d_in, -0.5)],
-            "outer": [("wall", d_out, 0.5)], "both": [("wall_inner", d_in, None), ("wall_outer", d_out, None)]}
+    refs = {
+        "mid": [("wall", 0.5 * (d_in + d_out), 0.0)],
+        "inner": [("wall", d_in, -0.5)],
+        "outer": [("wall", d_out, 0.5)],
+        "both": [("wall_inner", d_in, None), ("wall_outer", d_out, None)],
+    }
     references = refs[settings.surface]
     radius = _smallest_radius(surface) + d_in
     size_along = settings.size_along or DEFAULT_SIZE_PER_RADIUS * radius
@@ -78,16 +92,21 @@ def shell_mesh(surface: CurvatureLineTube | CanalSurface, layout: NetLayout, *, 
     first = offset_surface[references[0][1]]
     closing = None
     if closed:
-        closing = (lambda a: first.closing_angle(a)) if isinstance(first, CanalSurface) \
-            else (lambda a: np.asarray(a) + surface.axis.holonomy)  # fmt: skip
+        closing = (
+            (lambda a: first.closing_angle(a))
+            if isinstance(first, CanalSurface)
+            else (lambda a: np.asarray(a) + surface.axis.holonomy)
+        )
     counts = element_counts(first, layout.s_rings, layout.stringers_deg, size_along, size_around)
     beams = _beam_estimate(plan, counts, rings, strs)
     total = counts[0] * counts[1] * len(references) + beams
     if total > settings.max_elements:
-        raise ParameterError(f"[mesh] size_along = {size_along:.6g}, size_around = {size_around:.6g} give {total:,} "
-                             f"elements ({counts[0]} along x {counts[1]} around x {len(references)} surface(s)"
-                             f"{f' + {beams:,} beams' if beams else ''}), more than max_elements = "
-                             f"{settings.max_elements:,}: use a larger size or raise max_elements")  # fmt: skip
+        raise ParameterError(
+            f"[mesh] size_along = {size_along:.6g}, size_around = {size_around:.6g} give {total:,} "
+            f"elements ({counts[0]} along x {counts[1]} around x {len(references)} surface(s)"
+            f"{f' + {beams:,} beams' if beams else ''}), more than max_elements = "
+            f"{settings.max_elements:,}: use a larger size or raise max_elements"
+        )
     grid = parameter_grid(first, layout.s_rings, layout.stringers_deg, settings.order, size_along, size_around, closing)
 
     ids = lattice_ids(grid)
@@ -98,8 +117,8 @@ def shell_mesh(surface: CurvatureLineTube | CanalSurface, layout: NetLayout, *, 
         keep = np.zeros(per_surface, dtype=np.int64)
         rows, cols = np.nonzero(ids[: len(grid.s) - (1 if closed else 0)] >= 0)
         keep[ids[rows, cols]] = rows * len(grid.angles) + cols
-        flat = lambda a: a.reshape(-1, a.shape[-1])[keep]  # noqa: E731
-        nodes.append(flat(X)), normals.append(flat(N)), t_ring.append(flat(Tu)), t_str.append(flat(Ts))
+        for out, values in ((nodes, X), (normals, N), (t_ring, Tu), (t_str, Ts)):
+            out.append(values.reshape(-1, values.shape[-1])[keep])
         uu, ss = np.meshgrid(grid.angles, grid.s)
         params.append(np.column_stack([uu.ravel(), ss.ravel()])[keep])
 
@@ -123,19 +142,50 @@ def shell_mesh(surface: CurvatureLineTube | CanalSurface, layout: NetLayout, *, 
         k = 0 if len(references) == 1 else (1 if plan.side == "outside" else 0)
         ref_name, ref_d, _ = references[k]
         base = offset_surface[ref_d]
-        _add_beams(blocks, beam_sections, element_sets, plan, rings, strs, ids + k * per_surface, grid, base,
-                   base_d - ref_d, settings.beam_type, layout, closed)  # fmt: skip
+        _add_beams(
+            blocks,
+            beam_sections,
+            element_sets,
+            plan,
+            rings,
+            strs,
+            ids + k * per_surface,
+            grid,
+            base,
+            base_d - ref_d,
+            settings.beam_type,
+            layout,
+            closed,
+        )
 
-    mesh = FEMesh(np.concatenate(nodes), np.concatenate(normals), np.concatenate(t_ring), np.concatenate(t_str),
-                  np.concatenate(params), blocks, shell_sections, beam_sections, node_sets, element_sets,
-                  length_unit, closed)  # fmt: skip
-    mesh.info.update({"surface": settings.surface, "element": settings.element,
-                      "beam": settings.beam_type if plan is not None else None,
-                      "size_along": size_along, "size_around": size_around,
-                      "elements_along": (len(grid.s) - 1) // grid.order,
-                      "elements_around": len(grid.angles) // grid.order,
-                      "thickness": thickness, "reference_offsets": [d for _, d, _ in references],
-                      "quality": element_quality(mesh, first, grid)})  # fmt: skip
+    mesh = FEMesh(
+        np.concatenate(nodes),
+        np.concatenate(normals),
+        np.concatenate(t_ring),
+        np.concatenate(t_str),
+        np.concatenate(params),
+        blocks,
+        shell_sections,
+        beam_sections,
+        node_sets,
+        element_sets,
+        length_unit,
+        closed,
+    )
+    mesh.info.update(
+        {
+            "surface": settings.surface,
+            "element": settings.element,
+            "beam": settings.beam_type if plan is not None else None,
+            "size_along": size_along,
+            "size_around": size_around,
+            "elements_along": (len(grid.s) - 1) // grid.order,
+            "elements_around": len(grid.angles) // grid.order,
+            "thickness": thickness,
+            "reference_offsets": [d for _, d, _ in references],
+            "quality": element_quality(mesh, first, grid),
+        }
+    )
     return mesh
 
 
@@ -172,8 +222,12 @@ def _lattice_geometry(surface, grid: ParameterGrid) -> tuple[np.ndarray, ...]:
         k1, k2 = surface.axis.normal_development(grid.s)
         cu, su = np.cos(grid.angles)[None, :, None], np.sin(grid.angles)[None, :, None]
         speed = 1.0 - surface.radius * (k1[:, None] * cu[..., 0] + k2[:, None] * su[..., 0])
-        return (surface.points(u, s), unit(cu * r1 + su * r2), unit(cu * r2 - su * r1),
-                np.sign(speed)[..., None] * np.broadcast_to(unit(t), speed.shape + (3,)))  # fmt: skip
+        return (
+            surface.points(u, s),
+            unit(cu * r1 + su * r2),
+            unit(cu * r2 - su * r1),
+            np.sign(speed)[..., None] * np.broadcast_to(unit(t), speed.shape + (3,)),
+        )
     d = surface.derivatives(u, s)
     return surface.points(u, s), unit(surface.normal(u, s)), unit(d.S_u), unit(d.S_s)
 
@@ -183,7 +237,11 @@ def _shell_cells(ids: np.ndarray, p: int) -> np.ndarray:
     rows, cols = ids.shape
     i0 = np.arange(0, rows - 1, p)[:, None]
     j0 = np.arange(0, cols, p)[None, :]
-    at = lambda i, j: ids[np.broadcast_to(i, (len(i0), j0.shape[1])), (np.broadcast_to(j, (len(i0), j0.shape[1]))) % cols]  # noqa: E731
+
+    def at(i, j):
+        shape = (len(i0), j0.shape[1])
+        return ids[np.broadcast_to(i, shape), np.broadcast_to(j, shape) % cols]
+
     if p == 1:
         corners = [at(i0, j0), at(i0, j0 + 1), at(i0 + 1, j0 + 1), at(i0 + 1, j0)]
         return np.stack(corners, axis=-1).reshape(-1, 4)
@@ -201,8 +259,9 @@ def _oriented(conn: np.ndarray, nodes: np.ndarray, normals: np.ndarray, p: int) 
     return conn[:, order]
 
 
-def _node_sets(ids: np.ndarray, grid: ParameterGrid, layout: NetLayout, closed: bool, per_surface: int,
-               surfaces: int) -> dict[str, np.ndarray]:  # fmt: skip
+def _node_sets(
+    ids: np.ndarray, grid: ParameterGrid, layout: NetLayout, closed: bool, per_surface: int, surfaces: int
+) -> dict[str, np.ndarray]:
     """ring_03, stringer_05 (the nodes on each layout line), start_ring and end_ring (open
     axes), wall (all): on every meshed surface."""
     every = lambda a: np.unique(np.concatenate([a + k * per_surface for k in range(surfaces)]))  # noqa: E731
@@ -218,8 +277,14 @@ def _node_sets(ids: np.ndarray, grid: ParameterGrid, layout: NetLayout, closed: 
     return sets
 
 
-def _panel_sets(blocks: list[ElementBlock], grid: ParameterGrid, layout: NetLayout, closed: bool,
-                seams: Sequence[int] | None, panel_rings: Sequence[int] | None) -> dict[str, np.ndarray]:  # fmt: skip
+def _panel_sets(
+    blocks: list[ElementBlock],
+    grid: ParameterGrid,
+    layout: NetLayout,
+    closed: bool,
+    seams: Sequence[int] | None,
+    panel_rings: Sequence[int] | None,
+) -> dict[str, np.ndarray]:
     """panel_rI_sJ: the shells between rings I, I+1 of ``panel_rings`` and seams J, J+1
     (counter-clockwise from the smallest seam angle), the names of tubecad's panels."""
     n_r, n_s = len(layout.s_rings), len(layout.stringers_deg)
@@ -243,9 +308,21 @@ def _panel_sets(blocks: list[ElementBlock], grid: ParameterGrid, layout: NetLayo
     return sets
 
 
-def _add_beams(blocks, beam_sections, element_sets, plan: StiffenerPlan, rings, strs, ids: np.ndarray,
-               grid: ParameterGrid, base, base_offset: float, beam_type: str, layout: NetLayout,
-               closed: bool) -> None:  # fmt: skip
+def _add_beams(
+    blocks,
+    beam_sections,
+    element_sets,
+    plan: StiffenerPlan,
+    rings,
+    strs,
+    ids: np.ndarray,
+    grid: ParameterGrid,
+    base,
+    base_offset: float,
+    beam_type: str,
+    layout: NetLayout,
+    closed: bool,
+) -> None:
     """Beam blocks of the stiffened rings and stringers on the lattice ``ids`` (:mod:`.beams`)."""
     p = grid.order
     rows, cols = ids.shape
@@ -263,7 +340,9 @@ def _add_beams(blocks, beam_sections, element_sets, plan: StiffenerPlan, rings, 
         i = np.arange(0, rows - 1, p)
         conn = np.stack([ids[i + q, c] for q in range(p + 1)], axis=-1)
         s_mid = 0.5 * (grid.s[i] + grid.s[i + p])
-        lines.append((f"stringer_{j:02d}", "stringer", conn, np.full(len(i), grid.angles[c]), s_mid, (-math.inf, math.inf)))
+        lines.append(
+            (f"stringer_{j:02d}", "stringer", conn, np.full(len(i), grid.angles[c]), s_mid, (-math.inf, math.inf))
+        )
     unit = lambda v: v / np.linalg.norm(v, axis=-1, keepdims=True)  # noqa: E731
     for name, kind, conn, a_mid, s_mid, (low, high) in lines:
         d = base.derivatives(a_mid, s_mid)
@@ -277,8 +356,17 @@ def _add_beams(blocks, beam_sections, element_sets, plan: StiffenerPlan, rings, 
                 continue
             block = ElementBlock(f"{name}_{part.name}", beam_type, conn, sum(len(b.connectivity) for b in blocks))
             blocks.append(block)
-            beam_sections.append(BeamSection(block.name, name, part.w1 - part.w0, part.h1 - part.h0,
-                                             section_centre(part, base_offset, plan.side, across), block.ids, n1))  # fmt: skip
+            beam_sections.append(
+                BeamSection(
+                    block.name,
+                    name,
+                    part.w1 - part.w0,
+                    part.h1 - part.h0,
+                    section_centre(part, base_offset, plan.side, across),
+                    block.ids,
+                    n1,
+                )
+            )
             members.append(block.ids)
         element_sets[name] = np.concatenate(members)
 

@@ -43,11 +43,11 @@ import numpy as np
 from OCP.Geom import Geom_BSplineSurface
 from scipy.interpolate import BSpline
 
-from ..errors import ParameterError
-from ..surface.canal import CanalSurface
-from .circle import MAX_SUB_ARC, CircleSpline
-from .exact_section import TubeSurface
-from .frame_spline import (
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import check_tolerance
+from tubecad.fitting.circle import MAX_SUB_ARC, CircleSpline
+from tubecad.fitting.exact_section import TubeSurface
+from tubecad.fitting.frame_spline import (
     SAMPLES_PER_SPAN,
     FitError,
     SplineSize,
@@ -56,8 +56,8 @@ from .frame_spline import (
     _with_rings,
     refine_spline,
 )
-from .occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
-from .tolerance import check_tolerance
+from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
+from tubecad.surface.canal import CanalSurface
 
 #: angles chi0 around the surface at which the fit is measured (per s sample)
 MEASURE_ANGLES = 24
@@ -162,9 +162,15 @@ class CanalSpline(SplineSize):
         return H[..., :3] / H[..., 3:]
 
 
-def fit_canal(canal: CanalSurface, offsets: Sequence[float] = (0.0,), tolerance: float = 1e-8,
-              orthogonality: float = 1e-9, degree: int = 7, max_spans: int = 4096,
-              rings: Sequence[float] = ()) -> CanalSpline:  # fmt: skip
+def fit_canal(
+    canal: CanalSurface,
+    offsets: Sequence[float] = (0.0,),
+    tolerance: float = 1e-8,
+    orthogonality: float = 1e-9,
+    degree: int = 7,
+    max_spans: int = 4096,
+    rings: Sequence[float] = (),
+) -> CanalSpline:
     """Fit the 21-vector of ``canal`` adaptively until, at each of the ``offsets`` (the
     normal offsets d of the surfaces that will be built on it: r + d), the fitted surface is
     within ``tolerance`` / 2 of the exact one and its isolines within ``orthogonality`` / 2
@@ -197,8 +203,11 @@ def fit_canal(canal: CanalSurface, offsets: Sequence[float] = (0.0,), tolerance:
             joints[b] = max(joints.get(b, 1), degree - 1)
         else:
             slivers.append((b, fixed))
-    singular = [(b, K) for (b, fixed), K in zip(slivers, _jumps(canal, [b for b, _ in slivers]))
-                if not _droppable(canal, offsets, b, fixed, K, tolerance, orthogonality)]  # fmt: skip
+    singular = [
+        (b, K)
+        for (b, fixed), K in zip(slivers, _jumps(canal, [b for b, _ in slivers]))
+        if not _droppable(canal, offsets, b, fixed, K, tolerance, orthogonality)
+    ]
     breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([rings, list(joints)]))
     chi0 = np.linspace(0.0, 2.0 * math.pi, MEASURE_ANGLES, endpoint=False) + 0.05
 
@@ -231,14 +240,23 @@ def fit_canal(canal: CanalSurface, offsets: Sequence[float] = (0.0,), tolerance:
         for d in offsets:
             X, X_chi, X_s = _points_and_derivatives(homogeneous(F, d), homogeneous(dF, d), chi0)
             pos = np.maximum(pos, np.linalg.norm(X - (exact + d * normal), axis=-1).max(axis=1))
-            cos = np.abs(np.einsum("ijk,ijk->ij", X_chi, X_s)) / (np.linalg.norm(X_chi, axis=-1)
-                                                                 * np.linalg.norm(X_s, axis=-1))  # fmt: skip
+            cos = np.abs(np.einsum("ijk,ijk->ij", X_chi, X_s)) / (
+                np.linalg.norm(X_chi, axis=-1) * np.linalg.norm(X_s, axis=-1)
+            )
             orth = np.maximum(orth, cos.max(axis=1))
         return pos.reshape(m, -1).max(axis=1), orth.reshape(m, -1).max(axis=1)
 
-    spline, pos, orth = refine_spline(values if singular else lambda s: canal_functions(canal, s), breaks, degree,
-                                      joints, span_errors, tolerance, orthogonality, max_spans,
-                                      "the canal section spline")  # fmt: skip
+    spline, pos, orth = refine_spline(
+        values if singular else lambda s: canal_functions(canal, s),
+        breaks,
+        degree,
+        joints,
+        span_errors,
+        tolerance,
+        orthogonality,
+        max_spans,
+        "the canal section spline",
+    )
     spline = _with_singular_parts(spline, singular)
     s_check = np.linspace(*canal.span, 4001)
     kappa = max(condition_number(spline(s_check)), condition_number(spline.c))
@@ -298,8 +316,15 @@ def _jumps(canal: CanalSurface, knots: Sequence[float]) -> list[np.ndarray]:
     return out
 
 
-def _droppable(canal: CanalSurface, offsets: Sequence[float], b: float, fixed: float, K: np.ndarray,
-               tolerance: float, orthogonality: float) -> bool:  # fmt: skip
+def _droppable(
+    canal: CanalSurface,
+    offsets: Sequence[float],
+    b: float,
+    fixed: float,
+    K: np.ndarray,
+    tolerance: float,
+    orthogonality: float,
+) -> bool:
     """Whether the table knot ``b`` (a sliver gap from the joint or ring ``fixed``, F'' jumping
     by ``K``) is better left out of the knots (see DROP): the spline then misses a term of F
     supported on the sliver, K (s - b)^2 / 2 there, so X by about |K|_H gap^2 / (2 w) and
@@ -308,17 +333,25 @@ def _droppable(canal: CanalSurface, offsets: Sequence[float], b: float, fixed: f
     F = canal_functions(canal, np.array([b]))[0]
     D = F[[3, 7, 11]]
     w = D[0] - math.hypot(D[1], D[2])
-    jump = max(sum(np.linalg.norm(K[4 * k : 4 * k + 3] + d * K[12 + 3 * k : 15 + 3 * k]) for k in range(3))
-               for d in offsets)  # fmt: skip
+    jump = max(
+        sum(np.linalg.norm(K[4 * k : 4 * k + 3] + d * K[12 + 3 * k : 15 + 3 * k]) for k in range(3)) for d in offsets
+    )
     # |X_s| from the exact surface on b's far side from the sliver (over a step far above rounding)
     gap, step = abs(b - fixed), math.copysign(1e-6 * _size(canal), b - fixed)
     chi0 = np.linspace(0.0, 2.0 * math.pi, MEASURE_ANGLES, endpoint=False)
     s = np.array([b, min(max(b + step, canal.span[0]), canal.span[1])])
-    speed = min(np.linalg.norm(np.diff(canal.points(chi0[None, :], s[:, None]) + d * canal.normal(
-        chi0[None, :], s[:, None]), axis=0), axis=-1).min() / abs(s[1] - s[0]) for d in offsets)  # fmt: skip
+    speed = min(
+        np.linalg.norm(
+            np.diff(canal.points(chi0[None, :], s[:, None]) + d * canal.normal(chi0[None, :], s[:, None]), axis=0),
+            axis=-1,
+        ).min()
+        / abs(s[1] - s[0])
+        for d in offsets
+    )
     kept = KEEP_NOISE * np.finfo(float).eps * _size(canal) / gap
-    return (jump * gap * gap / (2.0 * w) <= DROP * 0.5 * tolerance
-            and jump * gap / (w * speed) <= max(DROP * 0.5 * orthogonality, kept))  # fmt: skip
+    return jump * gap * gap / (2.0 * w) <= DROP * 0.5 * tolerance and jump * gap / (w * speed) <= max(
+        DROP * 0.5 * orthogonality, kept
+    )
 
 
 def _dr_partial(canal: CanalSurface, s: np.ndarray) -> np.ndarray:
@@ -399,8 +432,16 @@ class CanalSectionSurface(TubeSurface):
         theta[0] = 0.0
         return np.append(theta, 2.0 * math.pi)
 
-    def ring_chi0(self, s: float, chi_o: float, theta_a: float, chi0_a: float, theta: np.ndarray,
-                  theta_mid: float, moebius: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
+    def ring_chi0(
+        self,
+        s: float,
+        chi_o: float,
+        theta_a: float,
+        chi0_a: float,
+        theta: np.ndarray,
+        theta_mid: float,
+        moebius: np.ndarray | None = None,
+    ) -> np.ndarray:
         """chi0 (radians, absolute) of the points at angles ``theta`` from the origin stringer
         on the circle at ``s``, on the arc that starts at theta_a on the stringer chi0_a: the
         exact inverse Moebius map, continued from the arc's start through its middle (each
@@ -422,9 +463,13 @@ class CanalSectionSurface(TubeSurface):
         return chi0_a + 2.0 * (np.mod(turn(v_a, v_mid), math.pi) + turn(v_mid, half(theta)))
 
 
-def canal_section_surface(canal: CanalSurface, fit: CanalSpline, offset: float = 0.0,
-                          stringers_deg: Sequence[float] | None = None,
-                          exact: CanalSurface | None = None) -> CanalSectionSurface:  # fmt: skip
+def canal_section_surface(
+    canal: CanalSurface,
+    fit: CanalSpline,
+    offset: float = 0.0,
+    stringers_deg: Sequence[float] | None = None,
+    exact: CanalSurface | None = None,
+) -> CanalSectionSurface:
     """The periodic-in-u rational surface of the offset by ``offset`` of ``canal`` on ``fit``
     (``exact``: that offset surface, if already made). With ``stringers_deg`` (angles chi0
     from r1 at the span's start, the face boundaries) the circle's C0 knots are chosen among
@@ -438,20 +483,30 @@ def canal_section_surface(canal: CanalSurface, fit: CanalSpline, offset: float =
     sub_arc = fit.max_sub_arc
     while True:
         circle = CircleSpline.for_stringers(np.radians(angles - origin_deg), max_sub_arc=sub_arc)
-        H = circle.weights[:, None, None] * (A[None, :, 0] + circle.x[:, None, None] * A1[None]
-                                             + circle.y[:, None, None] * A2[None])  # fmt: skip
+        H = circle.weights[:, None, None] * (
+            A[None, :, 0] + circle.x[:, None, None] * A1[None] + circle.y[:, None, None] * A2[None]
+        )
         weights = H[..., 3]
         if weights.min() > 1e-6 * weights.max():
             break
         if sub_arc < math.radians(5.0):
-            raise FitError(f"the canal surface's Moebius map is too far from a rotation (condition number "
-                           f"{fit.condition:.3g}): its NURBS weights are not positive")  # fmt: skip
+            raise FitError(
+                f"the canal surface's Moebius map is too far from a rotation (condition number "
+                f"{fit.condition:.3g}): its NURBS weights are not positive"
+            )
         sub_arc *= 0.5
     s_knots, s_mults = knots_and_multiplicities(fit.spline.t)
     surface = Geom_BSplineSurface(
-        points_2d(H[..., :3] / weights[..., None]), reals_2d(weights),
-        reals(circle.knots), reals(s_knots), integers(circle.multiplicities), integers(s_mults),
-        2, fit.degree, True, False,
-    )  # fmt: skip
+        points_2d(H[..., :3] / weights[..., None]),
+        reals_2d(weights),
+        reals(circle.knots),
+        reals(s_knots),
+        integers(circle.multiplicities),
+        integers(s_mults),
+        2,
+        fit.degree,
+        True,
+        False,
+    )
     exact = exact if exact is not None else (canal if offset == 0.0 else canal.offset(offset, allow_irregular=True))
     return CanalSectionSurface(surface, exact, origin_deg, circle, None, fit, offset)

@@ -65,8 +65,9 @@ class CircleSpline:
     arcs: tuple[_Arc, ...] = field(repr=False)
 
     @classmethod
-    def with_breaks(cls, breaks: np.ndarray | list[float] | tuple[float, ...],
-                    max_sub_arc: float = MAX_SUB_ARC) -> "CircleSpline":  # fmt: skip
+    def with_breaks(
+        cls, breaks: np.ndarray | list[float] | tuple[float, ...], max_sub_arc: float = MAX_SUB_ARC
+    ) -> CircleSpline:
         """The circle with double knots at the angles ``breaks`` (radians, relative to the
         first, which becomes angle and parameter 0), its C1 sub-arcs at most ``max_sub_arc``
         (a canal surface's Moebius map needs shorter ones, :mod:`.canal_section`)."""
@@ -95,12 +96,14 @@ class CircleSpline:
                     knots.append(u[i]), mults.append(1)
                 arcs.append(_Arc(start + i * a, a, u[i], u[i + 1] - u[i], J[i], m[i], J[i + 1]))
         knots.append(TWO_PI), mults.append(2)
-        return cls(tuple(map(float, b)), np.array(x), np.array(y), np.array(w), np.array(knots),
-                   np.array(mults), tuple(arcs))  # fmt: skip
+        return cls(
+            tuple(map(float, b)), np.array(x), np.array(y), np.array(w), np.array(knots), np.array(mults), tuple(arcs)
+        )
 
     @classmethod
-    def for_stringers(cls, angles: np.ndarray | list[float] | tuple[float, ...],
-                      max_sub_arc: float = MAX_SUB_ARC) -> "CircleSpline":  # fmt: skip
+    def for_stringers(
+        cls, angles: np.ndarray | list[float] | tuple[float, ...], max_sub_arc: float = MAX_SUB_ARC
+    ) -> CircleSpline:
         """The circle with the fewest poles whose C0 knots are stringers (face boundaries):
         breaks at the first angle and at the one nearest the opposite side, so each arc is
         at most about 180 deg + the stringer spacing (6 poles for evenly spaced stringers)."""
@@ -109,7 +112,7 @@ class CircleSpline:
         return cls.with_breaks([0.0] if opposite == 0.0 else [0.0, float(opposite)], max_sub_arc)
 
     @classmethod
-    def quarters(cls) -> "CircleSpline":
+    def quarters(cls) -> CircleSpline:
         """The classic circle: four 90 deg arcs, double knots at 0, 90, 180, 270 deg."""
         return cls.with_breaks(np.arange(4) * math.pi / 2)
 

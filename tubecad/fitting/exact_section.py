@@ -11,16 +11,16 @@ circle C(s) + rho (x(u) R1(s) + y(u) R2(s)); only the s direction is approximate
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Callable, Sequence
 
 import numpy as np
 from OCP.Geom import Geom_BSplineSurface
 
-from ..surface import CurvatureLineTube
-from .circle import CircleSpline
-from .frame_spline import FrameSpline
-from .occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
+from tubecad.fitting.circle import CircleSpline
+from tubecad.fitting.frame_spline import FrameSpline
+from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
+from tubecad.surface import CurvatureLineTube
 
 
 @dataclass(frozen=True)
@@ -59,8 +59,9 @@ class TubeSurface:
         return self.surface.NbUPoles(), self.surface.NbVPoles()
 
 
-def exact_section_surface(tube: CurvatureLineTube, frame: FrameSpline, origin_deg: float = 0.0,
-                          stringers_deg: Sequence[float] | None = None) -> TubeSurface:  # fmt: skip
+def exact_section_surface(
+    tube: CurvatureLineTube, frame: FrameSpline, origin_deg: float = 0.0, stringers_deg: Sequence[float] | None = None
+) -> TubeSurface:
     """Build the periodic-in-u rational surface of ``tube`` on the fitted ``frame``.
 
     With ``stringers_deg`` (angles from r1, the face boundaries) the circle's C0 knots are
@@ -82,8 +83,15 @@ def exact_section_surface(tube: CurvatureLineTube, frame: FrameSpline, origin_de
     weights = circle.weights[:, None] * s_weights[None, :]  # a product: rational circles in u and (routes) in s
     s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
     surface = Geom_BSplineSurface(
-        points_2d(poles), reals_2d(weights),
-        reals(circle.knots), reals(s_knots), integers(circle.multiplicities), integers(s_mults),
-        2, frame.degree, True, False,
-    )  # fmt: skip
+        points_2d(poles),
+        reals_2d(weights),
+        reals(circle.knots),
+        reals(s_knots),
+        integers(circle.multiplicities),
+        integers(s_mults),
+        2,
+        frame.degree,
+        True,
+        False,
+    )
     return TubeSurface(surface, tube, origin_deg, circle, frame.arc_length)

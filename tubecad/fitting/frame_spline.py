@@ -19,82 +19,24 @@ equations, docs/MATH.md section 7; for a slope curve k1 = k cos w, k2 = k sin w)
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Callable, Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 from scipy.interpolate import BSpline, make_interp_spline
 
-from ..curves.axis import Axis
-from ..errors import ParameterError, TubecadError
-from .tolerance import check_tolerance
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import check_tolerance
+from tubecad.curves.axis import Axis
+from tubecad.fitting.frame import ORTHOGONALITY_ANGLES, FitError, FrameSpline, SplineSize, exact_frame, measured_cos
+from tubecad.fitting.route_frame import route_frame
+
+__all__ = ["FitError", "FrameSpline", "SplineSize", "exact_frame", "fit_frame", "refine_spline", "ORTHOGONALITY_ANGLES"]
 
 SAMPLES_PER_SPAN = 24
-#: angles around the tube at which the fitted surface's orthogonality is measured
-ORTHOGONALITY_ANGLES = 16
 #: an initial break closer than this fraction of its span to a ring is moved onto the ring
 SNAP_FRACTION = 0.25
 #: refinements without halving the error after which a failed fit is said to have stalled
 STALLED_ROUNDS = 3
-
-
-class FitError(TubecadError, ValueError):
-    """The requested tolerance could not be reached."""
-
-
-class SplineSize:
-    """The size of a fit's ``spline`` (a scipy BSpline), as a build reports it."""
-
-    spline: BSpline
-
-    @property
-    def degree(self) -> int:
-        return int(self.spline.k)
-
-    @property
-    def poles(self) -> int:
-        return len(self.spline.c)
-
-    @property
-    def spans(self) -> int:
-        return len(np.unique(self.spline.t)) - 1
-
-
-@dataclass(frozen=True)
-class FrameSpline(SplineSize):
-    """F(s) = (c, r1, r2) as a scipy BSpline, with the bounds it was measured to meet.
-
-    A route's exact frame (:mod:`.route_frame`) is rational: ``spline`` then holds its
-    poles and knots, ``weights`` the pole weights, and its parameter v equals the arc
-    length s only at the breaks (``arc_length`` maps v -> s, ``parameter`` s -> v)."""
-
-    spline: BSpline
-    position_bound: float
-    orthogonality_bound: float
-    radius_bound: float
-    weights: np.ndarray | None = None
-    arc_length: Callable[[np.ndarray], np.ndarray] | None = None
-    parameter: Callable[[np.ndarray], np.ndarray] | None = None
-
-    @property
-    def rational(self) -> bool:
-        return self.weights is not None
-
-    def values(self, v: np.ndarray | float) -> np.ndarray:
-        """F at parameters ``v`` (weights applied), shape v.shape + (9,)."""
-        if self.weights is None:
-            return self.spline(v)
-        H = BSpline(self.spline.t, self.spline.c * self.weights[:, None], self.spline.k)
-        W = BSpline(self.spline.t, self.weights, self.spline.k)
-        return H(v) / np.asarray(W(v))[..., None]
-
-
-def exact_frame(axis: Axis, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """F(s) and F'(s), each (len(s), 9)."""
-    a = axis.at(s)
-    F = np.hstack([a.position, a.r1, a.r2])
-    dF = np.hstack([a.t, -a.k1[:, None] * a.t, -a.k2[:, None] * a.t])
-    return F, dF
 
 
 def fit_frame(
@@ -116,27 +58,36 @@ def fit_frame(
         raise ParameterError(f"degree must be a whole number in [3, 9], got {degree!r}")
     tolerance = check_tolerance("tolerance", tolerance)
     orthogonality = check_tolerance("orthogonality", orthogonality)
-    from ..curves.route import RouteAxis
-
-    if isinstance(axis, RouteAxis):  # lines and bends: the exact rational frame, nothing to fit
-        from .route_frame import route_frame
-
+    if axis.pieces is not None:  # lines and bends: the exact rational frame, nothing to fit
         return route_frame(axis, radius_bound, rings, radii, tolerance, orthogonality)
     joints = _joint_multiplicities(axis, degree)
     breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([np.asarray(rings, dtype=float), list(joints)]))
     radii = tuple(float(r) for r in radii) or (float(radius_bound),)
     spline, pos, orth = refine_spline(
-        lambda s: exact_frame(axis, s)[0], breaks, degree, joints,
+        lambda s: exact_frame(axis, s)[0],
+        breaks,
+        degree,
+        joints,
         lambda spline, breaks: _span_errors(axis, spline, breaks, radius_bound, radii, 0.5 * orthogonality),
-        tolerance, orthogonality, max_spans, "the frame spline",
-    )  # fmt: skip
+        tolerance,
+        orthogonality,
+        max_spans,
+        "the frame spline",
+    )
     return FrameSpline(spline, pos, orth, radius_bound)
 
 
-def refine_spline(values: Callable[[np.ndarray], np.ndarray], breaks: np.ndarray, degree: int,
-                  joints: dict[float, int], span_errors: Callable[[BSpline, np.ndarray], tuple[np.ndarray, np.ndarray]],
-                  tolerance: float, orthogonality: float, max_spans: int = 4096, what: str = "the spline",
-                  ) -> tuple[BSpline, float, float]:  # fmt: skip
+def refine_spline(
+    values: Callable[[np.ndarray], np.ndarray],
+    breaks: np.ndarray,
+    degree: int,
+    joints: dict[float, int],
+    span_errors: Callable[[BSpline, np.ndarray], tuple[np.ndarray, np.ndarray]],
+    tolerance: float,
+    orthogonality: float,
+    max_spans: int = 4096,
+    what: str = "the spline",
+) -> tuple[BSpline, float, float]:
     """Interpolate the vector function ``values`` (s -> (len(s), m)) at the Greville
     abscissae of the clamped knot vector of ``degree`` on ``breaks`` (inner breaks in
     ``joints`` repeated to their multiplicity), and halve every span where
@@ -156,9 +107,14 @@ def refine_spline(values: Callable[[np.ndarray], np.ndarray], breaks: np.ndarray
         worst.append(max(pos.max() / (0.5 * tolerance), orth.max() / (0.5 * orthogonality)))
         if len(breaks) - 1 + bad.sum() > max_spans:
             stalled = len(worst) > STALLED_ROUNDS and min(worst[-STALLED_ROUNDS:]) > 0.5 * worst[-STALLED_ROUNDS - 1]
-            why = ("the error stopped decreasing under refinement: double precision limits what is reachable, "
-                   "try a looser tolerance") if stalled else (
-                   "the error was still decreasing: try a looser tolerance or split the span")  # fmt: skip
+            why = (
+                (
+                    "the error stopped decreasing under refinement: double precision limits what is reachable, "
+                    "try a looser tolerance"
+                )
+                if stalled
+                else ("the error was still decreasing: try a looser tolerance or split the span")
+            )
             raise FitError(
                 f"fit tolerance {tolerance:g} / orthogonality {orthogonality:g} not reached with {max_spans} "
                 f"spans of degree {degree} ({what} must meet half of each, {0.5 * tolerance:g} / "
@@ -202,8 +158,9 @@ def _joint_multiplicities(axis: Axis, degree: int) -> dict[float, int]:
     return {float(s): degree - int(c) for s, c in axis.joints if s0 < s < s1 and 0 <= c < degree}
 
 
-def _interpolate(values: Callable[[np.ndarray], np.ndarray], breaks: np.ndarray, p: int,
-                 joints: dict[float, int]) -> BSpline:  # fmt: skip
+def _interpolate(
+    values: Callable[[np.ndarray], np.ndarray], breaks: np.ndarray, p: int, joints: dict[float, int]
+) -> BSpline:
     inner = [b for b in breaks[1:-1] for _ in range(joints.get(float(b), 1))]
     knots = np.concatenate([[breaks[0]] * (p + 1), inner, [breaks[-1]] * (p + 1)])
     n = len(knots) - p - 1
@@ -212,8 +169,9 @@ def _interpolate(values: Callable[[np.ndarray], np.ndarray], breaks: np.ndarray,
     return make_interp_spline(greville, values(greville), k=p, t=knots)
 
 
-def _span_errors(axis: Axis, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float],
-                 target: float) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+def _span_errors(
+    axis: Axis, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float], target: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Per span: the position bound and the orthogonality (the bound, or where it exceeds
     ``target``, the largest |cos| measured on the fitted surface at every radius)."""
     m = len(breaks) - 1
@@ -233,19 +191,5 @@ def _span_errors(axis: Axis, spline: BSpline, breaks: np.ndarray, radius: float,
     over = np.flatnonzero(orth > target)
     if over.size:
         rows = np.concatenate([np.arange(i * SAMPLES_PER_SPAN, (i + 1) * SAMPLES_PER_SPAN) for i in over])
-        orth[over] = _measured_cos(fit[rows], dfit[rows], radii).reshape(over.size, -1).max(axis=1)
+        orth[over] = measured_cos(fit[rows], dfit[rows], radii).reshape(over.size, -1).max(axis=1)
     return pos.reshape(m, -1).max(axis=1), orth
-
-
-def _measured_cos(fit: np.ndarray, dfit: np.ndarray, radii: Sequence[float]) -> np.ndarray:
-    """max over radii and angles of |cos(S_u, S_s)| of S = C + r (cos u R1 + sin u R2), per sample."""
-    u = np.linspace(0.0, 2 * math.pi, ORTHOGONALITY_ANGLES, endpoint=False)
-    cu, su = np.cos(u)[None, :, None], np.sin(u)[None, :, None]
-    R1, R2, dC, dR1, dR2 = fit[:, None, 3:6], fit[:, None, 6:], dfit[:, None, :3], dfit[:, None, 3:6], dfit[:, None, 6:]
-    worst = np.zeros(len(fit))
-    for r in radii:
-        S_u = -su * R1 + cu * R2
-        S_s = dC + r * (cu * dR1 + su * dR2)
-        cos = np.abs(np.einsum("ijk,ijk->ij", S_u, S_s)) / (np.linalg.norm(S_u, axis=2) * np.linalg.norm(S_s, axis=2))
-        worst = np.maximum(worst, cos.max(axis=1))
-    return worst

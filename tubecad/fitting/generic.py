@@ -12,14 +12,14 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from OCP.Geom import Geom_BSplineSurface
 from OCP.GeomAbs import GeomAbs_C2
 from OCP.GeomAPI import GeomAPI_PointsToBSplineSurface, GeomAPI_ProjectPointOnSurf
-from OCP.Geom import Geom_BSplineSurface
 from OCP.gp import gp_Pnt, gp_Vec
 
-from ..errors import TubecadError
-from ..surface import CurvatureLineTube
-from .occ_arrays import points_2d
+from tubecad.core.errors import TubecadError
+from tubecad.fitting.occ_arrays import points_2d
+from tubecad.surface import CurvatureLineTube
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from OCP.gp import gp_Pnt, gp_Vec
 
-from .exact_section import TubeSurface
+from tubecad.fitting.exact_section import TubeSurface
 
 
 @dataclass(frozen=True)

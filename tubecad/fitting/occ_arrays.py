@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 from OCP.gp import gp_Pnt
-from ..occ_compat import Array1OfInteger, Array1OfReal, Array2OfPnt, Array2OfReal
+
+from tubecad.occ_compat import Array1OfInteger, Array1OfReal, Array2OfPnt, Array2OfReal
 
 
 def reals(values: Sequence[float]) -> Array1OfReal:

@@ -25,14 +25,14 @@ and torus pieces (section 6: poles C_j + rho (X_i R1_j + Y_i R2_j), weights w_i 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 from scipy.interpolate import BSpline
 
-from ..curves.route import Piece, RouteAxis
-from .frame_spline import FitError, FrameSpline, _measured_cos, exact_frame
+from tubecad.curves.route import Piece, RouteAxis
+from tubecad.fitting.frame import FitError, FrameSpline, exact_frame, measured_cos
 
 #: the longest sub-arc in s (90 deg: neighbouring weights stay within a factor 2)
 MAX_SUB_ARC = math.pi / 2
@@ -60,8 +60,9 @@ class RouteFrame:
     def __init__(self, segments: list[_Segment]) -> None:
         self.segments = segments
         self._v0 = np.array([g.v0 for g in segments])
-        self._s0 = np.array([g.piece.s0 + g.phi0 * (g.piece.radius if g.piece.kind == "bend" else 1.0)
-                             for g in segments])  # fmt: skip
+        self._s0 = np.array(
+            [g.piece.s0 + g.phi0 * (g.piece.radius if g.piece.kind == "bend" else 1.0) for g in segments]
+        )
 
     def arc_length(self, v: np.ndarray | float) -> np.ndarray:
         """s(v): s = v on a line; on a sub-arc, with tau = (v - v0) / dv and r = sqrt(w1 / w0),
@@ -115,7 +116,9 @@ def _affine(piece: Piece):
 
     def frame_vector(v: np.ndarray, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
         a, b = float(v @ e1), float(v @ e2)
-        return (v - a * e1 - b * e2) + a * (X[:, None] * e1 + Y[:, None] * e2) + b * (-Y[:, None] * e1 + X[:, None] * e2)
+        return (
+            (v - a * e1 - b * e2) + a * (X[:, None] * e1 + Y[:, None] * e2) + b * (-Y[:, None] * e1 + X[:, None] * e2)
+        )
 
     def apply(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
         c = piece.centre + piece.radius * (X[:, None] * e1 + Y[:, None] * e2)
@@ -124,8 +127,14 @@ def _affine(piece: Piece):
     return apply
 
 
-def route_frame(axis: RouteAxis, radius_bound: float, rings: Sequence[float] = (), radii: Sequence[float] = (),
-                tolerance: float = 1e-8, orthogonality: float = 1e-9) -> FrameSpline:  # fmt: skip
+def route_frame(
+    axis: RouteAxis,
+    radius_bound: float,
+    rings: Sequence[float] = (),
+    radii: Sequence[float] = (),
+    tolerance: float = 1e-8,
+    orthogonality: float = 1e-9,
+) -> FrameSpline:
     """The exact rational quadratic frame of ``axis`` with breaks at ``rings`` and the joints;
     its deviation from the exact frame and the orthogonality of the surfaces of ``radii``
     built on it are measured (round-off) and checked against the targets."""
@@ -170,10 +179,13 @@ def route_frame(axis: RouteAxis, radius_bound: float, rings: Sequence[float] = (
     radii = tuple(float(r) for r in radii) or (float(radius_bound),)
     pos, orth = _measure(axis, t, P, w, params, radius_bound, radii, breaks)
     if pos > 0.5 * tolerance or orth > 0.5 * orthogonality:
-        raise FitError(f"the exact route frame measured {pos:.3g} / {orth:.3g} from the exact tube (targets "
-                       f"{0.5 * tolerance:g} / {0.5 * orthogonality:g}): round-off on a route this large")  # fmt: skip
-    return FrameSpline(spline, pos, orth, radius_bound, weights=w, arc_length=params.arc_length,
-                       parameter=params.parameter)  # fmt: skip
+        raise FitError(
+            f"the exact route frame measured {pos:.3g} / {orth:.3g} from the exact tube (targets "
+            f"{0.5 * tolerance:g} / {0.5 * orthogonality:g}): round-off on a route this large"
+        )
+    return FrameSpline(
+        spline, pos, orth, radius_bound, weights=w, arc_length=params.arc_length, parameter=params.parameter
+    )
 
 
 def rational_values(t: np.ndarray, P: np.ndarray, w: np.ndarray, v: np.ndarray, nu: int = 0) -> np.ndarray:
@@ -185,8 +197,16 @@ def rational_values(t: np.ndarray, P: np.ndarray, w: np.ndarray, v: np.ndarray, 
     return (H.derivative()(v) - F * W.derivative()(v)[:, None]) / W(v)[:, None]
 
 
-def _measure(axis: RouteAxis, t: np.ndarray, P: np.ndarray, w: np.ndarray, params: RouteFrame, radius: float,
-             radii: Sequence[float], breaks: np.ndarray) -> tuple[float, float]:  # fmt: skip
+def _measure(
+    axis: RouteAxis,
+    t: np.ndarray,
+    P: np.ndarray,
+    w: np.ndarray,
+    params: RouteFrame,
+    radius: float,
+    radii: Sequence[float],
+    breaks: np.ndarray,
+) -> tuple[float, float]:
     """The position bound |C - c| + R |(R1, R2) - (r1, r2)| at s(v), and the largest |cos|
     between the isolines of the surfaces of ``radii`` on the frame, sampled on every span."""
     spans = np.unique(t)
@@ -196,4 +216,4 @@ def _measure(axis: RouteAxis, t: np.ndarray, P: np.ndarray, w: np.ndarray, param
     exact, _ = exact_frame(axis, np.clip(params.arc_length(v), *axis.span))
     d = F - exact
     pos = np.linalg.norm(d[:, :3], axis=1) + radius * np.linalg.norm(d[:, 3:], axis=1)
-    return float(pos.max()), float(_measured_cos(F, dF, radii).max())
+    return float(pos.max()), float(measured_cos(F, dF, radii).max())

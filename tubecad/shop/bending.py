@@ -22,20 +22,20 @@ from __future__ import annotations
 import csv
 import io
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
-from ..curves.chebyshev import PiecewiseChebyshev
-from ..errors import ParameterError
-from ..export.atomic import save_figure, write_text
-from ..surface.canal import CanalSurface
-from ..units import length_unit as length_unit_of
-from .flanges import Surface, offset_surface, on_span, span_breaks
+from tubecad.core.atomic import save_figure, write_text
+from tubecad.core.errors import ParameterError
+from tubecad.core.units import length_unit as length_unit_of
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.shop.flanges import Surface, offset_surface, on_span, span_breaks
+from tubecad.surface.canal import CanalSurface
 
 Curve = Callable[[np.ndarray], np.ndarray]
 
@@ -82,8 +82,10 @@ def chord_frame(position: Curve, length: float, name: str) -> tuple[np.ndarray, 
     chord = ends[1] - ends[0]
     span = float(np.linalg.norm(chord))
     if not span > 1e-9 * length:
-        raise ParameterError(f"length: {name} ends where it starts ({span:.3g} apart): a closed curve has no chord; "
-                             "split it into arcs of at most 180 deg")  # fmt: skip
+        raise ParameterError(
+            f"length: {name} ends where it starts ({span:.3g} apart): a closed curve has no chord; "
+            "split it into arcs of at most 180 deg"
+        )
     x = chord / span
 
     def perp(sigma: np.ndarray) -> np.ndarray:
@@ -116,8 +118,9 @@ def _stations(length: float, spacing: float) -> np.ndarray:
     return np.concatenate([[0.0], inner[inner < length * (1 - 1e-9)], [length]])
 
 
-def bend_back_error(arc_length: np.ndarray, local: np.ndarray, exact: Callable[[np.ndarray], np.ndarray],
-                    length: float) -> float:  # fmt: skip
+def bend_back_error(
+    arc_length: np.ndarray, local: np.ndarray, exact: Callable[[np.ndarray], np.ndarray], length: float
+) -> float:
     """max(largest |spline(sigma) - exact(sigma)|, |spline length - length|), the spline the
     not-a-knot cubic through the stations ``local`` (n, 3) at ``arc_length``; ``exact``
     gives the curve in the same (chord) frame."""
@@ -130,8 +133,9 @@ def bend_back_error(arc_length: np.ndarray, local: np.ndarray, exact: Callable[[
     return max(distance, abs(float((speed * weights).sum(axis=1) @ half) - length))
 
 
-def bending_table(position: Curve, length: float, name: str, line: str, spacing: float | None = None,
-                  max_error: float = 0.1) -> BendingTable:  # fmt: skip
+def bending_table(
+    position: Curve, length: float, name: str, line: str, spacing: float | None = None, max_error: float = 0.1
+) -> BendingTable:
     """The bending table of the curve ``position``(sigma) -> (n, 3), sigma its exact arc
     length in [0, ``length``], with stations every ``spacing`` from the start and at the end.
     ``spacing`` None: the largest of length / n, n in INTERVALS, whose bend-back error is
@@ -160,21 +164,26 @@ def bending_table(position: Curve, length: float, name: str, line: str, spacing:
     if spacing is not None:
         out = table(float(spacing))
         if out.bend_back_error > max_error:
-            raise ParameterError(f"spacing: {name}: the bend-back error {out.bend_back_error:.3g} exceeds max_error "
-                                 f"{max_error:g} at spacing {spacing:g}; use a smaller spacing (or none to choose "
-                                 "one)")  # fmt: skip
+            raise ParameterError(
+                f"spacing: {name}: the bend-back error {out.bend_back_error:.3g} exceeds max_error "
+                f"{max_error:g} at spacing {spacing:g}; use a smaller spacing (or none to choose "
+                "one)"
+            )
         return out
     for n in INTERVALS:
         out = table(length / n)
         if out.bend_back_error <= max_error:
             return out
-    raise ParameterError(f"max_error: {name}: the bend-back error is still {out.bend_back_error:.3g} > max_error "
-                         f"{max_error:g} with {INTERVALS[-1]} intervals (spacing {length / INTERVALS[-1]:.6g}); "
-                         "raise max_error")  # fmt: skip
+    raise ParameterError(
+        f"max_error: {name}: the bend-back error is still {out.bend_back_error:.3g} > max_error "
+        f"{max_error:g} with {INTERVALS[-1]} intervals (spacing {length / INTERVALS[-1]:.6g}); "
+        "raise max_error"
+    )
 
 
-def stringer_line(base: Surface, theta_deg: float, level: float = 0.0,
-                  span: tuple[float, float] | None = None) -> tuple[Curve, float]:  # fmt: skip
+def stringer_line(
+    base: Surface, theta_deg: float, level: float = 0.0, span: tuple[float, float] | None = None
+) -> tuple[Curve, float]:
     """The stringer at ``theta_deg`` (u on a tube, chi0 at the wall's start on a canal surface)
     on the offset surface at ``level`` (0: the web's base on the wall; a flange's centre line:
     :func:`.flanges.flange_level`) over ``span``, by arc length: (position(sigma), length).
@@ -211,8 +220,9 @@ def stringer_line(base: Surface, theta_deg: float, level: float = 0.0,
     return position, length
 
 
-def ring_arcs(base: Surface, s: float, level: float = 0.0, pieces: int | None = None,
-              start_deg: float = 0.0) -> list[tuple[Curve, float]]:  # fmt: skip
+def ring_arcs(
+    base: Surface, s: float, level: float = 0.0, pieces: int | None = None, start_deg: float = 0.0
+) -> list[tuple[Curve, float]]:
     """The ring circle at ``s`` on the offset surface at ``level`` (a tube's circle of radius
     R + level; on a canal surface the characteristic circle of r + level, centre c - (r + d) r' t,
     radius (r + d) q) split into ``pieces`` equal arcs (default 2: a full circle has no chord,
@@ -220,8 +230,9 @@ def ring_arcs(base: Surface, s: float, level: float = 0.0, pieces: int | None = 
     (position(sigma), length), position = centre + a (cos(phi_j + sigma / a) r1 + sin(...) r2)."""
     count = 2 if pieces is None else pieces
     if not (isinstance(count, int) and count >= 2):
-        raise ParameterError(f"pieces must be an integer >= 2 (arcs of at most 180 deg; a full circle has no chord), "
-                             f"got {pieces!r}")  # fmt: skip
+        raise ParameterError(
+            f"pieces must be an integer >= 2 (arcs of at most 180 deg; a full circle has no chord), got {pieces!r}"
+        )
     surface = offset_surface(base, float(level), key="level")
     at = np.array([float(s)])
     _, r1, r2 = base.axis.rotation_minimising_frame(base.axis._inside(at))
@@ -289,15 +300,20 @@ def write_bending_picture(tables: list[BendingTable], folder: str | Path, stem: 
             ax.plot(sigma, smooth, color=colour, linewidth=1.0, label=label)
             ax.plot(t.arc_length, values, marker, color=colour, markersize=3)
         ax.axhline(0.0, color="#999999", linewidth=0.5)
-        ax.set_title(f"{t.name} ({t.line}), {len(t.arc_length)} stations\nmax bend-back error "
-                     f"{t.bend_back_error:.3g}", fontsize=8)  # fmt: skip
+        ax.set_title(
+            f"{t.name} ({t.line}), {len(t.arc_length)} stations\nmax bend-back error {t.bend_back_error:.3g}",
+            fontsize=8,
+        )
         ax.set_xlabel("arc length", fontsize=7)
         ax.tick_params(labelsize=7)
         ax.legend(fontsize=6)
-    for ax in axes.ravel()[len(shown):]:
+    for ax in axes.ravel()[len(shown) :]:
         ax.set_visible(False)
     which = f"all {len(tables)}" if len(shown) == len(tables) else f"the first {len(shown)} of {len(tables)}"
-    fig.suptitle(f"bending tables ({which} shown: {shown[0].name} .. {shown[-1].name}): offset from the chord and "
-                 "the inverse bending curve", fontsize=9)  # fmt: skip
+    fig.suptitle(
+        f"bending tables ({which} shown: {shown[0].name} .. {shown[-1].name}): offset from the chord and "
+        "the inverse bending curve",
+        fontsize=9,
+    )
     fig.tight_layout()
     return save_figure(fig, folder, stem, ("png", "svg"))

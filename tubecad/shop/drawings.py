@@ -20,10 +20,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..export.atomic import atomic_path, write_text
-from ..units import length_unit
-from .fabrication import Fabrication
-from .nesting import PlacedPiece, Plate
+from tubecad.core.atomic import atomic_path, write_text
+from tubecad.core.units import length_unit
+from tubecad.shop.fabrication import Fabrication
+from tubecad.shop.nesting import PlacedPiece, Plate
 
 LAYERS = {"PLATE": 8, "PARTS": 7, "CUT": 1, "JOINTS": 3, "TEXT": 5}  # name -> DXF colour index
 SVG_STYLE = {"PLATE": ("#555555", 0.5), "PARTS": ("#10203a", 0.35), "CUT": ("#d04020", 0.2), "JOINTS": ("#2a8a3a", 0.6)}
@@ -79,11 +79,17 @@ def write_plate_dxf(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
             msp.add_lwpolyline(path_points[:-1].tolist(), close=True, dxfattribs={"layer": "CUT"})
         for end, edge in joint_edges(placed):
             msp.add_line(tuple(edge[0]), tuple(edge[1]), dxfattribs={"layer": "JOINTS"})
-            msp.add_text(f"joint {placed.piece.name} {end}", height=height / 2,
-                         dxfattribs={"layer": "TEXT", "insert": tuple(edge.mean(axis=0))})  # fmt: skip
+            msp.add_text(
+                f"joint {placed.piece.name} {end}",
+                height=height / 2,
+                dxfattribs={"layer": "TEXT", "insert": tuple(edge.mean(axis=0))},
+            )
         msp.add_text(placed.piece.name, height=height, dxfattribs={"layer": "TEXT", "insert": label_point(placed)})
-    msp.add_text(f"{plate.name}  {length:g} x {width:g} {fab.length_unit}  kerf {fab.kerf:g}", height=height,
-                 dxfattribs={"layer": "TEXT", "insert": (0.0, -1.5 * height)})  # fmt: skip
+    msp.add_text(
+        f"{plate.name}  {length:g} x {width:g} {fab.length_unit}  kerf {fab.kerf:g}",
+        height=height,
+        dxfattribs={"layer": "TEXT", "insert": (0.0, -1.5 * height)},
+    )
     with atomic_path(path) as tmp:
         doc.saveas(tmp)
     return Path(path)
@@ -104,8 +110,9 @@ def _part_outline(msp, placed: PlacedPiece) -> None:
         arc = np.stack([np.cos(a), np.sin(a)], axis=1)
         corners = placed.place(np.concatenate([r_out * arc, r_in * arc[::-1]]))
         bulges = [bulge, bulge, 0.0, -bulge, -bulge, 0.0]  # a rotation keeps every bulge
-        msp.add_lwpolyline([(x, y, b) for (x, y), b in zip(corners.tolist(), bulges)], format="xyb", close=True,
-                           dxfattribs=attribs)  # fmt: skip
+        msp.add_lwpolyline(
+            [(x, y, b) for (x, y), b in zip(corners.tolist(), bulges)], format="xyb", close=True, dxfattribs=attribs
+        )
     else:
         msp.add_lwpolyline(placed.outline.tolist(), close=True, dxfattribs=attribs)
 
@@ -117,15 +124,24 @@ def write_plate_svg(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
     height = text_height(plate)
     pad = 4 * height
     W, H = (length + 2 * pad) * mm, (width + 3 * pad) * mm
-    svg = ET.Element("svg", xmlns="http://www.w3.org/2000/svg", width=f"{W:.6g}mm", height=f"{H:.6g}mm",
-                     viewBox=f"0 0 {W:.6g} {H:.6g}")  # fmt: skip
+    svg = ET.Element(
+        "svg",
+        xmlns="http://www.w3.org/2000/svg",
+        width=f"{W:.6g}mm",
+        height=f"{H:.6g}mm",
+        viewBox=f"0 0 {W:.6g} {H:.6g}",
+    )
     ET.SubElement(svg, "title").text = f"{plate.name}: {length:g} x {width:g} {fab.length_unit}, 1:1"
     # model (x, y) -> SVG mm, y flipped so that the drawing reads as the DXF does
-    flip = ET.SubElement(svg, "g", transform=f"translate({pad * mm:.6g} {(width + pad) * mm:.6g}) scale({mm:.9g} {-mm:.9g})")
+    flip = ET.SubElement(
+        svg, "g", transform=f"translate({pad * mm:.6g} {(width + pad) * mm:.6g}) scale({mm:.9g} {-mm:.9g})"
+    )
 
     def group(layer: str) -> ET.Element:
         colour, stroke_mm = SVG_STYLE.get(layer, ("#000000", 0.3))
-        return ET.SubElement(flip, "g", id=layer, fill="none", stroke=colour, **{"stroke-width": f"{stroke_mm / mm:.6g}"})
+        return ET.SubElement(
+            flip, "g", id=layer, fill="none", stroke=colour, **{"stroke-width": f"{stroke_mm / mm:.6g}"}
+        )
 
     def path_d(points: np.ndarray, close: bool = True) -> str:
         d = "M " + " L ".join(f"{x:.6f} {y:.6f}" for x, y in points)
@@ -135,21 +151,25 @@ def write_plate_svg(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
     parts, cuts, joints = group("PARTS"), group("CUT"), group("JOINTS")
     for placed in plate.pieces:
         rings = [placed.outline] + ([] if placed.hole is None else [placed.hole])
-        ET.SubElement(parts, "path", d=" ".join(path_d(r) for r in rings), id=placed.piece.name,
-                      **{"fill-rule": "evenodd"})  # fmt: skip
+        ET.SubElement(
+            parts, "path", d=" ".join(path_d(r) for r in rings), id=placed.piece.name, **{"fill-rule": "evenodd"}
+        )
         for points in cut_paths(placed, fab.kerf):
             ET.SubElement(cuts, "path", d=path_d(points))
         for _, edge in joint_edges(placed):
             ET.SubElement(joints, "path", d=path_d(edge, close=False))
-    text = ET.SubElement(svg, "g", id="TEXT", fill="#10203a", **{"font-family": "sans-serif",
-                                                                  "font-size": f"{height * mm:.6g}"})  # fmt: skip
+    text = ET.SubElement(
+        svg, "g", id="TEXT", fill="#10203a", **{"font-family": "sans-serif", "font-size": f"{height * mm:.6g}"}
+    )
     for placed in plate.pieces:
         x, y = label_point(placed)
-        ET.SubElement(text, "text", x=f"{(x + pad) * mm:.6g}", y=f"{(width + pad - y) * mm:.6g}",
-                      **{"text-anchor": "middle"}).text = placed.piece.name  # fmt: skip
+        ET.SubElement(
+            text, "text", x=f"{(x + pad) * mm:.6g}", y=f"{(width + pad - y) * mm:.6g}", **{"text-anchor": "middle"}
+        ).text = placed.piece.name
     ET.SubElement(text, "text", x=f"{pad * mm:.6g}", y=f"{(width + 2.5 * pad) * mm:.6g}").text = (
         f"{plate.name}  {length:g} x {width:g} {fab.length_unit}  kerf {fab.kerf:g}  "
-        f"{len(plate.pieces)} pieces  utilisation {100 * plate.utilisation:.1f} %")
+        f"{len(plate.pieces)} pieces  utilisation {100 * plate.utilisation:.1f} %"
+    )
     return write_text(path, ET.tostring(svg, encoding="unicode") + "\n")
 
 
@@ -162,12 +182,13 @@ def write_plate_picture(plate: Plate, fab: Fabrication, path: str | Path) -> Pat
     import matplotlib.pyplot as plt
     from matplotlib.patches import Polygon as Patch
 
-    from ..export.atomic import save_figure
+    from tubecad.core.atomic import save_figure
 
     length, width = plate.size
     fig, ax = plt.subplots(figsize=(12, 12 * width / length + 0.8))
-    ax.add_patch(Patch([(0, 0), (length, 0), (length, width), (0, width)], closed=True, facecolor="#f2f2f2",
-                       edgecolor="#555555"))  # fmt: skip
+    ax.add_patch(
+        Patch([(0, 0), (length, 0), (length, width), (0, width)], closed=True, facecolor="#f2f2f2", edgecolor="#555555")
+    )
     for placed in plate.pieces:
         ax.add_patch(Patch(placed.outline, closed=True, facecolor="#c9d6ea", edgecolor="#10203a", linewidth=0.6))
         if placed.hole is not None:
@@ -179,7 +200,10 @@ def write_plate_picture(plate: Plate, fab: Fabrication, path: str | Path) -> Pat
     ax.set_ylim(-0.01 * width, 1.01 * width)
     ax.set_aspect("equal")
     ax.set_axis_off()
-    ax.set_title(f"{plate.name}: {length:g} x {width:g} {fab.length_unit}, {len(plate.pieces)} pieces, utilisation "
-                 f"{100 * plate.utilisation:.1f} %, kerf {fab.kerf:g} (butt joints green)", fontsize=9)  # fmt: skip
+    ax.set_title(
+        f"{plate.name}: {length:g} x {width:g} {fab.length_unit}, {len(plate.pieces)} pieces, utilisation "
+        f"{100 * plate.utilisation:.1f} %, kerf {fab.kerf:g} (butt joints green)",
+        fontsize=9,
+    )
     target = Path(path)
     return save_figure(fig, target.parent, target.stem, ("png",), dpi=120)[0]

@@ -10,8 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..errors import ParameterError
-from ..units import DEFAULT_LENGTH_UNIT, length_unit
+from tubecad.core.errors import ParameterError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT, length_unit
 
 #: defaults in millimetres (converted to the model's unit by :func:`fabrication_settings`)
 DEFAULT_PLATE_MM = (3000.0, 1500.0)  # a common steel plate, length x width
@@ -73,25 +73,39 @@ def fabrication_settings(section: dict | None = None, unit: str = DEFAULT_LENGTH
         raise ParameterError(f"[fabrication] plate_size must be [length, width], two numbers > 0, got {plate!r:.60}")
     plate = tuple(_finite("plate_size", v, 0.0, True, "[length, width] of the stock plate") for v in plate)
     kerf = _finite("kerf", section.get("kerf", DEFAULT_KERF_MM / mm), 0.0, False, "the cut's width")
-    gap = _finite("joint_gap", section.get("joint_gap", DEFAULT_JOINT_GAP_MM / mm), 0.0, False,
-                  "a butt joint's root gap")  # fmt: skip
-    strain = _finite("max_strain", section.get("max_strain", DEFAULT_MAX_STRAIN), 0.0, True,
-                     "the panel development's largest strain allowed, e.g. 0.01 for 1 %")  # fmt: skip
+    gap = _finite(
+        "joint_gap", section.get("joint_gap", DEFAULT_JOINT_GAP_MM / mm), 0.0, False, "a butt joint's root gap"
+    )
+    strain = _finite(
+        "max_strain",
+        section.get("max_strain", DEFAULT_MAX_STRAIN),
+        0.0,
+        True,
+        "the panel development's largest strain allowed, e.g. 0.01 for 1 %",
+    )
     pins = section.get("pin_spacing")
     if pins is not None:
         pins = _finite("pin_spacing", pins, 0.0, True, "the pin-jig grid's spacing")
-    clearance = _finite("pin_clearance", section.get("pin_clearance", 0.0), 0.0, False,
-                        "the panel's lowest point above the jig plane")  # fmt: skip
+    clearance = _finite(
+        "pin_clearance", section.get("pin_clearance", 0.0), 0.0, False, "the panel's lowest point above the jig plane"
+    )
     if min(plate) <= 2 * kerf:
-        raise ParameterError(f"[fabrication] plate_size {list(plate)} leaves no room inside a kerf of {kerf:g} "
-                             f"at its edges: its sides must exceed 2 kerf = {2 * kerf:g}")  # fmt: skip
+        raise ParameterError(
+            f"[fabrication] plate_size {list(plate)} leaves no room inside a kerf of {kerf:g} "
+            f"at its edges: its sides must exceed 2 kerf = {2 * kerf:g}"
+        )
     joints = section.get("joints", {})
     if not isinstance(joints, dict):
-        raise ParameterError(f"[fabrication] joints must be a table of stiffener name = [positions], got {joints!r:.60}")
+        raise ParameterError(
+            f"[fabrication] joints must be a table of stiffener name = [positions], got {joints!r:.60}"
+        )
     checked = {}
     for name, values in joints.items():
         if not (isinstance(values, list) and values):
-            raise ParameterError(f"[fabrication] joints.{name} must be a non-empty list of positions, got {values!r:.60}")
-        checked[name] = tuple(_finite(f"joints.{name}", v, -math.inf, True, "s along a stringer, degrees round a ring")
-                              for v in values)  # fmt: skip
+            raise ParameterError(
+                f"[fabrication] joints.{name} must be a non-empty list of positions, got {values!r:.60}"
+            )
+        checked[name] = tuple(
+            _finite(f"joints.{name}", v, -math.inf, True, "s along a stringer, degrees round a ring") for v in values
+        )
     return Fabrication(plate, kerf, gap, strain, pins, clearance, checked, unit)

@@ -30,12 +30,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..curves.chebyshev import PiecewiseChebyshev
-from ..errors import ParameterError, RegularityError
-from ..stiffeners.flat import FlatPattern, RateFunction, _side_sign
-from ..stiffeners.profiles import Profile
-from ..surface import CurvatureLineTube
-from ..surface.canal import CanalSurface
+from tubecad.core.errors import ParameterError, RegularityError
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.stiffeners.flat import FlatPattern, RateFunction, _side_sign
+from tubecad.stiffeners.profiles import Profile
+from tubecad.surface import CurvatureLineTube
+from tubecad.surface.canal import CanalSurface
 
 Surface = CurvatureLineTube | CanalSurface
 
@@ -91,9 +91,16 @@ def flange_rates(surface: Surface, u: float) -> tuple[RateFunction, RateFunction
     return (lambda s: both(s)[0]), (lambda s: both(s)[1])
 
 
-def developed_band(turn: RateFunction, speed: RateFunction, span: tuple[float, float], widths: tuple[float, float],
-                   name: str = "flange", samples: int = 2001, breaks: np.ndarray | None = None,
-                   level: float = 0.0) -> FlangePattern:  # fmt: skip
+def developed_band(
+    turn: RateFunction,
+    speed: RateFunction,
+    span: tuple[float, float],
+    widths: tuple[float, float],
+    name: str = "flange",
+    samples: int = 2001,
+    breaks: np.ndarray | None = None,
+    level: float = 0.0,
+) -> FlangePattern:
     """The development of the tangent-plane strip X + w E, w in ``widths`` = (w0, w1), along a
     curvature line with speed(s) = |X_s| and turn(s) = kg |X_s| (towards +E): the centre line
     alpha' = turn, gamma' = speed (cos alpha, sin alpha), the edges gamma + w (-sin alpha,
@@ -119,8 +126,10 @@ def developed_band(turn: RateFunction, speed: RateFunction, span: tuple[float, f
         rate = speed_c(s) - w * turn_c(s)
         if rate.min() <= 0.0:
             at = float(s[np.argmin(rate)])
-            raise ParameterError(f"flange_width: the flange edge at w = {w:g} folds over near s = {at:.6g} (its width "
-                                 "exceeds the line's geodesic radius of curvature there)")  # fmt: skip
+            raise ParameterError(
+                f"flange_width: the flange edge at w = {w:g} folds over near s = {at:.6g} (its width "
+                "exceeds the line's geodesic radius of curvature there)"
+            )
     turned = pair.antiderivative()
     alpha = lambda t: turned(t)[..., 1] / scale  # noqa: E731
     x = fit(lambda t: speed_c(t) * np.cos(alpha(t)), "flat x").antiderivative()
@@ -133,12 +142,16 @@ def developed_band(turn: RateFunction, speed: RateFunction, span: tuple[float, f
         return float(fit(f, label).antiderivative()(s1))
 
     return FlangePattern(
-        name, "flange", np.concatenate([centre + w0 * left, (centre + w1 * left)[::-1]]),
+        name,
+        "flange",
+        np.concatenate([centre + w0 * left, (centre + w1 * left)[::-1]]),
         base_length=integral(lambda t: speed_c(t) - w0 * turn_c(t), "edge w0"),
         top_length=integral(lambda t: speed_c(t) - w1 * turn_c(t), "edge w1"),
         area=integral(lambda t: (w1 - w0) * speed_c(t) - 0.5 * (w1 * w1 - w0 * w0) * turn_c(t), "area"),
-        centre_length=float(turned(s1)[0]), widths=(w0, w1), level=level,
-    )  # fmt: skip
+        centre_length=float(turned(s1)[0]),
+        widths=(w0, w1),
+        level=level,
+    )
 
 
 def on_span(base: Surface, u: float, span: tuple[float, float] | None) -> tuple[Surface, float]:
@@ -160,9 +173,15 @@ def span_breaks(base: Surface) -> np.ndarray:
     return np.unique(np.concatenate([[s0, s1], [x for x in inner if s0 < x < s1]]))
 
 
-def stringer_flange_flat_pattern(base: Surface, theta_deg: float, profile: Profile, side: str = "outside",
-                                 span: tuple[float, float] | None = None, name: str = "stringer_flange",
-                                 samples: int = 2001) -> FlangePattern:  # fmt: skip
+def stringer_flange_flat_pattern(
+    base: Surface,
+    theta_deg: float,
+    profile: Profile,
+    side: str = "outside",
+    span: tuple[float, float] | None = None,
+    name: str = "stringer_flange",
+    samples: int = 2001,
+) -> FlangePattern:
     """The developed flange of the T or L stringer at ``theta_deg`` (u on a tube, chi0 at the
     wall's start on a canal surface) over ``span`` (default the wall's): the band w0..w1
     (:func:`flange_widths`) of the tangent planes of the offset surface at
@@ -174,8 +193,9 @@ def stringer_flange_flat_pattern(base: Surface, theta_deg: float, profile: Profi
     return developed_band(turn, speed, piece.span, flange_widths(profile), name, samples, span_breaks(piece), level)
 
 
-def ring_flange_flat_pattern(base: Surface, s: float, profile: Profile, side: str = "outside",
-                             name: str = "ring_flange", samples: int = 721) -> FlangePattern:  # fmt: skip
+def ring_flange_flat_pattern(
+    base: Surface, s: float, profile: Profile, side: str = "outside", name: str = "ring_flange", samples: int = 721
+) -> FlangePattern:
     """The developed flange of the T or L ring frame at ``s``: the band w0..w1 (along the wall,
     towards +s) of the tangent planes of the offset surface at d = :func:`flange_level` along
     its circle s = const, of radius a = R + d (tube) or (r + d) q (canal, q = sqrt(1 - r'^2)).
@@ -210,5 +230,13 @@ def ring_flange_flat_pattern(base: Surface, s: float, profile: Profile, side: st
     ring = np.stack([np.cos(arc), np.sin(arc)], axis=1)
     outline = np.concatenate([r0 * ring, r1 * ring[::-1]])  # edge w0, radial end, edge w1 back, radial end
     r_in, r_out = min(r0, r1), max(r0, r1)
-    return FlangePattern(name, "flange", outline, angle * r0, angle * r1, 0.5 * angle * (r_out**2 - r_in**2),
-                         sector=(r_in, r_out, angle), **extra)  # fmt: skip
+    return FlangePattern(
+        name,
+        "flange",
+        outline,
+        angle * r0,
+        angle * r1,
+        0.5 * angle * (r_out**2 - r_in**2),
+        sector=(r_in, r_out, angle),
+        **extra,
+    )

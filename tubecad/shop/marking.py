@@ -17,10 +17,10 @@ from dataclasses import dataclass
 import build123d as bd
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 
-from ..brep import TubeBuild
-from ..fitting import TubeSurface
-from ..stiffeners.panels import Panel
-from ..stiffeners.solids import Stiffener
+from tubecad.brep import TubeBuild
+from tubecad.fitting import TubeSurface
+from tubecad.stiffeners.panel import Panel
+from tubecad.stiffeners.solids import Stiffener
 
 #: how far (a fraction of the span) a ring may lie outside a panel's s range and still mark it
 EDGE_SLACK = 1e-9
@@ -80,7 +80,7 @@ def panel_marking(panel: Panel, stiffeners: list[Stiffener]) -> list[MarkingLine
 def panel_assembly(panel: Panel, lines: list[MarkingLine], surface: TubeSurface) -> bd.Compound:
     """The panel solid (``panel_r0_s1``) and its ``marking_lines`` (``mark_ring_03``, ...),
     named for a STEP file."""
-    from ..stiffeners.assembly import WALL_COLOUR
+    from tubecad.stiffeners.assembly import WALL_COLOUR
 
     solid = bd.Solid(panel.solid.wrapped)
     solid.label, solid.color = panel.name, WALL_COLOUR

@@ -19,9 +19,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ParameterError
-from .fabrication import Fabrication
-from .webs import WebPiece
+from tubecad.core.errors import ParameterError
+from tubecad.shop.fabrication import Fabrication
+from tubecad.shop.webs import WebPiece
 
 
 @dataclass(frozen=True)
@@ -80,7 +80,11 @@ def oriented(piece: WebPiece) -> tuple[float, np.ndarray, np.ndarray]:
     angle = 0.0
     if piece.pattern.hole is None:
         rect = np.asarray(Polygon(outline).minimum_rotated_rectangle.exterior.coords)[:4]
-        edge = rect[1] - rect[0] if np.linalg.norm(rect[1] - rect[0]) >= np.linalg.norm(rect[2] - rect[1]) else rect[2] - rect[1]
+        edge = (
+            rect[1] - rect[0]
+            if np.linalg.norm(rect[1] - rect[0]) >= np.linalg.norm(rect[2] - rect[1])
+            else rect[2] - rect[1]
+        )
         angle = -math.atan2(edge[1], edge[0])
     c, s = math.cos(angle), math.sin(angle)
     turned = outline @ np.array([[c, s], [-s, c]])
@@ -121,8 +125,10 @@ def nest(pieces: list[WebPiece], fab: Fabrication) -> list[Plate]:
                 _paint(occupied[k], mask, row, col)
                 break
             if not plate.pieces:
-                raise ParameterError(f"[fabrication] plate_size {list(fab.plate_size)} is too small for {piece.name} "
-                                     f"with a kerf of {fab.kerf:g} at its edges")  # fmt: skip
+                raise ParameterError(
+                    f"[fabrication] plate_size {list(fab.plate_size)} is too small for {piece.name} "
+                    f"with a kerf of {fab.kerf:g} at its edges"
+                )
     return plates
 
 
@@ -131,7 +137,7 @@ def _paint(occupied: np.ndarray, mask: np.ndarray, row: int, col: int) -> None:
     r0, c0 = max(row, 0), max(col, 0)
     r1, c1 = min(row + mask.shape[0], occupied.shape[0]), min(col + mask.shape[1], occupied.shape[1])
     if r1 > r0 and c1 > c0:
-        occupied[r0:r1, c0:c1] |= mask[r0 - row:r1 - row, c0 - col:c1 - col]
+        occupied[r0:r1, c0:c1] |= mask[r0 - row : r1 - row, c0 - col : c1 - col]
 
 
 def _footprint(piece: WebPiece) -> float:
@@ -175,8 +181,9 @@ def _mask(polygon, lo: np.ndarray, rows: int, cols: int, cell: float, grow: floa
     return shapely.contains_xy(region, xx, yy)
 
 
-def _lowest_spot(plate: Plate, occupied: np.ndarray, piece: WebPiece, candidates, cell: float, margin: float,
-                 spacing: float):  # fmt: skip
+def _lowest_spot(
+    plate: Plate, occupied: np.ndarray, piece: WebPiece, candidates, cell: float, margin: float, spacing: float
+):
     """The placement of ``piece`` (one of its turns) whose top edge is lowest, then leftmost,
     among the raster positions where its cells meet no cell within spacing + 1.5 cells of
     a placed piece; each is checked exactly (shapely distances) before it is taken.
@@ -249,7 +256,7 @@ def check_nesting(plates: list[Plate], fab: Fabrication) -> dict:
         for i, polygon in enumerate(polygons):
             valid &= polygon.is_valid and sheet.contains(polygon)
             smallest_margin = min(smallest_margin, sheet.exterior.distance(polygon))
-            for other in polygons[i + 1:]:
+            for other in polygons[i + 1 :]:
                 if _bounds_gap(polygon, other) < smallest_gap:  # else it cannot be the smallest
                     smallest_gap = min(smallest_gap, polygon.distance(other))
     area = sum(p.piece.area for plate in plates for p in plate.pieces)
@@ -261,8 +268,9 @@ def check_nesting(plates: list[Plate], fab: Fabrication) -> dict:
         "smallest_gap": None if math.isinf(smallest_gap) else smallest_gap,
         "smallest_margin": None if math.isinf(smallest_margin) else smallest_margin,
         "utilisation": area / (len(plates) * plate_area(fab)) if plates else 0.0,
-        "per_plate": [{"plate": p.name, "pieces": [q.piece.name for q in p.pieces], "utilisation": p.utilisation}
-                      for p in plates],  # fmt: skip
+        "per_plate": [
+            {"plate": p.name, "pieces": [q.piece.name for q in p.pieces], "utilisation": p.utilisation} for p in plates
+        ],
     }
 
 

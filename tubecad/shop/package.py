@@ -20,17 +20,17 @@ Files (their names say what they are):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
-from ..brep import TubeBuild
-from ..errors import ParameterError
-from ..stiffeners.panels import Panel
-from ..stiffeners.solids import Stiffener
-from .fabrication import Fabrication
-from .marking import MarkingLine, marking_surface, panel_marking
-from .nesting import Plate, nest
-from .webs import WebPiece, piece_solids, ring_pieces, stringer_pieces
+from tubecad.brep import TubeBuild
+from tubecad.core.errors import ParameterError
+from tubecad.shop.fabrication import Fabrication
+from tubecad.shop.marking import MarkingLine, marking_surface, panel_marking
+from tubecad.shop.nesting import Plate, nest
+from tubecad.shop.webs import WebPiece, piece_solids, ring_pieces, stringer_pieces
+from tubecad.stiffeners.panel import Panel
+from tubecad.stiffeners.solids import Stiffener
 
 
 @dataclass
@@ -54,8 +54,13 @@ class ShopData:
     warnings: list[str] = field(default_factory=list)
 
 
-def shop_data(build: TubeBuild, stiffeners: list[Stiffener], panels: list[Panel], fab: Fabrication,
-              progress: Callable[[str], None] | None = None) -> ShopData:  # fmt: skip
+def shop_data(
+    build: TubeBuild,
+    stiffeners: list[Stiffener],
+    panels: list[Panel],
+    fab: Fabrication,
+    progress: Callable[[str], None] | None = None,
+) -> ShopData:
     """Compute the shop package (module docstring); ``progress(stage)`` hears of each stage."""
     say = progress or (lambda stage: None)
     data = ShopData(build, stiffeners, panels, fab)
@@ -65,10 +70,14 @@ def shop_data(build: TubeBuild, stiffeners: list[Stiffener], panels: list[Panel]
     known = {st.name for st in stiffeners}
     unknown = sorted(set(fab.joints) - known)
     if unknown:
-        raise ParameterError(f"[fabrication] joints.{unknown[0]}: no such stiffener; the stiffeners are "
-                             f"{', '.join(sorted(known)) or 'none'}")  # fmt: skip
+        raise ParameterError(
+            f"[fabrication] joints.{unknown[0]}: no such stiffener; the stiffeners are "
+            f"{', '.join(sorted(known)) or 'none'}"
+        )
     for st in stiffeners:
-        by_stiffener[st.name] = stringer_pieces(st, fab) if st.kind == "stringer" else ring_pieces(st, fab, stringers_deg)
+        by_stiffener[st.name] = (
+            stringer_pieces(st, fab) if st.kind == "stringer" else ring_pieces(st, fab, stringers_deg)
+        )
         data.web_pieces += by_stiffener[st.name]
     say("splitting the stiffener solids at the joints")
     for st in stiffeners:
@@ -86,19 +95,22 @@ def shop_data(build: TubeBuild, stiffeners: list[Stiffener], panels: list[Panel]
         data.developments = panel_developments(build, panels, stiffeners[0].side if stiffeners else "outside")
         data.pin_jigs = pin_jigs(build, panels, stiffeners, fab, data.warnings)
     else:
-        data.warnings.append("the spec has no [panels] section: no marking lines, panel developments or pin jigs "
-                             "(add [panels] seams = [...] to split the wall)")  # fmt: skip
+        data.warnings.append(
+            "the spec has no [panels] section: no marking lines, panel developments or pin jigs "
+            "(add [panels] seams = [...] to split the wall)"
+        )
     return data
 
 
-def flange_pieces(stiffeners: list[Stiffener], by_stiffener: dict[str, list[WebPiece]], fab: Fabrication,
-                  warnings: list[str]) -> list[WebPiece]:  # fmt: skip
+def flange_pieces(
+    stiffeners: list[Stiffener], by_stiffener: dict[str, list[WebPiece]], fab: Fabrication, warnings: list[str]
+) -> list[WebPiece]:
     """The developed flanges of T and L stringers, one per web piece (same span), named
     ``stringer_02_a_flange``. The web's pieces are chosen so that their flanges are
     cuttable too (tubecad.shop.webs); one that is not would be kept and warned of. Ring
     flanges are rolled from flat bar: bending tables, not plate parts."""
-    from .flanges import stringer_flange_flat_pattern
-    from .webs import cuttable
+    from tubecad.shop.flanges import stringer_flange_flat_pattern
+    from tubecad.shop.webs import cuttable
 
     out = []
     for st in stiffeners:
@@ -117,7 +129,7 @@ def flange_pieces(stiffeners: list[Stiffener], by_stiffener: dict[str, list[WebP
 def bending_tables(stiffeners: list[Stiffener], by_stiffener: dict[str, list[WebPiece]], fab: Fabrication) -> list:
     """Bending tables of each stringer piece's base line and flange centre line, and of
     each ring's base circle and flange circle in arcs of at most 180 deg."""
-    from .bending import bending_table, ring_arcs, stringer_line
+    from tubecad.shop.bending import bending_table, ring_arcs, stringer_line
 
     tables = []
     tol = fab.bend_back_tolerance
@@ -125,7 +137,9 @@ def bending_tables(stiffeners: list[Stiffener], by_stiffener: dict[str, list[Web
         sign = 1.0 if st.side == "outside" else -1.0
         levels = [(0.0, "web base on the wall", "")]
         if st.profile.kind != "flat":
-            levels.append((sign * (st.profile.height - st.profile.flange_thickness / 2), "flange centre line", "_flange"))
+            levels.append(
+                (sign * (st.profile.height - st.profile.flange_thickness / 2), "flange centre line", "_flange")
+            )
         for level, line, suffix in levels:
             if st.kind == "stringer":
                 for piece in by_stiffener[st.name]:
@@ -135,25 +149,27 @@ def bending_tables(stiffeners: list[Stiffener], by_stiffener: dict[str, list[Web
                 arcs = ring_arcs(st.base, st.value, level)
                 for k, (position, length) in enumerate(arcs, 1):
                     name = f"{st.name}{suffix}_arc{k}"
-                    tables.append(bending_table(position, length, name, line.replace("web base", "ring base"),
-                                                max_error=tol))  # fmt: skip
+                    tables.append(
+                        bending_table(position, length, name, line.replace("web base", "ring base"), max_error=tol)
+                    )
     return tables
 
 
 def panel_developments(build: TubeBuild, panels: list[Panel], side: str) -> list:
     """Each panel developed on the wall surface its stiffeners stand on (``side``), the
     surface its marking lines lie on."""
-    from .panel_development import develop_panel
+    from tubecad.shop.panel_development import develop_panel
 
     surface = marking_surface(build, side).tube
     return [develop_panel(surface, p.s_range, p.angles_deg, p.name) for p in panels]
 
 
-def pin_jigs(build: TubeBuild, panels: list[Panel], stiffeners: list[Stiffener], fab: Fabrication,
-             warnings: list[str]) -> list:  # fmt: skip
+def pin_jigs(
+    build: TubeBuild, panels: list[Panel], stiffeners: list[Stiffener], fab: Fabrication, warnings: list[str]
+) -> list:
     """A pin jig per panel on the surface opposite its stiffeners (inner for outside
     stiffeners, the panel dome-up; outer for inside ones, the panel a trough)."""
-    from .pin_jig import pin_jig
+    from tubecad.shop.pin_jig import pin_jig
 
     side = stiffeners[0].side if stiffeners else "outside"
     surface = marking_surface(build, "inside" if side == "outside" else "outside").tube  # the side opposite

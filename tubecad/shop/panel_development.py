@@ -51,20 +51,22 @@ the slant of their normal cone), and a cone develops without strain.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
-from ..curves.chebyshev import PiecewiseChebyshev
-from ..errors import ParameterError
-from ..export.atomic import atomic_path, save_figure
-from ..surface import CurvatureLineTube
-from ..surface.canal import CanalSurface
-from ..surface.forms import SurfaceDerivatives
-from ..units import DEFAULT_LENGTH_UNIT, length_unit as length_unit_of
-from ..validation import span_pair
+from tubecad.core.atomic import atomic_path, save_figure
+from tubecad.core.errors import ParameterError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.core.units import length_unit as length_unit_of
+from tubecad.core.validation import span_pair
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.surface import CurvatureLineTube
+from tubecad.surface.canal import CanalSurface
+from tubecad.surface.forms import SurfaceDerivatives
 
 FloatArray = np.ndarray
 WallSurface = CurvatureLineTube | CanalSurface
@@ -86,8 +88,10 @@ def _turns(d: SurfaceDerivatives) -> tuple[FloatArray, FloatArray]:
     """(theta_u, kappa_s): the rings' turn per unit u, S_uu . (N x S_u) / E, and the
     stringers' per unit s, S_ss . (N x S_s) / G (geodesic curvature times speed)."""
     n = d.normal
-    return (_dot(d.S_uu, np.cross(n, d.S_u)) / _dot(d.S_u, d.S_u),
-            _dot(d.S_ss, np.cross(n, d.S_s)) / _dot(d.S_s, d.S_s))  # fmt: skip
+    return (
+        _dot(d.S_uu, np.cross(n, d.S_u)) / _dot(d.S_u, d.S_u),
+        _dot(d.S_ss, np.cross(n, d.S_s)) / _dot(d.S_s, d.S_s),
+    )
 
 
 def _gauss_density(d: SurfaceDerivatives) -> FloatArray:
@@ -117,8 +121,16 @@ class _Primitive:
     of f + floor, less floor (x - x0). The floor gives the fit an absolute scale: an f that is
     zero but for round-off (a cylinder's ring turn) would otherwise be resolved to its noise."""
 
-    def __init__(self, f: Callable[[FloatArray], FloatArray], lo: float, hi: float, x0: float, floor: float,
-                 name: str, breaks: FloatArray | None = None) -> None:  # fmt: skip
+    def __init__(
+        self,
+        f: Callable[[FloatArray], FloatArray],
+        lo: float,
+        hi: float,
+        x0: float,
+        floor: float,
+        name: str,
+        breaks: FloatArray | None = None,
+    ) -> None:
         fit = PiecewiseChebyshev.fit(lambda x: f(x) + floor, lo, hi, name=name, breaks=breaks)
         self.series = fit.antiderivative()
         self.floor, self.x0 = floor, x0
@@ -131,8 +143,11 @@ class _Primitive:
 
     def columns(self, x: FloatArray, column: FloatArray) -> FloatArray:
         extra = (1,) * (len(self.series.value_shape) - 1)
-        return (_columns(self.series, x, column) - self.start[column]
-                - (self.floor * (x - self.x0)).reshape(x.shape + extra))  # fmt: skip
+        return (
+            _columns(self.series, x, column)
+            - self.start[column]
+            - (self.floor * (x - self.x0)).reshape(x.shape + extra)
+        )
 
 
 @dataclass(frozen=True)
@@ -157,8 +172,15 @@ class PanelConstruction:
         mid = base.derivatives(self.u_m, 0.5 * (self.s_a + self.s_b))
         self.length_scale = float(np.linalg.norm(mid.S_u))  # sqrt(E): the radius
         turn = lambda s: _turns(base.derivatives(self.u_m, s))[1]  # noqa: E731
-        self.alpha = _Primitive(turn, self.s_a, self.s_b, self.s_a, 1.0 / self.length_scale,
-                                "the middle stringer's geodesic curvature", self.breaks)  # fmt: skip
+        self.alpha = _Primitive(
+            turn,
+            self.s_a,
+            self.s_b,
+            self.s_a,
+            1.0 / self.length_scale,
+            "the middle stringer's geodesic curvature",
+            self.breaks,
+        )
         trial = self._gamma(0.5 * math.pi)
         chord = trial(np.array(self.s_b))
         self.alpha0 = math.pi - math.atan2(float(chord[1]), float(chord[0]))  # chord along +y
@@ -191,8 +213,14 @@ class PanelConstruction:
         q = _Primitive(velocity, lo, hi, um, 0.0, "the rings' development")
         if not derivatives:
             return _Rings(theta, q, None)
-        gauss = _Primitive(lambda u: _gauss_density(at(u)), lo, hi, um, 1.0 / self.length_scale,
-                           "the Gaussian curvature across the rings")  # fmt: skip
+        gauss = _Primitive(
+            lambda u: _gauss_density(at(u)),
+            lo,
+            hi,
+            um,
+            1.0 / self.length_scale,
+            "the Gaussian curvature across the rings",
+        )
         kappa_m = _turns(base.derivatives(um, s))[1]
 
         def d_velocity(u: FloatArray) -> FloatArray:
@@ -206,8 +234,9 @@ class PanelConstruction:
 
         return _Rings(theta, q, _Primitive(d_velocity, lo, hi, um, 1.0, "the rings' development, d/ds"))
 
-    def evaluate(self, u: FloatArray, s: FloatArray,
-                 derivatives: bool = False) -> FloatArray | tuple[FloatArray, FloatArray, FloatArray]:  # fmt: skip
+    def evaluate(
+        self, u: FloatArray, s: FloatArray, derivatives: bool = False
+    ) -> FloatArray | tuple[FloatArray, FloatArray, FloatArray]:
         """P at the points (u[i], s[i]) (flat arrays, radians), shape (n, 2); with
         ``derivatives`` (P, P_u, P_s)."""
         u, s = np.asarray(u, dtype=float).ravel(), np.asarray(s, dtype=float).ravel()
@@ -264,8 +293,9 @@ class PanelConstruction:
             return cross(p, p_s).reshape(s.shape + (2,))
 
         rings = _Primitive(ring_edges, self.u_a, self.u_b, self.u_a, floor, "the outline's rings")(np.array(self.u_b))
-        seams = _Primitive(seam_edges, self.s_a, self.s_b, self.s_a, floor, "the outline's seams",
-                           self.breaks)(np.array(self.s_b))  # fmt: skip
+        seams = _Primitive(seam_edges, self.s_a, self.s_b, self.s_a, floor, "the outline's seams", self.breaks)(
+            np.array(self.s_b)
+        )
         return 0.5 * float(rings[0] - rings[1] + seams[1] - seams[0])
 
 
@@ -279,8 +309,9 @@ def _s_breaks(base: WallSurface, s_range: tuple[float, float]) -> FloatArray:
     return np.unique(np.concatenate([[s_a, s_b], inner]))
 
 
-def principal_strains(E: FloatArray, F: FloatArray, G: FloatArray, a11: FloatArray, a12: FloatArray,
-                      a22: FloatArray) -> tuple[FloatArray, FloatArray]:  # fmt: skip
+def principal_strains(
+    E: FloatArray, F: FloatArray, G: FloatArray, a11: FloatArray, a12: FloatArray, a22: FloatArray
+) -> tuple[FloatArray, FloatArray]:
     """(lambda_1 - 1, lambda_2 - 1), lambda_1 >= lambda_2 the square roots of the eigenvalues of
     g^-1 a, g = [[E, F], [F, G]], a = [[a11, a12], [a12, a22]]: C = L^-1 a L^-T with g = L L^T
     (Cholesky), mu = mean(C) +- hypot((C11 - C22) / 2, C12), strain = (mu - 1) / (sqrt(mu) + 1),
@@ -338,8 +369,9 @@ class PanelDevelopment:
         for key, x, (lo, hi) in (("u_deg", u, self.angle_range), ("s", s, self.s_range)):
             slack = 1e-9 * (hi - lo)
             if x.size and not (np.all(np.isfinite(x)) and x.min() >= lo - slack and x.max() <= hi + slack):
-                raise ParameterError(f"{key} must lie in the panel's range [{lo:g}, {hi:g}], got "
-                                     f"[{np.nanmin(x):g}, {np.nanmax(x):g}]")  # fmt: skip
+                raise ParameterError(
+                    f"{key} must lie in the panel's range [{lo:g}, {hi:g}], got [{np.nanmin(x):g}, {np.nanmax(x):g}]"
+                )
         return u, s
 
     def map(self, u_deg: Any, s: Any) -> np.ndarray:
@@ -384,15 +416,22 @@ def check_panel(base: Any, s_range: Any, angles_deg: Any) -> tuple[tuple[float, 
     lo, hi = base.span
     slack = 1e-9 * (hi - lo)
     if s_a < lo - slack or s_b > hi + slack:
-        raise ParameterError(f"s_range must lie within the span [{lo:g}, {hi:g}] of the surface, got [{s_a:g}, {s_b:g}]")
+        raise ParameterError(
+            f"s_range must lie within the span [{lo:g}, {hi:g}] of the surface, got [{s_a:g}, {s_b:g}]"
+        )
     u_a, u_b = span_pair("angles_deg", angles_deg)
     if u_b - u_a > 360.0 + 1e-9:
         raise ParameterError(f"angles_deg must span at most 360 deg, got [{u_a:g}, {u_b:g}]")
     return (max(s_a, lo), min(s_b, hi)), (u_a, u_b)
 
 
-def develop_panel(base: WallSurface, s_range: tuple[float, float], angles_deg: tuple[float, float],
-                  name: str = "panel", samples: tuple[int, int] = (33, 65)) -> PanelDevelopment:  # fmt: skip
+def develop_panel(
+    base: WallSurface,
+    s_range: tuple[float, float],
+    angles_deg: tuple[float, float],
+    name: str = "panel",
+    samples: tuple[int, int] = (33, 65),
+) -> PanelDevelopment:
     """Develop the panel of ``base`` (the wall surface) between the rings ``s_range`` and the
     stringers ``angles_deg`` (degrees, counter-clockwise, u_b may exceed 360) on a grid of
     ``samples`` = (n_u, n_s) nodes; the strain is measured at every node."""
@@ -409,17 +448,26 @@ def develop_panel(base: WallSurface, s_range: tuple[float, float], angles_deg: t
     uu, ss = np.repeat(np.radians(angles), n_s), np.tile(s, n_u)
     p, p_u, p_s = construction.evaluate(uu, ss, derivatives=True)
     d = base.derivatives(uu, ss)
-    first, second = principal_strains(_dot(d.S_u, d.S_u), _dot(d.S_u, d.S_s), _dot(d.S_s, d.S_s),
-                                      _dot(p_u, p_u), _dot(p_u, p_s), _dot(p_s, p_s))  # fmt: skip
+    first, second = principal_strains(
+        _dot(d.S_u, d.S_u), _dot(d.S_u, d.S_s), _dot(d.S_s, d.S_s), _dot(p_u, p_u), _dot(p_u, p_s), _dot(p_s, p_s)
+    )
     strain = np.maximum(np.abs(first), np.abs(second)).reshape(n_u, n_s)
     top = float(strain.max())
     # ties (a torus' strain does not depend on s): the first node in (u, s) order within round-off of the largest
     i, j = np.unravel_index(int(np.argmax(strain >= top * (1.0 - 1e-12))), strain.shape)
     return PanelDevelopment(
-        name, angles, s, p.reshape(n_u, n_s, 2), strain, top, (float(angles[i]), float(s[j])),
-        base.points(math.radians(angles[i]), s[j]), construction.surface_area(), construction.flat_area(),
+        name,
+        angles,
+        s,
+        p.reshape(n_u, n_s, 2),
+        strain,
+        top,
+        (float(angles[i]), float(s[j])),
+        base.points(math.radians(angles[i]), s[j]),
+        construction.surface_area(),
+        construction.flat_area(),
         construction,
-    )  # fmt: skip
+    )
 
 
 def _polyline_points(key: str, points: Any) -> np.ndarray:
@@ -434,8 +482,12 @@ def _strain_text(dev: PanelDevelopment) -> str:
     return f"max strain {dev.max_strain:.3e} at u = {u:.6g} deg, s = {s:.6g}"
 
 
-def write_panel_dxf(developments: list[PanelDevelopment], marking: dict[str, list[tuple[str, np.ndarray]]],
-                    folder: str | Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> list[Path]:  # fmt: skip
+def write_panel_dxf(
+    developments: list[PanelDevelopment],
+    marking: dict[str, list[tuple[str, np.ndarray]]],
+    folder: str | Path,
+    length_unit: str = DEFAULT_LENGTH_UNIT,
+) -> list[Path]:
     """One DXF per panel, ``NAME_development.dxf`` in ``folder``, 1:1 in ``length_unit``
     ($INSUNITS): layers OUTLINE (the closed outline), MARKING (one open polyline per marking
     line, ``marking[name]`` = [(line name, (n, 2) developed points)]), TEXT (the panel's and
@@ -457,11 +509,19 @@ def write_panel_dxf(developments: list[PanelDevelopment], marking: dict[str, lis
         for line_name, points in marking.get(dev.name, []):
             pts = _polyline_points(f"marking[{dev.name!r}] line {line_name!r}", points)
             space.add_lwpolyline(pts.tolist(), close=False, dxfattribs={"layer": "MARKING"})
-            space.add_text(str(line_name), dxfattribs={"layer": "TEXT", "height": 0.6 * height,
-                                                       "insert": tuple(pts[len(pts) // 2])})  # fmt: skip
+            space.add_text(
+                str(line_name),
+                dxfattribs={"layer": "TEXT", "height": 0.6 * height, "insert": tuple(pts[len(pts) // 2])},
+            )
         low = outline.min(axis=0)
-        space.add_text(_strain_text(dev), dxfattribs={"layer": "STRAIN", "height": 0.6 * height,
-                                                      "insert": (float(low[0]), float(low[1]) - 2.0 * height)})  # fmt: skip
+        space.add_text(
+            _strain_text(dev),
+            dxfattribs={
+                "layer": "STRAIN",
+                "height": 0.6 * height,
+                "insert": (float(low[0]), float(low[1]) - 2.0 * height),
+            },
+        )
         path = Path(folder) / f"{dev.name}_development.dxf"
         with atomic_path(path) as tmp:
             doc.saveas(tmp)
@@ -469,8 +529,12 @@ def write_panel_dxf(developments: list[PanelDevelopment], marking: dict[str, lis
     return paths
 
 
-def write_panel_picture(development: PanelDevelopment, marking_lines: list[tuple[str, np.ndarray]],
-                        folder: str | Path, formats: tuple[str, ...] = ("png", "svg")) -> list[Path]:  # fmt: skip
+def write_panel_picture(
+    development: PanelDevelopment,
+    marking_lines: list[tuple[str, np.ndarray]],
+    folder: str | Path,
+    formats: tuple[str, ...] = ("png", "svg"),
+) -> list[Path]:
     """``NAME_development.png`` and ``.svg`` (``formats``): the outline, the marking lines and the strain as a
     colour map, equal aspect, the largest strain and where in the title."""
     import matplotlib
@@ -480,8 +544,9 @@ def write_panel_picture(development: PanelDevelopment, marking_lines: list[tuple
 
     dev = development
     fig, ax = plt.subplots(figsize=(8, 8))
-    mesh = ax.pcolormesh(dev.grid[..., 0], dev.grid[..., 1], dev.strain, shading="gouraud", cmap="viridis",
-                         rasterized=True)  # a gouraud mesh as SVG vectors takes seconds to draw
+    mesh = ax.pcolormesh(
+        dev.grid[..., 0], dev.grid[..., 1], dev.strain, shading="gouraud", cmap="viridis", rasterized=True
+    )  # a gouraud mesh as SVG vectors takes seconds to draw
     fig.colorbar(mesh, ax=ax, shrink=0.8, label="|principal strain|")
     closed = np.vstack([dev.outline(), dev.outline()[:1]])
     ax.plot(closed[:, 0], closed[:, 1], color="#10203a", linewidth=1.0)

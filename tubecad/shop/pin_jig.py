@@ -31,11 +31,12 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..export.atomic import save_figure, write_text
-from ..units import DEFAULT_LENGTH_UNIT, length_unit as length_unit_of
-from ..validation import finite_number
-from .panel_development import WallSurface, _panel_name, _s_breaks, check_panel
+from tubecad.core.atomic import save_figure, write_text
+from tubecad.core.errors import ParameterError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.core.units import length_unit as length_unit_of
+from tubecad.core.validation import finite_number
+from tubecad.shop.panel_development import WallSurface, _panel_name, _s_breaks, check_panel
 
 #: samples of the patch along each direction at most (the Newton starts, the bounds)
 MAX_SAMPLES = 257
@@ -67,8 +68,7 @@ class PinJig:
 
     def points(self) -> np.ndarray:
         """(n, 3) the touching points origin + x x_dir + y y_dir + h up."""
-        return (self.origin + self.xy[:, :1] * self.x_dir + self.xy[:, 1:] * self.y_dir
-                + self.heights[:, None] * self.up)  # fmt: skip
+        return self.origin + self.xy[:, :1] * self.x_dir + self.xy[:, 1:] * self.y_dir + self.heights[:, None] * self.up
 
 
 def _spacing(value: Any) -> float:
@@ -81,7 +81,9 @@ def _spacing(value: Any) -> float:
     return h
 
 
-def _mean_normal(surface: WallSurface, u: tuple[float, float], s: tuple[float, float], breaks: np.ndarray) -> np.ndarray:
+def _mean_normal(
+    surface: WallSurface, u: tuple[float, float], s: tuple[float, float], breaks: np.ndarray
+) -> np.ndarray:
     """Int Int S_u x S_s du ds by Gauss-Legendre (16 nodes per panel of at most 45 deg, and per
     s panel between the breaks)."""
     x, w = np.polynomial.legendre.leggauss(16)
@@ -96,8 +98,15 @@ def _mean_normal(surface: WallSurface, u: tuple[float, float], s: tuple[float, f
     return np.einsum("ijk,i,j->k", np.cross(d.S_u, d.S_s), wu, ws)
 
 
-def pin_jig(surface: WallSurface, s_range: tuple[float, float], angles_deg: tuple[float, float], spacing: float,
-            up_sign: float = 1.0, clearance: float = 0.0, name: str = "panel") -> PinJig:  # fmt: skip
+def pin_jig(
+    surface: WallSurface,
+    s_range: tuple[float, float],
+    angles_deg: tuple[float, float],
+    spacing: float,
+    up_sign: float = 1.0,
+    clearance: float = 0.0,
+    name: str = "panel",
+) -> PinJig:
     """The pin-jig table of the panel of ``surface`` between the rings ``s_range`` and the
     stringers ``angles_deg`` (degrees; chi0 on a canal surface), pins every ``spacing``
     (module docstring)."""
@@ -134,11 +143,14 @@ def pin_jig(surface: WallSurface, s_range: tuple[float, float], angles_deg: tupl
     us, ss = np.linspace(u_a, u_b, n_u), np.linspace(s_a, s_b, n_s)
     d = surface.derivatives(us[:, None], ss[None, :])
     local = (d.S - ref) @ frame.T  # (n_u, n_s, 3): x, y, height above ref
-    jac = np.einsum("...i,...i", d.S_u, x_dir) * np.einsum("...i,...i", d.S_s, y_dir) - \
-        np.einsum("...i,...i", d.S_s, x_dir) * np.einsum("...i,...i", d.S_u, y_dir)  # fmt: skip
+    jac = np.einsum("...i,...i", d.S_u, x_dir) * np.einsum("...i,...i", d.S_s, y_dir) - np.einsum(
+        "...i,...i", d.S_s, x_dir
+    ) * np.einsum("...i,...i", d.S_u, y_dir)
     if not (np.all(jac > 0) or np.all(jac < 0)):
-        raise ParameterError("angles_deg: the panel is not a graph over the jig plane (a vertical pin would meet "
-                             "it twice, or graze it); split it into smaller panels")  # fmt: skip
+        raise ParameterError(
+            "angles_deg: the panel is not a graph over the jig plane (a vertical pin would meet "
+            "it twice, or graze it); split it into smaller panels"
+        )
     low = _lowest(surface, up, ref, local[..., 2], us, ss)
     size = float(np.ptp(local[..., :2].reshape(-1, 2), axis=0).max())
 
@@ -150,8 +162,9 @@ def pin_jig(surface: WallSurface, s_range: tuple[float, float], angles_deg: tupl
     targets = np.stack([ii * h, jj * h], axis=1)
     from scipy.spatial import cKDTree
 
-    cell = math.hypot(*np.abs(np.diff(local[..., :2], axis=0)).max(axis=(0, 1))) + \
-        math.hypot(*np.abs(np.diff(local[..., :2], axis=1)).max(axis=(0, 1)))  # fmt: skip
+    cell = math.hypot(*np.abs(np.diff(local[..., :2], axis=0)).max(axis=(0, 1))) + math.hypot(
+        *np.abs(np.diff(local[..., :2], axis=1)).max(axis=(0, 1))
+    )
     dist, nearest = cKDTree(local[..., :2].reshape(-1, 2)).query(targets)
     near = dist <= 2.0 * cell
     targets, ii, jj, nearest = targets[near], ii[near], jj[near], nearest[near]
@@ -167,12 +180,24 @@ def pin_jig(surface: WallSurface, s_range: tuple[float, float], angles_deg: tupl
     touching = surface.points(u, s)
     heights = (touching - origin) @ up
     outline = _outline(surface, (u_a, u_b), (s_a, s_b)) - origin
-    return PinJig(name, h, origin, x_dir, y_dir, up, np.stack([(ii - i0) * h, (jj - j0) * h], axis=1).astype(float),
-                  heights, np.degrees(u), s, outline @ np.stack([x_dir, y_dir]).T)  # fmt: skip
+    return PinJig(
+        name,
+        h,
+        origin,
+        x_dir,
+        y_dir,
+        up,
+        np.stack([(ii - i0) * h, (jj - j0) * h], axis=1).astype(float),
+        heights,
+        np.degrees(u),
+        s,
+        outline @ np.stack([x_dir, y_dir]).T,
+    )
 
 
-def _lowest(surface: WallSurface, up: np.ndarray, ref: np.ndarray, height: np.ndarray, us: np.ndarray,
-            ss: np.ndarray) -> float:  # fmt: skip
+def _lowest(
+    surface: WallSurface, up: np.ndarray, ref: np.ndarray, height: np.ndarray, us: np.ndarray, ss: np.ndarray
+) -> float:
     """min (S - ref) . up over the patch: the lowest sample refined by bounded L-BFGS-B."""
     from scipy.optimize import minimize
 
@@ -183,14 +208,28 @@ def _lowest(surface: WallSurface, up: np.ndarray, ref: np.ndarray, height: np.nd
         d = surface.derivatives(x[0], x[1])
         return float((d.S - ref) @ up) / scale, np.array([float(d.S_u @ up), float(d.S_s @ up)]) / scale
 
-    res = minimize(f, np.array([us[i], ss[j]]), jac=True, method="L-BFGS-B", bounds=[(us[0], us[-1]), (ss[0], ss[-1])],
-                   options={"ftol": 1e-15, "gtol": 1e-13, "maxiter": 200})  # fmt: skip
+    res = minimize(
+        f,
+        np.array([us[i], ss[j]]),
+        jac=True,
+        method="L-BFGS-B",
+        bounds=[(us[0], us[-1]), (ss[0], ss[-1])],
+        options={"ftol": 1e-15, "gtol": 1e-13, "maxiter": 200},
+    )
     return min(float(height[i, j]), float(res.fun) * scale)
 
 
-def _project(surface: WallSurface, ref: np.ndarray, x_dir: np.ndarray, y_dir: np.ndarray, targets: np.ndarray,
-             u: np.ndarray, s: np.ndarray, u_range: tuple[float, float], tol: float
-             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+def _project(
+    surface: WallSurface,
+    ref: np.ndarray,
+    x_dir: np.ndarray,
+    y_dir: np.ndarray,
+    targets: np.ndarray,
+    u: np.ndarray,
+    s: np.ndarray,
+    u_range: tuple[float, float],
+    tol: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Newton on ((S - ref) . x_dir, (S - ref) . y_dir) = targets from (u, s); s kept in the
     axis' span, u within one panel width of the panel. Once every residual is below ``tol``
     one more step takes them to round-off (quadratic convergence). Returns (u, s, converged)."""
@@ -220,8 +259,12 @@ def _project(surface: WallSurface, ref: np.ndarray, x_dir: np.ndarray, y_dir: np
 def _outline(surface: WallSurface, u: tuple[float, float], s: tuple[float, float], n: int = 65) -> np.ndarray:
     """The patch's boundary (ring s_a, seam u_b, ring s_b back, seam u_a back) in 3-D, (m, 3)."""
     uu, ss = np.linspace(*u, n), np.linspace(*s, n)
-    edges = [surface.points(uu, s[0]), surface.points(u[1], ss[1:]), surface.points(uu[-2::-1], s[1]),
-             surface.points(u[0], ss[-2:0:-1])]  # fmt: skip
+    edges = [
+        surface.points(uu, s[0]),
+        surface.points(u[1], ss[1:]),
+        surface.points(uu[-2::-1], s[1]),
+        surface.points(u[0], ss[-2:0:-1]),
+    ]
     return np.concatenate(edges)
 
 
@@ -258,6 +301,9 @@ def write_pin_jig_picture(jig: PinJig, folder: str | Path, formats: tuple[str, .
         for (x, y), height in zip(jig.xy, jig.heights):
             ax.annotate(f"{height:.1f}", (x, y), xytext=(0, 4), textcoords="offset points", ha="center", fontsize=size)
     ax.set_aspect("equal")
-    ax.set_title(f"{jig.name}: pin jig, spacing {jig.spacing:g}, {len(jig.heights)} pins, heights "
-                 f"{jig.heights.min():.4g} to {jig.heights.max():.4g}", fontsize=9)  # fmt: skip
+    ax.set_title(
+        f"{jig.name}: pin jig, spacing {jig.spacing:g}, {len(jig.heights)} pins, heights "
+        f"{jig.heights.min():.4g} to {jig.heights.max():.4g}",
+        fontsize=9,
+    )
     return save_figure(fig, folder, f"{jig.name}_pin_jig", formats, dpi=110)

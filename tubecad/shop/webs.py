@@ -29,12 +29,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..curves.chebyshev import PiecewiseChebyshev
-from ..errors import ParameterError
-from ..stiffeners.flat import FlatPattern, ring_web_flat_pattern, stringer_flat_pattern, stringer_rates
-from ..stiffeners.solids import Stiffener
-from ..surface.canal import CanalSurface
-from .fabrication import Fabrication
+from tubecad.core.errors import ParameterError
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.shop.fabrication import Fabrication
+from tubecad.stiffeners.flat import FlatPattern, ring_web_flat_pattern, stringer_flat_pattern, stringer_rates
+from tubecad.stiffeners.solids import Stiffener
+from tubecad.surface.canal import CanalSurface
 
 #: the most pieces one web (between chosen joints) is split into before the plate is called too small
 MAX_PIECES = 200
@@ -84,7 +84,10 @@ def cuttable(outline: np.ndarray, fab: Fabrication) -> tuple[bool, str]:
     long, short = rectangle_sides(polygon)
     usable = fab.usable
     if long > usable[0] + 1e-9 * usable[0] or short > usable[1] + 1e-9 * usable[1]:
-        return False, f"it needs {long:.6g} x {short:.6g}, more than the plate's usable {usable[0]:.6g} x {usable[1]:.6g}"
+        return (
+            False,
+            f"it needs {long:.6g} x {short:.6g}, more than the plate's usable {usable[0]:.6g} x {usable[1]:.6g}",
+        )
     return True, ""
 
 
@@ -112,8 +115,9 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
     chosen = sorted(fab.joints.get(st.name, ()))
     for s in chosen:
         if not s0 < s < s1:
-            raise ParameterError(f"[fabrication] joints.{st.name}: {s:g} is outside the stringer, whose s runs in "
-                                 f"({s0:g}, {s1:g})")  # fmt: skip
+            raise ParameterError(
+                f"[fabrication] joints.{st.name}: {s:g} is outside the stringer, whose s runs in ({s0:g}, {s1:g})"
+            )
     half_gap = fab.joint_gap / 2
 
     def s_at(arc: float) -> float:  # the s at base-line length ``arc`` from the start
@@ -131,7 +135,7 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
             return False
         if st.profile.kind == "flat":
             return True
-        from .flanges import stringer_flange_flat_pattern
+        from tubecad.shop.flanges import stringer_flange_flat_pattern
 
         flange = stringer_flange_flat_pattern(base, st.value, st.profile, side, span=(a, b), samples=PIECE_SAMPLES)
         return cuttable(flange.outline, fab)[0]
@@ -143,17 +147,23 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
             edges = np.linspace(a, b, n + 1)
             edges[0], edges[-1] = a, b
             parts = [(float(lo), float(hi), bool(lo > 0.0), bool(hi < total)) for lo, hi in zip(edges[:-1], edges[1:])]
-            parts = [(lo + half_gap * at_start, hi - half_gap * at_end, at_start, at_end)
-                     for lo, hi, at_start, at_end in parts]  # fmt: skip
+            parts = [
+                (lo + half_gap * at_start, hi - half_gap * at_end, at_start, at_end)
+                for lo, hi, at_start, at_end in parts
+            ]
             if any(lo >= hi for lo, hi, _, _ in parts):
-                raise ParameterError(f"[fabrication] joint_gap {fab.joint_gap:g} leaves no piece of {st.name}'s web "
-                                     f"between its joints ({(b - a) / n:.6g} of base line each)")  # fmt: skip
+                raise ParameterError(
+                    f"[fabrication] joint_gap {fab.joint_gap:g} leaves no piece of {st.name}'s web "
+                    f"between its joints ({(b - a) / n:.6g} of base line each)"
+                )
             if all(piece_cuttable(s_at(lo), s_at(hi)) for lo, hi, _, _ in parts):
                 spans += parts
                 break
         else:
-            raise ParameterError(f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: "
-                                 f"no split into up to {MAX_PIECES} pieces is cuttable")  # fmt: skip
+            raise ParameterError(
+                f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: "
+                f"no split into up to {MAX_PIECES} pieces is cuttable"
+            )
     names = piece_names(st.name, len(spans))
     pieces = []
     for name, (lo, hi, start_joint, end_joint) in zip(names, spans):
@@ -170,9 +180,11 @@ def _check_height(st: Stiffener, fab: Fabrication) -> None:
         widths.append(("flange", "width", st.profile.flange_width))
     for part, what, size in widths:
         if size > fab.usable[1]:
-            raise ParameterError(f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s "
-                                 f"{part}: its {what} {size:g} exceeds the plate's usable width {fab.usable[1]:g} "
-                                 f"(the width less a kerf at each edge)")  # fmt: skip
+            raise ParameterError(
+                f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s "
+                f"{part}: its {what} {size:g} exceeds the plate's usable width {fab.usable[1]:g} "
+                f"(the width less a kerf at each edge)"
+            )
 
 
 # --- rings ----------------------------------------------------------------------------------------
@@ -189,9 +201,17 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
     chosen = sorted(fab.joints.get(st.name, ()))
     for angle in chosen:
         if not 0.0 <= angle < 360.0:
-            raise ParameterError(f"[fabrication] joints.{st.name}: {angle:g} is outside the ring's angles [0, 360) degrees")
-    if not chosen and cuttable(whole.outline, fab)[0] and whole.hole is None or not chosen and whole.hole is not None \
-            and 2 * float(np.linalg.norm(whole.outline[0])) <= fab.usable[1]:  # fmt: skip
+            raise ParameterError(
+                f"[fabrication] joints.{st.name}: {angle:g} is outside the ring's angles [0, 360) degrees"
+            )
+    if (
+        not chosen
+        and cuttable(whole.outline, fab)[0]
+        and whole.hole is None
+        or not chosen
+        and whole.hole is not None
+        and 2 * float(np.linalg.norm(whole.outline[0])) <= fab.usable[1]
+    ):
         return [WebPiece(st.name, st.name, "ring", (0.0, 360.0), whole, (False, False))]
     r_in, r_out, q = _annulus(st, whole)
     base_radius = r_in if st.side == "outside" else r_out  # the web's edge on the wall, in the development
@@ -213,10 +233,16 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
         outlines = [_sector(r_in, r_out, math.radians(q * (b - a))) for a, b in arcs]
         if all(cuttable(o, fab)[0] for o in outlines):
             names = piece_names(st.name, len(arcs))
-            return [WebPiece(name, st.name, "ring", (a, b), _sector_pattern(name, r_in, r_out, q, a, b, st.side),
-                             (True, True)) for name, (a, b) in zip(names, arcs)]  # fmt: skip
-    raise ParameterError(f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: no split "
-                         f"into up to {MAX_PIECES} sectors is cuttable")  # fmt: skip
+            return [
+                WebPiece(
+                    name, st.name, "ring", (a, b), _sector_pattern(name, r_in, r_out, q, a, b, st.side), (True, True)
+                )
+                for name, (a, b) in zip(names, arcs)
+            ]
+    raise ParameterError(
+        f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: no split "
+        f"into up to {MAX_PIECES} sectors is cuttable"
+    )
 
 
 def _annulus(st: Stiffener, whole: FlatPattern) -> tuple[float, float, float]:
@@ -256,14 +282,22 @@ def _sector(r_in: float, r_out: float, angle: float, samples: int = ARC_SAMPLES)
     return np.concatenate([r_out * arc, r_in * arc[::-1]])
 
 
-def _sector_pattern(name: str, r_in: float, r_out: float, q: float, a_deg: float, b_deg: float,
-                    side: str) -> FlatPattern:  # fmt: skip
+def _sector_pattern(
+    name: str, r_in: float, r_out: float, q: float, a_deg: float, b_deg: float, side: str
+) -> FlatPattern:
     """The flat pattern of the ring piece from a_deg to b_deg (3-D degrees): a sector of
     angle q (b - a) of the annulus; base edge on the wall (r_in outside, r_out inside)."""
     angle = q * math.radians(b_deg - a_deg)
     base, top = (r_in, r_out) if side == "outside" else (r_out, r_in)
-    return FlatPattern(name, "ring", _sector(r_in, r_out, angle), angle * base, angle * top,
-                       0.5 * angle * (r_out**2 - r_in**2), sector=(r_in, r_out, angle))  # fmt: skip
+    return FlatPattern(
+        name,
+        "ring",
+        _sector(r_in, r_out, angle),
+        angle * base,
+        angle * top,
+        0.5 * angle * (r_out**2 - r_in**2),
+        sector=(r_in, r_out, angle),
+    )
 
 
 # --- the 3-D pieces -------------------------------------------------------------------------------
@@ -277,13 +311,20 @@ def piece_solids(st: Stiffener, pieces: list[WebPiece], tolerance: float) -> lis
     web: a radius of the annulus, a generator of a canal ring's cone)."""
     from dataclasses import replace
 
-    from ..stiffeners.solids import stringer_stiffener
+    from tubecad.stiffeners.solids import stringer_stiffener
 
     if len(pieces) == 1 and pieces[0].span == (st.base.span if st.kind == "stringer" else (0.0, 360.0)):
         return [replace(st, name=pieces[0].name)]
     if st.kind == "stringer":
-        return [replace(stringer_stiffener(st.base, st.value, st.profile, st.side, span=p.span, tolerance=tolerance,
-                                           name=p.name), base=st.base) for p in pieces]  # fmt: skip
+        return [
+            replace(
+                stringer_stiffener(
+                    st.base, st.value, st.profile, st.side, span=p.span, tolerance=tolerance, name=p.name
+                ),
+                base=st.base,
+            )
+            for p in pieces
+        ]
     return [replace(st, name=p.name, solid=_ring_sector_solid(st, *p.span)) for p in pieces]
 
 
@@ -293,7 +334,7 @@ def _ring_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
     (x - c) . e'(b) <= 0, e'(chi) = -sin chi r1 + cos chi r2 (the circle's tangent)."""
     import build123d as bd
 
-    from ..brep.properties import is_valid
+    from tubecad.brep.properties import is_valid
 
     s = st.value
     axis = st.base.axis
@@ -306,8 +347,11 @@ def _ring_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
     for angle, keep in ((a_deg, bd.Keep.TOP), (b_deg, bd.Keep.BOTTOM)):
         chi = math.radians(angle)
         tangent = -math.sin(chi) * r1 + math.cos(chi) * r2
-        plane = bd.Plane(origin=tuple(map(float, centre)), z_dir=tuple(map(float, tangent)),
-                         x_dir=tuple(map(float, math.cos(chi) * r1 + math.sin(chi) * r2)))  # fmt: skip
+        plane = bd.Plane(
+            origin=tuple(map(float, centre)),
+            z_dir=tuple(map(float, tangent)),
+            x_dir=tuple(map(float, math.cos(chi) * r1 + math.sin(chi) * r2)),
+        )
         solid = solid.split(plane, keep=keep)
         solids = solid.solids() if hasattr(solid, "solids") else [solid]
         if len(solids) != 1:

@@ -9,41 +9,53 @@ colours show in a downstream CAD tree, under a top product named after the file.
 
 from __future__ import annotations
 
-from pathlib import Path
-from typing import Callable, Sequence
+from collections.abc import Callable, Sequence
 
 import build123d as bd
 
-from ..brep import TubeBuild
-from ..errors import ParameterError
-from ..export.atomic import atomic_path
-from ..surface import CanalSurface, CurvatureLineTube
-from .lines import CurvatureLine, lines_compound
-from .profiles import Profile
-from .solids import Stiffener, ring_stiffener, stringer_stiffener
+from tubecad.brep import TubeBuild
+from tubecad.core.errors import ParameterError
+from tubecad.stiffeners.lines import CurvatureLine, lines_compound
+from tubecad.stiffeners.profiles import Profile
+from tubecad.stiffeners.solids import Stiffener, ring_stiffener, stringer_stiffener
+from tubecad.surface import CanalSurface, CurvatureLineTube
 
 WALL_COLOUR = bd.Color(0.62, 0.68, 0.78)
 RING_COLOUR = bd.Color(0.85, 0.45, 0.20)
 STRINGER_COLOUR = bd.Color(0.25, 0.55, 0.35)
 
 
-def build_stiffeners(build: TubeBuild, rings: Sequence[int], stringers: Sequence[int], profile: Profile,
-                     side: str = "outside", tolerance: float = 1e-8,
-                     progress: Callable[[str, int, int], None] | None = None) -> list[Stiffener]:  # fmt: skip
+def build_stiffeners(
+    build: TubeBuild,
+    rings: Sequence[int],
+    stringers: Sequence[int],
+    profile: Profile,
+    side: str = "outside",
+    tolerance: float = 1e-8,
+    progress: Callable[[str, int, int], None] | None = None,
+) -> list[Stiffener]:
     """Stiffeners on the wall of ``build`` at the layout's ring indices ``rings`` and stringer
     indices ``stringers``, standing on its outer (``outside``) or inner (``inside``) surface.
     ``progress(name, done, total)`` is called after each one (e.g. ``('ring_02', 2, 9)``)."""
     layout = build.layout
     base = stiffener_base(build, side)
-    for name, chosen, count in (("rings", rings, len(layout.s_rings)), ("stringers", stringers, len(layout.stringers_deg))):
+    for name, chosen, count in (
+        ("rings", rings, len(layout.s_rings)),
+        ("stringers", stringers, len(layout.stringers_deg)),
+    ):
         bad = [i for i in chosen if not (isinstance(i, int) and 0 <= i < count)]
         if bad:
             raise ParameterError(f"stiffener {name} must be indices in [0, {count - 1}], got {bad}")
     rings = distinct_rings(build, rings)
-    makers = [lambda i=i: ring_stiffener(base, layout.s_rings[i], profile, side, tolerance, f"ring_{i:02d}")
-              for i in rings]  # fmt: skip
-    makers += [lambda j=j: stringer_stiffener(base, layout.stringers_deg[j], profile, side, tolerance=tolerance,
-                                              name=f"stringer_{j:02d}") for j in stringers]  # fmt: skip
+    makers = [
+        lambda i=i: ring_stiffener(base, layout.s_rings[i], profile, side, tolerance, f"ring_{i:02d}") for i in rings
+    ]
+    makers += [
+        lambda j=j: stringer_stiffener(
+            base, layout.stringers_deg[j], profile, side, tolerance=tolerance, name=f"stringer_{j:02d}"
+        )
+        for j in stringers
+    ]
     out = []
     for make in makers:
         out.append(make())
@@ -70,8 +82,13 @@ def distinct_rings(build: TubeBuild, rings: Sequence[int]) -> list[int]:
     return list(dict.fromkeys(0 if closed and i == last else i for i in rings))
 
 
-def named_assembly(build: TubeBuild, stiffeners: Sequence[Stiffener], lines: Sequence[CurvatureLine] = (),
-                   fuse: bool = False, panels: Sequence = ()) -> bd.Compound:  # fmt: skip
+def named_assembly(
+    build: TubeBuild,
+    stiffeners: Sequence[Stiffener],
+    lines: Sequence[CurvatureLine] = (),
+    fuse: bool = False,
+    panels: Sequence = (),
+) -> bd.Compound:
     """``wall`` and the stiffeners as labelled, coloured solids (or, with ``fuse``, one solid
     ``wall`` with the stiffeners merged in), plus the ``curvature_lines``. With ``panels``
     the wall is an assembly ``wall`` of the panels ``panel_r0_s0``, ... (not fused)."""
@@ -99,15 +116,3 @@ def named_assembly(build: TubeBuild, stiffeners: Sequence[Stiffener], lines: Seq
         curves.label = "curvature_lines"
         children.append(curves)
     return bd.Compound(label="tubecad", children=children)
-
-
-def export_named_step(assembly: bd.Compound, path: str | Path, step_schema: str = "AP214",
-                      name: str | None = None, length_unit: str = "mm") -> Path:  # fmt: skip
-    """Write the assembly to STEP (``step_schema``, coordinates in ``length_unit``, which the
-    file states) with its names and colours, atomically; the top product is ``name``
-    (default: the file's stem)."""
-    from ..export.cad import write_step
-
-    with atomic_path(path) as tmp:
-        write_step(assembly, tmp, step_schema, name or Path(path).stem, length_unit)
-    return Path(path)

@@ -38,16 +38,16 @@ import numpy as np
 from OCP.Geom import Geom_BSplineSurface
 from OCP.TopoDS import TopoDS_Face, TopoDS_Solid
 
-from ..brep.assembled import CapPlane, Strip, closed_solid, strip_solid
-from ..brep.faces import patch_faces
-from ..brep.solids import normal_cone_face
-from ..errors import ParameterError, RegularityError
-from ..fitting.canal_section import canal_section_surface, fit_canal
-from ..fitting.frame_spline import _initial_breaks, _joint_multiplicities, _with_rings, refine_spline
-from ..fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals
-from ..fitting.tolerance import MIN_SIZE, orthogonality_for
-from ..surface.canal import CanalSurface
-from .profiles import Profile
+from tubecad.brep.assembled import CapPlane, Strip, closed_solid, strip_solid
+from tubecad.brep.faces import patch_faces
+from tubecad.brep.solids import normal_cone_face
+from tubecad.core.errors import ParameterError, RegularityError
+from tubecad.core.tolerance import MIN_SIZE, orthogonality_for
+from tubecad.fitting.canal_section import canal_section_surface, fit_canal
+from tubecad.fitting.frame_spline import _initial_breaks, _joint_multiplicities, _with_rings, refine_spline
+from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals
+from tubecad.stiffeners.profiles import Profile
+from tubecad.surface.canal import CanalSurface
 
 Section = list[tuple[float, float]]
 
@@ -104,14 +104,18 @@ def checked_levels(base: CanalSurface, levels: Sequence[float], name: str) -> di
             continue
         law = base.radius_law
         if law.min_radius + d < MIN_SIZE:
-            raise ParameterError(f"height: {name} reaches in to r {d:+g}, and the radius law's r is {law.min_radius:g} "
-                                 f"at s = {law.s_at_min_radius:.6g}: r {d:+g} must stay >= {MIN_SIZE:g} (lower the "
-                                 "stiffener)")  # fmt: skip
+            raise ParameterError(
+                f"height: {name} reaches in to r {d:+g}, and the radius law's r is {law.min_radius:g} "
+                f"at s = {law.s_at_min_radius:.6g}: r {d:+g} must stay >= {MIN_SIZE:g} (lower the "
+                "stiffener)"
+            )
         try:
             out[d] = base.offset(d)
         except RegularityError as exc:
-            raise ParameterError(f"height: {name} reaches the canal surface of r {d:+g}, which is not regular "
-                                 f"(lower the stiffener): {exc}") from None  # fmt: skip
+            raise ParameterError(
+                f"height: {name} reaches the canal surface of r {d:+g}, which is not regular "
+                f"(lower the stiffener): {exc}"
+            ) from None
     return out
 
 
@@ -119,7 +123,7 @@ def check_spec_heights(surface: CanalSurface, layout, offsets: tuple[float, floa
     """A [stiffeners] section on the wall between the offsets (d_in, d_out) of ``surface``:
     each stiffener's own surfaces regular and off the axis (:func:`checked_levels`; a ring
     over its own width), before anything is built. Other faults are left to the build."""
-    from .limits import chosen_indices, spec_profile
+    from tubecad.stiffeners.limits import chosen_indices, spec_profile
 
     picked = spec_profile(section)
     if picked is None:
@@ -166,8 +170,11 @@ def canal_ring_solid(base: CanalSurface, section: Section, tolerance: float) -> 
         (sa, da), (sb, db) = section[i], section[(i + 1) % n]
         if sa == sb:
             (d_lo, d_hi) = sorted((da, db))
-            faces.append(normal_cone_face(sa, surfaces[d_lo], circles[(sa, d_lo)], surfaces[d_hi], circles[(sa, d_hi)],
-                                          outward=db > da))  # fmt: skip
+            faces.append(
+                normal_cone_face(
+                    sa, surfaces[d_lo], circles[(sa, d_lo)], surfaces[d_hi], circles[(sa, d_hi)], outward=db > da
+                )
+            )
     return closed_solid(faces)
 
 
@@ -182,8 +189,9 @@ def stringer_frame(base: CanalSurface, chi0: float, s: np.ndarray) -> tuple[np.n
     return X, n, ebar, np.cross(n, ebar)
 
 
-def wall_points_across(base: CanalSurface, chi0: float, s: np.ndarray,
-                       across: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+def wall_points_across(
+    base: CanalSurface, chi0: float, s: np.ndarray, across: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """The wall's points in the section planes Pi(s) of the stringer chi0 at across distance
     ``across`` (broadcast (len(s), len(across))): Z(u, s') with (Z - X).m = 0 and
     (Z - X).ebar = w, by Newton on the exact surface from (chi0 + w / |X_u|, s). Returns the
@@ -219,8 +227,9 @@ def _bernstein_inverse(count: int) -> np.ndarray:
     return np.linalg.inv(basis)
 
 
-def stringer_station_span(base: CanalSurface, chi0: float, half_width: float, span: tuple[float, float]
-                          ) -> tuple[float, float]:  # fmt: skip
+def stringer_station_span(
+    base: CanalSurface, chi0: float, half_width: float, span: tuple[float, float]
+) -> tuple[float, float]:
     """The stations s of the stringer's sections within ``span``: moved in from an end of the
     wall where the section plane's base would reach past its end circle (r' != 0 there) by
     the distance its base reaches, measured on a section near that end."""
@@ -242,8 +251,9 @@ def stringer_station_span(base: CanalSurface, chi0: float, half_width: float, sp
     return out[0], out[1]
 
 
-def canal_stringer_strips(base: CanalSurface, chi0: float, profile: Profile, side: str, span: tuple[float, float],
-                          tolerance: float) -> tuple[list[Strip], tuple[float, float], list[CapPlane], list[float], float]:  # fmt: skip
+def canal_stringer_strips(
+    base: CanalSurface, chi0: float, profile: Profile, side: str, span: tuple[float, float], tolerance: float
+) -> tuple[list[Strip], tuple[float, float], list[CapPlane], list[float], float]:
     """The strips of the stringer chi0 (radians, of ``base``) over ``span`` (module
     docstring): (strips, the stations' span, the cap planes there, the C0 cuts along s, the
     fit's position bound)."""
@@ -276,11 +286,12 @@ def canal_stringer_strips(base: CanalSurface, chi0: float, profile: Profile, sid
         err = np.linalg.norm((spline(s) - values(s)).reshape(len(s), count, 3), axis=-1).max(axis=1)
         return err.reshape(len(breaks) - 1, -1).max(axis=1), np.zeros(len(breaks) - 1)
 
-    spline, bound, _ = refine_spline(values, breaks, degree, joints, span_errors, tolerance, math.inf, 4096,
-                                     "the stringer's corner curves")  # fmt: skip
+    spline, bound, _ = refine_spline(
+        values, breaks, degree, joints, span_errors, tolerance, math.inf, 4096, "the stringer's corner curves"
+    )
     poles = spline.c.reshape(len(spline.c), count, 3)
     s_knots, s_mults = knots_and_multiplicities(spline.t)
-    wall = np.einsum("ij,kjl->kil", _bernstein_inverse(BASE_NODES), poles[:, len(off):])  # (poles, BASE_NODES, 3)
+    wall = np.einsum("ij,kjl->kil", _bernstein_inverse(BASE_NODES), poles[:, len(off) :])  # (poles, BASE_NODES, 3)
     curves = {}  # corner index -> its poles along s
     j = 0
     for k, (_, v) in enumerate(corners):
@@ -291,8 +302,15 @@ def canal_stringer_strips(base: CanalSurface, chi0: float, profile: Profile, sid
             j += 1
 
     def surface(rows: list[np.ndarray], degree_u: int) -> Geom_BSplineSurface:
-        return Geom_BSplineSurface(points_2d(np.stack(rows)), reals([0.0, 1.0]), reals(s_knots),
-                                   integers([degree_u + 1, degree_u + 1]), integers(s_mults), degree_u, spline.k)  # fmt: skip
+        return Geom_BSplineSurface(
+            points_2d(np.stack(rows)),
+            reals([0.0, 1.0]),
+            reals(s_knots),
+            integers([degree_u + 1, degree_u + 1]),
+            integers(s_mults),
+            degree_u,
+            spline.k,
+        )
 
     strips = [Strip(surface([curves[k], curves[k + 1]], 1), 0.0, 1.0) for k in range(len(corners) - 1)]
     strips.append(Strip(surface([wall[:, i] for i in range(BASE_NODES)], BASE_NODES - 1), 0.0, 1.0))
@@ -302,8 +320,9 @@ def canal_stringer_strips(base: CanalSurface, chi0: float, profile: Profile, sid
     return strips, (a, b), caps, cuts, bound
 
 
-def canal_stringer_solid(base: CanalSurface, chi0: float, profile: Profile, side: str, span: tuple[float, float],
-                         tolerance: float) -> tuple[TopoDS_Solid, tuple[float, float], float]:  # fmt: skip
+def canal_stringer_solid(
+    base: CanalSurface, chi0: float, profile: Profile, side: str, span: tuple[float, float], tolerance: float
+) -> tuple[TopoDS_Solid, tuple[float, float], float]:
     """The stringer chi0 (radians) on ``base`` over ``span`` as one solid with shared edges:
     (solid, its stations' span, the fit's position bound)."""
     sign = 1.0 if side == "outside" else -1.0

@@ -25,8 +25,9 @@ wall's faces of those bays and two full normal-cone annuli.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Sequence
+from collections.abc import Sequence
 
+import build123d as bd
 import numpy as np
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepGProp import BRepGProp_Face
@@ -37,19 +38,15 @@ from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
-import build123d as bd
-
-from ..brep import TubeBuild
-from ..brep import properties as props
-from ..brep.assembled import closed_solid, edge, plane_face
-from ..brep.faces import TOLERANCE
-from ..brep.solids import FLAT_CAP_SLOPE, normal_cone_face
-from ..errors import TubecadError
-from ..fitting.occ_arrays import integers, points_2d, reals, reals_2d
-from ..occ_compat import Array1OfPnt
-
-if TYPE_CHECKING:
-    from .panels import Panel
+from tubecad.brep import TubeBuild
+from tubecad.brep import properties as props
+from tubecad.brep.assembled import closed_solid, edge, plane_face
+from tubecad.brep.faces import TOLERANCE
+from tubecad.brep.solids import FLAT_CAP_SLOPE, normal_cone_face
+from tubecad.core.errors import TubecadError
+from tubecad.fitting.occ_arrays import integers, points_2d, reals, reals_2d
+from tubecad.occ_compat import Array1OfPnt
+from tubecad.stiffeners.panel import Panel
 
 #: points per radial segment at which its distance from the cap's cone is measured
 RADIAL_GAP_SAMPLES = 9
@@ -60,7 +57,6 @@ def split_canal_panels(build: TubeBuild, seams: Sequence[int], rings: Sequence[i
     increasing, first and last included) and the seam stringers ``seams`` (indices), in
     the order of :func:`.panels.split_into_panels` (ring bay by ring bay, seam bays from
     the first seam counter-clockwise)."""
-    from .panels import Panel  # (panels imports this module)
 
     outer, inner = build.patches
     layout = build.layout
@@ -70,14 +66,20 @@ def split_canal_panels(build: TubeBuild, seams: Sequence[int], rings: Sequence[i
     bays = list(zip(seams, seams[1:] + [seams[0] + n_s]))  # stringer indices j_a -> j_b (j_b may wrap)
     panels = []
     if len(seams) == 1:  # the ring bay all round: the wall's faces and two full cone annuli
-        caps = {k: normal_cone_face(s_rings[k], build.surfaces[1], inner.rings[k], build.surfaces[0], outer.rings[k],
-                                    outward=True) for k in rings}  # fmt: skip
+        caps = {
+            k: normal_cone_face(
+                s_rings[k], build.surfaces[1], inner.rings[k], build.surfaces[0], outer.rings[k], outward=True
+            )
+            for k in rings
+        }
         deg = layout.stringers_deg[seams[0]]
         for i, (ia, ib) in enumerate(zip(rings, rings[1:])):
             wall = [f for patches in (outer, inner) for row in patches.faces[ia:ib] for f in row]
             solid = closed_solid(wall + [TopoDS_Face.Reversed(caps[ia]), caps[ib]])
             area = props.faces_area([f for row in outer.faces[ia:ib] for f in row])
-            panels.append(Panel(f"panel_r{i}_s0", (s_rings[ia], s_rings[ib]), (deg, deg + 360.0), bd.Solid(solid), area))
+            panels.append(
+                Panel(f"panel_r{i}_s0", (s_rings[ia], s_rings[ib]), (deg, deg + 360.0), bd.Solid(solid), area)
+            )
         return panels
     walls = CanalWallEdges(build)
     for i, (ia, ib) in enumerate(zip(rings, rings[1:])):
@@ -90,8 +92,11 @@ def split_canal_panels(build: TubeBuild, seams: Sequence[int], rings: Sequence[i
             area = props.faces_area([outer.faces[row][j] for row in range(ia, ib) for j in columns])
             a_deg = layout.stringers_deg[ja]
             b_deg = layout.stringers_deg[jb % n_s] + (360.0 if jb >= n_s else 0.0)
-            panels.append(Panel(f"panel_r{i}_s{n}", (s_rings[ia], s_rings[ib]), (a_deg, b_deg),
-                                bd.Solid(closed_solid(faces)), area))  # fmt: skip
+            panels.append(
+                Panel(
+                    f"panel_r{i}_s{n}", (s_rings[ia], s_rings[ib]), (a_deg, b_deg), bd.Solid(closed_solid(faces)), area
+                )
+            )
     return panels
 
 
@@ -145,8 +150,12 @@ class CanalWallEdges:
             builder.UpdateEdge(high, _line(s1, 0.0, 0.0, 1.0), face, BRep_Tool.Tolerance_s(high))
             wire = TopoDS_Wire()
             builder.MakeWire(wire)  # counter-clockwise in (s, d)
-            for e, orientation in ((e_in, TopAbs_FORWARD), (high, TopAbs_FORWARD), (e_out, TopAbs_REVERSED),
-                                   (low, TopAbs_REVERSED)):  # fmt: skip
+            for e, orientation in (
+                (e_in, TopAbs_FORWARD),
+                (high, TopAbs_FORWARD),
+                (e_out, TopAbs_REVERSED),
+                (low, TopAbs_REVERSED),
+            ):
                 builder.Add(wire, e.Oriented(orientation))
             wire.Closed(True)
             builder.Add(face, wire)
@@ -172,14 +181,21 @@ class CanalWallEdges:
         centre, _, t, x_dir, _ = high.ring(s)
         dr = float(high.tube.radius_law.dr(np.array([s]))[0])
         if abs(dr) <= FLAT_CAP_SLOPE:  # the plane annulus' piece, counter-clockwise about +t
-            loop = ([(e, True) for e in arcs_out] + [(radial_b, False)] + [(e, False) for e in arcs_in[::-1]]
-                    + [(radial_a, True)])  # fmt: skip
+            loop = (
+                [(e, True) for e in arcs_out]
+                + [(radial_b, False)]
+                + [(e, False) for e in arcs_in[::-1]]
+                + [(radial_a, True)]
+            )
             return plane_face(centre, t, x_dir, [loop])
         c_lo, radius_lo, _, _, _ = low.ring(s)
         q = math.sqrt(1.0 - dr * dr)
         sign = -math.copysign(1.0, dr)
-        cone = Geom_ConicalSurface(gp_Ax3(gp_Pnt(*map(float, c_lo)), gp_Dir(*map(float, t)),
-                                          gp_Dir(*map(float, x_dir))), sign * math.atan2(q, abs(dr)), radius_lo)  # fmt: skip
+        cone = Geom_ConicalSurface(
+            gp_Ax3(gp_Pnt(*map(float, c_lo)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+            sign * math.atan2(q, abs(dr)),
+            radius_lo,
+        )
         v_high = sign * self.thickness  # the outer circle's v (distance along the generators from the inner)
         builder = BRep_Builder()
         face = TopoDS_Face()
@@ -191,14 +207,19 @@ class CanalWallEdges:
         theta_b = BRep_Tool.Range_s(arcs_in[-1])[1] + lifts[-1]
         for e, theta in ((radial_a, theta_a), (radial_b, theta_b)):
             pcurve = _line(theta, 0.0, 0.0, sign)  # v = sign (d - d_in)
-            builder.UpdateEdge(e, pcurve, face, max(BRep_Tool.Tolerance_s(e), _gap(e, cone, theta, sign, self.thickness)))
+            builder.UpdateEdge(
+                e, pcurve, face, max(BRep_Tool.Tolerance_s(e), _gap(e, cone, theta, sign, self.thickness))
+            )
         # counter-clockwise in (u, v): the lower circle along +u, up the generator at b, back along the upper one
         (lower, upper), up = ((arcs_in, arcs_out), True) if v_high > 0 else ((arcs_out, arcs_in), False)
         wire = TopoDS_Wire()
         builder.MakeWire(wire)
-        for e, orientation in ([(e, TopAbs_FORWARD) for e in lower] + [(radial_b, TopAbs_FORWARD if up else TopAbs_REVERSED)]
-                               + [(e, TopAbs_REVERSED) for e in upper[::-1]]
-                               + [(radial_a, TopAbs_REVERSED if up else TopAbs_FORWARD)]):  # fmt: skip
+        for e, orientation in (
+            [(e, TopAbs_FORWARD) for e in lower]
+            + [(radial_b, TopAbs_FORWARD if up else TopAbs_REVERSED)]
+            + [(e, TopAbs_REVERSED) for e in upper[::-1]]
+            + [(radial_a, TopAbs_REVERSED if up else TopAbs_FORWARD)]
+        ):
             builder.Add(wire, e.Oriented(orientation))
         wire.Closed(True)
         builder.Add(face, wire)
@@ -212,16 +233,28 @@ def _ruled(c_in: Geom_BSplineCurve, c_out: Geom_BSplineCurve, thickness: float) 
     rational curves on the same knots and weights, so degree 1 across with those weights."""
     n = c_in.NbPoles()
     if c_out.NbPoles() != n or c_in.NbKnots() != c_out.NbKnots():
-        raise TubecadError("the wall's inner and outer stringer curves differ in their knots: no seam face between them")
+        raise TubecadError(
+            "the wall's inner and outer stringer curves differ in their knots: no seam face between them"
+        )
     poles = np.array([[c_in.Pole(i).Coord(), c_out.Pole(i).Coord()] for i in range(1, n + 1)])
     weights = np.array([[c_in.Weight(i), c_out.Weight(i)] for i in range(1, n + 1)])
     if np.abs(weights[:, 0] - weights[:, 1]).max() > 1e-12 * weights.max():
-        raise TubecadError("the wall's inner and outer stringer curves differ in their weights: no seam face between them")
+        raise TubecadError(
+            "the wall's inner and outer stringer curves differ in their weights: no seam face between them"
+        )
     weights[:, 1] = weights[:, 0]
     knots = [c_in.Knot(i) for i in range(1, c_in.NbKnots() + 1)]
     mults = [c_in.Multiplicity(i) for i in range(1, c_in.NbKnots() + 1)]
-    return Geom_BSplineSurface(points_2d(poles), reals_2d(weights), reals(knots), reals([0.0, thickness]),
-                               integers(mults), integers([2, 2]), c_in.Degree(), 1)  # fmt: skip
+    return Geom_BSplineSurface(
+        points_2d(poles),
+        reals_2d(weights),
+        reals(knots),
+        reals([0.0, thickness]),
+        integers(mults),
+        integers([2, 2]),
+        c_in.Degree(),
+        1,
+    )
 
 
 def _gap(e: TopoDS_Edge, cone: Geom_ConicalSurface, theta: float, sign: float, thickness: float) -> float:

@@ -28,18 +28,19 @@ The quadratures use the adaptive Chebyshev series of :mod:`tubecad.curves.chebys
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
-from ..curves.chebyshev import PiecewiseChebyshev
-from ..errors import ParameterError
-from ..export.atomic import atomic_path, save_figure
-from ..surface import CurvatureLineTube
-from ..surface.canal import CanalSurface
-from ..units import DEFAULT_LENGTH_UNIT, length_unit as length_unit_of
+from tubecad.core.atomic import atomic_path, save_figure
+from tubecad.core.errors import ParameterError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.core.units import length_unit as length_unit_of
+from tubecad.curves.chebyshev import PiecewiseChebyshev
+from tubecad.surface import CurvatureLineTube
+from tubecad.surface.canal import CanalSurface
 
 RateFunction = Callable[[np.ndarray], np.ndarray]
 
@@ -66,9 +67,16 @@ def _side_sign(side: str) -> float:
     return 1.0 if side == "outside" else -1.0
 
 
-def developed_strip(turn: RateFunction, speed: RateFunction, span: tuple[float, float], height: float,
-                    side: str = "outside", name: str = "stringer", samples: int = 2001,
-                    breaks: np.ndarray | None = None) -> FlatPattern:  # fmt: skip
+def developed_strip(
+    turn: RateFunction,
+    speed: RateFunction,
+    span: tuple[float, float],
+    height: float,
+    side: str = "outside",
+    name: str = "stringer",
+    samples: int = 2001,
+    breaks: np.ndarray | None = None,
+) -> FlatPattern:
     """The development of the normal strip X + v n, v from 0 to +-``height`` (``side``), along a
     curvature line X(s), s in ``span``, with speed(s) = |X_s| = sqrt(G) and turn(s) = kappa_n
     sqrt(G) (kappa_n = N / G, outward normal): the base edge is the plane curve turning by
@@ -92,11 +100,13 @@ def developed_strip(turn: RateFunction, speed: RateFunction, span: tuple[float, 
     top_curve = base_curve + h * normal
     integral = lambda f, label: float(fit(f, label)(s1))  # noqa: E731
     return FlatPattern(
-        name, "stringer", np.concatenate([base_curve, top_curve[::-1]]),
+        name,
+        "stringer",
+        np.concatenate([base_curve, top_curve[::-1]]),
         base_length=integral(speed, "base"),
         top_length=integral(lambda s: np.abs(speed(s) - sign * h * turn(s)), "top"),
         area=integral(lambda s: h * speed(s) - sign * h * h / 2 * turn(s), "area"),
-    )  # fmt: skip
+    )
 
 
 def canal_stringer_rates(canal: CanalSurface, chi0: float) -> tuple[RateFunction, RateFunction]:
@@ -117,8 +127,9 @@ def canal_stringer_rates(canal: CanalSurface, chi0: float) -> tuple[RateFunction
     return turn, speed
 
 
-def stringer_rates(base: CurvatureLineTube | CanalSurface, theta_deg: float
-                   ) -> tuple[RateFunction, RateFunction, np.ndarray]:  # fmt: skip
+def stringer_rates(
+    base: CurvatureLineTube | CanalSurface, theta_deg: float
+) -> tuple[RateFunction, RateFunction, np.ndarray]:
     """(turn, speed, breaks) along the stringer at ``theta_deg`` on ``base`` (module
     docstring): on a tube turn = kappa_u = k1 cos u + k2 sin u and speed = 1 - R kappa_u; on a
     canal surface :func:`canal_stringer_rates`. ``breaks``: the span's ends and the s where
@@ -140,9 +151,15 @@ def stringer_rates(base: CurvatureLineTube | CanalSurface, theta_deg: float
     return turn, speed, np.unique(np.concatenate([[s0, s1], joints]))
 
 
-def stringer_flat_pattern(base: CurvatureLineTube | CanalSurface, theta_deg: float, height: float,
-                          side: str = "outside", name: str = "stringer", samples: int = 2001,
-                          span: tuple[float, float] | None = None) -> FlatPattern:  # fmt: skip
+def stringer_flat_pattern(
+    base: CurvatureLineTube | CanalSurface,
+    theta_deg: float,
+    height: float,
+    side: str = "outside",
+    name: str = "stringer",
+    samples: int = 2001,
+    span: tuple[float, float] | None = None,
+) -> FlatPattern:
     """The developed web of height ``height`` along the stringer at ``theta_deg`` on ``base``:
     on a tube the stringer's angle u, on a canal surface chi0 (its angle at the span's start);
     over ``span`` (a piece of the stringer; default ``base.span``)."""
@@ -154,8 +171,9 @@ def stringer_flat_pattern(base: CurvatureLineTube | CanalSurface, theta_deg: flo
     return developed_strip(turn, speed, (s0, s1), height, side, name, samples, breaks)
 
 
-def ring_flat_pattern(radius: float, height: float, side: str = "outside", name: str = "ring",
-                      samples: int = 721, q: float = 1.0) -> FlatPattern:  # fmt: skip
+def ring_flat_pattern(
+    radius: float, height: float, side: str = "outside", name: str = "ring", samples: int = 721, q: float = 1.0
+) -> FlatPattern:
     """The flat web of a ring frame on a wall of (sphere) radius ``radius``: for ``q`` = 1 (a
     tube, or a canal ring where r' = 0) the annulus of radii R and R +- h; for q < 1 (a canal
     ring, q = sqrt(1 - r'^2)) the annular sector of those radii and angle 2 pi q, the
@@ -169,17 +187,26 @@ def ring_flat_pattern(radius: float, height: float, side: str = "outside", name:
     if q == 1.0:
         a = np.linspace(0.0, 2 * math.pi, samples, endpoint=False)
         circle = np.stack([np.cos(a), np.sin(a)], axis=1)
-        return FlatPattern(name, "ring", r_out * circle, 2 * math.pi * base, 2 * math.pi * top, area,
-                           hole=r_in * circle)  # fmt: skip
+        return FlatPattern(
+            name, "ring", r_out * circle, 2 * math.pi * base, 2 * math.pi * top, area, hole=r_in * circle
+        )
     a = 0.5 * math.pi + math.pi * q * np.linspace(-1.0, 1.0, samples)
     arc = np.stack([np.cos(a), np.sin(a)], axis=1)
     outline = np.concatenate([r_out * arc, r_in * arc[::-1]])  # outer arc, radial edge, inner arc, radial edge
-    return FlatPattern(name, "ring", outline, 2 * math.pi * q * base, 2 * math.pi * q * top, area,
-                       sector=(r_in, r_out, 2 * math.pi * q))  # fmt: skip
+    return FlatPattern(
+        name,
+        "ring",
+        outline,
+        2 * math.pi * q * base,
+        2 * math.pi * q * top,
+        area,
+        sector=(r_in, r_out, 2 * math.pi * q),
+    )
 
 
-def canal_ring_flat_pattern(canal: CanalSurface, s: float, height: float, side: str = "outside",
-                            name: str = "ring", samples: int = 721) -> FlatPattern:  # fmt: skip
+def canal_ring_flat_pattern(
+    canal: CanalSurface, s: float, height: float, side: str = "outside", name: str = "ring", samples: int = 721
+) -> FlatPattern:
     """The flat web of the ring frame on ``canal``'s characteristic circle at ``s``: the annular
     sector of (slant) radii r(s) and r(s) +- h and angle 2 pi q(s)."""
     s = float(canal._inside(s))
@@ -190,8 +217,9 @@ def canal_ring_flat_pattern(canal: CanalSurface, s: float, height: float, side: 
     return ring_flat_pattern(r, height, side, name, samples, q=math.sqrt(1.0 - dr * dr))
 
 
-def ring_web_flat_pattern(base: CurvatureLineTube | CanalSurface, s: float, height: float, side: str = "outside",
-                          name: str = "ring") -> FlatPattern:  # fmt: skip
+def ring_web_flat_pattern(
+    base: CurvatureLineTube | CanalSurface, s: float, height: float, side: str = "outside", name: str = "ring"
+) -> FlatPattern:
     """The flat web of the ring frame at ``s`` on ``base``, the wall surface it stands on: an
     annulus on a tube, an annular sector on a canal surface."""
     if isinstance(base, CanalSurface):
@@ -205,8 +233,9 @@ def polygon_area(points: np.ndarray) -> float:
     return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
 
 
-def write_dxf(patterns: list[FlatPattern], path: str | Path, gap: float | None = None,
-              length_unit: str = DEFAULT_LENGTH_UNIT) -> Path:  # fmt: skip
+def write_dxf(
+    patterns: list[FlatPattern], path: str | Path, gap: float | None = None, length_unit: str = DEFAULT_LENGTH_UNIT
+) -> Path:
     """All patterns side by side in one DXF, one layer per pattern, outlines as closed
     polylines (full rings: two circles; a canal ring's sector: one closed polyline whose arcs
     are exact, as bulges). The coordinates are in ``length_unit`` (the spec's
@@ -230,8 +259,12 @@ def write_dxf(patterns: list[FlatPattern], path: str | Path, gap: float | None =
             arc = np.stack([np.cos(a), np.sin(a)], axis=1)
             corners = np.concatenate([r_out * arc, r_in * arc[::-1]]) + shift
             bulges = [bulge, bulge, 0.0, -bulge, -bulge, 0.0]
-            space.add_lwpolyline([(x, y, b) for (x, y), b in zip(corners.tolist(), bulges)], format="xyb",
-                                 close=True, dxfattribs={"layer": pattern.name})  # fmt: skip
+            space.add_lwpolyline(
+                [(x, y, b) for (x, y), b in zip(corners.tolist(), bulges)],
+                format="xyb",
+                close=True,
+                dxfattribs={"layer": pattern.name},
+            )
         elif pattern.hole is not None:  # a full annulus: two circles
             r_out = float(np.linalg.norm(pattern.outline[0]))
             centre = (x_offset + r_out, r_out)
@@ -259,6 +292,9 @@ def write_picture(pattern: FlatPattern, folder: str | Path) -> list[Path]:
         ax.add_patch(Polygon(pattern.hole, closed=True, facecolor="white", edgecolor="#10203a", linewidth=0.8))
     ax.set_aspect("equal")
     ax.autoscale_view()
-    ax.set_title(f"{pattern.name}: flat pattern of the web, area {pattern.area:.6g}, edges "
-                 f"{pattern.base_length:.6g} (on the wall) and {pattern.top_length:.6g}", fontsize=9)  # fmt: skip
+    ax.set_title(
+        f"{pattern.name}: flat pattern of the web, area {pattern.area:.6g}, edges "
+        f"{pattern.base_length:.6g} (on the wall) and {pattern.top_length:.6g}",
+        fontsize=9,
+    )
     return save_figure(fig, folder, pattern.name, ("svg", "png"))

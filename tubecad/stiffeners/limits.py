@@ -21,11 +21,11 @@ import math
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..curves.axis import Axis
-from ..errors import ParameterError
-from ..fitting.frame_spline import FitError
-from ..fitting.tolerance import MIN_SIZE
-from .profiles import Profile
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import MIN_SIZE
+from tubecad.curves.axis import Axis
+from tubecad.fitting.frame_spline import FitError
+from tubecad.stiffeners.profiles import Profile
 
 SAMPLES = 2001
 
@@ -60,8 +60,10 @@ def checked_reach(axis: Axis, profile: Profile, radius: float, side: str, kind: 
     axis' span, or an inside stiffener reaching in past the axis."""
     h = profile.height
     if side == "inside" and not radius - h >= MIN_SIZE:
-        raise ParameterError(f"height must be < R = {radius:g} for side = 'inside' on this wall (its innermost radius "
-                             f"R - height must stay >= {MIN_SIZE:g}), got {h:.10g}")  # fmt: skip
+        raise ParameterError(
+            f"height must be < R = {radius:g} for side = 'inside' on this wall (its innermost radius "
+            f"R - height must stay >= {MIN_SIZE:g}), got {h:.10g}"
+        )
     d = reach(profile, radius, side, kind)
     k_max, s_at = max_curvature(axis)
     if d * k_max < 1.0:
@@ -73,32 +75,44 @@ def checked_reach(axis: Axis, profile: Profile, radius: float, side: str, kind: 
             limit, rule = 1.0 / k_max - radius, "(R + height) max|k| must stay < 1"
         else:
             limit = math.sqrt(max(1.0 / k_max**2 - w_max**2, 0.0)) - radius
-            rule = (f"the stringer's outer corners, sqrt((R + height)^2 + {w_max:g}^2) from the axis, times max|k| "
-                    f"must stay < 1")  # fmt: skip
-        raise ParameterError(f"height must be < {limit:.6g} for side = 'outside' on this wall: {rule} ({where}), "
-                             f"got {h:.10g}")  # fmt: skip
-    raise ParameterError(f"flange_width is too wide for side = 'inside' on this wall: the flange corners reach "
-                         f"{d:.6g} from the axis, and that times max|k| must stay < 1 ({where}; the flange reaches "
-                         f"{w_max:g} across), got {profile.flange_width:.10g}")  # fmt: skip
+            rule = (
+                f"the stringer's outer corners, sqrt((R + height)^2 + {w_max:g}^2) from the axis, times max|k| "
+                f"must stay < 1"
+            )
+        raise ParameterError(
+            f"height must be < {limit:.6g} for side = 'outside' on this wall: {rule} ({where}), got {h:.10g}"
+        )
+    raise ParameterError(
+        f"flange_width is too wide for side = 'inside' on this wall: the flange corners reach "
+        f"{d:.6g} from the axis, and that times max|k| must stay < 1 ({where}; the flange reaches "
+        f"{w_max:g} across), got {profile.flange_width:.10g}"
+    )
 
 
 def fit_failure(exc: Exception, name: str, axis: Axis, reach: float) -> FitError:
     """A FitError of a stiffener's frame, saying how close to the limit it stands."""
     k_max, s_at = max_curvature(axis)
-    return FitError(f"{name}: its frame, fitted to its farthest point {reach:.6g} from the axis (reach max|k| = "
-                    f"{reach * k_max:.4g} at s = {s_at:.6g}, which must stay < 1), did not reach the fit tolerance "
-                    f"(a lower height or a looser tolerance helps): {exc}")  # fmt: skip
+    return FitError(
+        f"{name}: its frame, fitted to its farthest point {reach:.6g} from the axis (reach max|k| = "
+        f"{reach * k_max:.4g} at s = {s_at:.6g}, which must stay < 1), did not reach the fit tolerance "
+        f"(a lower height or a looser tolerance helps): {exc}"
+    )
 
 
 def spec_profile(section: dict) -> tuple[Profile, str] | None:
     """A [stiffeners] section's (profile, side), or None where they are faulty (those faults
     are left to the build, which names them)."""
-    from .profiles import SIDES
+    from tubecad.stiffeners.profiles import SIDES
 
     side = section.get("side", "outside")
     try:
-        profile = Profile(section.get("profile", "flat"), section["height"], section["thickness"],
-                          section.get("flange_width", 0.0), section.get("flange_thickness", 0.0))  # fmt: skip
+        profile = Profile(
+            section.get("profile", "flat"),
+            section["height"],
+            section["thickness"],
+            section.get("flange_width", 0.0),
+            section.get("flange_thickness", 0.0),
+        )
     except (KeyError, TypeError, ParameterError):
         return None
     return (profile, side) if side in SIDES else None

@@ -20,16 +20,15 @@ from pathlib import Path
 import build123d as bd
 import numpy as np
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-
 from OCP.Geom import Geom_Circle
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 
-from ..brep.faces import ring_circle
-from ..brep.layout import NetLayout
-from ..export.atomic import write_text
-from ..fitting import TubeSurface
-from ..fitting.canal_section import CanalSectionSurface
-from ..units import DEFAULT_LENGTH_UNIT
+from tubecad.brep.faces import ring_circle
+from tubecad.brep.layout import NetLayout
+from tubecad.core.atomic import write_text
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.fitting import TubeSurface
+from tubecad.fitting.canal_section import CanalSectionSurface
 
 
 @dataclass(frozen=True)
@@ -61,8 +60,9 @@ class CurvatureLine:
         surf = self.surface.surface
         if self.kind == "ring" and self.canal:  # the characteristic circle
             centre, radius, t, x_dir, _ = self.surface.ring(self.value)
-            circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
-                                 radius)  # fmt: skip
+            circle = Geom_Circle(
+                gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), radius
+            )
             maker = BRepBuilderAPI_MakeEdge(circle)
         elif self.kind == "ring":
             maker = BRepBuilderAPI_MakeEdge(ring_circle(self.surface, self.value)[0])
@@ -86,9 +86,13 @@ class CurvatureLine:
             s = np.linspace(*tube.span, points)
             theta = np.full_like(s, math.radians(self.value))
             tangent = tube.axis.rotation_minimising_frame(s)[0]  # S_s = (1 - rho kappa_u) t, 1 - rho kappa_u > 0
-        return {"s": s, "theta_deg": np.degrees(theta), "position": tube.points(theta, s),
-                "tangent": tangent, "normal": tube.normal(theta, s)}  # fmt: skip
-
+        return {
+            "s": s,
+            "theta_deg": np.degrees(theta),
+            "position": tube.points(theta, s),
+            "tangent": tangent,
+            "normal": tube.normal(theta, s),
+        }
 
     def _canal_polyline(self, points: int) -> dict[str, np.ndarray]:
         """:meth:`polyline` on a canal surface: samples uniform in chi0 round a ring (the
@@ -103,16 +107,23 @@ class CurvatureLine:
             chi0 = np.full_like(s, math.radians(self.value))
         d = canal.derivatives(chi0, s)
         tangent = d.S_u if self.kind == "ring" else d.S_s
-        return {"s": s, "theta_deg": np.degrees(chi0), "position": d.S,
-                "tangent": tangent / np.linalg.norm(tangent, axis=-1, keepdims=True), "normal": canal.normal(chi0, s)}  # fmt: skip
+        return {
+            "s": s,
+            "theta_deg": np.degrees(chi0),
+            "position": d.S,
+            "tangent": tangent / np.linalg.norm(tangent, axis=-1, keepdims=True),
+            "normal": canal.normal(chi0, s),
+        }
 
 
 def net_lines(surface: TubeSurface, layout: NetLayout, suffix: str = "") -> list[CurvatureLine]:
     """The layout's rings and stringers on ``surface``, named line_ring_00.., line_stringer_00..
     (plus ``suffix``, e.g. ``_inner``), so that no line shares a name with a stiffener."""
     rings = [CurvatureLine(f"line_ring_{i:02d}{suffix}", "ring", i, s, surface) for i, s in enumerate(layout.s_rings)]
-    stringers = [CurvatureLine(f"line_stringer_{j:02d}{suffix}", "stringer", j, a, surface)
-                 for j, a in enumerate(layout.stringers_deg)]  # fmt: skip
+    stringers = [
+        CurvatureLine(f"line_stringer_{j:02d}{suffix}", "stringer", j, a, surface)
+        for j, a in enumerate(layout.stringers_deg)
+    ]
     return rings + stringers
 
 
@@ -126,7 +137,23 @@ def lines_compound(lines: list[CurvatureLine]) -> bd.Compound:
     return bd.Compound(children=edges)
 
 
-COLUMNS = ["line", "kind", "index", "surface_radius", "s", "theta_deg", "x", "y", "z", "tx", "ty", "tz", "nx", "ny", "nz"]
+COLUMNS = [
+    "line",
+    "kind",
+    "index",
+    "surface_radius",
+    "s",
+    "theta_deg",
+    "x",
+    "y",
+    "z",
+    "tx",
+    "ty",
+    "tz",
+    "nx",
+    "ny",
+    "nz",
+]
 
 
 def polylines_csv(lines: list[CurvatureLine], path: str | Path, points: int = 200) -> Path:
@@ -142,15 +169,27 @@ def polylines_csv_text(lines: list[CurvatureLine], points: int = 200) -> str:
     for line in lines:
         p = line.polyline(points)
         for i in range(points):
-            writer.writerow([line.name, line.kind, line.index, repr(line.radius), repr(float(p["s"][i])),
-                             repr(float(p["theta_deg"][i])), *map(repr, map(float, p["position"][i])),
-                             *map(repr, map(float, p["tangent"][i])), *map(repr, map(float, p["normal"][i]))])  # fmt: skip
+            writer.writerow(
+                [
+                    line.name,
+                    line.kind,
+                    line.index,
+                    repr(line.radius),
+                    repr(float(p["s"][i])),
+                    repr(float(p["theta_deg"][i])),
+                    *map(repr, map(float, p["position"][i])),
+                    *map(repr, map(float, p["tangent"][i])),
+                    *map(repr, map(float, p["normal"][i])),
+                ]
+            )
     return out.getvalue()
 
 
-def polylines_json(lines: list[CurvatureLine], path: str | Path, points: int = 200, length_unit: str = DEFAULT_LENGTH_UNIT) -> Path:
+def polylines_json(
+    lines: list[CurvatureLine], path: str | Path, points: int = 200, length_unit: str = DEFAULT_LENGTH_UNIT
+) -> Path:
     """{"units": length_unit, "lines": [{name, kind, index, surface_radius, closed, s, theta_deg, position,
-    tangent, normal}]}; ``length_unit``: the model's unit (tubecad.units)."""
+    tangent, normal}]}; ``length_unit``: the model's unit (tubecad.core.units)."""
     return write_text(path, polylines_json_text(lines, points, length_unit))
 
 
@@ -159,6 +198,14 @@ def polylines_json_text(lines: list[CurvatureLine], points: int = 200, length_un
     data = []
     for line in lines:
         p = line.polyline(points)
-        data.append({"name": line.name, "kind": line.kind, "index": line.index, "surface_radius": line.radius,
-                     "closed": line.kind == "ring", **{k: v.tolist() for k, v in p.items()}})  # fmt: skip
+        data.append(
+            {
+                "name": line.name,
+                "kind": line.kind,
+                "index": line.index,
+                "surface_radius": line.radius,
+                "closed": line.kind == "ring",
+                **{k: v.tolist() for k, v in p.items()},
+            }
+        )
     return json.dumps({"units": length_unit, "lines": data}) + "\n"

@@ -13,32 +13,20 @@ seam faces along the normals and pieces of the normal cones as caps.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import build123d as bd
 
-from ..brep import TubeBuild
-from ..brep import properties as props
-from ..brep.assembled import Strip, c0_knots, strip_solid
-from ..errors import ParameterError
-from ..fitting import exact_section_surface
-from ..fitting.canal_section import CanalSpline
-from ..surface import CurvatureLineTube
-from .canal_panels import split_canal_panels
-from .rings import swept_section
-from .solids import cap_plane, ruled_surface, surface_part
-
-
-@dataclass
-class Panel:
-    name: str  # panel_r{ring bay}_s{seam bay}
-    s_range: tuple[float, float]
-    angles_deg: tuple[float, float]
-    solid: bd.Solid
-    outer_area: float
-
-    def mass(self, density: float) -> float:
-        return props.volume(self.solid) * density
+from tubecad.brep import TubeBuild
+from tubecad.brep import properties as props
+from tubecad.brep.assembled import Strip, c0_knots, strip_solid
+from tubecad.core.errors import ParameterError
+from tubecad.fitting import exact_section_surface
+from tubecad.fitting.canal_section import CanalSpline
+from tubecad.stiffeners.canal_panels import split_canal_panels
+from tubecad.stiffeners.panel import Panel
+from tubecad.stiffeners.rings import swept_section
+from tubecad.stiffeners.solids import cap_plane, ruled_surface, surface_part
+from tubecad.surface import CurvatureLineTube
 
 
 def split_into_panels(build: TubeBuild, seams: list[int], rings: list[int] | None = None) -> list[Panel]:
@@ -55,8 +43,10 @@ def split_into_panels(build: TubeBuild, seams: list[int], rings: list[int] | Non
         raise ParameterError(f"rings must be ring indices in [0, {n_r - 1}], got {rings}")
     if isinstance(build.frame, CanalSpline):  # a radius law: the wall's own faces, seam faces and cone caps
         if build.surfaces[0].tube.axis.closed:
-            raise ParameterError("panels of a canal wall (a radius law) on a closed axis are not built yet (its "
-                                 "stringers close on the closing ring moved by a Moebius map); the wall alone builds")  # fmt: skip
+            raise ParameterError(
+                "panels of a canal wall (a radius law) on a closed axis are not built yet (its "
+                "stringers close on the closing ring moved by a Moebius map); the wall alone builds"
+            )
         return split_canal_panels(build, seams, rings)
     angles = sorted(layout.stringers_deg[j] for j in set(seams))
     bays = list(zip(angles, angles[1:] + [angles[0] + 360.0]))
@@ -80,8 +70,10 @@ def panel(build: TubeBuild, axis, r_in: float, r_out: float, a_deg: float, b_deg
         section = [(s0, r_in), (s1, r_in), (s1, r_out), (s0, r_out)]
         solid, tube_faces = swept_section(axis, section, build.tolerance, origin_deg=a_deg)
         return Panel(name, (s0, s1), (a_deg, b_deg), bd.Solid(solid), props.faces_area(tube_faces[r_out]))
-    outer, inner = (exact_section_surface(CurvatureLineTube(axis, r, allow_irregular=True), frame, origin_deg=a_deg)
-                    for r in (r_out, r_in))  # fmt: skip
+    outer, inner = (
+        exact_section_surface(CurvatureLineTube(axis, r, allow_irregular=True), frame, origin_deg=a_deg)
+        for r in (r_out, r_in)
+    )
     u1 = float(outer.u_at(b_deg))
     # the wall patches in pieces between the surfaces' C0 knots (each piece its own face)
     cuts = [0.0] + [u for u in c0_knots(outer.surface) if 1e-12 < u < u1 - 1e-12] + [u1]

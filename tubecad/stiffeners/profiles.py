@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..errors import ParameterError
-from ..validation import number_in_range
+from tubecad.core.errors import ParameterError
+from tubecad.core.validation import number_in_range
 
 KINDS = ("flat", "T", "L")
 SIDES = ("outside", "inside")
@@ -34,8 +34,10 @@ class Profile:
         if self.kind != "flat":
             number_in_range("flange_thickness", self.flange_thickness, 0.0, self.height)
             if not self.flange_width > self.thickness:
-                raise ParameterError(f"flange_width must be > thickness ({self.thickness:g}) for a {self.kind} profile, "
-                                     f"got {self.flange_width:g}")  # fmt: skip
+                raise ParameterError(
+                    f"flange_width must be > thickness ({self.thickness:g}) for a {self.kind} profile, "
+                    f"got {self.flange_width:g}"
+                )
 
     def outline(self) -> list[tuple[float, float]]:
         """(w, h) corners from the base's +w corner round to its -w corner (the base itself,

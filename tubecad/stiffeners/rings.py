@@ -22,7 +22,7 @@ counter-clockwise polygon (s across, r up),
 from __future__ import annotations
 
 import math
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 from OCP.Geom import Geom_Circle
@@ -30,21 +30,27 @@ from OCP.Geom2d import Geom2d_Curve
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Vec2d
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Vertex
 
-from ..brep.assembled import TOLERANCE, CapPlane, c0_knots, closed_solid, edge, patch_face, plane_face, vertex
-from ..brep.faces import ring_pcurve
-from ..fitting.tolerance import MIN_SIZE, orthogonality_for
-from ..curves.axis import Axis
-from ..errors import ParameterError
-from ..fitting import TubeSurface, exact_section_surface, fit_frame
-from ..surface import CurvatureLineTube
-from .limits import max_curvature
-from .profiles import Profile
+from tubecad.brep.assembled import TOLERANCE, CapPlane, c0_knots, closed_solid, edge, patch_face, plane_face, vertex
+from tubecad.brep.faces import ring_pcurve
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import MIN_SIZE, orthogonality_for
+from tubecad.curves.axis import Axis
+from tubecad.fitting import TubeSurface, exact_section_surface, fit_frame
+from tubecad.stiffeners.limits import max_curvature
+from tubecad.stiffeners.profiles import Profile
+from tubecad.surface import CurvatureLineTube
 
 Section = list[tuple[float, float]]
 
 
-def ring_section(profile: Profile, s: float, radius: float, side: str, span: tuple[float, float],
-                 along: Callable[[float], float] | None = None) -> Section:  # fmt: skip
+def ring_section(
+    profile: Profile,
+    s: float,
+    radius: float,
+    side: str,
+    span: tuple[float, float],
+    along: Callable[[float], float] | None = None,
+) -> Section:
     """The ring frame's cross-section at ``s``: the profile's outline (w, h) placed at
     (s + w, R + h) outside or (s + w, R - h) inside and closed by its base r = R, clipped to
     ``span``, counter-clockwise in (s, r). Corners within MIN_SIZE of a span end snap to it.
@@ -54,15 +60,19 @@ def ring_section(profile: Profile, s: float, radius: float, side: str, span: tup
     lo, hi = span
     place = along or (lambda w: s + w)
     points = _clip(_clip([(place(w), radius + sign * h) for w, h in profile.outline()], lo, 1.0), hi, -1.0)
-    points = _simplified([(lo if abs(p - lo) < MIN_SIZE else hi if abs(p - hi) < MIN_SIZE else p, r) for p, r in points])
+    points = _simplified(
+        [(lo if abs(p - lo) < MIN_SIZE else hi if abs(p - hi) < MIN_SIZE else p, r) for p, r in points]
+    )
     if len(points) < 4:
         raise ParameterError(f"the ring at s = {s:g} lies outside the span [{lo:g}, {hi:g}]")
     if section_area(points) < 0:
         points = points[::-1]
     short = min(abs(a[0] - b[0]) + abs(a[1] - b[1]) for a, b in zip(points, points[1:] + points[:1]))
     if short < MIN_SIZE:
-        raise ParameterError(f"the ring at s = {s:g} has a side {short:.3g} long in its cross-section (clipped to the "
-                             f"span [{lo:g}, {hi:g}]); every side must be at least {MIN_SIZE:g}")  # fmt: skip
+        raise ParameterError(
+            f"the ring at s = {s:g} has a side {short:.3g} long in its cross-section (clipped to the "
+            f"span [{lo:g}, {hi:g}]); every side must be at least {MIN_SIZE:g}"
+        )
     return points
 
 
@@ -108,8 +118,9 @@ def ring_solid(axis: Axis, section: Section, tolerance: float) -> TopoDS_Solid:
     return swept_section(axis, section, tolerance)[0]
 
 
-def swept_section(axis: Axis, section: Section, tolerance: float,
-                  origin_deg: float = 0.0) -> tuple[TopoDS_Solid, dict[float, list[TopoDS_Face]]]:  # fmt: skip
+def swept_section(
+    axis: Axis, section: Section, tolerance: float, origin_deg: float = 0.0
+) -> tuple[TopoDS_Solid, dict[float, list[TopoDS_Face]]]:
     """:func:`ring_solid`, with the tube faces cut (also) at the angle ``origin_deg`` from r1;
     returns the solid and its tube faces by radius."""
     s_values, radii = [p[0] for p in section], [p[1] for p in section]
@@ -122,9 +133,17 @@ def swept_section(axis: Axis, section: Section, tolerance: float,
         if r not in surfaces:
             # a route's exact frame has v = s only at its breaks: per radius, the s of its corners
             # and joints (breaks at other radii' corners would be C0 knots inside this radius' faces)
-            on = frame if not sub.rings_at_joints else fit_frame(
-                sub, max(radii), tolerance, orthogonality_for(tolerance),
-                rings=[p[0] for p in section if p[1] == r] + joints)  # fmt: skip
+            on = (
+                frame
+                if not sub.rings_at_joints
+                else fit_frame(
+                    sub,
+                    max(radii),
+                    tolerance,
+                    orthogonality_for(tolerance),
+                    rings=[p[0] for p in section if p[1] == r] + joints,
+                )
+            )
             surfaces[r] = exact_section_surface(CurvatureLineTube(sub, r, allow_irregular=True), on, origin_deg)
     arcs = {r: _Arcs(ts) for r, ts in surfaces.items()}
     circles = [_circle(arcs[r], s) for s, r in section]
@@ -138,8 +157,11 @@ def swept_section(axis: Axis, section: Section, tolerance: float,
         (sa, ra), (sb, rb) = section[i], section[j]
         if ra == rb:  # tube faces; the solid lies at larger r when the edge runs along +s
             lo, hi = (i, j) if sa < sb else (j, i)
-            rings = ([circles[lo]] + [_circle(arcs[ra], x) for x in joints if circles[lo].s < x < circles[hi].s]
-                     + [circles[hi]])  # fmt: skip
+            rings = (
+                [circles[lo]]
+                + [_circle(arcs[ra], x) for x in joints if circles[lo].s < x < circles[hi].s]
+                + [circles[hi]]
+            )
             for bottom, top in zip(rings[:-1], rings[1:]):
                 band = _band(arcs[ra], bottom, top, edge_tolerance, reverse=sa < sb)
                 tube_faces.setdefault(ra, []).extend(band)
@@ -215,8 +237,9 @@ def _circle(arcs: _Arcs, s: float) -> _Circle:
     centre = axis.position(np.array([s]))[0]
     a = math.radians(ts.origin_deg)
     x_dir = math.cos(a) * r1 + math.sin(a) * r2
-    circle = Geom_Circle(gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
-                         ts.tube.radius)  # fmt: skip
+    circle = Geom_Circle(
+        gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), ts.tube.radius
+    )
     m = len(arcs.cuts) - 1
     vertices = [vertex(surface.Value(u, s)) for u in arcs.cuts[:-1]]
     edges = [edge(circle, vertices[j], vertices[(j + 1) % m], arcs.angles[j], arcs.angles[j + 1]) for j in range(m)]
@@ -228,12 +251,27 @@ def _band(arcs: _Arcs, bottom: _Circle, top: _Circle, tolerance: float, reverse:
     the circle arcs get their pcurves (u(theta), s) on them."""
     surface, cuts = arcs.ts.surface, arcs.cuts
     m = len(cuts) - 1
-    stringers = [edge(_iso_part(surface, cuts[j], bottom.s, top.s), bottom.vertices[j], top.vertices[j], bottom.s, top.s)
-                 for j in range(m)]  # fmt: skip
-    return [patch_face(surface, cuts[j], cuts[j + 1], bottom.s, top.s, bottom.arcs[j], stringers[(j + 1) % m],
-                       top.arcs[j], stringers[j], reverse=reverse,
-                       ring_pcurves=(arcs.pcurve(j, bottom.s), arcs.pcurve(j, top.s)), ring_tolerance=tolerance)
-            for j in range(m)]  # fmt: skip
+    stringers = [
+        edge(_iso_part(surface, cuts[j], bottom.s, top.s), bottom.vertices[j], top.vertices[j], bottom.s, top.s)
+        for j in range(m)
+    ]
+    return [
+        patch_face(
+            surface,
+            cuts[j],
+            cuts[j + 1],
+            bottom.s,
+            top.s,
+            bottom.arcs[j],
+            stringers[(j + 1) % m],
+            top.arcs[j],
+            stringers[j],
+            reverse=reverse,
+            ring_pcurves=(arcs.pcurve(j, bottom.s), arcs.pcurve(j, top.s)),
+            ring_tolerance=tolerance,
+        )
+        for j in range(m)
+    ]
 
 
 def _iso_part(surface, u: float, s0: float, s1: float):

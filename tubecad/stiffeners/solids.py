@@ -27,16 +27,16 @@ import numpy as np
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 from OCP.Geom import Geom_BSplineSurface
 
-from ..brep.assembled import CapPlane, Strip, closed_strip_solid, strip_solid
-from ..fitting.tolerance import orthogonality_for
-from ..errors import ParameterError
-from ..fitting import FitError, exact_section_surface, fit_frame
-from ..fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
-from ..surface import CanalSurface, CurvatureLineTube
-from .canal import along_wall, canal_ring_solid, canal_stringer_solid, checked_levels
-from .limits import checked_reach, fit_failure
-from .profiles import SIDES, Profile
-from .rings import ring_section, ring_solid
+from tubecad.brep.assembled import CapPlane, Strip, closed_strip_solid, strip_solid
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import orthogonality_for
+from tubecad.fitting import FitError, exact_section_surface, fit_frame
+from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
+from tubecad.stiffeners.canal import along_wall, canal_ring_solid, canal_stringer_solid, checked_levels
+from tubecad.stiffeners.limits import checked_reach, fit_failure
+from tubecad.stiffeners.profiles import SIDES, Profile
+from tubecad.stiffeners.rings import ring_section, ring_solid
+from tubecad.surface import CanalSurface, CurvatureLineTube
 
 
 @dataclass
@@ -72,14 +72,22 @@ class Stiffener:
             return 2 * math.pi * self.base_radius
         x, w = np.polynomial.legendre.leggauss(32)
         s0, s1 = self.base.span
-        edges = np.unique(np.concatenate([np.linspace(s0, s1, 33), [s for s, _ in self.base.axis.joints if s0 < s < s1]]))
+        edges = np.unique(
+            np.concatenate([np.linspace(s0, s1, 33), [s for s, _ in self.base.axis.joints if s0 < s < s1]])
+        )
         s = (0.5 * (edges[1:] + edges[:-1])[:, None] + 0.5 * np.diff(edges)[:, None] * x).ravel()
         g = self.base.fundamental_forms(math.radians(self.value), s).G
         return float((np.sqrt(g) * np.tile(w, len(edges) - 1) * np.repeat(0.5 * np.diff(edges), 32)).sum())
 
 
-def ring_stiffener(tube: CurvatureLineTube, s: float, profile: Profile, side: str = "outside",
-                   tolerance: float = 1e-8, name: str = "ring") -> Stiffener:  # fmt: skip
+def ring_stiffener(
+    tube: CurvatureLineTube,
+    s: float,
+    profile: Profile,
+    side: str = "outside",
+    tolerance: float = 1e-8,
+    name: str = "ring",
+) -> Stiffener:
     """The ring frame at ``s`` on the tube of radius R = tube.radius (the wall's face it stands on):
     its cross-section swept round the tube as one solid (:mod:`.rings`), clipped to the span.
     On a closed axis the ring at either end of the span is the closing ring: its halves
@@ -109,8 +117,10 @@ def _canal_ring(base: CanalSurface, s: float, profile: Profile, side: str, toler
     off along the wall, its web on the normal cones."""
     s0, s1 = base.span
     if base.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0):
-        raise ParameterError(f"{name}: the closing ring frame of a canal wall (a radius law) on a closed axis is not "
-                             "built yet; the other ring frames are")  # fmt: skip
+        raise ParameterError(
+            f"{name}: the closing ring frame of a canal wall (a radius law) on a closed axis is not "
+            "built yet; the other ring frames are"
+        )
     section = ring_section(profile, s, 0.0, side, base.span, along=lambda w: along_wall(base, s, w))
     try:
         solid = canal_ring_solid(base, section, tolerance)
@@ -128,9 +138,15 @@ def _fused(halves: list[bd.Solid], name: str) -> bd.Solid:
     return solids[0]
 
 
-def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profile, side: str = "outside",
-                       span: tuple[float, float] | None = None, tolerance: float = 1e-8,
-                       name: str = "stringer") -> Stiffener:  # fmt: skip
+def stringer_stiffener(
+    tube: CurvatureLineTube,
+    theta_deg: float,
+    profile: Profile,
+    side: str = "outside",
+    span: tuple[float, float] | None = None,
+    tolerance: float = 1e-8,
+    name: str = "stringer",
+) -> Stiffener:
     """The stringer at angle ``theta_deg`` on the tube of radius R = tube.radius, over ``span``:
     the outline's ruled faces and the wall patch under the web, one solid with shared edges
     (:func:`tubecad.brep.assembled.strip_solid`), on a frame fitted to the farthest corner."""
@@ -171,16 +187,27 @@ def stringer_stiffener(tube: CurvatureLineTube, theta_deg: float, profile: Profi
     return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, base_tube)
 
 
-def _canal_stringer(base: CanalSurface, chi0_deg: float, profile: Profile, side: str,
-                    span: tuple[float, float] | None, tolerance: float, name: str) -> Stiffener:  # fmt: skip
+def _canal_stringer(
+    base: CanalSurface,
+    chi0_deg: float,
+    profile: Profile,
+    side: str,
+    span: tuple[float, float] | None,
+    tolerance: float,
+    name: str,
+) -> Stiffener:
     """The stringer chi0 = ``chi0_deg`` on the canal surface ``base`` (:mod:`.canal`)."""
     if base.axis.closed and span is None:
-        raise ParameterError(f"{name}: stringers of a canal wall (a radius law) on a closed axis are not built yet "
-                             "(they end on the closing ring moved by a Moebius map); give a span short of it")  # fmt: skip
+        raise ParameterError(
+            f"{name}: stringers of a canal wall (a radius law) on a closed axis are not built yet "
+            "(they end on the closing ring moved by a Moebius map); give a span short of it"
+        )
     smallest = base.radius_law.min_radius
     if not profile.thickness < 2 * smallest:
-        raise ParameterError(f"thickness must be < 2 r = {2 * smallest:g} (the wall's smallest radius, at s = "
-                             f"{base.radius_law.s_at_min_radius:.6g}), got {profile.thickness:g}")  # fmt: skip
+        raise ParameterError(
+            f"thickness must be < 2 r = {2 * smallest:g} (the wall's smallest radius, at s = "
+            f"{base.radius_law.s_at_min_radius:.6g}), got {profile.thickness:g}"
+        )
     sign = 1.0 if side == "outside" else -1.0
     checked_levels(base, sorted({sign * h for _, h in profile.outline()}), name)  # before anything is fitted
     try:
@@ -208,9 +235,11 @@ def _closes_on_itself(axis, corners: list[tuple[float, float]], name: str) -> bo
     angles = [math.atan2(w, r) for w, r in corners]
     width = max(angles) - min(angles)
     if abs(turn) <= width + 1e-9:
-        raise ParameterError(f"{name} would touch its own start where the closed tube closes: the rotation-minimising "
-                             f"frame comes back turned by the holonomy {math.degrees(turn):.6g} deg, less than the "
-                             f"stringer's angular width {math.degrees(width):.6g} deg; leave it out or narrow the profile")  # fmt: skip
+        raise ParameterError(
+            f"{name} would touch its own start where the closed tube closes: the rotation-minimising "
+            f"frame comes back turned by the holonomy {math.degrees(turn):.6g} deg, less than the "
+            f"stringer's angular width {math.degrees(width):.6g} deg; leave it out or narrow the profile"
+        )
     return False
 
 
@@ -247,15 +276,24 @@ def ruled_surface(frame, theta: float, p: tuple[float, float], q: tuple[float, f
     poles = np.stack([C + p[1] * N + p[0] * E, C + q[1] * N + q[0] * E])
     s_knots, s_mults = knots_and_multiplicities(frame.spline.t)
     if frame.weights is not None:  # a route's rational frame: the same weights along s
-        return Geom_BSplineSurface(points_2d(poles), reals_2d(np.vstack([frame.weights, frame.weights])),
-                                   reals([0.0, 1.0]), reals(s_knots), integers([2, 2]), integers(s_mults), 1,
-                                   frame.degree)  # fmt: skip
-    return Geom_BSplineSurface(points_2d(poles), reals([0.0, 1.0]), reals(s_knots), integers([2, 2]),
-                               integers(s_mults), 1, frame.degree)  # fmt: skip
+        return Geom_BSplineSurface(
+            points_2d(poles),
+            reals_2d(np.vstack([frame.weights, frame.weights])),
+            reals([0.0, 1.0]),
+            reals(s_knots),
+            integers([2, 2]),
+            integers(s_mults),
+            1,
+            frame.degree,
+        )
+    return Geom_BSplineSurface(
+        points_2d(poles), reals([0.0, 1.0]), reals(s_knots), integers([2, 2]), integers(s_mults), 1, frame.degree
+    )
 
 
-def web_face(base: CurvatureLineTube, theta_deg: float, height: float, side: str = "outside",
-             tolerance: float = 1e-8) -> bd.Face:  # fmt: skip
+def web_face(
+    base: CurvatureLineTube, theta_deg: float, height: float, side: str = "outside", tolerance: float = 1e-8
+) -> bd.Face:
     """The web's mid-surface along the stringer at ``theta_deg``: the strip of surface normals
     from the wall (radius R) to R +- height, a ruled B-spline face on the frame fit."""
     _check_side(side)

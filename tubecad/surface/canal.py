@@ -43,14 +43,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from ..curves.axis import Axis
-from ..curves.bishop import solve_linear_ode
-from ..curves.radius_law import RadiusLaw, RadiusValue, refined_extreme
-from ..curves.radius_law import radius_law as radius_law_of
-from ..errors import ParameterError, RegularityError
-from ..validation import flag
-from .forms import FundamentalForms, SurfaceDerivatives
-from .tube import CurvatureLineTube
+from tubecad.core.errors import ParameterError, RegularityError
+from tubecad.core.validation import flag
+from tubecad.curves.axis import Axis
+from tubecad.curves.bishop import solve_linear_ode
+from tubecad.curves.radius_law import RadiusLaw, RadiusValue, refined_extreme
+from tubecad.curves.radius_law import radius_law as radius_law_of
+from tubecad.surface.forms import FundamentalForms, SurfaceDerivatives
+from tubecad.surface.tube import CurvatureLineTube
 
 FloatArray = np.ndarray
 MAX_FOLD_SAMPLES = 40_000
@@ -91,19 +91,32 @@ class CanalRegularity:
         parts = []
         if not self.locally_regular:
             where = ", ".join(f"[{a:.6g}, {b:.6g}]" for a, b in self.folded_intervals)
-            parts.append(f"r (k q + r'') / q^2 reaches {self.max_fold:.6g} at s = {self.s_at_max_fold:.6g}; it must "
-                         f"stay below 1 (the surface folds: the stringers stop for s in {where})")  # fmt: skip
+            parts.append(
+                f"r (k q + r'') / q^2 reaches {self.max_fold:.6g} at s = {self.s_at_max_fold:.6g}; it must "
+                f"stay below 1 (the surface folds: the stringers stop for s in {where})"
+            )
         if self.entry is not None:
             s1, s2, depth = self.entry
-            parts.append(f"the surface self-intersects: at s = {s1:.6g} it passes {depth:.3g} inside the sphere of "
-                         f"the surface at s = {s2:.6g}")  # fmt: skip
-        return ("radius: canal surface is not regular: " + "; ".join(parts)
-                + " (pass allow_irregular=True to build it anyway)")  # fmt: skip
+            parts.append(
+                f"the surface self-intersects: at s = {s1:.6g} it passes {depth:.3g} inside the sphere of "
+                f"the surface at s = {s2:.6g}"
+            )
+        return (
+            "radius: canal surface is not regular: "
+            + "; ".join(parts)
+            + " (pass allow_irregular=True to build it anyway)"
+        )
 
     def describe(self) -> dict[str, Any]:
-        return {"max_abs_slope": self.max_slope, "s_at_max_abs_slope": self.s_at_max_slope,
-                "max_fold": self.max_fold, "s_at_max_fold": self.s_at_max_fold, "min_stringer_speed": self.min_speed,
-                "s_at_min_stringer_speed": self.s_at_min_speed, "ok": self.ok}  # fmt: skip
+        return {
+            "max_abs_slope": self.max_slope,
+            "s_at_max_abs_slope": self.s_at_max_slope,
+            "max_fold": self.max_fold,
+            "s_at_max_fold": self.s_at_max_fold,
+            "min_stringer_speed": self.min_speed,
+            "s_at_min_stringer_speed": self.s_at_min_speed,
+            "ok": self.ok,
+        }
 
 
 @dataclass(frozen=True)
@@ -130,10 +143,18 @@ class CanalSurface:
     unless ``allow_irregular=True``; the measured facts are in :attr:`regularity` either way.
     """
 
-    def __init__(self, axis: Axis, radius_law: RadiusLaw | RadiusValue, *, allow_irregular: bool = False,
-                 _known: tuple[Any, CanalRegularity] | None = None) -> None:  # fmt: skip
+    def __init__(
+        self,
+        axis: Axis,
+        radius_law: RadiusLaw | RadiusValue,
+        *,
+        allow_irregular: bool = False,
+        _known: tuple[Any, CanalRegularity] | None = None,
+    ) -> None:
         if not isinstance(axis, Axis):
-            raise ParameterError(f"axis must be a tubecad Axis (a SlopeCurve or another kind), got {type(axis).__name__}")
+            raise ParameterError(
+                f"axis must be a tubecad Axis (a SlopeCurve or another kind), got {type(axis).__name__}"
+            )
         self.axis = axis
         self.radius_law = radius_law_of(radius_law, axis.span, axis=axis)
         if axis.closed:  # the circle at s1 must be the circle at s0
@@ -278,7 +299,9 @@ class CanalSurface:
         axis, law = self.axis.restricted(span), self.radius_law.restricted(span)
         if axis.span == self.span:
             return self
-        piece = CanalSurface(axis, law, allow_irregular=True, _known=(None, self.regularity))  # a piece of a regular surface is regular
+        piece = CanalSurface(
+            axis, law, allow_irregular=True, _known=(None, self.regularity)
+        )  # a piece of a regular surface is regular
         piece._moebius = None if law.constant else piece._solve_moebius()
         return piece
 
@@ -320,8 +343,9 @@ class CanalSurface:
         e = ang.cos[..., None] * r1 + ang.sin[..., None] * r2
         return (-dr)[..., None] * t + np.sqrt(1.0 - dr * dr)[..., None] * e
 
-    def _sphere_derivatives(self, cos: FloatArray, sin: FloatArray, s: FloatArray,
-                            second: bool = True) -> dict[str, FloatArray]:  # fmt: skip
+    def _sphere_derivatives(
+        self, cos: FloatArray, sin: FloatArray, s: FloatArray, second: bool = True
+    ) -> dict[str, FloatArray]:
         """X and its partial derivatives in (chi, s) with chi held fixed (docs/MATH.md section 8).
 
         With g = -r r', h = r q, kappa = k1 cos + k2 sin, kbar = k2 cos - k1 sin:
@@ -343,7 +367,11 @@ class CanalSurface:
         def v(x: FloatArray) -> FloatArray:
             return x[..., None]
 
-        first = {"X": a.position + v(g) * a.t + v(h) * e, "X_chi": v(h) * ebar, "X_s": v(A) * a.t + v(B) * e + v(C) * ebar}
+        first = {
+            "X": a.position + v(g) * a.t + v(h) * e,
+            "X_chi": v(h) * ebar,
+            "X_s": v(A) * a.t + v(B) * e + v(C) * ebar,
+        }
         if not second:
             return first
         dk1, dk2 = self.axis.normal_development_derivative(s)
@@ -417,7 +445,10 @@ class CanalSurface:
         intervals = _runs(lambda x: float(self.fold_ratio(np.array(x))) - 1.0, s, self.fold_ratio(s) >= 1.0)
         # a folded surface is refused anyway; one no longer than its smallest radius (a ring
         # frame's piece) whose axis turns by less than a radian cannot come back into its spheres
-        short = self.length <= law.min_radius and self.length * float(np.hypot(*self.axis.normal_development(s)).max()) < 1.0
+        short = (
+            self.length <= law.min_radius
+            and self.length * float(np.hypot(*self.axis.normal_development(s)).max()) < 1.0
+        )
         entry = self._sphere_entry() if not intervals and not short else None
         return CanalRegularity(law.max_slope, law.s_at_max_slope, fold, s_fold, min_speed, s_speed, intervals, entry)
 
@@ -457,8 +488,13 @@ class CanalSurface:
         """(chi, s, weights (s), d chi): Gauss-Legendre panels in s (starting at the law's and
         the axis' breaks), the periodic trapezoid rule in chi."""
         breaks = self._breaks()
-        edges = np.concatenate([np.linspace(a, b, max(1, math.ceil(panels * (b - a) / self.length)) + 1)[:-1]
-                                for a, b in itertools.pairwise(breaks)] + [breaks[-1:]])  # fmt: skip
+        edges = np.concatenate(
+            [
+                np.linspace(a, b, max(1, math.ceil(panels * (b - a) / self.length)) + 1)[:-1]
+                for a, b in itertools.pairwise(breaks)
+            ]
+            + [breaks[-1:]]
+        )
         x, w = np.polynomial.legendre.leggauss(order)
         mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * np.diff(edges)
         chi = np.linspace(0.0, 2.0 * math.pi, n_chi, endpoint=False)
@@ -495,8 +531,10 @@ class CanalSurface:
         law = self.radius_law
         r, dr, ddr = law.r(s), law.dr(s), law.ddr(s)
         advance = 1.0 - dr**2 - r * ddr
-        return (float((2 * math.pi * r * advance * ws).sum()),
-                float((math.pi * r**2 * (1.0 - dr**2) * advance * ws).sum()))  # fmt: skip
+        return (
+            float((2 * math.pi * r * advance * ws).sum()),
+            float((math.pi * r**2 * (1.0 - dr**2) * advance * ws).sum()),
+        )
 
     @property
     def volume(self) -> float:
@@ -523,8 +561,9 @@ def _runs(excess: Any, s: np.ndarray, bad: np.ndarray) -> list[tuple[float, floa
     return runs
 
 
-def tube_or_canal(axis: Axis, radius: RadiusLaw | RadiusValue, allow_irregular: bool = False
-                  ) -> CurvatureLineTube | CanalSurface:  # fmt: skip
+def tube_or_canal(
+    axis: Axis, radius: RadiusLaw | RadiusValue, allow_irregular: bool = False
+) -> CurvatureLineTube | CanalSurface:
     """A constant radius (a number) gives today's :class:`CurvatureLineTube`; any other law
     (an expression, a callable, a table) the :class:`CanalSurface`."""
     law = radius_law_of(radius, axis.span, axis=axis)

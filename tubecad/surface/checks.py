@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .tube import CurvatureLineTube
+from tubecad.surface.tube import CurvatureLineTube
 
 
 @dataclass(frozen=True)
@@ -82,8 +82,9 @@ def distance_to_axis(
     return np.linalg.norm(p - axis.position(x), axis=-1), x
 
 
-def envelope_distance(surface, points: np.ndarray, s_guess: np.ndarray | None = None,
-                      iters: int = 12) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+def envelope_distance(
+    surface, points: np.ndarray, s_guess: np.ndarray | None = None, iters: int = 12
+) -> tuple[np.ndarray, np.ndarray]:
     """(e, s*): how far each point lies outside the canal surface ``surface`` (a CanalSurface,
     the envelope of the spheres of radius r(s) about c(s)), e = min_s |P - c(s)| - r(s), and
     the s* where the minimum is (near the surface: the sphere the point's normal comes from).

@@ -44,16 +44,20 @@ class FundamentalForms:
     N: FloatArray
 
     @classmethod
-    def from_derivatives(cls, d: SurfaceDerivatives) -> "FundamentalForms":
+    def from_derivatives(cls, d: SurfaceDerivatives) -> FundamentalForms:
         nrm = d.normal
 
         def dot(a: FloatArray, b: FloatArray) -> FloatArray:
             return np.einsum("...i,...i->...", a, b)
 
         return cls(
-            dot(d.S_u, d.S_u), dot(d.S_u, d.S_s), dot(d.S_s, d.S_s),
-            dot(d.S_uu, nrm), dot(d.S_us, nrm), dot(d.S_ss, nrm),
-        )  # fmt: skip
+            dot(d.S_u, d.S_u),
+            dot(d.S_u, d.S_s),
+            dot(d.S_s, d.S_s),
+            dot(d.S_uu, nrm),
+            dot(d.S_us, nrm),
+            dot(d.S_ss, nrm),
+        )
 
     @property
     def orthogonality_error(self) -> FloatArray:

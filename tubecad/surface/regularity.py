@@ -22,7 +22,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize, minimize_scalar
 from scipy.spatial import cKDTree
 
-from ..curves.axis import Axis
+from tubecad.curves.axis import Axis
 
 MAX_SAMPLES = 40_000
 #: the closest return of the axis is reported when it is within this many radii
@@ -106,6 +106,7 @@ def _refine_max(axis: Axis, radius: float, s: np.ndarray, i: int) -> tuple[float
 
 def _folded_intervals(axis: Axis, radius: float, s: np.ndarray, bad: np.ndarray) -> list[tuple[float, float]]:
     """Maximal runs of s where rho |k| >= 1, with their ends refined by root finding."""
+
     def excess(x: float) -> float:
         return radius * abs(float(axis.curvature(x))) - 1.0
 
@@ -178,7 +179,9 @@ def _deepest_entry(
     h = ss[1] - ss[0]
     _, r1, r2 = axis.rotation_minimising_frame(ss[near])
     u = np.linspace(0.0, 2.0 * math.pi, 32, endpoint=False)
-    surf = pts[near][:, None, :] + radius * (np.cos(u)[None, :, None] * r1[:, None] + np.sin(u)[None, :, None] * r2[:, None])
+    surf = pts[near][:, None, :] + radius * (
+        np.cos(u)[None, :, None] * r1[:, None] + np.sin(u)[None, :, None] * r2[:, None]
+    )
     circle_s = np.repeat(ss[near], len(u))
     surf = surf.reshape(-1, 3)
     cand = cKDTree(surf).sparse_distance_matrix(tree, radius + h, output_type="ndarray")

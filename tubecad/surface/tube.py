@@ -16,11 +16,11 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..curves.axis import Axis
-from ..errors import ParameterError, RegularityError
-from ..validation import bounded_length, flag
-from .forms import FundamentalForms, SurfaceDerivatives
-from .regularity import RegularityReport, check_regularity
+from tubecad.core.errors import ParameterError, RegularityError
+from tubecad.core.validation import bounded_length, flag
+from tubecad.curves.axis import Axis
+from tubecad.surface.forms import FundamentalForms, SurfaceDerivatives
+from tubecad.surface.regularity import RegularityReport, check_regularity
 
 FloatArray = np.ndarray
 
@@ -36,7 +36,9 @@ class CurvatureLineTube:
 
     def __init__(self, axis: Axis, radius: float, *, allow_irregular: bool = False) -> None:
         if not isinstance(axis, Axis):
-            raise ParameterError(f"axis must be a tubecad Axis (a SlopeCurve or another kind), got {type(axis).__name__}")
+            raise ParameterError(
+                f"axis must be a tubecad Axis (a SlopeCurve or another kind), got {type(axis).__name__}"
+            )
         self.axis = axis
         self.radius = bounded_length("radius", radius, 0.0)
         allow_irregular = flag("allow_irregular", allow_irregular)
@@ -67,7 +69,7 @@ class CurvatureLineTube:
         """pi rho^2 L, enclosed with planar end discs in the normal planes."""
         return math.pi * self.radius**2 * self.length
 
-    def offset(self, distance: float, *, allow_irregular: bool = False) -> "CurvatureLineTube":
+    def offset(self, distance: float, *, allow_irregular: bool = False) -> CurvatureLineTube:
         """The normal offset by ``distance`` (outward > 0): the tube of radius rho + distance
         on the same axis, with the same curvature-line net (docs/MATH.md section 4)."""
         return CurvatureLineTube(self.axis, self.radius + distance, allow_irregular=allow_irregular)

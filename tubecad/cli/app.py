@@ -1,0 +1,899 @@
+"""The ``tubecad`` command line.
+
+    tubecad paper [-o DIR]                    the paper's example: pictures, STEP, IGES, report.json
+    tubecad report SPEC.toml                  print the report (JSON) of any spec
+    tubecad build SPEC.toml -o OUT.step ...   build the spec's solid, write STEP/IGES/BREP
+    tubecad build A.toml B.toml ... -d DIR    a batch on all cores: DIR/NAME.step, NAME.report.json, batch.json
+    tubecad build SPEC.toml --sweep tube.radius=10,12,15 -d DIR     the spec for each value (a batch)
+    tubecad build ... -d DIR --scheduler tcp://HOST:PORT            the batch on a Dask cluster; reruns resume
+    tubecad flat SPEC.toml -o DIR             flat patterns of the spec's stiffener webs
+    tubecad shop SPEC.toml -o DIR             shop-floor package: nested webs, flanges, bending, marking, panels, pin jigs
+    tubecad mesh SPEC.toml -o model.inp ...   finite-element shells and beams on the curvature-line net (.inp, .msh, .vtu)
+    tubecad analyse SPEC.toml -o DIR          the [analysis] pressure case solved with CalculiX: results.json, a picture
+    tubecad schema [-o FILE]                  the JSON Schema of spec files, for editors
+    tubecad view SPEC.toml | paper [--port N] the named, coloured tree in OCP CAD Viewer
+
+Bad input exits with code 2 and a one-line message naming the key or option. A batch
+(tubecad.batch.jobs) prints a line per finished job to stderr and exits with 2 if any
+job failed, 130 on Ctrl-C.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from tubecad.cli.signals import interrupts_end_at_once
+from tubecad.core.atomic import remove_temporaries, write_text
+from tubecad.core.errors import TubecadError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.export.registry import FORMAT_NAMES as BATCH_FORMATS
+from tubecad.export.registry import Exportable, write_output
+from tubecad.spec.grid import DEFAULT_NS, DEFAULT_NU
+
+
+def _load() -> None:
+    """The heavy imports (numpy/scipy, OCCT and build123d, matplotlib), made by the first
+    command that needs them, so that ``tubecad --help`` starts in a fraction of a second."""
+    global build_wall_solid, PAPER_LAYOUT, PAPER_RING_PROFILE, PAPER_STIFFENER_RINGS, PAPER_STIFFENER_STRINGERS
+    global PAPER_STRINGER_PROFILE, PAPER_WALL_THICKNESS, STEEL_DENSITY, paper_tube, write_projections
+    global build_and_export, build_from_spec, split_outputs, stiffener_selection, readback_report
+    global build_report, stiffener_report, to_json, tube_report, load_spec
+    with interrupts_end_at_once():
+        from tubecad.brep import build_wall_solid
+        from tubecad.export.plots import write_projections
+        from tubecad.export.readback import readback_report
+        from tubecad.spec.build import build_and_export, build_from_spec, split_outputs, stiffener_selection
+        from tubecad.spec.paper import (
+            PAPER_LAYOUT,
+            PAPER_RING_PROFILE,
+            PAPER_STIFFENER_RINGS,
+            PAPER_STIFFENER_STRINGERS,
+            PAPER_STRINGER_PROFILE,
+            PAPER_WALL_THICKNESS,
+            STEEL_DENSITY,
+            paper_tube,
+        )
+        from tubecad.spec.parse import load_spec
+        from tubecad.spec.report import build_report, stiffener_report, to_json, tube_report
+
+
+def _load_maths() -> None:
+    """What ``tubecad report`` needs: numpy/scipy and the spec checker, never OCCT."""
+    global to_json, tube_report, load_spec
+    with interrupts_end_at_once():
+        from tubecad.spec.parse import load_spec
+        from tubecad.spec.report import to_json, tube_report
+
+
+class UserError(click.ClickException):
+    """Bad input: exit code 2, message only (no traceback)."""
+
+    exit_code = 2
+
+
+grid_options = [
+    click.option(
+        "--nu",
+        default=DEFAULT_NU,
+        show_default=True,
+        type=click.IntRange(8, 4096),
+        help="Grid points around the circle for the measured checks.",
+    ),
+    click.option(
+        "--ns",
+        default=DEFAULT_NS,
+        show_default=True,
+        type=click.IntRange(8, 200_000),
+        help="Grid points along the axis for the measured checks.",
+    ),
+]
+
+
+def with_grid_options(func):
+    for option in reversed(grid_options):
+        func = option(func)
+    return func
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="tubecad")
+def cli() -> None:
+    """tubecad: tubular surfaces parameterised by their lines of curvature."""
+
+
+@cli.command()
+@click.option(
+    "-o",
+    "--output",
+    "output",
+    default="tubecad-paper",
+    show_default=True,
+    type=click.Path(file_okay=False, path_type=Path),
+    help="Folder to write into (created if needed).",
+)
+@with_grid_options
+def paper(output: Path, nu: int, ns: int) -> None:
+    """Build the paper's example (k = 10/s, beta = 10 deg, rho = 15, s in [200, 1200]).
+
+    Writes into OUTPUT: projections.png/.svg (frontal and horizontal projections with
+    the curvature-line net); paper.step and paper.iges, the wall solid (thickness 2,
+    centred: radii 14 and 16) with 11 ring frames and 8 stringers as its edges;
+    paper_step.png, a picture rendered from the STEP file read back; paper_stiffened.step,
+    a named assembly (wall, ring_01..ring_09 and stringer_00, _02, _04, _06 flat-bar
+    stiffeners inside the wall, curvature_lines with line_ring_00.., line_stringer_00..
+    and their _inner twins) and its picture paper_stiffened.png;
+    paper_lines.csv/.json, the curvature lines as polylines with tangents and normals;
+    report.json.
+    """
+    _load()
+    try:
+        output.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UserError(f"cannot create output folder {str(output)!r}: {exc.strerror}") from None
+    try:
+        tube = paper_tube()
+        written = write_projections(tube, output)
+        build = build_wall_solid(tube, PAPER_WALL_THICKNESS, "centered", PAPER_LAYOUT(tube))
+        report = tube_report(tube, nu, ns)
+        report["brep"] = build_report(build, tube)
+        exports = {}
+        for name in ("paper.step", "paper.iges"):  # each file measured as read back before it is moved into place
+
+            def check(tmp, fmt, target=output / name):
+                return readback_report(tmp, build.shape, build, target)
+
+            path, exports[name] = write_output(Exportable(build.shape), output / name, check)
+            written.append(path)
+        report["exports"] = exports
+        written.append(render_step_picture(output / "paper.step", output / "paper_step.png"))
+        written += write_paper_stiffeners(build, output, report)
+        written.append(write_text(output / "report.json", to_json(report)))
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    for path in written:
+        click.echo(str(path))
+
+
+def write_paper_stiffeners(build, output: Path, report: dict) -> list[Path]:
+    """The paper's default stiffeners, named assembly, polylines and picture (issue 4)."""
+    import build123d as bd
+
+    from tubecad.export.cad import export_named_step
+    from tubecad.export.render import render_shape_png
+    from tubecad.spec.paper import paper_stiffeners
+    from tubecad.stiffeners import net_lines, polylines_csv, polylines_json
+    from tubecad.stiffeners.assembly import named_assembly
+
+    stiffeners = paper_stiffeners(build)  # shared with `tubecad view paper`
+    lines = net_lines(build.surfaces[0], build.layout) + net_lines(build.surfaces[1], build.layout, "_inner")
+    step = export_named_step(named_assembly(build, stiffeners, lines), output / "paper_stiffened.step")
+    report["stiffeners"] = stiffener_report(stiffeners, lines, STEEL_DENSITY)
+    written = write_flat_patterns(stiffeners, output / "flat")
+    frame = [c for c in bd.import_step(step).children if c.label.startswith(("ring_", "stringer_"))]
+    picture = render_shape_png(
+        bd.Compound(children=frame),
+        output / "paper_stiffened.png",
+        title="paper_stiffened.step as read back: the stiffeners inside the wall (wall hidden)",
+    )
+    return [
+        step,
+        polylines_csv(lines, output / "paper_lines.csv"),
+        polylines_json(lines, output / "paper_lines.json"),
+        picture,
+        *written,
+    ]
+
+
+def write_flat_patterns(stiffeners, folder: Path) -> list[Path]:
+    """webs.dxf, NAME.svg/.png per web and flat.json into ``folder`` (issue 4)."""
+    from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
+
+    folder.mkdir(parents=True, exist_ok=True)
+    patterns = [
+        ring_web_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
+        if st.kind == "ring"
+        else stringer_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
+        for st in stiffeners
+    ]
+    return write_patterns(patterns, folder)
+
+
+def write_patterns(patterns, folder: Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> list[Path]:
+    """webs.dxf (all), NAME.svg and NAME.png per web, flat.json with the measures; lengths
+    in ``length_unit`` (the spec's [units] length, stated in the DXF and flat.json)."""
+    from tubecad.stiffeners.flat import write_dxf, write_picture
+
+    written = [write_dxf(patterns, folder / "webs.dxf", length_unit=length_unit)]
+    for pattern in patterns:
+        written += write_picture(pattern, folder)
+    from shapely.geometry import Polygon
+
+    summary = {
+        "units": {"length": length_unit},
+        "webs": [
+            {
+                "name": p.name,
+                "kind": p.kind,
+                "area": p.area,
+                "base_length": p.base_length,
+                "top_length": p.top_length,
+                "crosses_itself": not Polygon(p.outline).is_valid,
+            }
+            for p in patterns
+        ],
+        "note": "a web that crosses itself cannot be cut as drawn: `tubecad shop` splits it into cuttable "
+        "pieces at butt joints and nests them on plates",
+    }
+    written.append(write_text(folder / "flat.json", to_json(summary)))
+    return written
+
+
+def render_step_picture(step: Path, png: Path) -> Path:
+    """Render the STEP file as read back (tessellated faces, B-rep edges on top)."""
+    from tubecad.export.cad import import_shape
+    from tubecad.export.render import render_shape_png
+
+    return render_shape_png(import_shape(step), png, title=f"{step.name} as read back: faces and B-rep edges")
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@with_grid_options
+def report(spec: Path, nu: int, ns: int) -> None:
+    """Print the JSON report of the tube described by SPEC (a TOML file)."""
+    _load_maths()
+    try:
+        checked = load_spec(spec)
+        click.echo(to_json(tube_report(checked.tube, nu, ns, checked.length_unit)), nl=False)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+
+
+@cli.command()
+@click.option(
+    "-o",
+    "--output",
+    "output",
+    default=None,
+    type=click.Path(dir_okay=False, path_type=Path),
+    help="Write the schema to this file (atomically) instead of printing it.",
+)
+def schema(output: Path | None) -> None:
+    """Print the JSON Schema (draft 2020-12) of spec files, for editors' completion and checks:
+    e.g. tubecad schema -o tubecad-spec.schema.json, and "#:schema ./tubecad-spec.schema.json"
+    as the first line of a spec (Even Better TOML / taplo). Made from the spec checker's own
+    key tables; the checker stays the authority (it also checks the geometry)."""
+    from tubecad.spec.schema import schema_text  # light: no numpy, no OCCT
+
+    if output is None:
+        click.echo(schema_text(), nl=False)
+        return
+    try:
+        click.echo(str(write_text(output, schema_text())))
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+
+
+@cli.command()
+@click.argument(
+    "specs", metavar="SPEC [SPEC ...]", nargs=-1, required=True, type=click.Path(dir_okay=False, path_type=Path)
+)
+@click.option(
+    "-o",
+    "--output",
+    "outputs",
+    multiple=True,
+    type=click.Path(dir_okay=False, path_type=Path),
+    help="One SPEC: output file, repeatable; the format follows the extension: .step/.stp, .iges/.igs, "
+    ".brep (exact B-rep), .stl, .3mf, .gltf/.glb (meshes for visual use), or .csv/.json for the "
+    "curvature lines as polylines (position, tangent, normal).",
+)
+@click.option("--step-schema", type=click.Choice(["AP214", "AP242"]), default="AP214", show_default=True)
+@click.option(
+    "--report",
+    "report_path",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="One SPEC: also write the measured report (JSON) here.",
+)
+@click.option(
+    "-d",
+    "--out-dir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=None,
+    help="Batch: folder for NAME.EXT per format, NAME.report.json per job and batch.json (created if needed).",
+)
+@click.option(
+    "-f",
+    "--format",
+    "formats",
+    multiple=True,
+    type=click.Choice(BATCH_FORMATS, case_sensitive=False),
+    help="Batch: output format, repeatable (default step).",
+)
+@click.option(
+    "--sweep",
+    "sweeps",
+    multiple=True,
+    metavar="SECTION.KEY=VALUES",
+    help="Batch: build each SPEC with KEY set to each value: 10,12,15 (TOML values) or START:STOP:COUNT "
+    "(inclusive); several --sweep give every combination.",
+)
+@click.option(
+    "-j",
+    "--jobs",
+    type=click.IntRange(min=1),
+    default=None,
+    help="Batch: jobs run at once, each in its own process  [default: all cores]",
+)
+@click.option(
+    "--scheduler",
+    default=None,
+    metavar="tcp://HOST:PORT",
+    help="Batch: run the jobs on this Dask distributed cluster (the extra tubecad[dask]; or [batch] "
+    "scheduler in the first SPEC); results come back here. 'local': this machine's processes.",
+)
+@click.option(
+    "--remote-dir",
+    default=None,
+    metavar="DIR",
+    help="Batch on a cluster: the workers share a file system and write into DIR (the path of -d/--out-dir "
+    "as the workers see it) instead of sending the files back.",
+)
+@click.option(
+    "--resume",
+    is_flag=True,
+    help="Batch: skip the jobs whose outputs DIR/batch.json records as built from the same spec and "
+    "unchanged (the default when DIR/batch.json exists).",
+)
+@click.option("--force", is_flag=True, help="Batch: build every job again, whatever DIR/batch.json records.")
+@click.option(
+    "--retries",
+    type=click.IntRange(0, 100),
+    default=1,
+    show_default=True,
+    help="Batch: how often a job is run again when its worker dies or it times out.",
+)
+@click.option(
+    "--job-timeout",
+    type=click.FloatRange(min=0, min_open=True),
+    default=None,
+    metavar="SECONDS",
+    help="Batch: stop a job that runs longer (it is retried, then fails)  [default: no limit]",
+)
+@click.option(
+    "--mesh-tolerance",
+    type=float,
+    default=None,
+    metavar="LENGTH",
+    help="Mesh outputs only (.stl, .3mf, .gltf, .glb): the farthest a triangle may lie from the surface, "
+    "in model units, from 1e-4 to 1 x the smallest tube radius  [default: 1e-3 x that radius]",
+)
+@click.option(
+    "--mesh-angle",
+    type=float,
+    default=None,
+    metavar="DEGREES",
+    help="Mesh outputs only: the most the normal may turn between neighbouring triangles, 1 to 45; the "
+    "finer of the two tolerances wins  [default: 5.73 (0.1 rad)]",
+)
+@click.option(
+    "-q",
+    "--quiet",
+    is_flag=True,
+    help="No progress on stderr (shown once a build has run 2 s: a bar on a terminal, else lines); "
+    "batch: no line per job.",
+)
+def build(
+    specs: tuple[Path, ...],
+    outputs: tuple[Path, ...],
+    step_schema: str,
+    report_path: Path | None,
+    out_dir: Path | None,
+    formats: tuple[str, ...],
+    sweeps: tuple[str, ...],
+    jobs: int | None,
+    scheduler: str | None,
+    remote_dir: str | None,
+    resume: bool,
+    force: bool,
+    retries: int,
+    job_timeout: float | None,
+    mesh_tolerance: float | None,
+    mesh_angle: float | None,
+    quiet: bool,
+) -> None:
+    """Build the solid of SPEC (the wall if it has [wall], else the capped tube) and write it.
+
+    With one SPEC and -o, each file is read back and checked; a summary is printed.
+
+    Batch (several SPECs, --sweep or -d): every job writes DIR/NAME.EXT for each -f format and
+    DIR/NAME.report.json, a line per finished job goes to stderr, DIR/batch.json lists every
+    job; the exit code is 2 if any job failed.
+    """
+    _load()
+    from tubecad.core.progress import Progress
+    from tubecad.spec.build import check_mesh_options
+
+    try:
+        check_mesh_options(outputs or [f"job.{f}" for f in formats or ("step",)], mesh_tolerance, mesh_angle)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    if resume and force:
+        raise click.UsageError("--resume and --force exclude each other")
+    if len(specs) > 1 or sweeps or out_dir is not None:
+        build_batch(
+            specs,
+            step_schema,
+            out_dir,
+            formats,
+            sweeps,
+            jobs,
+            outputs,
+            report_path,
+            (mesh_tolerance, mesh_angle),
+            quiet,
+            scheduler,
+            remote_dir,
+            not force,
+            retries,
+            job_timeout,
+        )
+        return
+    if formats or jobs is not None or scheduler or remote_dir or job_timeout is not None:
+        raise click.UsageError(
+            "-f/--format, -j/--jobs, --scheduler, --remote-dir and --job-timeout are for batch mode "
+            "(several SPECs, --sweep, or -d/--out-dir)"
+        )
+    if not outputs:
+        raise click.UsageError("Missing option '-o' / '--output' (or -d/--out-dir DIR for batch mode).")
+    written: list[Path] = []
+    try:
+        split_outputs(outputs)  # an unknown extension is refused before anything is built
+        with Progress(enabled=not quiet) as progress:  # on stderr, once the build has run for 2 s
+            report = build_and_export(
+                load_spec(specs[0]), outputs, step_schema, report_path, written, mesh_tolerance, mesh_angle, progress
+            )
+    except TubecadError as exc:
+        for path in written:  # a failed build (e.g. a file that cannot hold the tolerance) leaves no files
+            path.unlink(missing_ok=True)
+        raise UserError(str(exc)) from None
+    brep = report["brep"]
+    click.echo(
+        f"{brep['kind']}: {brep['faces']} faces, {brep['edges']} edges, valid={brep['valid']}, "
+        f"fit deviation {brep['fit']['max_deviation']:.2e}, orthogonality {brep['fit']['max_orthogonality_error']:.2e}"
+    )
+    for path, info in report["exports"].items():
+        click.echo(f"{path}: {export_summary(info)}")
+
+
+def export_summary(info: dict) -> str:
+    """One line on a written file, from what was measured on it as read back."""
+    if "lines" in info:
+        return f"{info['bytes']} bytes, {info['lines']} curvature lines as polylines"
+    if "triangles" in info:
+        checked = (
+            f", within {info['max_triangle_deviation']:.1e} of the tube (vertices {info['max_vertex_deviation']:.1e})"
+            if "max_triangle_deviation" in info
+            else ""
+        )
+        asked = (
+            f", tolerance {info['deflection']:.3g} and {info['angular_deflection_deg']:.3g} deg"
+            if info.get("deflection") is not None and info.get("angular_deflection_deg") is not None
+            else ""
+        )
+        return f"{info['bytes']} bytes, mesh for visual use: {info['triangles']} triangles{checked}{asked}"
+    measured = (
+        f", file deviation {info['max_deviation']:.2e}, orthogonality {info['max_orthogonality_error']:.2e}"
+        if "max_deviation" in info
+        else ""
+    )
+    return f"{info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}{measured}"
+
+
+def build_batch(
+    specs,
+    step_schema,
+    out_dir,
+    formats,
+    sweeps,
+    jobs,
+    outputs,
+    report_path,
+    mesh=(None, None),
+    quiet: bool = False,
+    scheduler: str | None = None,
+    remote_dir: str | None = None,
+    resume: bool = True,
+    retries: int = 1,
+    job_timeout: float | None = None,
+) -> None:
+    """``tubecad build`` over many specs or a sweep (tubecad.batch.jobs); exits 0, 2 or 130.
+    ``mesh``: (--mesh-tolerance, --mesh-angle); ``quiet``: no line per job; ``scheduler``: a
+    Dask cluster; ``resume``: skip the jobs the manifest shows built and unchanged."""
+    import os
+    import time
+
+    from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs
+    from tubecad.batch.manifest import read_manifest, spec_hash, up_to_date
+    from tubecad.batch.runner import batch_record, run_batch
+
+    why = "several SPECs" if len(specs) > 1 else "--sweep" if sweeps else "-d/--out-dir"
+    if outputs or report_path is not None:
+        raise click.UsageError(
+            f"-o/--output and --report are for one SPEC; in batch mode ({why}) each job writes "
+            f"DIR/NAME.EXT for each -f/--format and DIR/NAME.report.json into -d/--out-dir DIR"
+        )
+    if out_dir is None:
+        raise click.UsageError(f"batch mode ({why}) needs -d/--out-dir DIR")
+    try:
+        planned = plan_jobs(specs, [parse_sweep(s) for s in sweeps], out_dir, formats, step_schema, *mesh)
+        scheduler = scheduler or batch_scheduler(specs[0])
+        scheduler = None if scheduler == "local" else scheduler
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    if remote_dir is not None and scheduler is None:
+        raise click.UsageError("--remote-dir is for a batch on a Dask cluster (--scheduler)")
+    executor = None
+    if scheduler is not None:  # reached before anything is written
+        from tubecad.batch.dask_executor import DaskExecutor
+
+        try:
+            executor = DaskExecutor(scheduler, remote_dir=remote_dir, out_dir=out_dir)
+        except TubecadError as exc:
+            raise UserError(str(exc)) from None
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        if executor is not None:
+            executor.close()
+        raise UserError(f"cannot create output folder {str(out_dir)!r}: {exc.strerror}") from None
+    say = lambda line: click.echo(line, err=True)  # noqa: E731
+    manifest = read_manifest(out_dir) if resume else {}
+    digests = [_digest(spec_hash, job) for job in planned]
+    done = {i for i, job in enumerate(planned) if up_to_date(manifest.get(job.name), job, digests[i])}
+    todo = [i for i in range(len(planned)) if i not in done]
+    results: list[JobResult | None] = [None] * len(planned)
+    for i in done:
+        entry = manifest[planned[i].name]
+        results[i] = JobResult(
+            planned[i].name,
+            "ok",
+            None,
+            entry.get("seconds"),
+            list(entry.get("outputs", [])),
+            attempts=entry.get("attempts", 1),
+            hashes=dict(entry.get("hashes", {})),
+            spec_hash=digests[i],
+            skipped=True,
+        )
+    workers = min(jobs or os.cpu_count() or 1, max(len(todo), 1))
+    start = time.perf_counter()
+    where = executor.description if executor is not None else f"{workers} process{'es' * (workers > 1)}"
+
+    def record(interrupted: bool = False) -> str:
+        return write_text(
+            out_dir / "batch.json",
+            to_json(
+                batch_record(
+                    planned, results, interrupted, time.perf_counter() - start, workers, sweeps, formats or ("step",)
+                )
+            ),
+        )
+
+    last = [0.0]
+
+    def on_result(k: int, result: JobResult) -> None:
+        result.spec_hash = digests[todo[k]]
+        results[todo[k]] = result
+        if time.perf_counter() - last[0] >= MANIFEST_INTERVAL:  # the manifest, atomically, as jobs finish
+            record()
+            last[0] = time.perf_counter()
+
+    if not quiet:
+        resumed = f" ({len(done)} of {len(planned)} already built and unchanged: skipped)" if done else ""
+        say(f"building {len(todo)} job{'s' * (len(todo) != 1)} with {where} into {out_dir}{resumed}")
+    interrupted = False
+    try:
+        if todo:
+            _, interrupted = run_batch(
+                [planned[i] for i in todo],
+                workers,
+                (lambda line: None) if quiet else say,
+                executor=executor,
+                retries=retries,
+                timeout=job_timeout,
+                on_result=on_result,
+            )
+    finally:
+        if executor is not None:
+            executor.close()
+    summary = record(interrupted)
+    counts = {s: sum(r is not None and r.status == s for r in results) for s in ("ok", "failed")}
+    cancelled = sum(r is None for r in results)
+    seconds = time.perf_counter() - start
+    if interrupted:
+        say(
+            f"interrupted: {cancelled} of {len(planned)} jobs cancelled, {counts['ok']} done, "
+            f"no partial files; {summary}"
+        )
+        click.get_current_context().exit(130)
+    skipped = f", {len(done)} skipped (unchanged)" if done else ""
+    say(f"{len(planned)} jobs: {counts['ok']} ok{skipped}, {counts['failed']} failed, {seconds:.1f} s; {summary}")
+    if counts["failed"]:
+        click.get_current_context().exit(2)
+
+
+#: the manifest is rewritten as jobs finish, at most this often (seconds); the run's end
+#: (or Ctrl-C) writes it once more, so only a killed submitter can lose that much of it
+#: (those jobs are built again by the rerun)
+MANIFEST_INTERVAL = 0.5
+
+
+def _digest(spec_hash, job) -> str | None:
+    """The job's spec hash, or None when its spec cannot be read (the job then fails, saying why)."""
+    try:
+        return spec_hash(job)
+    except Exception:  # noqa: BLE001 - a bad spec fails its own job with the checker's message
+        return None
+
+
+def batch_scheduler(spec: Path) -> str | None:
+    """``[batch] scheduler`` of the first spec, if it has one."""
+    from tubecad.spec.parse import read_spec_data
+
+    try:
+        section = read_spec_data(spec).get("batch", {})
+    except TubecadError:
+        return None
+    value = section.get("scheduler") if isinstance(section, dict) else None
+    if value is not None and not isinstance(value, str):
+        raise UserError(f'{spec}: [batch] scheduler must be a string such as "tcp://10.0.0.5:8786", got {value!r:.60}')
+    return value
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "-o",
+    "--output",
+    "output",
+    required=True,
+    type=click.Path(file_okay=False, path_type=Path),
+    help="Folder for webs.dxf, one SVG and PNG per web, and flat.json (created if needed).",
+)
+def flat(spec: Path, output: Path) -> None:
+    """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, [units] length), NAME.svg/.png
+    each, and flat.json with every web's area and edge lengths."""
+    _load()
+    from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
+
+    try:
+        checked = load_spec(spec)
+        if "stiffeners" not in checked.sections:
+            raise UserError(f"{spec}: has no [stiffeners] section, so there are no webs to flatten")
+        result = build_from_spec(checked)
+        chosen = stiffener_selection(checked, result)
+        base, height, side = chosen.base(result), chosen.profile.height, chosen.side
+        layout = result.layout
+        try:
+            output.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UserError(f"cannot create output folder {str(output)!r}: {exc.strerror}") from None
+        patterns = [ring_web_flat_pattern(base, layout.s_rings[i], height, side, f"ring_{i:02d}") for i in chosen.rings]
+        patterns += [
+            stringer_flat_pattern(base, layout.stringers_deg[j], height, side, f"stringer_{j:02d}")
+            for j in chosen.stringers
+        ]
+        written = write_patterns(patterns, output, checked.length_unit)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    for path in written:
+        click.echo(str(path))
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "-o",
+    "--output",
+    "output",
+    required=True,
+    type=click.Path(file_okay=False, path_type=Path),
+    help="Folder for the package (created if needed): webs/, flanges/, bending/, marking/, panels/, "
+    "pin_jig/, index.json and overview.png/.svg.",
+)
+@click.option("-q", "--quiet", is_flag=True, help="No stage lines on stderr (shown on a terminal only).")
+def shop(spec: Path, output: Path, quiet: bool) -> None:
+    """Shop-floor outputs of SPEC's stiffened wall, with its [fabrication] settings (plate_size, kerf,
+    joint_gap, max_strain, pin_spacing, pin_clearance, joints):
+
+    webs split at butt joints into cuttable pieces and nested 1:1 on plates (DXF, SVG) with the STEP
+    solids split the same way; stringer flanges developed and nested; bending tables and inverse
+    bending curves; each panel's marking lines (STEP), development with its strain (DXF, picture)
+    and pin-jig heights (CSV, picture); index.json and a one-page overview. Nothing is written
+    unless all of it is.
+    """
+    _load()
+    from tubecad.spec.shop import shop_from_spec
+
+    live = not quiet and sys.stderr.isatty()  # stages on a terminal only: a log or a pipe gets the result lines
+    say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
+    try:
+        index = shop_from_spec(load_spec(spec), output, say)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
+    click.echo(
+        f"webs: {webs['pieces']} pieces on {webs['plates']} plates, utilisation {100 * webs['utilisation']:.1f} %; "
+        f"flanges: {flanges['pieces']} pieces on {flanges['plates']} plates; {len(index['bending'])} bending tables"
+    )
+    if index["panels"]:
+        worst = max(index["panels"], key=lambda p: p["max_strain"])
+        flagged = sum(p["exceeds_max_strain"] for p in index["panels"])
+        click.echo(
+            f"panels: {len(index['panels'])}, largest development strain {worst['max_strain']:.3g} "
+            f"({worst['name']}), {flagged} above max_strain"
+        )
+    for warning in index["warnings"]:
+        click.echo(f"warning: {warning}", err=True)
+    for entry in index["files"]:
+        click.echo(str(output / entry["path"]))
+    click.echo(str(output / "index.json"))
+
+
+_MESH_OPTIONS = [
+    click.option(
+        "--element",
+        type=click.Choice(["S4", "S4R", "S8", "S8R"]),
+        default=None,
+        help="Shell element (overrides [mesh] element; default S8R).",
+    ),
+    click.option(
+        "--size", type=float, default=None, help="Longest element edge both ways, model units (overrides [mesh] size)."
+    ),
+]
+
+
+def _mesh_options(command):
+    for option in reversed(_MESH_OPTIONS):
+        command = option(command)
+    return command
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "-o",
+    "--output",
+    "outputs",
+    multiple=True,
+    required=True,
+    type=click.Path(dir_okay=False, path_type=Path),
+    help="Mesh file: .inp (CalculiX/Abaqus), .msh (gmsh 4.1) or .vtu (VTK); repeat for several.",
+)
+@_mesh_options
+def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float | None) -> None:
+    """Finite-element mesh of SPEC's wall on its lines of curvature, with its [mesh] settings
+    (element, beam, size, size_along, size_around, surface, max_elements, beams): quadrilateral
+    shells (S4/S4R/S8/S8R) whose nodes lie on the exact surface with exact normals, element edges
+    on the layout's rings and stringers, the [stiffeners] as beams (B31/B32) on the shells' nodes,
+    and node and element sets named after the parts (ring_03, stringer_05, panel_r2_s1,
+    start_ring, end_ring). A .inp also gets the material and, with [analysis], its pressure step."""
+    _load()
+    from tubecad.spec.mesh import checked_outputs, write_mesh
+
+    try:
+        checked_outputs(list(outputs))
+        built, written = write_mesh(load_spec(spec), list(outputs), element=element, size=size)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    q = built.info["quality"]
+    click.echo(
+        f"{built.element_count} elements ({built.info['elements_along']} along x {built.info['elements_around']} "
+        f"around, {len(built.beam_blocks)} beam blocks), {len(built.nodes)} nodes; aspect ratio <= "
+        f"{q['aspect_ratio_max']:.3g}, skew <= {q['skew_deg_max']:.3g} deg"
+    )
+    for path in written:
+        click.echo(str(path))
+
+
+@cli.command()
+@click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "-o",
+    "--output",
+    "output",
+    required=True,
+    type=click.Path(file_okay=False, path_type=Path),
+    help="Folder for model.inp, model.frd, results.json and ring_stress.png (created if needed).",
+)
+@_mesh_options
+@click.option("-q", "--quiet", is_flag=True, help="No stage lines on stderr (shown on a terminal only).")
+def analyse(spec: Path, output: Path, element: str | None, size: float | None, quiet: bool) -> None:
+    """Solve SPEC's [analysis] (internal pressure; ends fixed, capped or free) on its mesh with
+    CalculiX (ccx), and write the deck, the results, a summary (results.json: displacements,
+    stresses along the rings and stringers) and a picture of the ring stress on the deformed shell."""
+    _load()
+    from tubecad.spec.mesh import analyse_spec
+
+    live = not quiet and sys.stderr.isatty()
+    say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
+    try:
+        summary = analyse_spec(load_spec(spec), output, say, element=element, size=size)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    ring, stringer = summary["ring_stress"], summary["stringer_stress"]
+    click.echo(
+        f"{summary['elements']} elements solved in {summary['solve_seconds']:.1f} s; ring stress "
+        f"{ring['min']:.4g} to {ring['max']:.4g}, stringer stress {stringer['min']:.4g} to {stringer['max']:.4g}, "
+        f"largest displacement {summary['max_displacement']:.4g}"
+    )
+    for name in summary["files"]:
+        click.echo(str(output / name))
+
+
+@cli.command()
+@click.argument("spec", metavar="SPEC")
+@click.option(
+    "--port", type=click.IntRange(1, 65535), default=None, help="Port of the viewer  [default: $OCP_PORT, else 3939]"
+)
+@click.option("--host", default="127.0.0.1", show_default=True, help="Host of the viewer.")
+def view(spec: str, port: int | None, host: str) -> None:
+    """Show SPEC (a TOML file, or the word paper for the paper's stiffened wall) in OCP CAD
+    Viewer: wall (translucent, or its [panels]), ring_XX and stringer_XX stiffeners, and the
+    curvature lines line_ring_XX, line_stringer_XX. Start a viewer first: the VS Code extension
+    "OCP CAD Viewer", or python -m ocp_viewer --port N. Without one: exit code 2 at once."""
+    from tubecad.integrations.viewer import show  # light; OCCT and ocp_vscode are imported after the port check
+
+    try:
+        shown = show(spec, port=port, host=host)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    click.echo(shown.summary())
+
+
+def main() -> None:
+    """Console-script entry point.
+
+    Ctrl-C and SIGTERM end a run cleanly: both raise KeyboardInterrupt, so every atomic write
+    in progress removes its temporary file; one line "interrupted" goes to stderr and the
+    exit code is 130. Click's own handling (usage errors, --help) is kept otherwise.
+    """
+    import signal
+
+    def terminate(signum, frame):  # SIGTERM: the same clean exit as Ctrl-C
+        raise KeyboardInterrupt
+
+    try:
+        signal.signal(signal.SIGTERM, terminate)
+    except ValueError:  # pragma: no cover - not the main thread (embedded use)
+        pass
+    try:
+        code = cli.main(prog_name="tubecad", standalone_mode=False)
+    except click.exceptions.Abort as exc:
+        if isinstance(exc.__cause__, KeyboardInterrupt):
+            _interrupted()
+        click.echo("Aborted!", err=True)
+        sys.exit(1)
+    except click.ClickException as exc:
+        exc.show()
+        sys.exit(exc.exit_code)
+    except KeyboardInterrupt:
+        _interrupted()
+    sys.exit(code if isinstance(code, int) else 0)
+
+
+def _interrupted() -> None:
+    from tubecad.cli.signals import INTERRUPTED_EXIT_CODE
+
+    remove_temporaries()
+    click.echo("interrupted", err=True)
+    sys.exit(INTERRUPTED_EXIT_CODE)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

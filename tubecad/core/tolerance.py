@@ -1,0 +1,39 @@
+"""The fit-tolerance policy, in one place: how close the fitted B-rep must stay to the exact
+tube, how orthogonal its isolines, and the smallest sizes a B-rep can hold.
+
+Light on purpose (no OCCT): the spec checker uses it before anything is built."""
+
+from __future__ import annotations
+
+import math
+
+from tubecad.core.errors import ParameterError
+
+#: the default largest distance, model units, of the fitted surfaces from the exact tube
+DEFAULT_TOLERANCE = 1e-8
+
+#: the tolerance of the B-rep's edges and vertices: OCCT's Precision::Confusion
+EDGE_TOLERANCE = 1e-7
+
+#: the smallest radius and wall thickness a B-rep is built with: 100 x the edge tolerance;
+#: below it edges and faces collapse within tolerance
+MIN_SIZE = 100 * EDGE_TOLERANCE
+
+
+def check_tolerance(name: str, value: object) -> float:
+    """A fit tolerance in (0, 1) model units, or a ParameterError naming ``name``."""
+    import numpy as np  # numpy scalars are accepted; imported here so the module stays light
+
+    if (
+        isinstance(value, (bool, np.bool_))
+        or not isinstance(value, (int, float, np.integer, np.floating))
+        or not (math.isfinite(value) and 0 < value < 1)
+    ):
+        raise ParameterError(f"fit {name} must be in (0, 1) model units, got {value!r:.80}")
+    return float(value)
+
+
+def orthogonality_for(tolerance: float) -> float:
+    """The |cos| the isolines are fitted to: tolerance / 10, and never worse than 1e-6
+    (1e-9 at the default tolerance 1e-8)."""
+    return min(1e-6, tolerance / 10) if isinstance(tolerance, (int, float)) and tolerance > 0 else tolerance

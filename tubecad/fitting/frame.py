@@ -1,0 +1,95 @@
+"""The fitted frame F(s) = (c(s), r1(s), r2(s)) as a B-spline (docs/MATH.md section 6): its
+container, the exact frame it is measured against, and the orthogonality measure
+
+    max over radii r and angles u of |cos(S_u, S_s)|,  S = C + r (cos u R1 + sin u R2),
+
+shared by the smooth fit (:mod:`.frame_spline`) and a route's exact rational frame
+(:mod:`.route_frame`)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import BSpline
+
+from tubecad.core.errors import TubecadError
+from tubecad.curves.axis import Axis
+
+#: angles around the tube at which the fitted surface's orthogonality is measured
+ORTHOGONALITY_ANGLES = 16
+
+
+class FitError(TubecadError, ValueError):
+    """The requested tolerance could not be reached."""
+
+
+class SplineSize:
+    """The size of a fit's ``spline`` (a scipy BSpline), as a build reports it."""
+
+    spline: BSpline
+
+    @property
+    def degree(self) -> int:
+        return int(self.spline.k)
+
+    @property
+    def poles(self) -> int:
+        return len(self.spline.c)
+
+    @property
+    def spans(self) -> int:
+        return len(np.unique(self.spline.t)) - 1
+
+
+@dataclass(frozen=True)
+class FrameSpline(SplineSize):
+    """F(s) = (c, r1, r2) as a scipy BSpline, with the bounds it was measured to meet.
+
+    A route's exact frame (:mod:`tubecad.fitting.route_frame`) is rational: ``spline`` then holds its
+    poles and knots, ``weights`` the pole weights, and its parameter v equals the arc
+    length s only at the breaks (``arc_length`` maps v -> s, ``parameter`` s -> v)."""
+
+    spline: BSpline
+    position_bound: float
+    orthogonality_bound: float
+    radius_bound: float
+    weights: np.ndarray | None = None
+    arc_length: Callable[[np.ndarray], np.ndarray] | None = None
+    parameter: Callable[[np.ndarray], np.ndarray] | None = None
+
+    @property
+    def rational(self) -> bool:
+        return self.weights is not None
+
+    def values(self, v: np.ndarray | float) -> np.ndarray:
+        """F at parameters ``v`` (weights applied), shape v.shape + (9,)."""
+        if self.weights is None:
+            return self.spline(v)
+        H = BSpline(self.spline.t, self.spline.c * self.weights[:, None], self.spline.k)
+        W = BSpline(self.spline.t, self.weights, self.spline.k)
+        return H(v) / np.asarray(W(v))[..., None]
+
+
+def exact_frame(axis: Axis, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """F(s) and F'(s), each (len(s), 9)."""
+    a = axis.at(s)
+    F = np.hstack([a.position, a.r1, a.r2])
+    dF = np.hstack([a.t, -a.k1[:, None] * a.t, -a.k2[:, None] * a.t])
+    return F, dF
+
+
+def measured_cos(fit: np.ndarray, dfit: np.ndarray, radii: Sequence[float]) -> np.ndarray:
+    """max over radii and angles of |cos(S_u, S_s)| of S = C + r (cos u R1 + sin u R2), per sample."""
+    u = np.linspace(0.0, 2 * math.pi, ORTHOGONALITY_ANGLES, endpoint=False)
+    cu, su = np.cos(u)[None, :, None], np.sin(u)[None, :, None]
+    R1, R2, dC, dR1, dR2 = fit[:, None, 3:6], fit[:, None, 6:], dfit[:, None, :3], dfit[:, None, 3:6], dfit[:, None, 6:]
+    worst = np.zeros(len(fit))
+    for r in radii:
+        S_u = -su * R1 + cu * R2
+        S_s = dC + r * (cu * dR1 + su * dR2)
+        cos = np.abs(np.einsum("ijk,ijk->ij", S_u, S_s)) / (np.linalg.norm(S_u, axis=2) * np.linalg.norm(S_s, axis=2))
+        worst = np.maximum(worst, cos.max(axis=1))
+    return worst

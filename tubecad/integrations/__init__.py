@@ -1,0 +1,1 @@
+"""tubecad inside other tools: the OCP CAD Viewer and the CadQuery Workplane plugin."""

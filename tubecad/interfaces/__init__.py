@@ -1,1 +1,0 @@
-"""How users reach tubecad: spec files, the command line, reports."""

@@ -1,0 +1,375 @@
+"""The keys a spec file may hold, section by section: the one table that the spec checker
+(:mod:`tubecad.spec.parse`), the JSON Schema (:mod:`tubecad.spec.schema`,
+``tubecad schema``), ``--sweep`` and the README's checks are all made from.
+
+Light on purpose (no numpy, no OCCT), so that ``tubecad schema`` starts at once: the
+limits it names come from the light modules that enforce them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from tubecad.brep.wall import WALL_SIDES
+from tubecad.core.tolerance import MIN_SIZE
+from tubecad.core.units import DEFAULT_LENGTH_UNIT, LENGTH_UNITS
+from tubecad.core.validation import MAX_LENGTH
+from tubecad.fem.settings import BEAM_TYPES, DEFAULT_MAX_ELEMENTS, ENDS, MAX_ELEMENTS_LIMIT, SHELL_TYPES, SURFACES
+from tubecad.stiffeners.profiles import KINDS, SIDES
+
+
+@dataclass(frozen=True)
+class Key:
+    """One allowed key: its TOML type(s), whether it is required, and what it means.
+
+    ``choices``: the values a string key may take (the checker refuses any other, naming
+    them). ``low``/``high`` (open or closed ends): the key's numeric range as the schema
+    gives it to editors; the checker enforces it with the rule's own message (the tests
+    hold the two together). ``default``: what an absent key means, for the schema.
+    """
+
+    kind: str  # "number", "string", "bool", "pair", "triple", "numbers", "number_or_numbers", "integer", "selection",
+    #            "points", "radius" (a number, an expression or a table of [s, r] rows), "joints" (a table of
+    #            name = [numbers])
+    required: bool = True
+    help: str = ""
+    choices: tuple[str, ...] = ()
+    low: float | None = None
+    high: float | None = None
+    low_open: bool = True
+    high_open: bool = True
+    default: Any = None
+
+
+#: the keys every slope-curve family shares
+SLOPE_KEYS = {
+    "beta_deg": Key("number", help="elevation angle, -90 < beta_deg < 90", low=-90.0, high=90.0),
+    "s": Key("pair", help="arc-length span [start, end]"),
+}
+#: an axis' optional start normal r1 (the stringers' u = 0)
+NORMAL_KEY = Key(
+    "triple",
+    required=False,
+    help="the first stringer's direction r1 at the start, [x, y, z] "
+    "(made normal to the tangent; default the principal normal)",
+)
+#: whether an axis is a closed loop (not a slope curve's: those never close)
+CLOSED_KEY = Key(
+    "bool",
+    required=False,
+    help="a closed loop (true: demand, false: keep open; default: detected when the ends and tangents agree)",
+)
+
+#: curve -> its [axis] keys (besides curve)
+FAMILY_KEYS: dict[str, dict[str, Key]] = {
+    "log_spiral": {"a": Key("number", help="k = a / s, a > 0", low=0.0), **SLOPE_KEYS},
+    "helix": {"k": Key("number", help="constant curvature k (0 gives a straight axis)"), **SLOPE_KEYS},
+    "clothoid": {"A": Key("number", help="k = s / A^2, A > 0", low=0.0), **SLOPE_KEYS},
+    "involute": {
+        "a": Key("number", help="k = 1 / sqrt(2 a s): involute of a circle of radius a > 0", low=0.0),
+        **SLOPE_KEYS,
+    },
+    "custom": {
+        "k": Key("string", help="curvature as an arithmetic expression in s"),
+        **SLOPE_KEYS,
+        "psi0_deg": Key("number", required=False, help="direction of the plan at s0, degrees"),
+        "origin": Key("triple", required=False, help="axis point at s0, [x, y, z]"),
+    },
+    "natural": {
+        "k": Key("string", help="curvature k(s) >= 0 as an expression in s"),
+        "tau": Key("string", help="torsion tau(s) as an expression in s"),
+        "s": Key("pair", help="arc-length span [start, end]"),
+        "origin": Key("triple", required=False, help="axis point at the start, [x, y, z] (default [0, 0, 0])"),
+        "tangent": Key("triple", required=False, help="unit tangent at the start (default [1, 0, 0])"),
+        "normal": Key("triple", required=False, help="principal normal at the start (default [0, 1, 0])"),
+        "closed": CLOSED_KEY,
+    },
+    "parametric": {
+        "x": Key("string", help="x(t) as an expression in t"),
+        "y": Key("string", help="y(t) as an expression in t"),
+        "z": Key("string", help="z(t) as an expression in t"),
+        "t": Key("pair", help="parameter span [start, end]"),
+        "normal": NORMAL_KEY,
+        "closed": CLOSED_KEY,
+    },
+    "points": {
+        "points": Key("points", required=False, help="the points [[x, y, z], ...], 3 or more (or file)"),
+        "file": Key("string", required=False, help="a CSV file of x, y, z rows, relative to the spec (or points)"),
+        "parameterisation": Key(
+            "string",
+            required=False,
+            help="centripetal | chord (default centripetal)",
+            choices=("centripetal", "chord"),
+            default="centripetal",
+        ),
+        "normal": NORMAL_KEY,
+        "closed": CLOSED_KEY,
+    },
+    "route": {
+        "points": Key("points", required=False, help="the route's vertices [[x, y, z], ...], 3 or more (or file)"),
+        "file": Key("string", required=False, help="a CSV file of x, y, z rows, relative to the spec (or points)"),
+        "bend_radius": Key(
+            "number_or_numbers",
+            help="the bends' radius (of the axis): one number, or one per inner "
+            "vertex; each bend must fit its legs and exceed the tube radius",
+        ),
+        "normal": NORMAL_KEY,
+        "closed": CLOSED_KEY,
+    },
+    "edge": {
+        "file": Key("string", help="a STEP or BREP file holding the centreline, relative to the spec"),
+        "name": Key("string", required=False, help="the edge or wire's name in the STEP file"),
+        "index": Key(
+            "integer",
+            required=False,
+            help="which edge or wire (0-based, wires first) if several",
+            low=0,
+            low_open=False,
+        ),
+        "normal": NORMAL_KEY,
+        "closed": CLOSED_KEY,
+    },
+}
+AXIS_COMMON = {
+    "curve": Key("string", help=" | ".join(FAMILY_KEYS), choices=tuple(FAMILY_KEYS)),
+}
+TUBE_KEYS = {
+    "radius": Key(
+        "radius",
+        help="radius rho > 0 of the generating circle; or a radius law r(s), a canal surface: an "
+        "expression in s (and x, y, z, the axis point), or a table [[s, r], ...] (C2 cubic spline), with |r'| < 1",
+        low=MIN_SIZE,
+        high=MAX_LENGTH,
+        low_open=False,
+        high_open=False,
+    ),
+    "allow_irregular": Key("bool", required=False, help="build even if rho*k >= 1 or the axis comes back within 2 rho"),
+}
+
+LAYOUT_KEYS = {
+    "rings": Key(
+        "integer",
+        required=False,
+        help="ring frames equally spaced in s, ends included, 2 to 10000",
+        low=2,
+        high=10_000,
+        low_open=False,
+        high_open=False,
+    ),
+    "stringers": Key(
+        "integer",
+        required=False,
+        help="stringers at u = 360 j / M degrees, 1 to 1000",
+        low=1,
+        high=1_000,
+        low_open=False,
+        high_open=False,
+    ),
+    "s_rings": Key("numbers", required=False, help="explicit ring arc lengths (span ends are added)"),
+    "u_stringers_deg": Key("numbers", required=False, help="explicit stringer angles, degrees"),
+}
+WALL_KEYS = {
+    "thickness": Key("number", help="wall thickness > 0", low=MIN_SIZE, low_open=False),
+    "side": Key("string", required=False, help=f"{' | '.join(WALL_SIDES)} (default centered)", choices=WALL_SIDES),
+}
+FIT_KEYS = {
+    "tolerance": Key(
+        "number", required=False, help="max deviation from the exact tube, model units, in (0, 1)", low=0.0, high=1.0
+    ),
+}
+
+STIFFENER_KEYS = {
+    "rings": Key("selection", required=False, help='ring indices into the layout, or "all" (default none)'),
+    "stringers": Key("selection", required=False, help='stringer indices into the layout, or "all" (default none)'),
+    "profile": Key("string", required=False, help=f"{' | '.join(KINDS)} (default flat)", choices=KINDS),
+    "height": Key("number", help="web height from the wall > 0", low=0.0),
+    "thickness": Key("number", help="web thickness > 0", low=0.0),
+    "flange_width": Key("number", required=False, help="T and L: total flange width > thickness", low=0.0),
+    "flange_thickness": Key("number", required=False, help="T and L: flange thickness in (0, height)", low=0.0),
+    "side": Key("string", required=False, help=f"{' | '.join(SIDES)} (default outside)", choices=SIDES),
+    "fuse": Key("bool", required=False, help="merge the stiffeners into the wall (default false)"),
+    "density": Key(
+        "number",
+        required=False,
+        low=0.0,
+        help="kg per cubic [units] length for the reported masses (default steel: 7.85e-6 kg/mm^3, 7850 kg/m^3)",
+    ),
+}
+
+PANEL_KEYS = {
+    "seams": Key("selection", help='seam stringers: indices into the layout\'s stringers, or "all"'),
+    "rings": Key("selection", required=False, help='ring indices bounding the panels, or "all" (default all)'),
+}
+
+FABRICATION_KEYS = {
+    "plate_size": Key(
+        "pair",
+        required=False,
+        help="[length, width] of the stock plates webs and flanges are nested "
+        "on, each > 2 kerf (default 3000 x 1500 mm)",
+    ),
+    "kerf": Key(
+        "number",
+        required=False,
+        low=0.0,
+        low_open=False,
+        help="the cut's width >= 0: parts lie 2 kerf apart and a kerf from the plate's edge (default 2 mm)",
+    ),
+    "joint_gap": Key(
+        "number",
+        required=False,
+        low=0.0,
+        low_open=False,
+        help="a butt joint's root gap >= 0, along the web's base line (default 0)",
+    ),
+    "max_strain": Key(
+        "number", required=False, low=0.0, help="panels whose development strains more are flagged, > 0 (default 0.01)"
+    ),
+    "pin_spacing": Key(
+        "number",
+        required=False,
+        low=0.0,
+        help="the pin-jig grid's spacing > 0 (default: a round value giving ~6 pins across each panel)",
+    ),
+    "pin_clearance": Key(
+        "number",
+        required=False,
+        low=0.0,
+        low_open=False,
+        help="the panel's lowest point above the jig plane >= 0 (default 0)",
+    ),
+    "joints": Key(
+        "joints",
+        required=False,
+        help="chosen butt joints per stiffener: a table of name = [positions], s "
+        "along a stringer, degrees in [0, 360) round a ring (e.g. stringer_02 = [450.0])",
+    ),
+}
+
+MESH_KEYS = {
+    "element": Key(
+        "string",
+        required=False,
+        choices=SHELL_TYPES,
+        default="S8R",
+        help=f"the shell element: {' | '.join(SHELL_TYPES)} (linear or quadratic; R: reduced integration)",
+    ),
+    "beam": Key(
+        "string",
+        required=False,
+        choices=BEAM_TYPES,
+        help=f"the stiffeners' beam element: {' | '.join(BEAM_TYPES)} (default B31 with S4, B32 with S8)",
+    ),
+    "size": Key(
+        "number",
+        required=False,
+        low=0.0,
+        high=MAX_LENGTH,
+        high_open=False,
+        help="the longest element edge, both ways, > 0 (default 2 pi r / 32 of the smallest radius)",
+    ),
+    "size_along": Key(
+        "number",
+        required=False,
+        low=0.0,
+        high=MAX_LENGTH,
+        high_open=False,
+        help="the longest element edge along the stringers, > 0 (default size)",
+    ),
+    "size_around": Key(
+        "number",
+        required=False,
+        low=0.0,
+        high=MAX_LENGTH,
+        high_open=False,
+        help="the longest element edge round the rings, > 0 (default size)",
+    ),
+    "surface": Key(
+        "string",
+        required=False,
+        choices=SURFACES,
+        default="mid",
+        help=f"{' | '.join(SURFACES)}: the wall's mid-surface with its thickness, its inner or outer face "
+        "(the section offset into the wall), or both faces",
+    ),
+    "max_elements": Key(
+        "integer",
+        required=False,
+        low=1,
+        high=MAX_ELEMENTS_LIMIT,
+        low_open=False,
+        high_open=False,
+        default=DEFAULT_MAX_ELEMENTS,
+        help=f"refuse meshes with more elements, 1 to {MAX_ELEMENTS_LIMIT}",
+    ),
+    "beams": Key("bool", required=False, default=True, help="the [stiffeners] as beam elements (default true)"),
+}
+
+ANALYSIS_KEYS = {
+    "pressure": Key(
+        "number", required=False, default=0.0, help="internal pressure, N per square [units] length (mm: MPa)"
+    ),
+    "ends": Key(
+        "string",
+        required=False,
+        choices=ENDS,
+        help=f"{' | '.join(ENDS)}: end rings held, capped (the caps' resultant on the end rings), or free "
+        "(a closed tube; default fixed, free when closed)",
+    ),
+    "youngs_modulus": Key(
+        "number", required=False, low=0.0, help="N per square [units] length (default steel, 210 GPa: 210000 in mm)"
+    ),
+    "poisson_ratio": Key("number", required=False, low=-1.0, high=0.5, default=0.3, help="in (-1, 0.5)"),
+}
+
+BATCH_KEYS = {
+    "scheduler": Key(
+        "string",
+        required=False,
+        help="a Dask distributed scheduler, tcp://HOST:PORT: tubecad build's batches of this spec (its "
+        "first SPEC) run there (the extra tubecad[dask]; --scheduler wins)",
+    ),
+}
+
+UNITS_KEYS = {
+    "length": Key(
+        "string",
+        required=False,
+        choices=tuple(LENGTH_UNITS),
+        default=DEFAULT_LENGTH_UNIT,
+        help=f"{' | '.join(LENGTH_UNITS)}: the unit of every length in the spec, written into STEP, "
+        f"IGES, DXF, 3MF and glTF (default {DEFAULT_LENGTH_UNIT})",
+    ),
+}
+
+#: sections beyond [axis] and [tube]
+EXTRA_SECTIONS: dict[str, dict[str, Key]] = {
+    "layout": LAYOUT_KEYS,
+    "wall": WALL_KEYS,
+    "fit": FIT_KEYS,
+    "stiffeners": STIFFENER_KEYS,
+    "panels": PANEL_KEYS,
+    "units": UNITS_KEYS,
+    "fabrication": FABRICATION_KEYS,
+    "mesh": MESH_KEYS,
+    "analysis": ANALYSIS_KEYS,
+    "batch": BATCH_KEYS,
+}
+
+#: what each section is for (the schema's descriptions)
+SECTION_HELP = {
+    "axis": "the axis: a slope curve (k(s) and an elevation angle), natural equations k(s), tau(s), a parametric "
+    "curve, points, a route of lines and bends or a CAD edge",
+    "tube": "the tube: the circle of radius rho moved along the axis",
+    "layout": "the B-rep's ring frames and stringers (default 11 rings, 8 stringers)",
+    "wall": "a wall solid of this thickness instead of the capped tube",
+    "fit": "the fit of the B-spline surfaces to the exact tube",
+    "stiffeners": "stiffener solids (ring frames, stringers) on the layout's lines",
+    "panels": "split the wall into panels along seam stringers",
+    "units": "the unit of every length in the spec and in the files written",
+    "fabrication": "shop-floor settings for tubecad shop: plates, kerf, butt joints, strain limit, pin jigs",
+    "mesh": "the finite-element mesh of tubecad mesh: shell and beam elements, sizes, surface, element cap",
+    "analysis": "the pressure analysis of tubecad analyse (CalculiX): pressure, ends, material",
+    "batch": "where tubecad build runs a batch of this spec: a Dask cluster",
+}

@@ -1,0 +1,233 @@
+"""``tubecad mesh`` and ``tubecad analyse``: from a checked spec to the finite-element model
+(tubecad.fem) and its files. No B-rep is built: the mesh is made on the exact surface."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from tubecad.core.errors import ParameterError, RegularityError, SpecError
+from tubecad.spec.parse import TubeSpec
+
+
+#: the FE formats by extension (tubecad.fem.formats)
+def _formats():
+    from tubecad.fem.formats import FE_FORMATS
+
+    return FE_FORMATS
+
+
+def checked_outputs(outputs: list[Path]) -> list[Path]:
+    """The outputs, each with an FE extension, or a SpecError naming the allowed ones."""
+    formats = _formats()
+    for path in outputs:
+        if path.suffix.lower() not in formats:
+            raise ParameterError(
+                f"-o {path}: a mesh is written as {', '.join(formats)}, got {path.suffix or 'no extension'!r}"
+            )
+    return outputs
+
+
+def mesh_from_spec(spec: TubeSpec, **overrides: Any):
+    """The spec's wall (or tube) as an :class:`tubecad.fem.FEMesh` with its [mesh] settings
+    (``overrides`` win: element, size, ...), [stiffeners] as beams and [panels] as sets."""
+    from tubecad.fem import StiffenerPlan, mesh_settings, shell_mesh
+    from tubecad.spec.layout import layout_from_section
+    from tubecad.stiffeners.profiles import Profile
+
+    source = spec.source
+    try:
+        settings = mesh_settings(spec.sections.get("mesh"), **overrides)
+    except ParameterError as exc:
+        raise SpecError(f"{source}: {exc}") from None
+    tube = spec.tube
+    layout = layout_from_section(tube, spec.sections.get("layout", {}))
+    wall = spec.sections.get("wall")
+    plan = None
+    section = spec.sections.get("stiffeners")
+    if section is not None:
+
+        def chosen(key: str, count: int) -> list[int]:
+            value = section.get(key, [])
+            return list(range(count)) if value == "all" else list(value)
+
+        try:
+            profile = Profile(
+                section.get("profile", "flat"),
+                section["height"],
+                section["thickness"],
+                section.get("flange_width", 0.0),
+                section.get("flange_thickness", 0.0),
+            )
+        except ParameterError as exc:
+            raise SpecError(f"{source}: [stiffeners] {exc}") from None
+        plan = StiffenerPlan(
+            chosen("rings", len(layout.s_rings)),
+            chosen("stringers", len(layout.stringers_deg)),
+            profile,
+            section.get("side", "outside"),
+        )
+        if settings.beams:
+            _check_reach(spec, plan, wall, source)
+    panels = spec.sections.get("panels")
+    seams = rings = None
+    if panels is not None:
+        seams = list(range(len(layout.stringers_deg))) if panels["seams"] == "all" else panels["seams"]
+        rings = None if panels.get("rings", "all") == "all" else panels["rings"]
+    try:
+        return shell_mesh(
+            tube,
+            layout,
+            thickness=None if wall is None else wall["thickness"],
+            wall_side="centered" if wall is None else wall.get("side", "centered"),
+            stiffeners=plan,
+            seams=seams,
+            panel_rings=rings,
+            settings=settings,
+            length_unit=spec.length_unit,
+        )
+    except (ParameterError, RegularityError) as exc:
+        text = str(exc)
+        raise SpecError(f"{source}: {text if text.startswith('[') else '[mesh] ' + text}") from None
+
+
+def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
+    """A stiffener too high for the wall's curvature is refused as the solids refuse it
+    (tubecad.stiffeners.limits), naming [stiffeners] height."""
+    from tubecad.brep.wall import wall_radii
+    from tubecad.stiffeners.limits import checked_reach
+    from tubecad.surface import CurvatureLineTube
+
+    tube = spec.tube
+    if not isinstance(tube, CurvatureLineTube):
+        radius = tube.radius_law.min_radius
+        if plan.side == "inside" and plan.profile.height >= radius:
+            raise SpecError(
+                f"{source}: [stiffeners] height must be < {radius:g} (the smallest radius) inside, "
+                f"got {plan.profile.height:g}"
+            )
+        return
+    r_in, r_out = (
+        (tube.radius, tube.radius)
+        if wall is None
+        else wall_radii(tube.radius, wall["thickness"], wall.get("side", "centered"))
+    )
+    base = r_out if plan.side == "outside" else r_in
+    try:
+        for kind, chosen in (("ring", plan.rings), ("stringer", plan.stringers)):
+            if chosen:
+                checked_reach(tube.axis, plan.profile, base, plan.side, kind)
+    except ParameterError as exc:
+        raise SpecError(f"{source}: [stiffeners] {exc}") from None
+
+
+def material_and_step(spec: TubeSpec, mesh, with_step: bool):
+    """The [analysis] material and, if ``with_step``, the pressure step (tubecad.fem.loads)."""
+    from tubecad.core.units import length_unit, steel_density
+    from tubecad.fem.inp import Material
+    from tubecad.fem.loads import pressure_step
+    from tubecad.fem.settings import analysis_settings
+
+    try:
+        settings = analysis_settings(spec.sections.get("analysis"), spec.length_unit, mesh.closed)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: {exc}") from None
+    # kg per cubic unit, in the mass unit that N and the length unit make consistent (kg m / unit: mm gives t)
+    density = spec.sections.get("stiffeners", {}).get("density", steel_density(spec.length_unit))
+    density *= length_unit(spec.length_unit).metres
+    material = Material(settings.youngs_modulus, settings.poisson_ratio, density)
+    if not with_step:
+        return material, None, settings
+    surface = reference_surface(spec, mesh)
+    ends = (mesh.node_sets.get("start_ring"), mesh.node_sets.get("end_ring"))
+    return material, pressure_step(mesh, settings.pressure, settings.ends, surface, ends), settings
+
+
+def reference_surface(spec: TubeSpec, mesh):
+    """The surface the mesh's (first) shells lie on."""
+    d = mesh.info["reference_offsets"][0]
+    return spec.tube if d == 0 else spec.tube.offset(d, allow_irregular=True)
+
+
+def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[Any, list[Path]]:
+    """``tubecad mesh``: the mesh written to each output (by extension); a .inp gets the
+    material and, when the spec has [analysis], its pressure step."""
+    outputs = checked_outputs(outputs)
+    mesh = mesh_from_spec(spec, **overrides)
+    formats = _formats()
+    material, step = None, None
+    if any(p.suffix.lower() == ".inp" for p in outputs):
+        if mesh.info["thickness"] is None:
+            raise SpecError(f"{spec.source}: a .inp needs the wall's thickness: add a [wall] section")
+        material, step, _ = material_and_step(spec, mesh, "analysis" in spec.sections)
+    written = []
+    for path in outputs:
+        try:
+            formats[path.suffix.lower()].write(
+                mesh, path, material=material, step=step, title=Path(str(spec.source)).stem
+            )
+        except ParameterError as exc:
+            raise SpecError(f"{spec.source}: {exc}") from None
+        written.append(path)
+    return mesh, written
+
+
+def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) -> dict[str, Any]:
+    """``tubecad analyse``: the spec's mesh with its [analysis] pressure step solved by
+    CalculiX; writes model.inp, model.frd, results.json and ring_stress.png into ``output``
+    (through a staging folder: nothing is left unless all of it is written)."""
+    import json
+    import shutil
+    import tempfile
+
+    from tubecad.core.atomic import write_text
+    from tubecad.fem.analysis import solve
+    from tubecad.fem.calculix import CalculixError, ccx_executable
+    from tubecad.fem.plot import save_deformed
+
+    if "analysis" not in spec.sections:
+        raise SpecError(f"{spec.source}: has no [analysis] section (pressure, ends, youngs_modulus, poisson_ratio)")
+    if "wall" not in spec.sections:
+        raise SpecError(f"{spec.source}: an analysis needs the wall's thickness: add a [wall] section")
+    try:
+        ccx_executable()
+    except CalculixError as exc:
+        raise SpecError(str(exc)) from None
+    say = progress or (lambda stage: None)
+    say("meshing")
+    mesh = mesh_from_spec(spec, **overrides)
+    material, step, settings = material_and_step(spec, mesh, True)
+    output = Path(output)
+    output.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{output.name}.", dir=output.parent))
+    try:
+        say(f"solving {mesh.element_count} elements with CalculiX")
+        try:
+            result = solve(mesh, material, step, staging, "model")
+        except CalculixError as exc:
+            raise SpecError(f"{spec.source}: {exc}") from None
+        say("writing results")
+        unit = spec.length_unit
+        title = (
+            f"{Path(str(spec.source)).stem}: stress along the rings, p = {settings.pressure:g} ({settings.ends} ends)"
+        )
+        save_deformed(result, result.ring_stress, f"ring stress (N/{unit}^2)", staging, "ring_stress", title)
+        summary = {
+            "spec": str(spec.source),
+            "units": {"length": unit, "force": "N"},
+            "analysis": {
+                "pressure": settings.pressure,
+                "ends": settings.ends,
+                "youngs_modulus": settings.youngs_modulus,
+                "poisson_ratio": settings.poisson_ratio,
+            },
+            "mesh": {k: v for k, v in mesh.info.items()},
+            **result.summary(),
+            "files": ["model.inp", "model.frd", "ring_stress.png", "results.json"],
+        }
+        write_text(staging / "results.json", json.dumps(summary, indent=2))
+        for name in summary["files"]:
+            (staging / name).replace(output / name)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return summary

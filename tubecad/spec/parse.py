@@ -1,0 +1,350 @@
+"""Spec files: a tube described in TOML (see README, "Spec files").
+
+    [axis]
+    curve = "log_spiral"      # log_spiral | helix | clothoid | involute | custom
+    a = 10.0                  # the family's parameters (custom: k = "<expression in s>")
+    beta_deg = 10.0
+    s = [200.0, 1200.0]
+
+    [tube]
+    radius = 15.0
+
+    [units]                   # optional
+    length = "mm"             # mm | cm | m | in | ft: every length above, and in the files
+
+Every key is checked: unknown or missing keys, wrong types and out-of-range values raise
+:class:`SpecError` naming the section, the key and what is allowed.
+
+The keys themselves are tables in :mod:`tubecad.spec.keys` (light, no numpy),
+from which ``tubecad schema`` also makes the JSON Schema (:mod:`tubecad.spec.schema`)
+that editors use. The schema checks types, ranges, choices and unknown keys; this checker
+checks those with one-line messages and, beyond them, what depends on the geometry.
+[units] length is the model's unit: nothing is rescaled, the writers state it in the files
+(:mod:`tubecad.core.units`), and [stiffeners] density is per cubic unit of it.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from tubecad.core.errors import ParameterError, RegularityError, SpecError
+from tubecad.curves import Axis
+from tubecad.spec.axis import build_axis
+
+# the key tables live in a light module (no numpy, no OCCT) that ``tubecad schema`` reads too
+from tubecad.spec.keys import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS, UNITS_KEYS, Key
+from tubecad.surface import CanalSurface, CurvatureLineTube, tube_or_canal
+
+MAX_SPEC_BYTES = 1_000_000
+
+
+@dataclass(frozen=True)
+class TubeSpec:
+    """A checked spec: the tube it describes and the raw sections, for later stages."""
+
+    tube: CurvatureLineTube | CanalSurface  # a constant radius, or a radius law
+    sections: dict[str, dict[str, Any]]
+    source: str
+
+    @property
+    def axis(self) -> Axis:
+        return self.tube.axis
+
+    @property
+    def length_unit(self) -> str:
+        """The unit of every length in the spec and in the files written from it ([units] length)."""
+        return self.sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+
+
+def load_spec(path: str | Path) -> TubeSpec:
+    """Read and check a TOML spec file."""
+    return parse_spec(read_spec_data(path), str(path), Path(path).parent)
+
+
+def read_spec_data(path: str | Path) -> dict[str, Any]:
+    """Read a TOML spec file into a dict, unchecked (:func:`parse_spec` checks it)."""
+    path = Path(path)
+    try:
+        with open(path, "rb") as file:
+            raw = file.read(MAX_SPEC_BYTES + 1)  # bounded: /dev/zero or a huge file is refused, not read
+    except OSError as exc:
+        raise SpecError(f"cannot read spec file {str(path)!r}: {exc.strerror}") from None
+    if len(raw) > MAX_SPEC_BYTES:
+        raise SpecError(
+            f"{path}: spec file is larger than {MAX_SPEC_BYTES} bytes; at most {MAX_SPEC_BYTES} are allowed"
+        )
+    try:
+        data = tomllib.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError:
+        raise SpecError(f"{path}: spec file is not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SpecError(f"{path}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise SpecError(f"{path}: not valid TOML: nested too deeply") from None
+    return data
+
+
+def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None = None) -> TubeSpec:
+    """Check a parsed spec (a dict as tomllib gives) and build its tube."""
+
+    def fail(msg: str) -> SpecError:
+        return SpecError(f"{source}: {msg}")
+
+    allowed_sections = {"axis": None, "tube": TUBE_KEYS, **EXTRA_SECTIONS}
+    for name, value in data.items():
+        if name not in allowed_sections:
+            raise fail(
+                f"unknown section [{_short(name)}]; allowed sections are {', '.join(f'[{s}]' for s in allowed_sections)}"
+            )
+        if not isinstance(value, dict):
+            raise fail(f"[{name}] must be a table (a [{name}] section), got {_toml_type(value)}")
+    for name in ("axis", "tube"):
+        if name not in data:
+            raise fail(f"missing section [{name}]")
+
+    axis_data = data["axis"]
+    curve = axis_data.get("curve")
+    if not isinstance(curve, str) or curve not in FAMILY_KEYS:
+        if "curve" not in axis_data:
+            raise fail(f"[axis] curve is missing; allowed: {AXIS_COMMON['curve'].help}")
+        raise fail(f"[axis] curve must be one of {AXIS_COMMON['curve'].help}, got {_short(repr(curve))}")
+    axis_keys = {**AXIS_COMMON, **FAMILY_KEYS[curve]}
+    sections = {"axis": _check_keys("axis", axis_data, axis_keys, fail)}
+    for name, keys in allowed_sections.items():
+        if name != "axis" and name in data:
+            sections[name] = _check_keys(name, data[name], keys, fail)  # type: ignore[arg-type]
+
+    length_unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+    axis = _with_section("axis", fail, lambda: build_axis(curve, sections["axis"], base, length_unit))
+    tube_data = sections["tube"]
+    radius = tube_data["radius"]
+    try:  # a number: the tube; an expression or a table: the canal surface of that radius law
+        tube = tube_or_canal(axis, radius, allow_irregular=tube_data.get("allow_irregular", False))
+    except ParameterError as exc:
+        raise fail(f"[tube] {exc}") from None
+    except RegularityError as exc:
+        shown = f"{radius:g}" if isinstance(radius, (int, float)) else _short(repr(radius), 40)
+        raise fail(f"[tube] radius {shown}: {_irregular(exc)}") from None
+    layout = sections.get("layout", {})
+    for count, listed in (("rings", "s_rings"), ("stringers", "u_stringers_deg")):
+        if count in layout and listed in layout:
+            raise fail(f"[layout] give either {count} or {listed}, not both")
+    _check_build_sections(tube, sections, fail)
+    return TubeSpec(tube, sections, source)
+
+
+def _check_build_sections(
+    tube: CurvatureLineTube | CanalSurface, sections: dict[str, dict[str, Any]], fail: Callable[[str], SpecError]
+) -> None:
+    """Check what the B-rep needs ([tube] sizes, [layout], [wall], [fit]) against the tube now,
+    so that a bad value is refused before anything is built, by ``report`` as by ``build``.
+    The rules themselves live with the B-rep code."""
+    from tubecad.core.tolerance import MIN_SIZE, check_tolerance
+    from tubecad.spec.layout import layout_from_section
+
+    canal = isinstance(tube, CanalSurface)
+    smallest = tube.radius_law.min_radius if canal else tube.radius
+    if smallest < MIN_SIZE:
+        where = (
+            f"; r reaches {smallest:g} at s = {tube.radius_law.s_at_min_radius:.6g}" if canal else f", got {smallest:g}"
+        )
+        raise fail(f"[tube] radius must be >= {MIN_SIZE:g} model units for a B-rep{where}")
+    if tube.length < MIN_SIZE:
+        raise fail(f"[axis] s must span at least {MIN_SIZE:g} model units for a B-rep, got {tube.length:g}")
+    fit = sections.get("fit", {})
+    if "tolerance" in fit:
+        _with_section("fit", fail, lambda: check_tolerance("tolerance", fit["tolerance"]))
+    _with_section("layout", fail, lambda: layout_from_section(tube, sections.get("layout", {})))
+    if "fabrication" in sections:  # the shop's settings, in the spec's length unit
+        from tubecad.shop.fabrication import fabrication_settings
+
+        unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+        try:
+            fabrication_settings(sections["fabrication"], unit)
+        except ParameterError as exc:
+            raise fail(str(exc)) from None
+    if "mesh" in sections or "analysis" in sections:  # the mesh's and the analysis' settings
+        from tubecad.fem.settings import analysis_settings, mesh_settings
+
+        unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+        try:
+            mesh_settings(sections.get("mesh"))
+            analysis_settings(sections.get("analysis"), unit, bool(tube.axis.closed))
+        except ParameterError as exc:
+            raise fail(str(exc)) from None
+    if canal:
+        return _check_canal_sections(tube, sections, fail)
+    wall = sections.get("wall")
+    if wall is not None:
+        from tubecad.brep.wall import wall_radii
+
+        r_in, r_out = _with_section(
+            "wall", fail, lambda: wall_radii(tube.radius, wall["thickness"], wall.get("side", "centered"))
+        )
+        try:
+            CurvatureLineTube(tube.axis, r_out)
+        except ParameterError as exc:
+            raise fail(
+                f"[wall] thickness {wall['thickness']:g} puts the wall's outer surface at radius {r_out:g}: {exc}"
+            ) from None
+        except RegularityError as exc:
+            raise fail(
+                f"[wall] the wall's outer surface is not regular: thickness {wall['thickness']:g} "
+                f"(side = {wall.get('side', 'centered')!r}) puts it at radius {r_out:g}: {_irregular(exc)}"
+            ) from None
+        if "stiffeners" in sections:  # a stiffener too high for the wall's curvature
+            from tubecad.stiffeners.limits import check_spec_heights
+
+            layout = layout_from_section(tube, sections.get("layout", {}))
+            _with_section(
+                "stiffeners", fail, lambda: check_spec_heights(tube.axis, layout, (r_in, r_out), sections["stiffeners"])
+            )
+
+
+def _check_canal_sections(
+    surface: CanalSurface, sections: dict[str, dict[str, Any]], fail: Callable[[str], SpecError]
+) -> None:
+    """A radius law's [wall]: the offsets of the law, the inner one above MIN_SIZE, the outer
+    one regular, and a [stiffeners] section's surfaces regular too."""
+    from tubecad.brep.wall import wall_offsets
+    from tubecad.core.tolerance import MIN_SIZE
+
+    law, wall = surface.radius_law, sections.get("wall")
+    for name in ("stiffeners", "panels"):  # the wall itself closes; its stiffeners and panels do not yet
+        if surface.axis.closed and name in sections:
+            raise fail(
+                f"[{name}] on a canal surface (a radius law) on a closed axis are not built yet (the closing "
+                "ring and the stringers' ends on it, moved by a Moebius map); the wall alone builds, and a "
+                "constant radius takes them"
+            )
+    if wall is not None:
+        side = wall.get("side", "centered")
+        d_in, d_out = _with_section("wall", fail, lambda: wall_offsets(wall["thickness"], side))
+        if law.min_radius + d_in < MIN_SIZE:
+            raise fail(
+                f"[wall] thickness {wall['thickness']:g} (side = {side!r}) is too thick for the smallest radius "
+                f"{law.min_radius:g} at s = {law.s_at_min_radius:.6g}: the inner surface must stay at radius "
+                f">= {MIN_SIZE:g}"
+            )
+        try:
+            surface.offset(d_out)
+        except (ParameterError, RegularityError) as exc:
+            raise fail(
+                f"[wall] the wall's outer surface (the radius law + {d_out:g}) is not regular: {_irregular(exc)}"
+            ) from None
+        if "stiffeners" in sections:  # a stiffener whose own surfaces would fold, or reach past the axis
+            from tubecad.spec.layout import layout_from_section
+            from tubecad.stiffeners.canal import check_spec_heights
+
+            layout = layout_from_section(surface, sections.get("layout", {}))
+            _with_section(
+                "stiffeners", fail, lambda: check_spec_heights(surface, layout, (d_in, d_out), sections["stiffeners"])
+            )
+
+
+def _irregular(exc: RegularityError) -> str:
+    return str(exc).replace(
+        "(pass allow_irregular=True to build it anyway)", "(set [tube] allow_irregular = true to build it anyway)"
+    )
+
+
+def _short(text: str, most: int = 80) -> str:
+    """``text`` cut to ``most`` characters for a one-line message (a hostile spec can hold megabytes)."""
+    return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
+
+
+def _with_section(name: str, fail: Callable[[str], SpecError], build: Callable[[], Any]) -> Any:
+    try:
+        return build()
+    except ParameterError as exc:
+        raise fail(f"[{name}] {exc}") from None
+
+
+def _check_keys(
+    section: str, values: dict[str, Any], keys: dict[str, Key], fail: Callable[[str], SpecError]
+) -> dict[str, Any]:
+    for key in values:
+        if key not in keys:
+            raise fail(f"unknown key [{section}] {_short(key)}; allowed keys are {', '.join(keys)}")
+    out: dict[str, Any] = {}
+    for key, spec in keys.items():
+        if key not in values:
+            if spec.required:
+                raise fail(f"[{section}] {key} is missing ({spec.help})")
+            continue
+        out[key] = _check_type(section, key, values[key], spec, fail)
+    return out
+
+
+def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[str], SpecError]) -> Any:
+    where = f"[{section}] {key}"
+
+    def number(v: Any) -> bool:
+        return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+    ok = {
+        "number": number(value),
+        "string": isinstance(value, str),
+        "bool": isinstance(value, bool),
+        "pair": isinstance(value, list) and len(value) == 2 and all(number(v) for v in value),
+        "triple": isinstance(value, list) and len(value) == 3 and all(number(v) for v in value),
+        "numbers": isinstance(value, list) and len(value) > 0 and all(number(v) for v in value),
+        "number_or_numbers": number(value)
+        or (isinstance(value, list) and len(value) > 0 and all(number(v) for v in value)),
+        "integer": isinstance(value, int) and not isinstance(value, bool),
+        "selection": value == "all"
+        or (isinstance(value, list) and all(isinstance(v, int) and not isinstance(v, bool) for v in value)),
+        "points": isinstance(value, list)
+        and len(value) >= 3
+        and all(isinstance(p, list) and len(p) == 3 and all(number(v) for v in p) for p in value),
+        "joints": isinstance(value, dict)
+        and all(isinstance(v, list) and v and all(number(x) for x in v) for v in value.values()),
+        "radius": number(value)
+        or isinstance(value, str)
+        or (
+            isinstance(value, list)
+            and len(value) >= 2
+            and all(isinstance(p, list) and len(p) == 2 and all(number(v) for v in p) for p in value)
+        ),
+    }[spec.kind]
+    if not ok:
+        wanted = {
+            "number": "a number",
+            "string": "a string",
+            "bool": "true or false",
+            "integer": "a whole number",
+            "pair": "a list of two numbers",
+            "triple": "a list of three numbers",
+            "numbers": "a non-empty list of numbers",
+            "number_or_numbers": "a number or a non-empty list of numbers",
+            "selection": 'a list of whole-number indices or "all"',
+            "points": "a list of three or more [x, y, z] points",
+            "joints": "a table of stiffener name = [positions]",
+            "radius": "a number, an expression in s or a table of two or more [s, r] rows",
+        }[spec.kind]
+        raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}")
+    if spec.kind in ("number", "radius") and number(value) and not math.isfinite(value):
+        raise fail(f"{where} must be finite ({spec.help}), got {value}")
+    if spec.kind == "number_or_numbers" and not all(
+        math.isfinite(v) for v in (value if isinstance(value, list) else [value])
+    ):
+        raise fail(f"{where} must be finite ({spec.help}), got {_short(repr(value))}")
+    if spec.choices and value not in spec.choices:
+        raise fail(f"{where} must be one of {', '.join(spec.choices)}, got {_short(repr(value))}")
+    return value
+
+
+def _toml_type(value: Any) -> str:
+    return {
+        bool: "a boolean",
+        int: "an integer",
+        float: "a float",
+        str: "a string",
+        list: "an array",
+        dict: "a table",
+    }.get(type(value), type(value).__name__)
