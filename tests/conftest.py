@@ -1,5 +1,7 @@
 """Shared fixtures: one tube per axis family, each regular over its span."""
 
+import os
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -108,3 +110,202 @@ radius = 5.0
 rings = 3
 stringers = 2
 """
+
+
+# ---------------------------------------------------------------------------------------------
+# external programs: one mechanism for every test that needs one
+#
+# `@pytest.mark.requires("ccx")` on a test (or `pytestmark` of a module), or `requires("ccx")`
+# inside one: where the program is missing the test is skipped with a one-line reason, so the
+# README's quick start passes on a fresh machine. In CI (CI set, as .ci/run runs) the same
+# skip is a failure: CI installs these programs, and a green CI must not hide a missing step.
+
+#: program -> (what it is, a check giving None when it is there or else why not, what installs it)
+PROGRAMS = {
+    "ccx": ("CalculiX", lambda: _on_path("ccx"), "apt-get install calculix-ccx"),
+    "chromium": ("headless Chromium", lambda: _on_path("chromium", "chromium-browser"), "apt-get install chromium"),
+    "gmsh": ("gmsh's Python module", lambda: _gmsh_loads(), 'pip install ".[test]"'),
+    "freecad": ("FreeCAD's console", lambda: _on_path("freecadcmd"), "apt-get install freecad"),
+}
+
+
+def _on_path(*names: str) -> str | None:
+    return None if any(shutil.which(n) for n in names) else "not on PATH"
+
+
+def _gmsh_loads() -> str | None:
+    try:
+        import gmsh  # noqa: F401
+    except (ImportError, OSError) as exc:  # OSError: the module is there, its libgmsh does not load
+        return " ".join(f"cannot be imported: {exc}".split())
+    return None
+
+
+def in_ci() -> bool:
+    return os.environ.get("CI", "").strip().lower() not in ("", "0", "false", "no")
+
+
+def missing_reason(program: str) -> str | None:
+    """None when ``program`` is there, else the one-line reason."""
+    what, check, install = PROGRAMS[program]
+    why = check()
+    return None if why is None else f"needs {program} ({what}): {why}; {install}"
+
+
+def requires(*programs: str) -> None:
+    """Skip the calling test (a failure in CI) unless every one of ``programs`` is there."""
+    for program in programs:
+        reason = missing_reason(program)
+        if reason is not None:
+            try:  # reported at the test's own line, as a skip mark is
+                skip = pytest.skip.Exception(reason, _use_item_location=True)
+            except TypeError:  # a pytest without that keyword
+                skip = pytest.skip.Exception(reason)
+            skip.program_missing = True  # what the hook below looks for
+            raise skip
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers",
+        f"requires(*programs): needs external programs ({', '.join(PROGRAMS)}); skipped without, failed in CI",
+    )
+
+
+def pytest_runtest_setup(item):
+    for mark in item.iter_markers("requires"):
+        requires(*mark.args)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    outcome = yield
+    report = outcome.get_result()
+    if (
+        report.skipped
+        and call.excinfo is not None
+        and getattr(call.excinfo.value, "program_missing", False)
+        and in_ci()
+    ):
+        report.outcome = "failed"
+        report.longrepr = f"CI={os.environ['CI']}: {call.excinfo.value.msg} (CI must install it: .ci/run)"
+
+
+# ---------------------------------------------------------------------------------------------
+# builds made once per test run, shared by every test (and every xdist worker) that needs them
+#
+# A build is a folder filled once, under a folder that all workers of this run share (pytest's
+# base temporary folder, the parent of each worker's own), behind a file lock: the first test
+# that asks builds it, the others wait and read it. Nothing is kept between runs, so no cached
+# result can be stale. The folders are read-only by convention: a test writes into its tmp_path.
+
+
+def _shared_root(tmp_path_factory) -> Path:
+    base = tmp_path_factory.getbasetemp()
+    root = (base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base) / "built-once"
+    root.mkdir(exist_ok=True)
+    return root
+
+
+def built_once(tmp_path_factory, key: str, build) -> Path:
+    """The folder ``build(folder)`` filled, made once per run under ``key`` across workers."""
+    import fcntl
+
+    root = _shared_root(tmp_path_factory)
+    folder = root / key
+    with open(root / f"{key}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        if not (folder / ".done").exists():
+            shutil.rmtree(folder, ignore_errors=True)  # an attempt that raised
+            folder.mkdir()
+            build(folder)
+            (folder / ".done").write_text("")
+    return folder
+
+
+def _cli_in(folder: Path, args: list[str]) -> None:
+    """Run ``tubecad ARGS`` in this process; its exit code and output go to folder/cli.json."""
+    import json
+
+    from click.testing import CliRunner
+
+    from tubecad.cli.app import cli
+
+    result = CliRunner().invoke(cli, args)
+    (folder / "cli.json").write_text(json.dumps({"exit_code": result.exit_code, "output": result.output}))
+
+
+class CliRun:
+    """A shared ``tubecad`` run: its folder, exit code and output (as click's Result has them)."""
+
+    def __init__(self, folder: Path):
+        import json
+
+        self.folder = folder
+        said = json.loads((folder / "cli.json").read_text())
+        self.exit_code, self.output = said["exit_code"], said["output"]
+
+    def report(self, name: str = "r.json") -> dict:
+        import json
+
+        return json.loads((self.folder / name).read_text())
+
+
+#: appended to a sample without [wall]: the wall the sample build makes of it
+WALL_SECTIONS = """
+[layout]
+rings = 4
+stringers = 3
+
+[wall]
+thickness = {thickness}
+side = "centered"
+
+[fit]
+tolerance = 1e-8
+"""
+
+
+def sample_build_outputs(name: str) -> tuple[str, str]:
+    """The files of a sample's build: a.step, and a.iges (a.brep for the closed trefoil, whose
+    104 faces 320 long stay orthogonal in IGES only to |cos| 1.1e-9: the read-back check
+    refuses it)."""
+    return "a.step", "a.brep" if name == "trefoil_closed" else "a.iges"
+
+
+@pytest.fixture(scope="session")
+def sample_build(tmp_path_factory):
+    """``sample_build(NAME)``: samples/NAME.toml built once per run by
+    ``tubecad build spec.toml -o a.step -o a.iges --report r.json`` (a wall added to a sample
+    without one: WALL_SECTIONS at a tenth of its radius), a CliRun. Every test that builds a
+    sample as it is asks here, so each sample is built once in the suite."""
+
+    def build(name: str) -> CliRun:
+        def make(folder: Path) -> None:
+            import tomllib
+
+            text = (SAMPLES / f"{name}.toml").read_text()
+            if "[wall]" not in text:
+                text += WALL_SECTIONS.format(thickness=0.1 * tomllib.loads(text)["tube"]["radius"])
+            (folder / "spec.toml").write_text(text)
+            for data in SAMPLES.glob("*.step"):  # files a spec names (an edge's centreline) are relative to it
+                shutil.copy(data, folder)
+            outputs = [a for out in sample_build_outputs(name) for a in ("-o", str(folder / out))]
+            _cli_in(folder, ["build", str(folder / "spec.toml"), *outputs, "--report", str(folder / "r.json")])
+
+        return CliRun(built_once(tmp_path_factory, f"sample-{name}", make))
+
+    return build
+
+
+@pytest.fixture(scope="session")
+def paper_run(tmp_path_factory):
+    """``paper_run(nu, ns)``: ``tubecad paper -o DIR --nu NU --ns NS`` once per run, a CliRun."""
+
+    def run(nu: int, ns: int) -> CliRun:
+        def make(folder: Path) -> None:
+            _cli_in(folder, ["paper", "-o", str(folder), "--nu", str(nu), "--ns", str(ns)])
+
+        return CliRun(built_once(tmp_path_factory, f"paper-{nu}-{ns}", make))
+
+    return run

@@ -499,6 +499,7 @@ def test_fit_says_whether_it_stalled_or_ran_out_of_spans():
         fit_frame(axis, 15.0, tolerance=1e-10, orthogonality=1e-10, max_spans=16)
 
 
+@pytest.mark.slow
 def test_densely_coiled_axis_is_refused_quickly_within_bounded_memory():
     """A circle run round 125 times: every axis sample is within 3 rho of every other
     (2e8 pairs at full sampling). Checked in a subprocess limited to 2 GB."""
@@ -711,6 +712,7 @@ def console(*args, cwd=None) -> subprocess.Popen:
     )
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not CONSOLE.exists(), reason="the tubecad console script is not installed")
 def test_console_script_refuses_bad_input_with_one_line_and_exit_2(tmp_path):
     bad_radius = tmp_path / "radius.toml"
@@ -763,6 +765,7 @@ def assert_interrupted(process: subprocess.Popen):
     return out
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not CONSOLE.exists() or sys.platform != "linux", reason="needs the console script and Linux")
 def test_ctrl_c_while_writing_leaves_no_partial_file(tmp_path):
     """SIGINT as soon as a temporary output file exists, i.e. while OCCT writes it."""
@@ -795,6 +798,7 @@ def test_ctrl_c_while_writing_leaves_no_partial_file(tmp_path):
     assert any(not t.exists() for t in targets)  # the run really was cut short
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not CONSOLE.exists() or sys.platform != "linux", reason="needs the console script and Linux")
 def test_sigterm_during_paper_leaves_only_complete_files(tmp_path):
     from tubecad.brep import properties as props
@@ -811,6 +815,7 @@ def test_sigterm_during_paper_leaves_only_complete_files(tmp_path):
     assert props.is_valid(shape) and props.count(shape, "face") == 162
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not Path("/proc/self/maps").exists() or not CONSOLE.exists(), reason="needs Linux /proc")
 def test_ctrl_c_while_the_cad_libraries_load_is_clean(tmp_path):
     """An interrupt during the seconds the OCCT import takes: no traceback either."""

@@ -55,6 +55,7 @@ def pool_batch(tmp_path_factory):
     return result, out
 
 
+@pytest.mark.slow
 def test_pool_batch_writes_each_good_spec_and_reports_the_bad_one(pool_batch):
     result, out = pool_batch
     assert result.exit_code == 2, result.output
@@ -76,6 +77,7 @@ def test_pool_batch_writes_each_good_spec_and_reports_the_bad_one(pool_batch):
     assert jobs["thin"]["outputs"] == ["thin.step", "thin.iges", "thin.report.json"]
 
 
+@pytest.mark.slow
 def test_pool_batch_progress_lines(pool_batch):
     result, out = pool_batch
     lines = result.stderr.splitlines()
@@ -99,6 +101,7 @@ def test_pool_batch_progress_lines(pool_batch):
     assert "Traceback" not in result.output
 
 
+@pytest.mark.slow
 def test_sweep_over_the_radius_scales_the_volume_as_rho_squared(tmp_path):
     paper = spec(tmp_path, "paper", 5.0, length=200.0)
     out = tmp_path / "out"

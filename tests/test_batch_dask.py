@@ -28,7 +28,8 @@ from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs  # noqa: E402
 from tubecad.batch.runner import run_batch
 from tubecad.cli.app import cli  # noqa: E402
 
-pytestmark = pytest.mark.once  # the same on both OCCT generations: CI runs it once
+# the same on both OCCT generations: CI runs it once; clusters of worker processes: slow
+pytestmark = [pytest.mark.once, pytest.mark.slow]
 
 SMALL = SMALL_BATCH_TUBE
 SWEEP = "tube.radius=4:6:12"

@@ -30,7 +30,8 @@ from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs, run_job
 from tubecad.batch.manifest import content_hash, file_hash
 from tubecad.cli.app import cli
 
-pytestmark = pytest.mark.once  # the same on both OCCT generations: CI runs it once
+# the same on both OCCT generations: CI runs it once; batches of worker processes: slow
+pytestmark = [pytest.mark.once, pytest.mark.slow]
 
 SMALL = SMALL_BATCH_TUBE
 SWEEP = "tube.radius=4:6:6"  # six small tubes

@@ -167,6 +167,7 @@ def test_same_line_listed_twice_is_one_line():
     assert layout.stringers_deg == (0.0, 90.0) and layout.s_rings == (200.0, 500.0, 1200.0)
 
 
+@pytest.mark.slow
 def test_solids_work_in_build123d_and_cadquery():
     cq = pytest.importorskip("cadquery", reason="CadQuery is the extra tubecad[cadquery]")
 
@@ -187,6 +188,7 @@ def test_solids_work_in_build123d_and_cadquery():
     assert props.volume(tube_wp.val()) == pytest.approx(math.pi * 15**2 * 200.0, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_generic_grid_fit_is_measured_and_the_exact_section_beats_it():
     """Comparison path (issue 3, 1b): OCCT's grid fitter on the exact grid, measured by true
     distance. The exact-section surface is orders of magnitude closer with fewer poles."""

@@ -167,6 +167,7 @@ def circle_fit(points):
     return max(off_plane, np.abs(np.linalg.norm(xy - sol[:2], axis=1) - radius).max()), radius
 
 
+@pytest.mark.slow
 def test_a_dupin_cyclide_wall_has_circles_for_stringer_edges():
     axis = ParametricAxis(lambda t: np.stack([A * np.cos(t), B * np.sin(t), 0.0 * t], axis=-1), (0.2, 5.8))
     # its ends come close (a tube of the largest radius 14 would self-intersect), not the cyclide
@@ -207,6 +208,7 @@ def helical():
     return CanalSurface(Helix(0.02, 30.0, (0.0, 200.0)), "3 + 0.5*sin(s/20)")
 
 
+@pytest.mark.slow
 def test_a_tapered_helix_wall_is_accurate_and_orthogonal(helical):
     build = build_wall_solid(helical, 0.5, "centered", NetLayout.equal(helical, 6, 8))
     shape = build.shape

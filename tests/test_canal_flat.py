@@ -250,6 +250,7 @@ def web_3d(surface, chi0, height, sign):
     return float(ws @ np.linalg.norm(x_s, axis=1)), float(ws @ np.linalg.norm(top, axis=1)), area
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("side", ["outside", "inside"])
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_developed_web_measures_equal_the_3d_web(case, side):

@@ -39,6 +39,7 @@ def built_and_read_back(spec: str, tmp_path: Path) -> dict:
     return {"faces": report["brep"]["faces"], "file": report["exports"][str(out)]}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "spec, deviation, orthogonality",
     [

@@ -55,6 +55,7 @@ def signed_volume(vertices: np.ndarray, triangles: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
+@pytest.mark.slow
 def test_a_canal_wall_mesh_is_closed_outward_and_holds_the_volume(meshed):
     """Every edge is shared by exactly two triangles; the signed volume (outward triangles)
     is the B-rep's within VOLUME_SHARE x tolerance x area."""
@@ -71,6 +72,7 @@ def test_a_canal_wall_mesh_is_closed_outward_and_holds_the_volume(meshed):
     assert abs(volume - brep["volume"]) <= VOLUME_SHARE * TOLERANCE * area
 
 
+@pytest.mark.slow
 def test_every_canal_mesh_vertex_lies_on_the_exact_surface(meshed):
     """Every vertex (caps included: their nodes are the end circles') within the tolerance of
     the exact canal surface r + d it belongs to, by the sphere-envelope distance; the read-back
@@ -97,6 +99,7 @@ def test_every_canal_mesh_vertex_lies_on_the_exact_surface(meshed):
     assert np.abs(distance[:, None] - levels[None, :]).min(axis=1).max() < 1e-4
 
 
+@pytest.mark.slow
 def test_a_canal_wall_mesh_has_fewer_triangles_than_brepmesh(meshed):
     """BRepMesh at the same tolerances (absolute, as tubecad.export.meshing asks it for
     everything off the grid) makes more triangles of the same wall."""
@@ -125,6 +128,7 @@ def test_a_canal_wall_mesh_has_fewer_triangles_than_brepmesh(meshed):
     assert report["exports"][str(out)]["triangles"] < 0.6 * brepmesh  # measured 0.25 (nozzle), 0.50 (helix)
 
 
+@pytest.mark.slow
 def test_a_canal_tube_solid_meshes_closed_with_its_end_discs(tmp_path):
     """Without [wall], the capped tube: plane discs at the end circles (centred at c - r r' t,
     off the axis where r' != 0), triangulated on the circles' nodes alone."""

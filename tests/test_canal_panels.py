@@ -38,6 +38,7 @@ def checked(panels, analyzed=(0, -1)):
     return panels
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "seams, rings, analyzed",
     [([5, 0, 3], [0, 2, 4], ()), ([2, 6], None, ()), ([1, 2, 3, 4, 5, 6, 7, 0], None, (0, 13, -1))],
@@ -56,6 +57,7 @@ def test_canal_panels_fit_together_into_the_wall(sample_wall, seams, rings, anal
     assert props.is_valid(build.shape)  # the wall, whose faces and edges the panels share, is left valid
 
 
+@pytest.mark.slow
 def test_canal_one_seam_panels_are_the_ring_bays(sample_wall):
     name, build = sample_wall
     panels = checked(split_into_panels(build, [3], [0, 1, 3, 4]), (0,))
@@ -81,6 +83,7 @@ def frustum(r0: float, slope: float, sa: float, sb: float, d_in: float, d_out: f
     return 2.0 * math.pi * abs(moment), math.pi * (rho_a + rho_b) * q * (sb - sa)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("r0, slope", [(40.0, -0.1), (10.0, 0.3)])
 def test_canal_panels_on_a_cone_are_solids_of_revolution(r0, slope):
     canal = tube_or_canal(NaturalAxis("0", "0", (0.0, 200.0)), f"{r0} + {slope} * s")

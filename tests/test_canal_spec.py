@@ -37,6 +37,7 @@ def run(*args):
     return CliRunner().invoke(cli, [str(a) for a in args])
 
 
+@pytest.mark.slow
 def test_report_of_a_nozzle_is_the_surface_of_revolution_of_its_profile(tmp_path):
     spec = tmp_path / "nozzle.toml"
     spec.write_text(NOZZLE)
@@ -65,6 +66,7 @@ def test_report_of_a_nozzle_is_the_surface_of_revolution_of_its_profile(tmp_path
     assert report["max_orthogonality_error"] < 1e-12 and report["max_M_error"] < 1e-12
 
 
+@pytest.mark.slow
 def test_a_table_law_on_a_helix_has_a_curvature_line_net(tmp_path):
     spec = tmp_path / "helix.toml"
     spec.write_text(
@@ -164,6 +166,7 @@ def test_a_radius_expression_may_use_the_axis_point(tmp_path):
     )
 
 
+@pytest.mark.slow
 def test_a_canal_wall_splits_into_named_panels_from_the_cli(tmp_path):
     from tubecad.export.cad import step_names
 

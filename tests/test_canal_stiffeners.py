@@ -79,6 +79,7 @@ def test_ring_web_on_a_cone_is_its_thickness_wide_along_the_wall(cone):
     assert math.hypot(zb - za, pb - pa) == pytest.approx(t, rel=1e-13)
 
 
+@pytest.mark.slow
 def test_ring_frames_on_a_curved_axis_pass_the_pre_boolean_check():
     canal = load_spec("samples/tapered_helix.toml").tube
     s = 300.0
@@ -96,6 +97,7 @@ def test_ring_frames_on_a_curved_axis_pass_the_pre_boolean_check():
     assert min(abs(v) for v in levels) < 1e-8 and min(abs(v - 4.0) for v in levels) < 1e-8
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sample", ["nozzle", "tapered_helix", "dupin_cyclide"])
 def test_stringer_base_lies_on_the_wall_and_its_web_stands_normal_to_it(sample):
     canal = load_spec(f"samples/{sample}.toml").tube

@@ -111,6 +111,7 @@ def test_ring_circles_are_exact_and_lie_on_the_faces(paper_wall):
     assert max(BRep_Tool.Tolerance_s(e.wrapped) for e in build.shape.edges()) <= 1e-7
 
 
+@pytest.mark.slow
 def test_faces_hold_no_c0_knot_and_the_solid_passes_the_cheap_analyzer_checks(paper_wall):
     _, build = paper_wall
     cheap = tuple(m for m in props.ANALYZER_MODES if m != "SelfInterMode")
@@ -195,6 +196,7 @@ def test_arc_lengths_far_from_zero_build():
     assert props.is_valid(build.shape) and deviation < 4e-4
 
 
+@pytest.mark.slow
 def test_large_layouts_store_only_the_poles_they_need(tmp_path):
     """Item 10: a 60 x 24 wall wrote ~37 KB of STEP per face (every stringer edge carried the
     whole length's iso-curve); now each edge and face holds its own piece."""
@@ -215,12 +217,11 @@ def test_involute_far_out_builds():
 
 
 @pytest.mark.slow
-def test_paper_stiffened_step_solids_pass_every_argument_analyzer_check(tmp_path):
+def test_paper_stiffened_step_solids_pass_every_argument_analyzer_check(paper_run):
     """paper_stiffened.step as FreeCAD imports it: each part checked on its own, no finding."""
-    from tubecad.cli.app import cli
-
-    cli.main(args=["paper", "-o", str(tmp_path), "--nu", "16", "--ns", "101"], standalone_mode=False)
-    shape = import_shape(tmp_path / "paper_stiffened.step")
+    paper = paper_run(16, 101)  # `tubecad paper -o DIR --nu 16 --ns 101`, shared with test_outputs.py
+    assert paper.exit_code == 0, paper.output
+    shape = import_shape(paper.folder / "paper_stiffened.step")
     solids = bd.Compound(shape).solids()
     wall = max(solids, key=lambda s: s.volume)
     stiffeners = [s for s in solids if s is not wall]

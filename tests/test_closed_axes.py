@@ -114,6 +114,7 @@ def test_the_holonomy_of_a_knot_is_minus_its_total_torsion(curve):
     assert abs(wrapped(turned.holonomy - axis.holonomy)) < 1e-10
 
 
+@pytest.mark.slow
 def test_the_trefoil_knot_is_closed_and_closed_true_accepts_it():
     x, _ = symbolic_curve(*TREFOIL)
     assert ParametricAxis(x, (0.0, TWO_PI)).closed

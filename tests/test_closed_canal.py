@@ -134,6 +134,7 @@ def test_the_closing_map(trefoil_canal):
     assert np.all(np.diff(trefoil_canal.closing_angle(dense)) > 0)
 
 
+@pytest.mark.slow
 def test_the_torus_like_canal_wall(torus_canal):
     """(a) A circle axis, r = 2 + 0.5 cos(2 pi s / L): the closed shell, solid and wall."""
     L = torus_canal.length
@@ -158,6 +159,7 @@ def test_the_torus_like_canal_wall(torus_canal):
     assert exact_volume(wall, torus_canal) == pytest.approx(expected, rel=1e-11)
 
 
+@pytest.mark.slow
 def test_the_trefoil_canal_wall(trefoil_canal):
     """(b) The whole trefoil knot with a periodic law: valid and watertight, every stringer
     ends on the closing ring at phi(a_j) (the exact circle point there, phi from the
@@ -260,14 +262,13 @@ def test_a_law_that_does_not_close_is_refused(tmp_path, radius, says):
         CanalSurface(ParametricAxis(trefoil, (0.0, TWO_PI)), "0.3 + 0.001 * s")
 
 
-def test_the_closed_canal_sample_builds_to_step(tmp_path):
+@pytest.mark.slow
+def test_the_closed_canal_sample_builds_to_step(sample_build):
     """(d) samples/saddle_canal_closed.toml: a closed axis, a radius law, [layout], [wall]."""
-    out, report_path = tmp_path / "x.step", tmp_path / "r.json"
-    result = run("build", SAMPLE, "-o", out, "--report", report_path)
+    result = sample_build(SAMPLE.stem)  # the suite's one build of the sample, to STEP and IGES
+    out = result.folder / "a.step"
     assert result.exit_code == 0, result.output
-    import json
-
-    report = json.loads(report_path.read_text())
+    report = result.report()
     brep = report["brep"]
     assert brep["valid"] and brep["free_edges"] == 0 and brep["boolean_check"]["findings"] == {}
     assert brep["volume_relative_error"] < 1e-9 and brep["fit"]["max_deviation"] < 1e-8

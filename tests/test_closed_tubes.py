@@ -89,6 +89,7 @@ def test_a_closed_tube_shell_is_closed(trefoil_tube):
     assert props.is_valid(shell) and props.free_edges(shell) == 0 and shell.wrapped.Closed()
 
 
+@pytest.mark.slow
 def test_the_trefoil_wall_is_a_valid_solid_with_a_cavity(trefoil_tube):
     rings, stringers = 9, 4
     build = build_wall_solid(trefoil_tube, 0.06, "centered", NetLayout.equal(trefoil_tube, rings, stringers))
@@ -138,6 +139,7 @@ def test_a_closed_tube_needs_a_ring_besides_the_closing_one(torus_tube):
         build_tube_solid(torus_tube, NetLayout.equal(torus_tube, 2, 4))
 
 
+@pytest.mark.slow
 def test_stiffeners_on_a_closed_wall(trefoil_tube):
     """Rings (the closing ring one solid, not two halves) and stringers that end on the closing
     ring at their shifted angle: each a valid solid fit for booleans."""
@@ -163,6 +165,7 @@ def closed_square_route(side: float = 40.0, bend: float = 5.0) -> RouteAxis:
     return RouteAxis([[0, 0, 0], [side, 0, 0], [side, side, 0], [0, side, 0], [0, 0, 0]], bend)
 
 
+@pytest.mark.slow
 def test_stringers_on_a_planar_loop_close_on_themselves():
     """A planar closed route: holonomy 0, so a stringer comes back onto its own start and is
     one ring-like solid without caps, whose volume is its section's area times the path of
@@ -229,6 +232,7 @@ thickness = 0.02
 """
 
 
+@pytest.mark.slow
 def test_build_a_closed_wall_with_stiffeners_to_step_and_a_closed_mesh(tmp_path):
     """`tubecad build`: the named STEP reads back valid (wall, one closing ring, the others,
     stringers), the report gives the holonomy, and the wall's STL (on its curvature-line grid,
@@ -279,6 +283,7 @@ def test_a_closing_with_a_kink_is_refused(tmp_path):
     assert_build_refused(tmp_path, text, "[axis] closed = true, but the tangents at the axis' ends differ by")
 
 
+@pytest.mark.slow
 def test_a_periodic_build123d_spline_gives_a_closed_wall():
     """A closed spline Edge of a build123d model: its wall is closed, valid, of volume
     pi (R^2 - r^2) L."""
@@ -345,6 +350,7 @@ def grid_mesh(build, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
     return vertices[first], inverse.reshape(-1)[triangles]
 
 
+@pytest.mark.slow
 def test_a_closed_wall_meshes_on_its_grid_closed_at_the_default_tolerance(tmp_path):
     """`tubecad build -o x.stl` of the small closed trefoil wall at the default tolerance: the
     STL is closed (each edge shared by two triangles), its signed volume short of
@@ -381,6 +387,7 @@ def test_a_closed_wall_meshes_on_its_grid_closed_at_the_default_tolerance(tmp_pa
     assert len(triangles) < 0.5e6  # BRepMesh made 1.06 M here
 
 
+@pytest.mark.slow
 def test_a_closed_seam_tube_meshes_on_its_grid(trefoil_tube):
     """One stringer: a single face per band, round the whole tube on the seam edge, both on
     the first band's closing row and on the last band's (which starts at the stringer's end,

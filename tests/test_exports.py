@@ -3,12 +3,11 @@
 import json
 import math
 import os
-import shutil
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import PAPER_SPEC
+from conftest import PAPER_SPEC, sample_build_outputs
 
 from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
@@ -92,6 +91,7 @@ def test_interrupt_as_the_temporary_is_created_leaves_no_file(tmp_path, monkeypa
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_paper_command_writes_a_valid_wall_step_and_iges(tmp_path):
     result = CliRunner().invoke(cli, ["paper", "-o", str(tmp_path), "--nu", "32", "--ns", "201"])
     assert result.exit_code == 0, result.output
@@ -127,55 +127,21 @@ def test_paper_command_writes_a_valid_wall_step_and_iges(tmp_path):
     assert (tmp_path / "paper_stiffened.png").read_bytes().startswith(b"\x89PNG")
 
 
-WALL_SECTIONS = """
-[layout]
-rings = 4
-stringers = 3
-
-[wall]
-thickness = {thickness}
-side = "centered"
-
-[fit]
-tolerance = 1e-8
-"""
-
-
+@pytest.mark.slow
 @pytest.mark.parametrize("spec", sorted(SAMPLES.glob("*.toml")), ids=lambda p: p.stem)
-def test_build_command_for_every_family(tmp_path, spec):
-    text = spec.read_text()
-    if "[wall]" not in text:
-        import tomllib
-
-        radius = tomllib.loads(text)["tube"]["radius"]
-        text += WALL_SECTIONS.format(thickness=0.1 * radius)
-    path = tmp_path / "spec.toml"
-    path.write_text(text)
-    for data in SAMPLES.glob("*.step"):  # files a spec names (an edge's centreline) are relative to it
-        shutil.copy(data, tmp_path)
-    # the closed trefoil's isolines, its 104 faces 320 long, stay orthogonal in IGES only to
-    # |cos| 1.1e-9: the read-back check refuses it, so it goes to BREP
-    second = "a.brep" if spec.stem == "trefoil_closed" else "a.iges"
-    result = CliRunner().invoke(
-        cli,
-        [
-            "build",
-            str(path),
-            "-o",
-            str(tmp_path / "a.step"),
-            "-o",
-            str(tmp_path / second),
-            "--report",
-            str(tmp_path / "r.json"),
-        ],
-    )
+def test_build_command_for_every_family(sample_build, spec):
+    """`tubecad build` of every sample (a wall added where it has none: conftest.WALL_SECTIONS)
+    to STEP and IGES (the closed trefoil to BREP), each read back: the suite's one build of each
+    sample (conftest.sample_build), which other tests of a sample share."""
+    result = sample_build(spec.stem)
+    folder, second = result.folder, sample_build_outputs(spec.stem)[1]
     assert result.exit_code == 0, result.output
-    report = json.loads((tmp_path / "r.json").read_text())
+    report = result.report()
     assert report["brep"]["valid"] and report["brep"]["volume_relative_error"] < 1e-6
     assert report["brep"]["fit"]["max_deviation"] < 1e-8
     assert report["brep"]["fit"]["max_orthogonality_error"] < 1e-9
     for name in ("a.step", second):
-        back = report["exports"][str(tmp_path / name)]
+        back = report["exports"][str(folder / name)]
         assert back["valid"] and back["volume_relative_error"] < 1e-6
         if "stiffeners" in report:  # the assembly: the wall's faces and the stiffeners'
             wall = len(report.get("panels") or []) or 1  # the wall, or its panels

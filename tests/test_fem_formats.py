@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import requires
 
 meshio = pytest.importorskip("meshio")
 
@@ -159,7 +160,7 @@ def _gmsh_read(path):
 
 @pytest.mark.parametrize("name", MESHES)
 def test_msh_read_by_gmsh(written, name):
-    pytest.importorskip("gmsh")
+    requires("gmsh")
     mesh, _, paths = written[name]
     tags, xyz, names, members, elements = _gmsh_read(paths["msh"])
     # nodes: tags 1..n, coordinates exactly (the file has Python's shortest round-trip decimals)
@@ -269,7 +270,7 @@ def test_middle_nodes_between_their_ends(written, name):
     """Read back from .msh (gmsh) and .vtu (meshio): every 3-node beam's middle node and every
     8-node shell's mid-side node is as far from both ends of its side (to 1e-9 of the side's
     chord; measured 4.0e-14). A middle node read as an end would be 0 from one of them."""
-    pytest.importorskip("gmsh")
+    requires("gmsh")
     mesh, _, paths = written[name]
     tags, xyz, _, _, elements = _gmsh_read(paths["msh"])
     points = np.empty_like(xyz)

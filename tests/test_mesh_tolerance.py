@@ -56,6 +56,7 @@ def two_tolerances(wall_spec, tmp_path_factory):
     return {t: mesh_report(wall_spec, folder / f"w{t}.stl", "--mesh-tolerance", t) for t in (0.05, 0.01)}
 
 
+@pytest.mark.slow
 def test_a_finer_tolerance_gives_more_triangles_closer_to_the_tube(two_tolerances):
     coarse, fine = two_tolerances[0.05], two_tolerances[0.01]
     assert fine["triangles"] > 2 * coarse["triangles"]
@@ -67,6 +68,7 @@ def test_a_finer_tolerance_gives_more_triangles_closer_to_the_tube(two_tolerance
         assert info["max_vertex_deviation"] < 1e-4
 
 
+@pytest.mark.slow
 def test_every_mesh_format_holds_the_same_triangles_within_the_tolerance(wall_spec, tmp_path):
     from tubecad.export.mesh import read_mesh_triangles
     from tubecad.export.tessellate import mesh_deviation
@@ -102,6 +104,7 @@ def test_every_mesh_format_holds_the_same_triangles_within_the_tolerance(wall_sp
         assert f"{out}: " in result.output and "tolerance 0.02 and 10 deg" in result.output
 
 
+@pytest.mark.slow
 def test_the_mesh_is_closed_and_faces_outward(wall_spec, tmp_path):
     """Each edge of the STL is shared by two triangles, and the signed volume is the wall's."""
     from tubecad.export.mesh import read_mesh_triangles
@@ -151,6 +154,7 @@ def test_help_says_which_formats_the_tolerances_apply_to():
     assert "--mesh-angle DEGREES Mesh outputs only" in text and "-q, --quiet" in text
 
 
+@pytest.mark.slow
 def test_batch_jobs_mesh_to_the_tolerance(wall_spec, tmp_path):
     out = tmp_path / "out"
     result = run("build", wall_spec, "-d", out, "-f", "stl", "--mesh-tolerance", "0.05", "-j", "1")

@@ -71,8 +71,10 @@ def test_names_read_back_unique_from_a_wall_file_and_the_stiffened_assembly(tmp_
     assert {"line_ring_01", "line_stringer_03", "line_ring_01_inner", "line_stringer_03_inner"} <= set(names)
 
 
-def test_paper_stiffened_step_names_are_unique(tmp_path):
-    result = run("paper", "-o", tmp_path, "--nu", 16, "--ns", 101)
+@pytest.mark.slow
+def test_paper_stiffened_step_names_are_unique(paper_run):
+    result = paper_run(16, 101)  # `tubecad paper -o DIR --nu 16 --ns 101`, shared with test_circle_edges.py
+    tmp_path = result.folder
     assert result.exit_code == 0, result.output
     tree = step_names(tmp_path / "paper_stiffened.step")
     names = [n for _, n in tree]
@@ -138,6 +140,7 @@ SCHEMA_SCRIPT = textwrap.dedent("""
 """)
 
 
+@pytest.mark.slow
 def test_step_schema_holds_on_every_write_and_never_leaks(tmp_path):
     """One fresh process: the first write of the process too, and other writers after."""
     done = subprocess.run(
@@ -153,6 +156,7 @@ def test_step_schema_holds_on_every_write_and_never_leaks(tmp_path):
     assert seen["static after"] == "AP203"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "schema, expected", [("AP242", "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING"), ("AP214", "AUTOMOTIVE_DESIGN")]
 )
@@ -179,6 +183,7 @@ def test_cli_step_schema_on_the_first_write(tmp_path, schema, expected):
     assert step_names(out) == [(0, "h")]
 
 
+@pytest.mark.slow
 def test_stiffened_spec_writes_its_assembly_in_the_schema_asked(tmp_path):
     out = tmp_path / "hs.step"
     result = run("build", SAMPLES / "helix_stiffened.toml", "-o", out, "--step-schema", "AP242")
@@ -225,6 +230,7 @@ def test_batch_plans_every_registry_format(tmp_path):
     assert [Path(o).suffix for o in jobs[0].outputs] == [".stl", ".3mf", ".glb", ".gltf", ".brep", ".csv"]
 
 
+@pytest.mark.slow
 def test_meshes_are_written_and_read_back_within_the_deflection(tmp_path):
     """STL, 3MF and glTF are visual: read back by independent readers (OCCT RWStl and
     RWGltf_CafReader, lib3mf), their vertices lie on the exact tubes within the deflection."""
@@ -294,6 +300,7 @@ tolerance = {tolerance}
 """
 
 
+@pytest.mark.slow
 def test_step_at_large_coordinates_is_refused_or_passes_honestly(tmp_path):
     """Log spiral at s = 2.4e7, radius 1e5, tolerance 2.7e-7 (near what double precision lets
     the fit reach there): STEP's ~14 significant digits measured 4.0e-7, so it is refused;

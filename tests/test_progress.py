@@ -117,6 +117,7 @@ def stiffened(tmp_path_factory):
     return run("build", SAMPLES / "helix_stiffened.toml", "-o", out, env={AFTER_VARIABLE: "0"}), out
 
 
+@pytest.mark.slow
 def test_plain_progress_lines_name_each_stiffener_on_stderr_only(stiffened):
     result, out = stiffened
     assert result.exit_code == 0, result.output
@@ -146,6 +147,7 @@ def test_a_fast_build_shows_no_progress_with_the_default_threshold(tmp_path, mon
     assert result.exit_code == 0 and result.stderr == "", result.stderr
 
 
+@pytest.mark.slow
 def test_a_terminal_gets_one_redrawn_bar(tmp_path):
     """stderr a pseudo-terminal: the bar is redrawn with carriage returns and cleared at the end;
     stdout (a pipe) gets the summary and nothing of the bar."""
@@ -185,6 +187,7 @@ def test_a_terminal_gets_one_redrawn_bar(tmp_path):
 # ---------------------------------------------------------------- the batch's lines
 
 
+@pytest.mark.slow
 def test_batch_line_names_the_wall_and_its_stiffeners(tmp_path):
     out = tmp_path / "out"
     result = run("build", SAMPLES / "helix_stiffened.toml", "-d", out, "-j", "1")

@@ -120,6 +120,7 @@ def test_net_is_orthogonal_and_conjugate_to_round_off(tube):
     assert forms.G.min() >= (1.0 - MAX_RHO_K) ** 2 * (1 - 1e-9)  # regular: |S_s| >= 1 - rho |k|
 
 
+@pytest.mark.slow
 @FAST
 @given(tube=regular_tubes())
 def test_area_is_pappus(tube):
@@ -136,6 +137,7 @@ def step_round_trip(shape, folder: Path):
     assert props.volume(back) == pytest.approx(props.volume(shape), rel=VOLUME_REL)
 
 
+@pytest.mark.slow
 @OCCT
 @given(tube=regular_tubes())
 def test_capped_tube_solid_encloses_pi_rho2_L_and_survives_step(tube):
@@ -148,6 +150,7 @@ def test_capped_tube_solid_encloses_pi_rho2_L_and_survives_step(tube):
         step_round_trip(solid, Path(folder))
 
 
+@pytest.mark.slow
 @OCCT
 @given(
     tube=regular_tubes(most=0.75),

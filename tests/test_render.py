@@ -35,6 +35,7 @@ def test_render_writes_a_shaded_picture_with_edges(solid, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["x.png"]  # no temporary left behind
 
 
+@pytest.mark.slow
 def test_other_view_gives_another_picture(solid, tmp_path):
     a = render_shape_png(solid, tmp_path / "a.png", size_px=(400, 300))  # build123d object is accepted
     b = render_shape_png(solid, tmp_path / "b.png", view_dir=(0.0, 0.0, 1.0), size_px=(400, 300))

@@ -5,7 +5,6 @@ Tolerances are from measurements (build123d 0.12 / OCCT 7.9): faces' deviation f
 exact tube ~7e-14 and isoline |cos| ~2e-13 (dense sampling), wall volume ~3e-13 relative,
 F = M = 0 on the exact grid ~1e-16, the STEP file read back ~1.4e-11."""
 
-import json
 import math
 from pathlib import Path
 
@@ -146,6 +145,7 @@ def test_stringers_continue_across_joints(wall, route):
             assert np.linalg.norm(np.cross(ta, tb)) < 1e-9
 
 
+@pytest.mark.slow
 def test_wall_faces_are_exact_valid_and_fit_for_booleans(wall, route):
     tube, build = wall
     m = measure_tube_faces(build.shape, route, build.radii, samples=20000)
@@ -170,11 +170,11 @@ def run(*args):
 
 
 @pytest.mark.slow
-def test_the_sample_builds_and_reads_back(tmp_path):
-    out = tmp_path / "route.step"
-    result = run("build", SAMPLES / "route.toml", "-o", out, "--report", tmp_path / "r.json")
+def test_the_sample_builds_and_reads_back(sample_build):
+    result = sample_build("route")  # the suite's one build of samples/route.toml, to STEP and IGES
+    out = result.folder / "a.step"
     assert result.exit_code == 0, result.output
-    report = json.loads((tmp_path / "r.json").read_text())
+    report = result.report()
     brep, step = report["brep"], report["exports"][str(out)]
     assert brep["valid"] and step["valid"]
     assert brep["fit"]["max_deviation"] < 1e-11 and brep["fit"]["max_orthogonality_error"] < 1e-11
@@ -239,17 +239,19 @@ def test_points_from_a_csv_file(tmp_path):
     assert isinstance(axis, RouteAxis) and axis.length == pytest.approx(RouteAxis(POINTS, RADII).length, abs=1e-12)
 
 
-def test_iges_holds_a_route_to_the_fit_tolerance(tmp_path):
+@pytest.mark.slow
+def test_iges_holds_a_route_to_the_fit_tolerance(sample_build):
     """A route's surfaces are rational in both directions: OCCT's IGES writer, keeping 9
     decimals, moved their weights and held them only to ~1.4e-8 (refused); written with 13
     significant digits (tubecad.export.cad.IGES_REAL) the file holds them to ~4e-11."""
-    out, report = tmp_path / "route.iges", tmp_path / "r.json"
-    result = CliRunner().invoke(cli, ["build", str(SAMPLES / "route.toml"), "-o", str(out), "--report", str(report)])
+    result = sample_build("route")  # the suite's one build of samples/route.toml, to STEP and IGES
+    out = result.folder / "a.iges"
     assert result.exit_code == 0, result.output
-    back = json.loads(report.read_text())["exports"][str(out)]
+    back = result.report()["exports"][str(out)]
     assert back["valid"] and back["max_deviation"] < 1e-10 and back["max_orthogonality_error"] < 1e-10
 
 
+@pytest.mark.slow
 def test_stiffeners_across_the_joints_are_fit_for_booleans(wall, route):
     """A stringer runs across every line-bend joint, where the frame is only C0: its faces
     end there (and its edges' curves with them), so OCCT's pre-boolean check finds nothing."""

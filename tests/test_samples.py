@@ -10,6 +10,8 @@ import pytest
 
 SAMPLES = Path(__file__).parent.parent / "samples"
 
+pytestmark = pytest.mark.slow  # each sample script runs in its own Python, OCCT loaded anew
+
 
 def test_build123d_sample_writes_the_curvature_net_to_step(tmp_path):
     import build123d as bd

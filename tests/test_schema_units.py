@@ -319,6 +319,7 @@ def box(shape) -> list[float]:
     return [hi.X() - lo.X(), hi.Y() - lo.Y(), hi.Z() - lo.Z()]
 
 
+@pytest.mark.slow
 def test_step_states_the_unit_and_keeps_the_numbers(built):
     from tubecad.brep import properties as props
     from tubecad.export.cad import import_shape
@@ -338,6 +339,7 @@ def test_step_states_the_unit_and_keeps_the_numbers(built):
     assert built["m"].report["exports"][str(built["m"].step)]["max_deviation"] < 1e-8  # read back in m, on the tube
 
 
+@pytest.mark.slow
 def test_build123d_reads_a_metre_step_in_millimetres(built):
     import build123d as bd
 
@@ -369,6 +371,7 @@ def iges_global(path: Path) -> list[str]:
     return params
 
 
+@pytest.mark.slow
 def test_iges_global_section_states_the_unit(built):
     from tubecad.export.cad import import_shape
 
@@ -381,6 +384,7 @@ def test_iges_global_section_states_the_unit(built):
     assert box(import_shape(built["in"].iges, "in")) == pytest.approx(mm, rel=1e-7)
 
 
+@pytest.mark.slow
 def test_meshes_polylines_and_report_state_the_unit(built):
     import struct
 
@@ -418,6 +422,7 @@ thickness = 1.0
 )
 
 
+@pytest.mark.slow
 def test_density_is_per_cubic_unit_and_the_default_steel_is_converted():
     from tubecad.spec.build import build_and_export
 
@@ -435,6 +440,7 @@ def test_density_is_per_cubic_unit_and_the_default_steel_is_converted():
     )
 
 
+@pytest.mark.slow
 def test_dxf_flat_patterns_state_the_unit(tmp_path):
     import ezdxf
 
@@ -470,6 +476,7 @@ def test_bad_units_exit_2_with_one_line_and_write_nothing(tmp_path):
     assert list(out.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_a_batch_sweeps_the_unit(tmp_path):
     spec = tmp_path / "small.toml"
     spec.write_text(SMALL)

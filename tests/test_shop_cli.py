@@ -29,6 +29,7 @@ def shop(tmp_path_factory):
     return out, json.loads((out / "index.json").read_text(encoding="utf-8")), result.output
 
 
+@pytest.mark.slow
 def test_the_index_lists_every_file_written_and_names_say_what_they_are(shop):
     out, index, output = shop
     listed = {entry["path"] for entry in index["files"]} | {"index.json"}
@@ -42,6 +43,7 @@ def test_the_index_lists_every_file_written_and_names_say_what_they_are(shop):
     assert "webs: 15 pieces on" in output and str(out / "index.json") in output
 
 
+@pytest.mark.slow
 def test_webs_and_flanges_nested_without_overlap(shop):
     out, index, _ = shop
     for kind in ("webs", "flanges"):
@@ -61,6 +63,7 @@ def test_webs_and_flanges_nested_without_overlap(shop):
         assert all(b[0] > a[1] for a, b in zip(spans, spans[1:]))
 
 
+@pytest.mark.slow
 def test_the_split_stiffeners_read_back_from_step_with_their_pieces_names(shop):
     from tubecad.brep.properties import is_valid, volume
     from tubecad.export.cad import step_names
@@ -82,6 +85,7 @@ def test_the_split_stiffeners_read_back_from_step_with_their_pieces_names(shop):
         assert volume(solids[solid["name"]]) == pytest.approx(solid["volume"], rel=1e-7)  # STEP round trip
 
 
+@pytest.mark.slow
 def test_marking_lines_lie_on_the_panel_surface(shop):
     """Each marking edge read back from its panel's STEP lies on the panel's outer faces
     (1e-7) and on the exact outer wall, at radius 400 from the axis (1e-7)."""
@@ -116,6 +120,7 @@ def test_marking_lines_lie_on_the_panel_surface(shop):
     assert checked >= 12
 
 
+@pytest.mark.slow
 def test_panel_developments_pin_jigs_and_bending_tables(shop):
     import ezdxf
 

@@ -260,8 +260,9 @@ def test_cone_ring_flange_is_an_annular_sector(cone, profile, side):
     assert pattern.area == pytest.approx(0.5 * angle * ((slant + w1) ** 2 - (slant + w0) ** 2), rel=1e-14)
     assert pattern.centre_length == pytest.approx(2 * math.pi * a, rel=1e-14)
     base, top = edges(pattern)
-    assert np.abs(np.linalg.norm(base, axis=1) - (slant + w0)).max() < 2e-13  # measured 8.5e-14
-    assert np.abs(np.linalg.norm(top, axis=1) - (slant + w1)).max() < 2e-13
+    # round-off of the rotations at radii ~40: measured 8.5e-14 on one machine, 2.2e-13 on another
+    assert np.abs(np.linalg.norm(base, axis=1) - (slant + w0)).max() < 3e-13
+    assert np.abs(np.linalg.norm(top, axis=1) - (slant + w1)).max() < 3e-13
     assert polygon_area(pattern.outline) == pytest.approx(pattern.area, rel=1.5e-6)  # 1.14e-6: 720 chords
 
 

@@ -243,6 +243,7 @@ def polyline_length(f, lo: float, hi: float, n: int = 2048) -> float:
     return (4.0 * chords(2 * n) - chords(n)) / 3.0
 
 
+@pytest.mark.slow
 def test_canal_lengths_and_strain_against_finite_differences(curved_canal):
     base = curved_canal
     s_a, s_b, u_a, u_b = 20.0, 70.0, 10.0, 100.0

@@ -86,6 +86,7 @@ def test_joint_gap_is_laid_off_along_the_base_line(paper):
     assert not pieces[0].joints[0] and not pieces[-1].joints[1]
 
 
+@pytest.mark.slow
 def test_chosen_joints_come_first_and_the_solids_are_split_there(paper):
     build, stiffeners = paper
     st = stiffeners["stringer_00"]
@@ -102,6 +103,7 @@ def test_chosen_joints_come_first_and_the_solids_are_split_there(paper):
     assert sum(volume(s.solid) for s in solids) == pytest.approx(volume(st.solid), rel=1e-9)
 
 
+@pytest.mark.slow
 def test_a_ring_too_large_for_the_plate_is_cut_into_sectors_in_2d_and_3d(paper):
     build, stiffeners = paper
     st = stiffeners["ring_03"]
@@ -138,6 +140,7 @@ def dxf_parts(path):
     return doc, polygons, Polygon([tuple(p)[:2] for p in plate.get_points()])
 
 
+@pytest.mark.slow
 def test_every_web_of_the_paper_nested_without_overlap(paper, tmp_path):
     _, stiffeners = paper
     fab = fabrication_settings({"plate_size": [700.0, 420.0], "kerf": 1.0})

@@ -25,6 +25,7 @@ def run(*args):
     return CliRunner().invoke(cli, [str(a) for a in args])
 
 
+@pytest.mark.slow
 def test_every_family_has_a_sample_spec():
     curves = {load_spec(p).axis.family for p in SAMPLE_SPECS}
     assert curves == {
@@ -41,6 +42,7 @@ def test_every_family_has_a_sample_spec():
     }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("spec", SAMPLE_SPECS, ids=lambda p: p.stem)
 def test_report_of_each_sample_measures_a_curvature_line_net(spec):
     result = run("report", spec, "--nu", 48, "--ns", 301)
@@ -64,6 +66,7 @@ def test_report_of_each_sample_measures_a_curvature_line_net(spec):
     assert report["parameters"]["tube"]["radius"] == tube.radius
 
 
+@pytest.mark.slow
 def test_paper_command_writes_report_and_pictures(tmp_path):
     out = tmp_path / "new" / "out"
     result = run("paper", "-o", out, "--nu", 64, "--ns", 501)

@@ -77,6 +77,7 @@ def test_ring_frame_is_one_solid_with_the_exact_volume(kind, side, R, s):
     assert ring.edges().filter_by(bd.GeomType.CIRCLE)  # what CAD selectors find
 
 
+@pytest.mark.slow
 def test_stiffeners_pass_the_pre_boolean_check():
     """OCCT's BOPAlgo_ArgumentAnalyzer with every check on (FreeCAD's "BOP check")."""
     axis = paper_tube().axis
@@ -161,6 +162,7 @@ side = "SIDE"
 )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "side, height, says",
     [

@@ -243,6 +243,7 @@ side = "inside"
 )
 
 
+@pytest.mark.slow
 def test_build_and_flat_commands_with_stiffeners(tmp_path):
     from click.testing import CliRunner
     from conftest import PAPER_SPEC
@@ -313,6 +314,7 @@ def test_flat_needs_a_stiffeners_section(tmp_path):
     assert result.exit_code == 2 and "has no [stiffeners] section" in result.output
 
 
+@pytest.mark.slow
 def test_stiffeners_fuse_into_the_wall():
     from tubecad.stiffeners.assembly import build_stiffeners, named_assembly
 
@@ -327,6 +329,7 @@ def test_stiffeners_fuse_into_the_wall():
     assert props.volume(fused) == pytest.approx(separate - overlap, rel=1e-6)
 
 
+@pytest.mark.slow
 def test_panels_fit_together_into_the_wall_with_exact_areas(tmp_path):
     from click.testing import CliRunner
     from conftest import PAPER_SPEC
@@ -369,6 +372,7 @@ def test_panels_fit_together_into_the_wall_with_exact_areas(tmp_path):
         split_into_panels(build, [8])
 
 
+@pytest.mark.slow
 def test_build_writes_polylines_by_extension(tmp_path):
     from click.testing import CliRunner
     from conftest import PAPER_SPEC

@@ -6,6 +6,7 @@ L = -rho, M = 0, N = k cos phi (1 - rho k cos phi) with k = psi' cos b and
 phi = u - psi sin b; and dropping the twist compensation (v = u) breaks F = 0.
 """
 
+import pytest
 import sympy as sp
 
 u, s, rho, b = sp.symbols("u s rho beta", real=True)
@@ -42,6 +43,7 @@ def forms(phi):
     }
 
 
+@pytest.mark.slow
 def test_curvature_line_parameterisation_general_slope_curve():
     phi = u - psi * sp.sin(b)
     f = forms(phi)
@@ -54,6 +56,7 @@ def test_curvature_line_parameterisation_general_slope_curve():
     assert sp.simplify(f["N"] - K * sp.cos(phi) * (1 - rho * K * sp.cos(phi))) == 0
 
 
+@pytest.mark.slow
 def test_frenet_parameterisation_is_not_orthogonal():
     """Without phi = u - psi sin b the net is not orthogonal: F = rho^2 * torsion."""
     f = forms(u)

@@ -109,6 +109,7 @@ def small_wall():
     return build, stiffeners
 
 
+@pytest.mark.slow
 def test_show_records_the_named_coloured_tree(monkeypatch, small_wall):
     """Names, colours, the wall's alpha and the bounding boxes of what would be sent."""
     import tubecad
@@ -171,6 +172,7 @@ def test_show_records_the_named_coloured_tree(monkeypatch, small_wall):
             assert np.all(part["bbox"][0] >= low - 0.1) and np.all(part["bbox"][1] <= high + 0.1), name
 
 
+@pytest.mark.slow
 def test_show_of_a_spec_with_panels(monkeypatch, tmp_path):
     """A spec path: [panels] become the wall's children, each translucent."""
     from conftest import PAPER_SPEC
@@ -351,10 +353,9 @@ def pixel_counts(png: bytes) -> dict[str, int]:
 
 
 @pytest.mark.slow
+@pytest.mark.requires("chromium")  # CI installs Debian's chromium in .ci/run
 def test_view_paper_in_the_standalone_viewer(tmp_path):
     """`tubecad view paper` against `python -m ocp_viewer` on a free port, seen in headless Chromium."""
-    if CHROMIUM is None:
-        pytest.skip("chromium is not installed (CI installs Debian's chromium in .ci/run)")
     pytest.importorskip("websockets")
     port = free_port()
     env = clean_env(tmp_path)

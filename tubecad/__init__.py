@@ -38,6 +38,7 @@ _PUBLIC = {
     "FundamentalForms": "tubecad.surface",
     "paper_tube": "tubecad.spec.paper",
     "CanalSurface": "tubecad.surface.canal",
+    "CurvatureLineSurface": "tubecad.surface.protocol",
     "tube_or_canal": "tubecad.surface.canal",
     "radius_law": "tubecad.curves.radius_law",
     "RadiusLaw": "tubecad.curves.radius_law",

@@ -95,7 +95,7 @@ class JobResult:
 
 def schema_sections() -> dict[str, dict]:
     """section -> its allowed keys, as the spec files have them (every family's [axis] keys)."""
-    from tubecad.spec.parse import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS
+    from tubecad.spec.keys import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS
 
     axis = dict(AXIS_COMMON)
     for keys in FAMILY_KEYS.values():

@@ -87,7 +87,7 @@ def patch_faces(
     seam = n_stringers == 1
     own = len(s_rings) - (closing is not None)  # rings with edges of their own
 
-    canal = isinstance(tube_surface, CanalSectionSurface)
+    canal = tube_surface.canal
     vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings[:own]]
     rings = []
     bounds = []  # bounds[i][j]: the (edge, pcurve, tolerance) of ring i along face column j, in +u order
@@ -188,7 +188,7 @@ def _closing_ring(
 
     On a canal surface (:func:`_canal_closing_ring`) the stringers come back moved by a
     Moebius map of the circle rather than turned: b_j = phi(a_j)."""
-    if isinstance(tube_surface, CanalSectionSurface):
+    if tube_surface.canal:
         return _canal_closing_ring(tube_surface, s_first, s_last, angles, start_vertices)
     two_pi = 2.0 * math.pi
     n = len(start_vertices)

@@ -117,11 +117,10 @@ def surface_levels(build) -> tuple[Callable, list[float]]:
     axis and the surfaces' levels their radii; for a canal surface's build it is the
     distance outside the first surface's sphere envelope (:func:`envelope_distance`) and the
     levels are each surface's offset from it (0 and -thickness for a wall)."""
-    from tubecad.surface import CanalSurface
     from tubecad.surface.checks import envelope_distance
 
     first = build.surfaces[0].tube
-    if not isinstance(first, CanalSurface):
+    if first.constant_radius:
         return (lambda p, g=None, iters=12: distance_to_axis(first.axis, p, g, iters)), list(build.radii)
     base = first.radius_law.offset
     levels = [ts.tube.radius_law.offset - base for ts in build.surfaces]

@@ -48,7 +48,7 @@ from tubecad.core.errors import ParameterError, RegularityError
 from tubecad.core.tolerance import DEFAULT_TOLERANCE, MIN_SIZE, orthogonality_for  # noqa: F401  (re-exported)
 from tubecad.fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
 from tubecad.fitting.canal_section import CanalSpline, canal_section_surface, fit_canal
-from tubecad.surface import CanalSurface, CurvatureLineTube
+from tubecad.surface import CanalSurface, CurvatureLineSurface, CurvatureLineTube, is_surface
 
 #: progress(step, done, total), called as a build advances (the library never prints)
 Progress = Callable[[str, int, int], None]
@@ -85,17 +85,15 @@ class TubeBuild:
 
 
 def _as_tube(tube: object) -> object:
-    """A CanalSurface of a constant law as the tube of that radius (today's path), else ``tube``."""
-    if isinstance(tube, CanalSurface) and tube.radius_law.constant:
-        return CurvatureLineTube(tube.axis, tube.radius_law.value, allow_irregular=True)  # checked as a canal surface
-    return tube
+    """A surface in the form that takes the fast path (a CanalSurface of a constant law as the
+    tube of that radius: :meth:`~tubecad.surface.CurvatureLineSurface.fast_path`), else ``tube``."""
+    return tube.fast_path() if is_surface(tube) else tube
 
 
 def _checked(tube: object, layout: object) -> NetLayout:
     """The arguments every builder shares: a tube (or a canal surface), a layout (default
     equal), a buildable radius."""
-    canal = isinstance(tube, CanalSurface)
-    if not canal and not isinstance(tube, CurvatureLineTube):
+    if not is_surface(tube):
         raise ParameterError(f"tube must be a CurvatureLineTube or a CanalSurface, got {type(tube).__name__}")
     if layout is None:
         layout = NetLayout.equal(tube)  # type: ignore[arg-type]
@@ -116,21 +114,19 @@ def _checked(tube: object, layout: object) -> NetLayout:
         raise ParameterError(
             f"the span must be at least {MIN_SIZE:g} model units long for a B-rep, got {tube.length:g}"
         )
-    if canal:
-        law = tube.radius_law
-        if law.min_radius < MIN_SIZE:
+    law = tube.radius_law
+    if law.min_radius < MIN_SIZE:
+        if tube.constant_radius:
             raise ParameterError(
-                f"radius: r must stay >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge "
-                f"precision 1e-7), got {law.min_radius:g} at s = {law.s_at_min_radius:g}"
+                f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
+                f"got {law.min_radius:g}"
             )
-        if tube.axis.closed:  # (checked when the CanalSurface was made; a law made elsewhere is checked here)
-            law.check_closes()
-    elif tube.radius < MIN_SIZE:
         raise ParameterError(
-            f"radius must be >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge precision 1e-7), "
-            f"got {tube.radius:g}"
+            f"radius: r must stay >= {MIN_SIZE:g} model units for a B-rep (100 x OCCT's edge "
+            f"precision 1e-7), got {law.min_radius:g} at s = {law.s_at_min_radius:g}"
         )
     if tube.axis.closed:
+        law.check_closes()  # (checked when the CanalSurface was made; a law made elsewhere is checked here)
         if len(layout.s_rings) < 3:
             raise ParameterError("a closed tube needs a ring frame besides the closing one: rings must be >= 3")
         return layout
@@ -145,31 +141,19 @@ def _checked(tube: object, layout: object) -> NetLayout:
 
 
 def build_tube_shell(
-    tube: CurvatureLineTube | CanalSurface, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE
+    tube: CurvatureLineSurface, layout: NetLayout | None = None, tolerance: float = DEFAULT_TOLERANCE
 ) -> TubeBuild:
     """The tube's shell: faces between rings and stringers (open, or closed round a closed axis)."""
     tube = _as_tube(tube)
     layout = _checked(tube, layout)
-    if isinstance(tube, CanalSurface):
-        fit, built = _canal_surfaces(tube, (0.0,), layout, tolerance)
-        ((surface, patches),) = built
-        return TubeBuild(
-            bd.Shell(shell_of(patches.all_faces(), closed=tube.axis.closed)),
-            [surface],
-            [patches],
-            layout,
-            fit,
-            tolerance,
-            [_mean_radius(surface.tube)],
-        )
-    frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
-    surface, patches = _tube_faces(tube, frame, layout)
+    fit, built = _surfaces(tube, (0.0,), [tube], layout, tolerance)
+    ((surface, patches),) = built
     shell = shell_of(patches.all_faces(), closed=tube.axis.closed)
-    return TubeBuild(bd.Shell(shell), [surface], [patches], layout, frame, tolerance, [tube.radius])
+    return TubeBuild(bd.Shell(shell), [surface], [patches], layout, fit, tolerance, _radii(tube, [surface]))
 
 
 def build_tube_solid(
-    tube: CurvatureLineTube | CanalSurface,
+    tube: CurvatureLineSurface,
     layout: NetLayout | None = None,
     tolerance: float = DEFAULT_TOLERANCE,
     progress: Progress | None = None,
@@ -180,37 +164,17 @@ def build_tube_solid(
     report = progress or (lambda *_: None)
     tube = _as_tube(tube)
     layout = _checked(tube, layout)
-    if isinstance(tube, CanalSurface):
-        done = iter(range(1, 3))
-        fit, built = _canal_surfaces(tube, (0.0,), layout, tolerance, step=lambda step: report(step, next(done), 3))
-        ((surface, patches),) = built
-        caps = (
-            []
-            if tube.axis.closed
-            else [_canal_cap(surface, layout.s_rings[k], patches.rings[k], None, outward=k == -1) for k in (0, -1)]
-        )
-        solid = _solid([patches.all_faces() + caps], tube)
-        report("solid", 3, 3)
-        return TubeBuild(bd.Solid(solid), [surface], [patches], layout, fit, tolerance, [_mean_radius(surface.tube)])
-    frame = fit_frame(tube.axis, tube.radius, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
-    report("frame fit", 1, 3)
-    surface, patches = _tube_faces(tube, frame, layout)
-    report("surface", 2, 3)
-    caps = (
-        []
-        if tube.axis.closed
-        else [
-            _cap(tube, layout.s_rings[0], [patches.rings[0]], outward=False),
-            _cap(tube, layout.s_rings[-1], [patches.rings[-1]], outward=True),
-        ]
-    )
+    done = iter(range(1, 3))
+    fit, built = _surfaces(tube, (0.0,), [tube], layout, tolerance, lambda step: report(step, next(done), 3))
+    ((surface, patches),) = built
+    caps = [] if tube.axis.closed else [_end_cap(tube, built, k, layout.s_rings[k]) for k in (0, -1)]
     solid = _solid([patches.all_faces() + caps], tube)
     report("solid", 3, 3)
-    return TubeBuild(bd.Solid(solid), [surface], [patches], layout, frame, tolerance, [tube.radius])
+    return TubeBuild(bd.Solid(solid), [surface], [patches], layout, fit, tolerance, _radii(tube, [surface]))
 
 
 def build_wall_solid(
-    tube: CurvatureLineTube | CanalSurface,
+    tube: CurvatureLineSurface,
     thickness: float,
     side: str = "centered",
     layout: NetLayout | None = None,
@@ -225,38 +189,25 @@ def build_wall_solid(
     report = progress or (lambda *_: None)
     tube = _as_tube(tube)
     layout = _checked(tube, layout)
-    if isinstance(tube, CanalSurface):
-        return _canal_wall(tube, thickness, side, layout, tolerance, report)
-    r_in, r_out = wall_radii(tube.radius, thickness, side)
-    try:
-        outer_tube, inner_tube = CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)
-    except RegularityError as exc:
-        raise RegularityError(
-            f"thickness {float(thickness):g} (side = {side!r}) gives a wall between radii {r_in:g} and {r_out:g}: {exc}"
-        ) from None
-    frame = fit_frame(
-        tube.axis, r_out, tolerance, orthogonality_for(tolerance), rings=layout.s_rings, radii=(r_out, r_in)
-    )
-    report("frame fit", 1, 4)
-    outer, outer_patches = _tube_faces(outer_tube, frame, layout)
-    report("outer surface", 2, 4)
-    inner, inner_patches = _tube_faces(inner_tube, frame, layout, reverse=True)
-    report("inner surface", 3, 4)
-    if tube.axis.closed:
+    offsets, exact = _wall_surfaces(tube, thickness, side)
+    done = iter(range(1, 4))
+    fit, built = _surfaces(tube, offsets, exact, layout, tolerance, lambda step: report(step, next(done), 4))
+    (outer, outer_patches), (inner, inner_patches) = built
+    if tube.axis.closed:  # no caps: the outer closed shell and the inner one, its cavity
         shells = [outer_patches.all_faces(), inner_patches.all_faces()]
     else:
-        shells = [
-            outer_patches.all_faces()
-            + inner_patches.all_faces()
-            + [
-                _cap(tube, layout.s_rings[0], [outer_patches.rings[0], inner_patches.rings[0]], outward=False),
-                _cap(tube, layout.s_rings[-1], [outer_patches.rings[-1], inner_patches.rings[-1]], outward=True),
-            ]
-        ]
+        caps = [_end_cap(tube, built, k, layout.s_rings[k]) for k in (0, -1)]
+        shells = [outer_patches.all_faces() + inner_patches.all_faces() + caps]
     solid = _solid(shells, tube)
     report("solid", 4, 4)
     return TubeBuild(
-        bd.Solid(solid), [outer, inner], [outer_patches, inner_patches], layout, frame, tolerance, [r_out, r_in]
+        bd.Solid(solid),
+        [outer, inner],
+        [outer_patches, inner_patches],
+        layout,
+        fit,
+        tolerance,
+        _radii(tube, [outer, inner]),
     )
 
 
@@ -285,13 +236,105 @@ def wall_solid(
     return build_wall_solid(tube, thickness, side, layout, tolerance).shape
 
 
-# --- construction ------------------------------------------------------------------------
-def _tube_faces(
-    tube: CurvatureLineTube, frame: FrameSpline, layout: NetLayout, reverse: bool = False
-) -> tuple[TubeSurface, PatchFaces]:
-    surface = exact_section_surface(tube, frame, stringers_deg=layout.stringers_deg)
+# --- construction: one path, the tube's fast path chosen here -----------------------------
+def _surfaces(
+    tube: CurvatureLineSurface,
+    offsets: tuple[float, ...],
+    exact: list[CurvatureLineSurface],
+    layout: NetLayout,
+    tolerance: float,
+    step: Callable[[str], None] = lambda _: None,
+) -> tuple[FrameSpline | CanalSpline, list[tuple[TubeSurface, PatchFaces]]]:
+    """Fit ``tube`` once for all the surfaces ``exact`` (its normal offsets by ``offsets``,
+    outer first) and build the patch faces of each (the second reversed, the inner wall of a
+    solid), calling ``step(name)`` after the fit and each surface.
+
+    The one place the fit is chosen: a constant radius takes the tube's fast path, the
+    9-component frame F = (c, rho r1, rho r2) fitted for the largest radius (every surface
+    the exact-section tube of its radius on it, :func:`~tubecad.fitting.fit_frame`); a
+    radius law the 21-component spline of the canal surface, one for all r + d
+    (:func:`~tubecad.fitting.canal_section.fit_canal`)."""
+    orthogonality = orthogonality_for(tolerance)
+    if tube.constant_radius:
+        radii = tuple(float(e.radius_law.value) for e in exact)
+        extra = {"radii": radii} if len(radii) > 1 else {}
+        fit = fit_frame(tube.axis, radii[0], tolerance, orthogonality, rings=layout.s_rings, **extra)
+
+        def section(k: int) -> TubeSurface:
+            return exact_section_surface(exact[k], fit, stringers_deg=layout.stringers_deg)
+
+    else:
+        fit = fit_canal(tube, offsets, tolerance, orthogonality, rings=layout.s_rings)
+
+        def section(k: int) -> TubeSurface:
+            return canal_section_surface(tube, fit, offsets[k], layout.stringers_deg, exact[k])
+
+    step("frame fit")
+    names = ("surface",) if len(offsets) == 1 else ("outer surface", "inner surface")
     closing = tube.axis.holonomy if tube.axis.closed else None
-    return surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=reverse, closing=closing)
+    built = []
+    for k in range(len(offsets)):
+        surface = section(k)
+        built.append(
+            (surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=k > 0, closing=closing))
+        )
+        step(names[k])
+    return fit, built
+
+
+def _wall_surfaces(
+    tube: CurvatureLineSurface, thickness: float, side: str
+) -> tuple[tuple[float, float], list[CurvatureLineSurface]]:
+    """((d_out, d_in), [outer, inner]): the offsets of a wall of ``thickness`` placed ``side``
+    (:func:`~.wall.wall_offsets`) and its two exact surfaces, each checked (a tube: its radii
+    by :func:`~.wall.wall_radii` and both tubes regular; a canal surface: r + d_in >= MIN_SIZE
+    and both offsets regular, allowed irregular if the surface itself was)."""
+    d_in, d_out = wall_offsets(thickness, side)
+    law = tube.radius_law
+    if tube.constant_radius:
+        r_in, r_out = wall_radii(float(law.value), thickness, side)
+        try:
+            return (d_out, d_in), [CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)]
+        except RegularityError as exc:
+            raise RegularityError(
+                f"thickness {float(thickness):g} (side = {side!r}) gives a wall between radii {r_in:g} and "
+                f"{r_out:g}: {exc}"
+            ) from None
+    if law.min_radius + d_in < MIN_SIZE:  # (side centered or inside)
+        limit = 2 * law.min_radius if side == "centered" else law.min_radius
+        raise ParameterError(
+            f"thickness must be < {limit:g} for side = {side!r} (the radius law's smallest r is "
+            f"{law.min_radius:g} at s = {law.s_at_min_radius:g}; the inner surface's r must stay >= "
+            f"{MIN_SIZE:g}), got {float(thickness):g}"
+        )
+    try:  # a surface built with allow_irregular=True has its offsets allowed too
+        exact = [tube if d == 0.0 else tube.offset(d, allow_irregular=not tube.regularity.ok) for d in (d_out, d_in)]
+    except RegularityError as exc:
+        raise RegularityError(
+            f"thickness {float(thickness):g} (side = {side!r}) gives a wall between the canal "
+            f"surfaces of r {d_in:+g} and r {d_out:+g}: {exc}"
+        ) from None
+    return (d_out, d_in), exact
+
+
+def _end_cap(tube: CurvatureLineSurface, built: list[tuple[TubeSurface, PatchFaces]], k: int, s: float) -> TopoDS_Face:
+    """The cap at ring ``k`` (0 the start, -1 the end, where its normal is +t) of the surfaces
+    ``built`` (one: a disc; two: a wall's annulus): in the normal plane at ``s`` (x along
+    r1) on a tube; on a canal surface the disc of the end circle or the piece of the normal
+    cone through the wall's two end circles (:func:`_canal_cap`)."""
+    outward = k == -1
+    if tube.constant_radius:
+        return _cap(tube, s, [patches.rings[k] for _, patches in built], outward)
+    (outer, outer_patches), *rest = built
+    inner = (rest[0][0], rest[0][1].rings[k]) if rest else None
+    return _canal_cap(outer, s, outer_patches.rings[k], inner, outward)
+
+
+def _radii(tube: CurvatureLineSurface, surfaces: list[TubeSurface]) -> list[float]:
+    """Each surface's radius (a tube's rho), or a canal surface's mean r + d over the span."""
+    if tube.constant_radius:
+        return [float(surface.tube.radius_law.value) for surface in surfaces]
+    return [_mean_radius(surface.tube) for surface in surfaces]
 
 
 def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outward: bool) -> TopoDS_Face:
@@ -359,7 +402,7 @@ def exact_volume(build: TubeBuild, tube: CurvatureLineTube | CanalSurface) -> fl
     On a closed axis (no caps, the end discs coincide) a canal surface encloses
     V = pi Int (r q)^2 (q^2 - r r'') ds round the loop (:meth:`CanalSurface.swept_measures`:
     the characteristic discs swept), and a wall V(r + d_out) - V(r + d_in)."""
-    if isinstance(tube, CanalSurface) and not tube.radius_law.constant:
+    if not tube.constant_radius:
         exact = [surface.tube for surface in build.surfaces]
         if tube.axis.closed:
             return exact[0].swept_measures()[1] - (exact[1].swept_measures()[1] if len(exact) > 1 else 0.0)
@@ -387,78 +430,6 @@ def _mean_radius(canal: CanalSurface) -> float:
     mid, half = 0.5 * (edges[1:] + edges[:-1]), 0.5 * np.diff(edges)
     s = (mid[:, None] + half[:, None] * x).ravel()
     return float((canal.radius_law.r(s) * (half[:, None] * w).ravel()).sum() / (s1 - s0))
-
-
-def _canal_surfaces(
-    canal: CanalSurface,
-    offsets: tuple[float, ...],
-    layout: NetLayout,
-    tolerance: float,
-    exact: list[CanalSurface] | None = None,
-    step: Callable[[str], None] = lambda _: None,
-) -> tuple[CanalSpline, list[tuple[TubeSurface, PatchFaces]]]:
-    """Fit ``canal`` once for all ``offsets`` (``exact``: those offset surfaces, if made) and
-    build the patch faces of each (outer first; the second reversed, the inner wall of a
-    solid), calling ``step(name)`` after the fit and each surface."""
-    fit = fit_canal(canal, offsets, tolerance, orthogonality_for(tolerance), rings=layout.s_rings)
-    step("frame fit")
-    names = ("surface",) if len(offsets) == 1 else ("outer surface", "inner surface")
-    built = []
-    closing = canal.axis.holonomy if canal.axis.closed else None
-    for k, d in enumerate(offsets):
-        surface = canal_section_surface(canal, fit, d, layout.stringers_deg, exact[k] if exact else None)
-        built.append(
-            (surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=k > 0, closing=closing))
-        )
-        step(names[k])
-    return fit, built
-
-
-def _canal_wall(
-    canal: CanalSurface, thickness: float, side: str, layout: NetLayout, tolerance: float, report: Progress
-) -> TubeBuild:
-    d_in, d_out = wall_offsets(thickness, side)
-    law = canal.radius_law
-    if law.min_radius + d_in < MIN_SIZE:  # (side centered or inside)
-        limit = 2 * law.min_radius if side == "centered" else law.min_radius
-        raise ParameterError(
-            f"thickness must be < {limit:g} for side = {side!r} (the radius law's smallest r is "
-            f"{law.min_radius:g} at s = {law.s_at_min_radius:g}; the inner surface's r must stay >= "
-            f"{MIN_SIZE:g}), got {float(thickness):g}"
-        )
-    try:  # a surface built with allow_irregular=True has its offsets allowed too
-        exact = [canal if d == 0.0 else canal.offset(d, allow_irregular=not canal.regularity.ok) for d in (d_out, d_in)]
-    except RegularityError as exc:
-        raise RegularityError(
-            f"thickness {float(thickness):g} (side = {side!r}) gives a wall between the canal "
-            f"surfaces of r {d_in:+g} and r {d_out:+g}: {exc}"
-        ) from None
-    done = iter(range(1, 4))
-    fit, built = _canal_surfaces(
-        canal, (d_out, d_in), layout, tolerance, exact, lambda step: report(step, next(done), 4)
-    )
-    (outer, outer_patches), (inner, inner_patches) = built
-    if canal.axis.closed:  # no caps: the outer closed shell and the inner one, its cavity
-        shells = [outer_patches.all_faces(), inner_patches.all_faces()]
-    else:
-        caps = [
-            _canal_cap(
-                outer, layout.s_rings[k], outer_patches.rings[k], (inner, inner_patches.rings[k]), outward=k == -1
-            )
-            for k in (0, -1)
-        ]
-        shells = [outer_patches.all_faces() + inner_patches.all_faces() + caps]
-    solid = _solid(shells, canal)
-    report("solid", 4, 4)
-    return TubeBuild(
-        bd.Solid(solid),
-        [outer, inner],
-        [outer_patches, inner_patches],
-        layout,
-        fit,
-        tolerance,
-        [_mean_radius(outer.tube), _mean_radius(inner.tube)],
-    )
 
 
 #: below this |r'| at an end a wall's cap is the plane annulus (the cone would be within

@@ -28,44 +28,33 @@ import click
 from tubecad.cli.signals import interrupts_end_at_once
 from tubecad.core.atomic import remove_temporaries, write_text
 from tubecad.core.errors import TubecadError
-from tubecad.core.units import DEFAULT_LENGTH_UNIT
-from tubecad.export.registry import FORMAT_NAMES as BATCH_FORMATS
-from tubecad.export.registry import Exportable, write_output
+from tubecad.export.formats import FORMAT_NAMES as BATCH_FORMATS
 from tubecad.spec.grid import DEFAULT_NS, DEFAULT_NU
+
+# Every command imports what it runs (numpy/scipy, OCCT and build123d, matplotlib) when it
+# runs, inside interrupts_end_at_once, so that ``tubecad --help`` starts in a fraction of a
+# second and a Ctrl-C during those imports ends the process at once. The logic lives in the
+# packages (tubecad.spec, tubecad.batch, ...): a script calls it without this module.
+
+#: what a command that builds loads first (OCCT and build123d, matplotlib: seconds)
+HEAVY_MODULES = (
+    "tubecad.brep",
+    "tubecad.export.plots",
+    "tubecad.export.readback",
+    "tubecad.spec.build",
+    "tubecad.spec.parse",
+    "tubecad.spec.report",
+)
 
 
 def _load() -> None:
-    """The heavy imports (numpy/scipy, OCCT and build123d, matplotlib), made by the first
-    command that needs them, so that ``tubecad --help`` starts in a fraction of a second."""
-    global build_wall_solid, PAPER_LAYOUT, PAPER_RING_PROFILE, PAPER_STIFFENER_RINGS, PAPER_STIFFENER_STRINGERS
-    global PAPER_STRINGER_PROFILE, PAPER_WALL_THICKNESS, STEEL_DENSITY, paper_tube, write_projections
-    global build_and_export, build_from_spec, split_outputs, stiffener_selection, readback_report
-    global build_report, stiffener_report, to_json, tube_report, load_spec
-    with interrupts_end_at_once():
-        from tubecad.brep import build_wall_solid
-        from tubecad.export.plots import write_projections
-        from tubecad.export.readback import readback_report
-        from tubecad.spec.build import build_and_export, build_from_spec, split_outputs, stiffener_selection
-        from tubecad.spec.paper import (
-            PAPER_LAYOUT,
-            PAPER_RING_PROFILE,
-            PAPER_STIFFENER_RINGS,
-            PAPER_STIFFENER_STRINGERS,
-            PAPER_STRINGER_PROFILE,
-            PAPER_WALL_THICKNESS,
-            STEEL_DENSITY,
-            paper_tube,
-        )
-        from tubecad.spec.parse import load_spec
-        from tubecad.spec.report import build_report, stiffener_report, to_json, tube_report
+    """The heavy imports, made by the first command that needs them, where a Ctrl-C ends the
+    process at once (nothing is written yet), never a half-initialised import's traceback."""
+    from importlib import import_module
 
-
-def _load_maths() -> None:
-    """What ``tubecad report`` needs: numpy/scipy and the spec checker, never OCCT."""
-    global to_json, tube_report, load_spec
     with interrupts_end_at_once():
-        from tubecad.spec.parse import load_spec
-        from tubecad.spec.report import to_json, tube_report
+        for name in HEAVY_MODULES:
+            import_module(name)
 
 
 class UserError(click.ClickException):
@@ -129,114 +118,14 @@ def paper(output: Path, nu: int, ns: int) -> None:
     report.json.
     """
     _load()
+    with interrupts_end_at_once():
+        from tubecad.spec.paper import write_paper
     try:
-        output.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise UserError(f"cannot create output folder {str(output)!r}: {exc.strerror}") from None
-    try:
-        tube = paper_tube()
-        written = write_projections(tube, output)
-        build = build_wall_solid(tube, PAPER_WALL_THICKNESS, "centered", PAPER_LAYOUT(tube))
-        report = tube_report(tube, nu, ns)
-        report["brep"] = build_report(build, tube)
-        exports = {}
-        for name in ("paper.step", "paper.iges"):  # each file measured as read back before it is moved into place
-
-            def check(tmp, fmt, target=output / name):
-                return readback_report(tmp, build.shape, build, target)
-
-            path, exports[name] = write_output(Exportable(build.shape), output / name, check)
-            written.append(path)
-        report["exports"] = exports
-        written.append(render_step_picture(output / "paper.step", output / "paper_step.png"))
-        written += write_paper_stiffeners(build, output, report)
-        written.append(write_text(output / "report.json", to_json(report)))
+        written = write_paper(output, nu, ns)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     for path in written:
         click.echo(str(path))
-
-
-def write_paper_stiffeners(build, output: Path, report: dict) -> list[Path]:
-    """The paper's default stiffeners, named assembly, polylines and picture (issue 4)."""
-    import build123d as bd
-
-    from tubecad.export.cad import export_named_step
-    from tubecad.export.render import render_shape_png
-    from tubecad.spec.paper import paper_stiffeners
-    from tubecad.stiffeners import net_lines, polylines_csv, polylines_json
-    from tubecad.stiffeners.assembly import named_assembly
-
-    stiffeners = paper_stiffeners(build)  # shared with `tubecad view paper`
-    lines = net_lines(build.surfaces[0], build.layout) + net_lines(build.surfaces[1], build.layout, "_inner")
-    step = export_named_step(named_assembly(build, stiffeners, lines), output / "paper_stiffened.step")
-    report["stiffeners"] = stiffener_report(stiffeners, lines, STEEL_DENSITY)
-    written = write_flat_patterns(stiffeners, output / "flat")
-    frame = [c for c in bd.import_step(step).children if c.label.startswith(("ring_", "stringer_"))]
-    picture = render_shape_png(
-        bd.Compound(children=frame),
-        output / "paper_stiffened.png",
-        title="paper_stiffened.step as read back: the stiffeners inside the wall (wall hidden)",
-    )
-    return [
-        step,
-        polylines_csv(lines, output / "paper_lines.csv"),
-        polylines_json(lines, output / "paper_lines.json"),
-        picture,
-        *written,
-    ]
-
-
-def write_flat_patterns(stiffeners, folder: Path) -> list[Path]:
-    """webs.dxf, NAME.svg/.png per web and flat.json into ``folder`` (issue 4)."""
-    from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
-
-    folder.mkdir(parents=True, exist_ok=True)
-    patterns = [
-        ring_web_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
-        if st.kind == "ring"
-        else stringer_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
-        for st in stiffeners
-    ]
-    return write_patterns(patterns, folder)
-
-
-def write_patterns(patterns, folder: Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> list[Path]:
-    """webs.dxf (all), NAME.svg and NAME.png per web, flat.json with the measures; lengths
-    in ``length_unit`` (the spec's [units] length, stated in the DXF and flat.json)."""
-    from tubecad.stiffeners.flat import write_dxf, write_picture
-
-    written = [write_dxf(patterns, folder / "webs.dxf", length_unit=length_unit)]
-    for pattern in patterns:
-        written += write_picture(pattern, folder)
-    from shapely.geometry import Polygon
-
-    summary = {
-        "units": {"length": length_unit},
-        "webs": [
-            {
-                "name": p.name,
-                "kind": p.kind,
-                "area": p.area,
-                "base_length": p.base_length,
-                "top_length": p.top_length,
-                "crosses_itself": not Polygon(p.outline).is_valid,
-            }
-            for p in patterns
-        ],
-        "note": "a web that crosses itself cannot be cut as drawn: `tubecad shop` splits it into cuttable "
-        "pieces at butt joints and nests them on plates",
-    }
-    written.append(write_text(folder / "flat.json", to_json(summary)))
-    return written
-
-
-def render_step_picture(step: Path, png: Path) -> Path:
-    """Render the STEP file as read back (tessellated faces, B-rep edges on top)."""
-    from tubecad.export.cad import import_shape
-    from tubecad.export.render import render_shape_png
-
-    return render_shape_png(import_shape(step), png, title=f"{step.name} as read back: faces and B-rep edges")
 
 
 @cli.command()
@@ -244,7 +133,9 @@ def render_step_picture(step: Path, png: Path) -> Path:
 @with_grid_options
 def report(spec: Path, nu: int, ns: int) -> None:
     """Print the JSON report of the tube described by SPEC (a TOML file)."""
-    _load_maths()
+    with interrupts_end_at_once():  # numpy/scipy and the spec checker, never OCCT
+        from tubecad.spec.parse import load_spec
+        from tubecad.spec.report import to_json, tube_report
     try:
         checked = load_spec(spec)
         click.echo(to_json(tube_report(checked.tube, nu, ns, checked.length_unit)), nl=False)
@@ -415,8 +306,11 @@ def build(
     job; the exit code is 2 if any job failed.
     """
     _load()
-    from tubecad.core.progress import Progress
-    from tubecad.spec.build import check_mesh_options
+    with interrupts_end_at_once():
+        from tubecad.core.progress import Progress
+        from tubecad.spec.build import build_and_export, check_mesh_options, split_outputs
+        from tubecad.spec.outputs import build_summary
+        from tubecad.spec.parse import load_spec
 
     try:
         check_mesh_options(outputs or [f"job.{f}" for f in formats or ("step",)], mesh_tolerance, mesh_angle)
@@ -425,22 +319,23 @@ def build(
     if resume and force:
         raise click.UsageError("--resume and --force exclude each other")
     if len(specs) > 1 or sweeps or out_dir is not None:
-        build_batch(
+        batch(
             specs,
-            step_schema,
             out_dir,
-            formats,
-            sweeps,
-            jobs,
             outputs,
             report_path,
-            (mesh_tolerance, mesh_angle),
-            quiet,
-            scheduler,
-            remote_dir,
-            not force,
-            retries,
-            job_timeout,
+            formats=tuple(formats),
+            sweeps=tuple(sweeps),
+            step_schema=step_schema,
+            jobs=jobs,
+            mesh_tolerance=mesh_tolerance,
+            mesh_angle=mesh_angle,
+            scheduler=scheduler,
+            remote_dir=remote_dir,
+            resume=not force,
+            retries=retries,
+            job_timeout=job_timeout,
+            quiet=quiet,
         )
         return
     if formats or jobs is not None or scheduler or remote_dir or job_timeout is not None:
@@ -461,67 +356,15 @@ def build(
         for path in written:  # a failed build (e.g. a file that cannot hold the tolerance) leaves no files
             path.unlink(missing_ok=True)
         raise UserError(str(exc)) from None
-    brep = report["brep"]
-    click.echo(
-        f"{brep['kind']}: {brep['faces']} faces, {brep['edges']} edges, valid={brep['valid']}, "
-        f"fit deviation {brep['fit']['max_deviation']:.2e}, orthogonality {brep['fit']['max_orthogonality_error']:.2e}"
-    )
-    for path, info in report["exports"].items():
-        click.echo(f"{path}: {export_summary(info)}")
+    for line in build_summary(report):
+        click.echo(line)
 
 
-def export_summary(info: dict) -> str:
-    """One line on a written file, from what was measured on it as read back."""
-    if "lines" in info:
-        return f"{info['bytes']} bytes, {info['lines']} curvature lines as polylines"
-    if "triangles" in info:
-        checked = (
-            f", within {info['max_triangle_deviation']:.1e} of the tube (vertices {info['max_vertex_deviation']:.1e})"
-            if "max_triangle_deviation" in info
-            else ""
-        )
-        asked = (
-            f", tolerance {info['deflection']:.3g} and {info['angular_deflection_deg']:.3g} deg"
-            if info.get("deflection") is not None and info.get("angular_deflection_deg") is not None
-            else ""
-        )
-        return f"{info['bytes']} bytes, mesh for visual use: {info['triangles']} triangles{checked}{asked}"
-    measured = (
-        f", file deviation {info['max_deviation']:.2e}, orthogonality {info['max_orthogonality_error']:.2e}"
-        if "max_deviation" in info
-        else ""
-    )
-    return f"{info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}{measured}"
-
-
-def build_batch(
-    specs,
-    step_schema,
-    out_dir,
-    formats,
-    sweeps,
-    jobs,
-    outputs,
-    report_path,
-    mesh=(None, None),
-    quiet: bool = False,
-    scheduler: str | None = None,
-    remote_dir: str | None = None,
-    resume: bool = True,
-    retries: int = 1,
-    job_timeout: float | None = None,
-) -> None:
-    """``tubecad build`` over many specs or a sweep (tubecad.batch.jobs); exits 0, 2 or 130.
-    ``mesh``: (--mesh-tolerance, --mesh-angle); ``quiet``: no line per job; ``scheduler``: a
-    Dask cluster; ``resume``: skip the jobs the manifest shows built and unchanged."""
-    import os
-    import time
-
-    from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs
-    from tubecad.batch.manifest import read_manifest, spec_hash, up_to_date
-    from tubecad.batch.runner import batch_record, run_batch
-
-    why = "several SPECs" if len(specs) > 1 else "--sweep" if sweeps else "-d/--out-dir"
+def batch(specs, out_dir, outputs, report_path, **options) -> None:
+    """``tubecad build`` over many specs or a sweep: :func:`tubecad.batch.runner.build_batch`
+    with ``options`` (its :class:`~tubecad.batch.runner.BatchOptions`), its lines on
+    stderr; exits 0, 2 (a job failed) or 130 (Ctrl-C)."""
+    why = "several SPECs" if len(specs) > 1 else "--sweep" if options.get("sweeps") else "-d/--out-dir"
     if outputs or report_path is not None:
         raise click.UsageError(
             f"-o/--output and --report are for one SPEC; in batch mode ({why}) each job writes "
@@ -529,130 +372,17 @@ def build_batch(
         )
     if out_dir is None:
         raise click.UsageError(f"batch mode ({why}) needs -d/--out-dir DIR")
+    with interrupts_end_at_once():
+        from tubecad.batch.runner import BatchOptions, build_batch
+
     try:
-        planned = plan_jobs(specs, [parse_sweep(s) for s in sweeps], out_dir, formats, step_schema, *mesh)
-        scheduler = scheduler or batch_scheduler(specs[0])
-        scheduler = None if scheduler == "local" else scheduler
+        outcome = build_batch(specs, out_dir, BatchOptions(**options), lambda line: click.echo(line, err=True))
     except TubecadError as exc:
+        if exc.key == "remote_dir":  # an option that needs another (--scheduler): a usage error
+            raise click.UsageError(str(exc)) from None
         raise UserError(str(exc)) from None
-    if remote_dir is not None and scheduler is None:
-        raise click.UsageError("--remote-dir is for a batch on a Dask cluster (--scheduler)")
-    executor = None
-    if scheduler is not None:  # reached before anything is written
-        from tubecad.batch.dask_executor import DaskExecutor
-
-        try:
-            executor = DaskExecutor(scheduler, remote_dir=remote_dir, out_dir=out_dir)
-        except TubecadError as exc:
-            raise UserError(str(exc)) from None
-    try:
-        out_dir.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        if executor is not None:
-            executor.close()
-        raise UserError(f"cannot create output folder {str(out_dir)!r}: {exc.strerror}") from None
-    say = lambda line: click.echo(line, err=True)  # noqa: E731
-    manifest = read_manifest(out_dir) if resume else {}
-    digests = [_digest(spec_hash, job) for job in planned]
-    done = {i for i, job in enumerate(planned) if up_to_date(manifest.get(job.name), job, digests[i])}
-    todo = [i for i in range(len(planned)) if i not in done]
-    results: list[JobResult | None] = [None] * len(planned)
-    for i in done:
-        entry = manifest[planned[i].name]
-        results[i] = JobResult(
-            planned[i].name,
-            "ok",
-            None,
-            entry.get("seconds"),
-            list(entry.get("outputs", [])),
-            attempts=entry.get("attempts", 1),
-            hashes=dict(entry.get("hashes", {})),
-            spec_hash=digests[i],
-            skipped=True,
-        )
-    workers = min(jobs or os.cpu_count() or 1, max(len(todo), 1))
-    start = time.perf_counter()
-    where = executor.description if executor is not None else f"{workers} process{'es' * (workers > 1)}"
-
-    def record(interrupted: bool = False) -> str:
-        return write_text(
-            out_dir / "batch.json",
-            to_json(
-                batch_record(
-                    planned, results, interrupted, time.perf_counter() - start, workers, sweeps, formats or ("step",)
-                )
-            ),
-        )
-
-    last = [0.0]
-
-    def on_result(k: int, result: JobResult) -> None:
-        result.spec_hash = digests[todo[k]]
-        results[todo[k]] = result
-        if time.perf_counter() - last[0] >= MANIFEST_INTERVAL:  # the manifest, atomically, as jobs finish
-            record()
-            last[0] = time.perf_counter()
-
-    if not quiet:
-        resumed = f" ({len(done)} of {len(planned)} already built and unchanged: skipped)" if done else ""
-        say(f"building {len(todo)} job{'s' * (len(todo) != 1)} with {where} into {out_dir}{resumed}")
-    interrupted = False
-    try:
-        if todo:
-            _, interrupted = run_batch(
-                [planned[i] for i in todo],
-                workers,
-                (lambda line: None) if quiet else say,
-                executor=executor,
-                retries=retries,
-                timeout=job_timeout,
-                on_result=on_result,
-            )
-    finally:
-        if executor is not None:
-            executor.close()
-    summary = record(interrupted)
-    counts = {s: sum(r is not None and r.status == s for r in results) for s in ("ok", "failed")}
-    cancelled = sum(r is None for r in results)
-    seconds = time.perf_counter() - start
-    if interrupted:
-        say(
-            f"interrupted: {cancelled} of {len(planned)} jobs cancelled, {counts['ok']} done, "
-            f"no partial files; {summary}"
-        )
-        click.get_current_context().exit(130)
-    skipped = f", {len(done)} skipped (unchanged)" if done else ""
-    say(f"{len(planned)} jobs: {counts['ok']} ok{skipped}, {counts['failed']} failed, {seconds:.1f} s; {summary}")
-    if counts["failed"]:
-        click.get_current_context().exit(2)
-
-
-#: the manifest is rewritten as jobs finish, at most this often (seconds); the run's end
-#: (or Ctrl-C) writes it once more, so only a killed submitter can lose that much of it
-#: (those jobs are built again by the rerun)
-MANIFEST_INTERVAL = 0.5
-
-
-def _digest(spec_hash, job) -> str | None:
-    """The job's spec hash, or None when its spec cannot be read (the job then fails, saying why)."""
-    try:
-        return spec_hash(job)
-    except Exception:  # noqa: BLE001 - a bad spec fails its own job with the checker's message
-        return None
-
-
-def batch_scheduler(spec: Path) -> str | None:
-    """``[batch] scheduler`` of the first spec, if it has one."""
-    from tubecad.spec.parse import read_spec_data
-
-    try:
-        section = read_spec_data(spec).get("batch", {})
-    except TubecadError:
-        return None
-    value = section.get("scheduler") if isinstance(section, dict) else None
-    if value is not None and not isinstance(value, str):
-        raise UserError(f'{spec}: [batch] scheduler must be a string such as "tcp://10.0.0.5:8786", got {value!r:.60}')
-    return value
+    if outcome.exit_code:
+        click.get_current_context().exit(outcome.exit_code)
 
 
 @cli.command()
@@ -669,26 +399,11 @@ def flat(spec: Path, output: Path) -> None:
     """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, [units] length), NAME.svg/.png
     each, and flat.json with every web's area and edge lengths."""
     _load()
-    from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
-
+    with interrupts_end_at_once():
+        from tubecad.spec.outputs import flat_from_spec
+        from tubecad.spec.parse import load_spec
     try:
-        checked = load_spec(spec)
-        if "stiffeners" not in checked.sections:
-            raise UserError(f"{spec}: has no [stiffeners] section, so there are no webs to flatten")
-        result = build_from_spec(checked)
-        chosen = stiffener_selection(checked, result)
-        base, height, side = chosen.base(result), chosen.profile.height, chosen.side
-        layout = result.layout
-        try:
-            output.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UserError(f"cannot create output folder {str(output)!r}: {exc.strerror}") from None
-        patterns = [ring_web_flat_pattern(base, layout.s_rings[i], height, side, f"ring_{i:02d}") for i in chosen.rings]
-        patterns += [
-            stringer_flat_pattern(base, layout.stringers_deg[j], height, side, f"stringer_{j:02d}")
-            for j in chosen.stringers
-        ]
-        written = write_patterns(patterns, output, checked.length_unit)
+        written = flat_from_spec(load_spec(spec), output)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     for path in written:
@@ -718,7 +433,9 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
     unless all of it is.
     """
     _load()
-    from tubecad.spec.shop import shop_from_spec
+    with interrupts_end_at_once():
+        from tubecad.spec.parse import load_spec
+        from tubecad.spec.shop import shop_from_spec
 
     live = not quiet and sys.stderr.isatty()  # stages on a terminal only: a log or a pipe gets the result lines
     say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
@@ -784,7 +501,9 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
     and node and element sets named after the parts (ring_03, stringer_05, panel_r2_s1,
     start_ring, end_ring). A .inp also gets the material and, with [analysis], its pressure step."""
     _load()
-    from tubecad.spec.mesh import checked_outputs, write_mesh
+    with interrupts_end_at_once():
+        from tubecad.spec.mesh import checked_outputs, write_mesh
+        from tubecad.spec.parse import load_spec
 
     try:
         checked_outputs(list(outputs))
@@ -818,7 +537,9 @@ def analyse(spec: Path, output: Path, element: str | None, size: float | None, q
     CalculiX (ccx), and write the deck, the results, a summary (results.json: displacements,
     stresses along the rings and stringers) and a picture of the ring stress on the deformed shell."""
     _load()
-    from tubecad.spec.mesh import analyse_spec
+    with interrupts_end_at_once():
+        from tubecad.spec.mesh import analyse_spec
+        from tubecad.spec.parse import load_spec
 
     live = not quiet and sys.stderr.isatty()
     say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)

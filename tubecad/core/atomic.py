@@ -8,6 +8,7 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -106,9 +107,11 @@ def save_figure(
     fig, folder: str | Path, stem: str, formats: tuple[str, ...] = ("png", "svg"), dpi: int = 150
 ) -> list[Path]:
     """Save a matplotlib figure as ``stem``.<format> in ``folder`` for each format, atomically,
-    then close it; return the paths."""
-    import matplotlib.pyplot as plt
+    then close it; return the paths.
 
+    tubecad draws on ``matplotlib.figure.Figure`` objects, which need neither pyplot nor a
+    backend switch (``savefig`` picks the canvas of each format), so the user's backend is
+    never changed; a figure that pyplot manages (a caller's own) is closed through pyplot."""
     paths = []
     try:
         for ext in formats:
@@ -117,5 +120,13 @@ def save_figure(
                 fig.savefig(tmp, format=ext, dpi=dpi)
             paths.append(target)
     finally:
-        plt.close(fig)
+        close_figure(fig)
     return paths
+
+
+def close_figure(fig) -> None:
+    """Release ``fig``: pyplot forgets it if it manages it (imported only if already loaded:
+    tubecad's own figures are not pyplot's and are simply dropped)."""
+    pyplot = sys.modules.get("matplotlib.pyplot")
+    if pyplot is not None and getattr(fig.canvas, "manager", None) is not None:
+        pyplot.close(fig)

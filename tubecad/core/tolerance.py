@@ -10,7 +10,15 @@ import math
 from tubecad.core.errors import ParameterError
 
 #: the default largest distance, model units, of the fitted surfaces from the exact tube
-DEFAULT_TOLERANCE = 1e-8
+#: (the spec's [fit] tolerance and every fit's and builder's ``tolerance`` default)
+DEFAULT_FIT_TOLERANCE = 1e-8
+
+#: the default largest |cos| of the angle between the fitted isolines: the fits'
+#: ``orthogonality`` default, ``orthogonality_for(DEFAULT_FIT_TOLERANCE)``
+DEFAULT_ORTHOGONALITY = 1e-9
+
+#: the old name of DEFAULT_FIT_TOLERANCE, kept importable
+DEFAULT_TOLERANCE = DEFAULT_FIT_TOLERANCE
 
 #: the tolerance of the B-rep's edges and vertices: OCCT's Precision::Confusion
 EDGE_TOLERANCE = 1e-7

@@ -74,13 +74,12 @@ def tessellate(parts: list, deflection: float, angular: float, build=None) -> No
     from OCP.IMeshTools import IMeshTools_Parameters
 
     from tubecad.export.tessellate import triangulate_build
-    from tubecad.surface import CanalSurface, CurvatureLineTube
 
     # a canal surface's grid has its own step rules, measured on the exact surfaces (tessellate.canal_grid);
     # round a closed axis its stringers come back moved by a Moebius map, which the closing ring's
     # nodes do not follow yet (they follow a turn): BRepMesh meshes a closed canal surface
     exact = build.surfaces[0].tube if build is not None else None
-    on_grid = isinstance(exact, CurvatureLineTube) or (isinstance(exact, CanalSurface) and not exact.axis.closed)
+    on_grid = exact is not None and (exact.constant_radius or not exact.axis.closed)
     if on_grid and any(p.wrapped.IsSame(build.shape.wrapped) for p in parts):
         triangulate_build(build, deflection, angular)
     rest = [p for p in parts if not BRepTools.Triangulation_s(p.wrapped, deflection)]

@@ -9,15 +9,12 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+from matplotlib.collections import PolyCollection
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import PolyCollection  # noqa: E402
-
-from tubecad.core.atomic import save_figure  # noqa: E402
-from tubecad.surface import CurvatureLineTube  # noqa: E402
+from tubecad.core.atomic import save_figure
+from tubecad.surface import CurvatureLineTube
 
 #: (title, horizontal axis, vertical axis, viewing direction)
 VIEWS = {
@@ -27,7 +24,7 @@ VIEWS = {
 LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
 
 
-def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int = 24, subdivisions: int = 6):
+def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int = 24, subdivisions: int = 6) -> Figure:
     """A matplotlib Figure with the frontal and horizontal projections side by side."""
     nu, ns = stringers * subdivisions, (rings - 1) * subdivisions
     u = np.linspace(0.0, 2.0 * math.pi, nu + 1)
@@ -39,7 +36,8 @@ def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int =
     cell_normals = centres / np.linalg.norm(centres, axis=-1, keepdims=True)
     cell_points = cells.mean(axis=1)
 
-    fig, axes = plt.subplots(1, 2, figsize=(14, 7))
+    fig = Figure(figsize=(14, 7))  # no pyplot: the user's backend is left alone
+    axes = fig.subplots(1, 2)
     axis_line = tube.axis.position(s)
     for ax, (title, i, j, view) in zip(axes, VIEWS.values()):
         order = np.argsort(cell_points @ view)[::-1]  # far first

@@ -105,13 +105,11 @@ def _shape(item: Exportable, path: Path):
     return item.shape
 
 
-#: format name -> its writer
-WRITERS: dict[str, Writer] = {
-    **{name: _cad(name) for name in ("step", "iges", "brep")},
-    **{name: _mesh(name) for name in ("stl", "3mf", "gltf", "glb")},
-    **{name: _polylines(name) for name in ("csv", "json")},
-}
-assert set(WRITERS) == {f.name for f in FORMATS}, "every format in tubecad.export.formats needs its writer"
+#: a format's kind (tubecad.export.formats) -> the writer of a format of that kind
+_WRITER_OF_KIND: dict[str, Callable[[str], Writer]] = {"cad": _cad, "mesh": _mesh, "polylines": _polylines}
+
+#: format name -> its writer, for every format of the table (no format is named here)
+WRITERS: dict[str, Writer] = {f.name: _WRITER_OF_KIND[f.kind](f.name) for f in FORMATS}
 
 
 def write_output(

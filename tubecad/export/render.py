@@ -24,25 +24,22 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-import matplotlib
+import numpy as np
+from matplotlib.collections import LineCollection, PolyCollection
+from matplotlib.figure import Figure
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepMesh import BRepMesh_IncrementalMesh
+from OCP.GCPnts import GCPnts_QuasiUniformDeflection
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_SHELL
+from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.TopLoc import TopLoc_Location
+from OCP.TopoDS import TopoDS_Shape
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
-from OCP.Bnd import Bnd_Box  # noqa: E402
-from OCP.BRep import BRep_Tool  # noqa: E402
-from OCP.BRepAdaptor import BRepAdaptor_Curve  # noqa: E402
-from OCP.BRepBndLib import BRepBndLib  # noqa: E402
-from OCP.BRepMesh import BRepMesh_IncrementalMesh  # noqa: E402
-from OCP.GCPnts import GCPnts_QuasiUniformDeflection  # noqa: E402
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_SHELL  # noqa: E402
-from OCP.TopExp import TopExp, TopExp_Explorer  # noqa: E402
-from OCP.TopLoc import TopLoc_Location  # noqa: E402
-from OCP.TopoDS import TopoDS_Shape  # noqa: E402
-
-from tubecad.core.atomic import atomic_path  # noqa: E402
-from tubecad.occ_compat import IndexedMapOfShape, as_edge, as_face  # noqa: E402
+from tubecad.core.atomic import atomic_path
+from tubecad.occ_compat import IndexedMapOfShape, as_edge, as_face
 
 FACE_RGB = np.array([0.72, 0.78, 0.86])  # light blue-grey
 BACK_FACTOR = 0.75  # back sides are this much darker
@@ -76,7 +73,7 @@ def render_shape_png(
     tris = _triangles(shape) @ basis  # (n, 3 vertices, xyz)
     edges = [e @ basis for e in _edges(shape, lin)]
 
-    fig = plt.figure(figsize=(size_px[0] / DPI, size_px[1] / DPI), dpi=DPI)
+    fig = Figure(figsize=(size_px[0] / DPI, size_px[1] / DPI), dpi=DPI)  # no pyplot: no backend switch
     ax = fig.add_axes((0.02, 0.02, 0.96, 0.90 if title else 0.96))
     parts = tris
     if len(tris):
@@ -103,11 +100,8 @@ def render_shape_png(
     if title:
         fig.suptitle(title, fontsize=13)
     target = Path(path)
-    try:
-        with atomic_path(target) as tmp:
-            fig.savefig(tmp, format="png", dpi=DPI, facecolor="white")
-    finally:
-        plt.close(fig)
+    with atomic_path(target) as tmp:
+        fig.savefig(tmp, format="png", dpi=DPI, facecolor="white")
     return target
 
 

@@ -55,7 +55,6 @@ from tubecad.brep.faces import CLOSING_MERGE
 from tubecad.brep.layout import stringer_parameters
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.occ_compat import as_edge, as_face
-from tubecad.surface import CanalSurface
 
 #: the share of the linear tolerance given to each grid direction (around, along)
 SHARE = 0.45
@@ -110,7 +109,7 @@ def triangulate_build(build, tolerance: float, angular: float) -> int:
     Returns the number of triangles; refuses (ParameterError) more than MAX_TRIANGLES.
     Remove them with ``BRepTools.Clean_s``."""
     axis = build.surfaces[0].tube.axis
-    if isinstance(build.surfaces[0].tube, CanalSurface):  # steps measured on the exact surfaces
+    if not build.surfaces[0].tube.constant_radius:  # a canal surface: steps measured on the exact surfaces
         angles, arcs = canal_grid(build, tolerance, angular)
     else:
         radius = max(build.radii)  # the outer tube needs the finest angle step; the inner one shares it
@@ -568,7 +567,7 @@ def _cap_face(
     if len(rings) > 1:  # outer ring nodes 1..count, inner count+1..2 count
         points = np.concatenate(rings)
         triangles = np.concatenate([np.stack([a, b, b + count], -1), np.stack([a, b + count, a + count], -1)]) + 1
-    elif isinstance(build.surfaces[0].tube, CanalSurface):
+    elif not build.surfaces[0].tube.constant_radius:
         # a canal surface's end circle: a strip zigzagging across it, no node off the circle
         # (its centre c - r r' t is off the axis, where a mesh's measure would take it for
         # the surface's); each triangle turned counter-clockwise below

@@ -16,9 +16,9 @@ def deformed_figure(
 ):
     """The matplotlib figure (module docstring); ``label`` names ``values`` on the colour bar."""
     import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+    from matplotlib.figure import Figure
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     mesh = result.mesh
@@ -29,11 +29,11 @@ def deformed_figure(
     moved = mesh.nodes + scale * u
     corners = np.concatenate([b.connectivity[:, :4] for b in mesh.shell_blocks])
     colour = np.nanmean(values[corners], axis=1)
-    fig = plt.figure(figsize=(9, 7))
+    fig = Figure(figsize=(9, 7))  # no pyplot: the user's backend is left alone
     ax = fig.add_subplot(projection="3d")
-    cmap = plt.get_cmap("viridis")
+    cmap = matplotlib.colormaps["viridis"]
     lo, hi = float(np.nanmin(colour)), float(np.nanmax(colour))
-    norm = matplotlib.colors.Normalize(lo, hi if hi > lo else lo + 1.0)
+    norm = Normalize(lo, hi if hi > lo else lo + 1.0)
     quads = Poly3DCollection(moved[corners], facecolors=cmap(norm(colour)), edgecolors="none", linewidths=0)
     ax.add_collection3d(quads)
     low, high = moved.min(axis=0), moved.max(axis=0)
@@ -41,7 +41,7 @@ def deformed_figure(
     ax.set_box_aspect(tuple(np.maximum(high - low, 1e-9 * size)))
     ax.set_axis_off()
     ax.view_init(elev=30, azim=-60)
-    bar = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, shrink=0.7)
+    bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, shrink=0.7)
     bar.set_label(label)
     ax.set_title(f"{title}\ndisplacements x {scale:.3g} (largest {largest:.3g} {mesh.length_unit})", fontsize=10)
     return fig
@@ -51,12 +51,6 @@ def save_deformed(
     result: PressureResult, values: np.ndarray, label: str, folder: str | Path, stem: str, title: str = ""
 ) -> list[Path]:
     """:func:`deformed_figure` saved as ``stem``.png in ``folder``, atomically."""
-    import matplotlib.pyplot as plt
-
     from tubecad.core.atomic import save_figure
 
-    fig = deformed_figure(result, values, label, title=title)
-    try:
-        return save_figure(fig, folder, stem, formats=("png",), dpi=110)
-    finally:
-        plt.close(fig)
+    return save_figure(deformed_figure(result, values, label, title=title), folder, stem, formats=("png",), dpi=110)

@@ -43,9 +43,7 @@ class StiffenerPlan:
 
 
 def _smallest_radius(surface) -> float:
-    if isinstance(surface, CurvatureLineTube):
-        return surface.radius
-    return float(surface.radius_law.min_radius)
+    return float(surface.radius_law.min_radius)  # a tube's law is its constant radius
 
 
 def shell_mesh(
@@ -92,11 +90,7 @@ def shell_mesh(
     first = offset_surface[references[0][1]]
     closing = None
     if closed:
-        closing = (
-            (lambda a: first.closing_angle(a))
-            if isinstance(first, CanalSurface)
-            else (lambda a: np.asarray(a) + surface.axis.holonomy)
-        )
+        closing = first.closing_angle  # a tube's: u + h; a canal surface's: its Moebius map, then + h
     counts = element_counts(first, layout.s_rings, layout.stringers_deg, size_along, size_around)
     beams = _beam_estimate(plan, counts, rings, strs)
     total = counts[0] * counts[1] * len(references) + beams
@@ -217,11 +211,11 @@ def _lattice_geometry(surface, grid: ParameterGrid) -> tuple[np.ndarray, ...]:
     S_s / |S_s| = sign(1 - rho kappa_u) t; on a canal surface, from its derivatives."""
     u, s = grid.angles[None, :], grid.s[:, None]
     unit = lambda v: v / np.linalg.norm(v, axis=-1, keepdims=True)  # noqa: E731
-    if isinstance(surface, CurvatureLineTube):
+    if surface.constant_radius:  # the tube's fast path
         t, r1, r2 = (v[:, None, :] for v in surface.axis.rotation_minimising_frame(grid.s))
         k1, k2 = surface.axis.normal_development(grid.s)
         cu, su = np.cos(grid.angles)[None, :, None], np.sin(grid.angles)[None, :, None]
-        speed = 1.0 - surface.radius * (k1[:, None] * cu[..., 0] + k2[:, None] * su[..., 0])
+        speed = 1.0 - surface.radius_law.value * (k1[:, None] * cu[..., 0] + k2[:, None] * su[..., 0])
         return (
             surface.points(u, s),
             unit(cu * r1 + su * r2),

@@ -44,7 +44,7 @@ from OCP.Geom import Geom_BSplineSurface
 from scipy.interpolate import BSpline
 
 from tubecad.core.errors import ParameterError
-from tubecad.core.tolerance import check_tolerance
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, DEFAULT_ORTHOGONALITY, check_tolerance
 from tubecad.fitting.circle import MAX_SUB_ARC, CircleSpline
 from tubecad.fitting.exact_section import TubeSurface
 from tubecad.fitting.frame_spline import (
@@ -58,6 +58,7 @@ from tubecad.fitting.frame_spline import (
 )
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
 from tubecad.surface.canal import CanalSurface
+from tubecad.surface.protocol import is_surface
 
 #: angles chi0 around the surface at which the fit is measured (per s sample)
 MEASURE_ANGLES = 24
@@ -165,8 +166,8 @@ class CanalSpline(SplineSize):
 def fit_canal(
     canal: CanalSurface,
     offsets: Sequence[float] = (0.0,),
-    tolerance: float = 1e-8,
-    orthogonality: float = 1e-9,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
+    orthogonality: float = DEFAULT_ORTHOGONALITY,
     degree: int = 7,
     max_spans: int = 4096,
     rings: Sequence[float] = (),
@@ -180,8 +181,8 @@ def fit_canal(
     continuity as in :func:`.frame_spline.fit_frame`) and a radius table's knots (C1: r' is
     only C1 there), except a table knot a sliver away from a joint or ring, which is left
     out or added back exactly after the fit (see SLIVER_NOISE, DROP)."""
-    if not isinstance(canal, CanalSurface):
-        raise ParameterError(f"canal must be a CanalSurface, got {type(canal).__name__}")
+    if not is_surface(canal):
+        raise ParameterError(f"canal must be a CanalSurface or a CurvatureLineTube, got {type(canal).__name__}")
     if isinstance(degree, bool) or not (isinstance(degree, int) and 3 <= degree <= 9):
         raise ParameterError(f"degree must be a whole number in [3, 9], got {degree!r}")
     tolerance = check_tolerance("tolerance", tolerance)
@@ -411,6 +412,11 @@ class CanalSectionSurface(TubeSurface):
 
     fit: CanalSpline | None = None
     offset: float = 0.0
+
+    @property
+    def canal(self) -> bool:
+        """True: a canal surface's section (see :attr:`TubeSurface.canal`)."""
+        return True
 
     def ring(self, s: float) -> tuple[np.ndarray, float, np.ndarray, np.ndarray, float]:
         """The characteristic circle at ``s``: (centre c - r r' t, radius r q, normal t, the

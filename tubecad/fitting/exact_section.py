@@ -58,6 +58,13 @@ class TubeSurface:
     def pole_count(self) -> tuple[int, int]:
         return self.surface.NbUPoles(), self.surface.NbVPoles()
 
+    @property
+    def canal(self) -> bool:
+        """Whether this is a canal surface's section (rings the exact characteristic circles, the
+        stringers crossing them at angles the Moebius map moves: :meth:`ring`, :meth:`ring_angles`);
+        False on a tube's, whose rings the frame's circle spline gives with u = theta."""
+        return False
+
 
 def exact_section_surface(
     tube: CurvatureLineTube, frame: FrameSpline, origin_deg: float = 0.0, stringers_deg: Sequence[float] | None = None

@@ -25,7 +25,7 @@ import numpy as np
 from scipy.interpolate import BSpline, make_interp_spline
 
 from tubecad.core.errors import ParameterError
-from tubecad.core.tolerance import check_tolerance
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, DEFAULT_ORTHOGONALITY, check_tolerance
 from tubecad.curves.axis import Axis
 from tubecad.fitting.frame import ORTHOGONALITY_ANGLES, FitError, FrameSpline, SplineSize, exact_frame, measured_cos
 from tubecad.fitting.route_frame import route_frame
@@ -42,8 +42,8 @@ STALLED_ROUNDS = 3
 def fit_frame(
     axis: Axis,
     radius_bound: float,
-    tolerance: float = 1e-8,
-    orthogonality: float = 1e-9,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
+    orthogonality: float = DEFAULT_ORTHOGONALITY,
     degree: int = 7,
     max_spans: int = 4096,
     rings: Sequence[float] = (),

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import BSpline
 
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, DEFAULT_ORTHOGONALITY
 from tubecad.curves.route import Piece, RouteAxis
 from tubecad.fitting.frame import FitError, FrameSpline, exact_frame, measured_cos
 
@@ -132,8 +133,8 @@ def route_frame(
     radius_bound: float,
     rings: Sequence[float] = (),
     radii: Sequence[float] = (),
-    tolerance: float = 1e-8,
-    orthogonality: float = 1e-9,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
+    orthogonality: float = DEFAULT_ORTHOGONALITY,
 ) -> FrameSpline:
     """The exact rational quadratic frame of ``axis`` with breaks at ``rings`` and the joints;
     its deviation from the exact frame and the orthogonality of the surfaces of ``radii``

@@ -35,7 +35,6 @@ from tubecad.core.errors import ParameterError
 from tubecad.core.units import length_unit as length_unit_of
 from tubecad.curves.chebyshev import PiecewiseChebyshev
 from tubecad.shop.flanges import Surface, offset_surface, on_span, span_breaks
-from tubecad.surface.canal import CanalSurface
 
 Curve = Callable[[np.ndarray], np.ndarray]
 
@@ -236,11 +235,8 @@ def ring_arcs(
     surface = offset_surface(base, float(level), key="level")
     at = np.array([float(s)])
     _, r1, r2 = base.axis.rotation_minimising_frame(base.axis._inside(at))
-    if isinstance(surface, CanalSurface):
-        centre, radius, _ = surface.circle(at)
-        centre, a = centre[0], float(radius[0])
-    else:
-        centre, a = base.axis.position(at)[0], surface.radius
+    centre, radius, _ = surface.circle(at)  # a tube's: the axis point, R + level
+    centre, a = centre[0], float(radius[0])
     step = 2 * math.pi / count
 
     def arc(phi0: float) -> Curve:
@@ -281,15 +277,13 @@ def write_bending_picture(tables: list[BendingTable], folder: str | Path, stem: 
     stations, which are marked), offset_z where it is not 0, and the bend-back error."""
     if not tables:
         raise ParameterError("tables: nothing to draw")
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
 
     shown = tables[:MAX_PANELS]
     cols = min(3, len(shown))
     rows = math.ceil(len(shown) / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(4.6 * cols, 3.0 * rows + 0.6), squeeze=False)
+    fig = Figure(figsize=(4.6 * cols, 3.0 * rows + 0.6))
+    axes = fig.subplots(rows, cols, squeeze=False)
     for ax, t in zip(axes.ravel(), shown):
         sigma = np.linspace(0.0, t.length, 400)
         curves = [(t.offset_y, "offset y", "#10203a", "o"), (t.inverse_y, "inverse", "#c0392b", "s")]

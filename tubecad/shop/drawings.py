@@ -14,13 +14,13 @@ millimetre (width and height in mm), so it prints at 1:1.
 
 from __future__ import annotations
 
-import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
 
-from tubecad.core.atomic import atomic_path, write_text
+from tubecad.core.atomic import write_text
+from tubecad.core.dxf import Drawing
 from tubecad.core.units import length_unit
 from tubecad.shop.fabrication import Fabrication
 from tubecad.shop.nesting import PlacedPiece, Plate
@@ -64,57 +64,38 @@ def text_height(plate: Plate) -> float:
 
 def write_plate_dxf(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
     """The plate's 1:1 DXF (module docstring), atomically."""
-    import ezdxf
-
-    doc = ezdxf.new(units=length_unit(fab.length_unit).dxf)
-    for name, colour in LAYERS.items():
-        doc.layers.add(name, color=colour)
-    msp = doc.modelspace()
+    drawing = Drawing(fab.length_unit, LAYERS)
     length, width = plate.size
-    msp.add_lwpolyline([(0, 0), (length, 0), (length, width), (0, width)], close=True, dxfattribs={"layer": "PLATE"})
+    drawing.polyline([(0, 0), (length, 0), (length, width), (0, width)], "PLATE")
     height = text_height(plate)
     for placed in plate.pieces:
-        _part_outline(msp, placed)
+        _part_outline(drawing, placed)
         for path_points in cut_paths(placed, fab.kerf):
-            msp.add_lwpolyline(path_points[:-1].tolist(), close=True, dxfattribs={"layer": "CUT"})
+            drawing.polyline(path_points[:-1], "CUT")
         for end, edge in joint_edges(placed):
-            msp.add_line(tuple(edge[0]), tuple(edge[1]), dxfattribs={"layer": "JOINTS"})
-            msp.add_text(
-                f"joint {placed.piece.name} {end}",
-                height=height / 2,
-                dxfattribs={"layer": "TEXT", "insert": tuple(edge.mean(axis=0))},
-            )
-        msp.add_text(placed.piece.name, height=height, dxfattribs={"layer": "TEXT", "insert": label_point(placed)})
-    msp.add_text(
+            drawing.line(edge[0], edge[1], "JOINTS")
+            drawing.text(f"joint {placed.piece.name} {end}", edge.mean(axis=0), height / 2, "TEXT")
+        drawing.text(placed.piece.name, label_point(placed), height, "TEXT")
+    drawing.text(
         f"{plate.name}  {length:g} x {width:g} {fab.length_unit}  kerf {fab.kerf:g}",
-        height=height,
-        dxfattribs={"layer": "TEXT", "insert": (0.0, -1.5 * height)},
+        (0.0, -1.5 * height),
+        height,
+        "TEXT",
     )
-    with atomic_path(path) as tmp:
-        doc.saveas(tmp)
-    return Path(path)
+    return drawing.save(path)
 
 
-def _part_outline(msp, placed: PlacedPiece) -> None:
+def _part_outline(drawing: Drawing, placed: PlacedPiece) -> None:
     """The finished outline on PARTS: exact circles and arcs for rings, else the polyline."""
     pattern = placed.piece.pattern
-    attribs = {"layer": "PARTS"}
     if pattern.hole is not None:  # a full annulus: two circles about the placed centre
         centre = tuple(placed.place(np.zeros((1, 2)))[0])
-        msp.add_circle(centre, float(np.linalg.norm(pattern.outline[0])), dxfattribs=attribs)
-        msp.add_circle(centre, float(np.linalg.norm(pattern.hole[0])), dxfattribs=attribs)
-    elif pattern.sector is not None:  # a sector: its arcs as bulges (each half arc <= 180 deg)
-        r_in, r_out, angle = pattern.sector
-        bulge = math.tan(angle / 8.0)
-        a = 0.5 * math.pi + 0.5 * angle * np.array([-1.0, 0.0, 1.0])
-        arc = np.stack([np.cos(a), np.sin(a)], axis=1)
-        corners = placed.place(np.concatenate([r_out * arc, r_in * arc[::-1]]))
-        bulges = [bulge, bulge, 0.0, -bulge, -bulge, 0.0]  # a rotation keeps every bulge
-        msp.add_lwpolyline(
-            [(x, y, b) for (x, y), b in zip(corners.tolist(), bulges)], format="xyb", close=True, dxfattribs=attribs
-        )
+        drawing.circle(centre, float(np.linalg.norm(pattern.outline[0])), "PARTS")
+        drawing.circle(centre, float(np.linalg.norm(pattern.hole[0])), "PARTS")
+    elif pattern.sector is not None:  # a sector: its arcs as bulges, turned and moved onto the plate
+        drawing.sector(*pattern.sector, "PARTS", place=placed.place)
     else:
-        msp.add_lwpolyline(placed.outline.tolist(), close=True, dxfattribs=attribs)
+        drawing.polyline(placed.outline, "PARTS")
 
 
 def write_plate_svg(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
@@ -176,16 +157,14 @@ def write_plate_svg(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
 def write_plate_picture(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
     """A preview of the plate for people (PNG, not to scale): parts, their names, the
     butt-joint edges in green and the utilisation in the title."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
     from matplotlib.patches import Polygon as Patch
 
     from tubecad.core.atomic import save_figure
 
     length, width = plate.size
-    fig, ax = plt.subplots(figsize=(12, 12 * width / length + 0.8))
+    fig = Figure(figsize=(12, 12 * width / length + 0.8))
+    ax = fig.subplots()
     ax.add_patch(
         Patch([(0, 0), (length, 0), (length, width), (0, width)], closed=True, facecolor="#f2f2f2", edgecolor="#555555")
     )

@@ -160,16 +160,14 @@ def on_span(base: Surface, u: float, span: tuple[float, float] | None) -> tuple[
     restricted stringers are named by their angle at the sub-span's start."""
     if span is None or tuple(span) == tuple(base.span):
         return base, u
-    if isinstance(base, CanalSurface):
-        piece = base.restricted(span)
-        return piece, float(base.stringer_angle(u, piece.span[0]))
-    return CurvatureLineTube(base.axis.restricted(span), base.radius, allow_irregular=True), u
+    piece = base.restricted(span)
+    return piece, float(base.stringer_angle(u, piece.span[0]))  # a tube's: u
 
 
 def span_breaks(base: Surface) -> np.ndarray:
     """The span's ends and the axis' joints (and a radius table's knots) inside it."""
     s0, s1 = base.span
-    inner = base._breaks() if isinstance(base, CanalSurface) else np.array([s for s, _ in base.axis.joints])
+    inner = base.s_breaks()
     return np.unique(np.concatenate([[s0, s1], [x for x in inner if s0 < x < s1]]))
 
 
@@ -211,10 +209,8 @@ def ring_flange_flat_pattern(
     level = flange_level(profile, side)
     w0, w1 = flange_widths(profile)
     at = base.axis._inside(np.array([float(s)]))  # s inside the span
-    if isinstance(base, CanalSurface):  # only this circle of the offset matters, not the whole offset surface
-        r, dr = float(base.radius_law.r(at)[0]), float(base.radius_law.dr(at)[0])
-    else:
-        r, dr = base.radius, 0.0
+    # only this circle of the offset matters, not the whole offset surface (a tube's law: r = R, r' = 0)
+    r, dr = float(base.radius_law.r(at)[0]), float(base.radius_law.dr(at)[0])
     if not r + level > 0.0:
         raise ParameterError(f"height: the ring flange at s = {s:g} would lie at radius {r:g} {level:+g} <= 0")
     a = (r + level) * math.sqrt(1.0 - dr * dr)

@@ -58,13 +58,14 @@ from typing import Any
 
 import numpy as np
 
-from tubecad.core.atomic import atomic_path, save_figure
+from tubecad.core.atomic import save_figure
+from tubecad.core.dxf import Drawing
 from tubecad.core.errors import ParameterError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.core.units import length_unit as length_unit_of
 from tubecad.core.validation import span_pair
 from tubecad.curves.chebyshev import PiecewiseChebyshev
-from tubecad.surface import CurvatureLineTube
+from tubecad.surface import CurvatureLineTube, is_surface
 from tubecad.surface.canal import CanalSurface
 from tubecad.surface.forms import SurfaceDerivatives
 
@@ -72,6 +73,8 @@ FloatArray = np.ndarray
 WallSurface = CurvatureLineTube | CanalSurface
 #: most grid samples along either direction
 MAX_SAMPLES = 4097
+#: the development DXF's layers, name -> DXF colour index
+PANEL_LAYERS = {"OUTLINE": 7, "MARKING": 1, "TEXT": 3, "STRAIN": 5}
 
 
 def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -302,9 +305,7 @@ class PanelConstruction:
 def _s_breaks(base: WallSurface, s_range: tuple[float, float]) -> FloatArray:
     """s_a, s_b and the axis' joints (and a radius table's knots) between them."""
     s_a, s_b = s_range
-    inner = [s for s, _ in base.axis.joints]
-    if isinstance(base, CanalSurface):
-        inner += list(np.asarray(base.radius_law.breaks, dtype=float))
+    inner = list(np.asarray(base.s_breaks(), dtype=float))  # the joints (and a radius table's knots)
     inner = [s for s in inner if s_a + 1e-12 * (s_b - s_a) < s < s_b - 1e-12 * (s_b - s_a)]
     return np.unique(np.concatenate([[s_a, s_b], inner]))
 
@@ -410,7 +411,7 @@ def _panel_name(name: Any) -> str:
 def check_panel(base: Any, s_range: Any, angles_deg: Any) -> tuple[tuple[float, float], tuple[float, float]]:
     """The panel's (s_a, s_b) within the surface's span and (u_a, u_b) in degrees with
     0 < u_b - u_a <= 360; a ParameterError naming the key otherwise."""
-    if not isinstance(base, (CurvatureLineTube, CanalSurface)):
+    if not is_surface(base):
         raise ParameterError(f"base must be a CurvatureLineTube or a CanalSurface, got {type(base).__name__}")
     s_a, s_b = span_pair("s_range", s_range)
     lo, hi = base.span
@@ -492,40 +493,21 @@ def write_panel_dxf(
     ($INSUNITS): layers OUTLINE (the closed outline), MARKING (one open polyline per marking
     line, ``marking[name]`` = [(line name, (n, 2) developed points)]), TEXT (the panel's and
     each marking line's name) and STRAIN (the largest strain and where). Written atomically."""
-    import ezdxf
-
-    unit = length_unit_of(length_unit)
+    length_unit_of(length_unit)  # an unknown unit fails before any file is written
     paths = []
     for dev in developments:
         outline = dev.outline()
         height = 0.02 * float(np.ptp(outline, axis=0).max())
-        doc = ezdxf.new(units=unit.dxf)
-        for layer, colour in (("OUTLINE", 7), ("MARKING", 1), ("TEXT", 3), ("STRAIN", 5)):
-            doc.layers.add(layer, color=colour)
-        space = doc.modelspace()
-        space.add_lwpolyline(outline.tolist(), close=True, dxfattribs={"layer": "OUTLINE"})
-        centre = outline.mean(axis=0)
-        space.add_text(dev.name, dxfattribs={"layer": "TEXT", "height": height, "insert": tuple(centre)})
+        drawing = Drawing(length_unit, PANEL_LAYERS)
+        drawing.polyline(outline, "OUTLINE")
+        drawing.text(dev.name, outline.mean(axis=0), height, "TEXT")
         for line_name, points in marking.get(dev.name, []):
             pts = _polyline_points(f"marking[{dev.name!r}] line {line_name!r}", points)
-            space.add_lwpolyline(pts.tolist(), close=False, dxfattribs={"layer": "MARKING"})
-            space.add_text(
-                str(line_name),
-                dxfattribs={"layer": "TEXT", "height": 0.6 * height, "insert": tuple(pts[len(pts) // 2])},
-            )
+            drawing.polyline(pts, "MARKING", closed=False)
+            drawing.text(str(line_name), pts[len(pts) // 2], 0.6 * height, "TEXT")
         low = outline.min(axis=0)
-        space.add_text(
-            _strain_text(dev),
-            dxfattribs={
-                "layer": "STRAIN",
-                "height": 0.6 * height,
-                "insert": (float(low[0]), float(low[1]) - 2.0 * height),
-            },
-        )
-        path = Path(folder) / f"{dev.name}_development.dxf"
-        with atomic_path(path) as tmp:
-            doc.saveas(tmp)
-        paths.append(path)
+        drawing.text(_strain_text(dev), (float(low[0]), float(low[1]) - 2.0 * height), 0.6 * height, "STRAIN")
+        paths.append(drawing.save(Path(folder) / f"{dev.name}_development.dxf"))
     return paths
 
 
@@ -537,13 +519,11 @@ def write_panel_picture(
 ) -> list[Path]:
     """``NAME_development.png`` and ``.svg`` (``formats``): the outline, the marking lines and the strain as a
     colour map, equal aspect, the largest strain and where in the title."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
 
     dev = development
-    fig, ax = plt.subplots(figsize=(8, 8))
+    fig = Figure(figsize=(8, 8))
+    ax = fig.subplots()
     mesh = ax.pcolormesh(
         dev.grid[..., 0], dev.grid[..., 1], dev.strain, shading="gouraud", cmap="viridis", rasterized=True
     )  # a gouraud mesh as SVG vectors takes seconds to draw

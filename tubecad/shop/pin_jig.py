@@ -286,12 +286,10 @@ MAX_LABELLED_PINS = 150
 def write_pin_jig_picture(jig: PinJig, folder: str | Path, formats: tuple[str, ...] = ("png", "svg")) -> list[Path]:
     """``NAME_pin_jig.png`` and ``.svg`` (``formats``): the pins coloured by height, each height written at its
     pin, the panel's projected outline, equal aspect."""
-    import matplotlib
+    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(9, 8))
+    fig = Figure(figsize=(9, 8))
+    ax = fig.subplots()
     closed = np.vstack([jig.outline, jig.outline[:1]])
     ax.plot(closed[:, 0], closed[:, 1], color="#10203a", linewidth=1.0)
     dots = ax.scatter(jig.xy[:, 0], jig.xy[:, 1], c=jig.heights, cmap="viridis", s=18, zorder=3)

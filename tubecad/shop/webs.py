@@ -34,7 +34,6 @@ from tubecad.curves.chebyshev import PiecewiseChebyshev
 from tubecad.shop.fabrication import Fabrication
 from tubecad.stiffeners.flat import FlatPattern, ring_web_flat_pattern, stringer_flat_pattern, stringer_rates
 from tubecad.stiffeners.solids import Stiffener
-from tubecad.surface.canal import CanalSurface
 
 #: the most pieces one web (between chosen joints) is split into before the plate is called too small
 MAX_PIECES = 200
@@ -257,9 +256,9 @@ def _annulus(st: Stiffener, whole: FlatPattern) -> tuple[float, float, float]:
 def _ring_angle(st: Stiffener, angle_deg: float) -> float:
     """The circle's angle (degrees from r1 at the ring) of the stringer angle ``angle_deg``:
     the same on a tube; chi(chi0, s) on a canal surface."""
-    if isinstance(st.base, CanalSurface):
-        return math.degrees(float(st.base.stringer_angle(math.radians(angle_deg), st.value)))
-    return float(angle_deg)
+    if st.base.constant_radius:  # chi = u
+        return float(angle_deg)
+    return math.degrees(float(st.base.stringer_angle(math.radians(angle_deg), st.value)))
 
 
 def _clear_start(st: Stiffener, n: int, stringers_deg: tuple[float, ...]) -> float:
@@ -338,10 +337,7 @@ def _ring_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
 
     s = st.value
     axis = st.base.axis
-    if isinstance(st.base, CanalSurface):
-        centre = st.base.circle(np.array([s]))[0][0]
-    else:
-        centre = axis.position(np.array([s]))[0]
+    centre = st.base.circle(np.array([s]))[0][0]  # a tube's: the axis point
     t, r1, r2 = (v[0] for v in axis.rotation_minimising_frame(np.array([s])))
     solid = st.solid
     for angle, keep in ((a_deg, bd.Keep.TOP), (b_deg, bd.Keep.BOTTOM)):

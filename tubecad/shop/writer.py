@@ -215,13 +215,11 @@ def _write_panels(data: ShopData, folder: Path, name: str, step_schema: str, ind
 
 def write_overview(data: ShopData, folder: Path, index: dict) -> list[Path]:
     """overview.png and overview.svg: one page of what the folder holds."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
     from matplotlib.patches import Polygon as Patch
 
-    fig, axes = plt.subplots(2, 2, figsize=(14, 9.5))
+    fig = Figure(figsize=(14, 9.5))
+    axes = fig.subplots(2, 2)
     (a_plate, a_panel), (a_jig, a_bend) = axes
     unit = data.fab.length_unit
     if data.web_plates:

@@ -3,102 +3,90 @@ and :func:`build_and_export`, the body of ``tubecad build`` for one spec."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from tubecad.brep import TubeBuild, build_tube_solid, build_wall_solid
-from tubecad.core.errors import ParameterError, RegularityError, SpecError
+from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
 from tubecad.core.progress import Progress, ProgressCallback
-from tubecad.core.tolerance import DEFAULT_TOLERANCE
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.fitting import FitError
-from tubecad.spec.layout import layout_from_section
+from tubecad.spec.model import StiffenerSelection
 from tubecad.spec.parse import TubeSpec
-from tubecad.stiffeners.profiles import Profile
-from tubecad.surface import CanalSurface, CurvatureLineTube
+
+__all__ = [
+    "MESH_OPTIONS",
+    "SpecBuild",
+    "StiffenerSelection",
+    "build_and_export",
+    "build_from_spec",
+    "build_spec",
+    "check_mesh_options",
+    "check_output",
+    "export_build",
+    "mesh_deflection",
+    "mesh_tolerance_for",
+    "panels_from_spec",
+    "split_outputs",
+    "stiffener_selection",
+    "stiffeners_from_spec",
+    "wall_lines",
+]
 
 
 def build_from_spec(spec: TubeSpec, progress: ProgressCallback | None = None) -> TubeBuild:
     """The wall solid if the spec has [wall], else the capped tube solid; ``progress(step,
     done, total)`` is called as it is built."""
+    from tubecad.core.tolerance import check_tolerance
+
     tube = spec.tube
     try:
-        layout = layout_from_section(tube, spec.sections.get("layout", {}))
+        layout = spec.layout.net(tube)
     except ParameterError as exc:
-        raise SpecError(f"{spec.source}: [layout] {exc}") from None
-    tolerance = spec.sections.get("fit", {}).get("tolerance", DEFAULT_TOLERANCE)
-    wall = spec.sections.get("wall")
+        raise SpecError(f"{spec.source}: [layout] {exc}", key=_within("layout", exc)) from None
+    try:  # parse_spec checked it; a model made by a script is checked here, so the build's own errors are [wall]'s
+        tolerance = check_tolerance("tolerance", spec.fit.tolerance)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: [fit] {exc}", key="fit.tolerance") from None
+    wall = spec.wall
     try:
         if wall is None:
             return build_tube_solid(tube, layout, tolerance, progress)
-        return build_wall_solid(tube, wall["thickness"], wall.get("side", "centered"), layout, tolerance, progress)
+        return build_wall_solid(tube, wall.thickness, wall.side, layout, tolerance, progress)
     except FitError as exc:
-        raise SpecError(f"{spec.source}: [fit] {exc}") from None
+        raise SpecError(f"{spec.source}: [fit] {exc}", key="fit.tolerance") from None
     except RegularityError as exc:
-        raise SpecError(f"{spec.source}: [wall] the wall's outer surface is not regular: {exc}") from None
+        raise SpecError(
+            f"{spec.source}: [wall] the wall's outer surface is not regular: {exc}", key="wall.thickness"
+        ) from None
     except ParameterError as exc:
-        section = "[fit]" if "tolerance" in str(exc) else "[wall]"
-        raise SpecError(f"{spec.source}: {section} {exc}") from None
+        section = "fit" if exc.key in FIT_KEYS else "wall"
+        raise SpecError(f"{spec.source}: [{section}] {exc}", key=_within(section, exc)) from None
 
 
-@dataclass(frozen=True)
-class StiffenerSelection:
-    """What a [stiffeners] section asks for, checked against the built layout."""
+#: the keys of a ParameterError about the fit's tolerances (a [fit] error, not [wall]'s)
+FIT_KEYS = ("tolerance", "orthogonality", "fit.tolerance")
 
-    rings: list[int]
-    stringers: list[int]
-    profile: Profile
-    side: str
-    fuse: bool
-    density: float
 
-    def base(self, build: TubeBuild) -> CurvatureLineTube | CanalSurface:
-        """The wall surface the stiffeners stand on: outer (outside) or inner (inside)."""
-        from tubecad.stiffeners.assembly import stiffener_base
-
-        return stiffener_base(build, self.side)
+def _within(section: str, exc: TubecadError) -> str:
+    """The spec key of an error about ``section``: ``section.key``, or the section."""
+    key = exc.key
+    if key is None:
+        return section
+    return key if key == section or key.startswith(f"{section}.") else f"{section}.{key}"
 
 
 def stiffener_selection(spec: TubeSpec, build: TubeBuild) -> StiffenerSelection | None:
-    """The checked [stiffeners] section, or None if the spec has none."""
-    from tubecad.core.units import steel_density
-    from tubecad.stiffeners.profiles import SIDES
-
-    section = spec.sections.get("stiffeners")
-    if section is None:
+    """The checked [stiffeners] section on ``build``'s layout (the one check of the section,
+    :meth:`~tubecad.spec.model.StiffenersSection.select`, that the mesh makes too), each
+    ring once (a closed tube's closing ring is its first), or None if the spec has none."""
+    if spec.stiffeners is None:
         return None
-
-    def chosen(key: str, count: int) -> list[int]:
-        value = section.get(key, [])
-        indices = list(range(count)) if value == "all" else value
-        bad = [i for i in indices if not 0 <= i < count]
-        if bad:
-            raise SpecError(f"{spec.source}: [stiffeners] {key} must be indices in [0, {count - 1}], got {bad}")
-        return indices
-
-    try:
-        profile = Profile(
-            section.get("profile", "flat"),
-            section["height"],
-            section["thickness"],
-            section.get("flange_width", 0.0),
-            section.get("flange_thickness", 0.0),
-        )
-    except ParameterError as exc:
-        raise SpecError(f"{spec.source}: [stiffeners] {exc}") from None
-    side = section.get("side", "outside")
-    if side not in SIDES:
-        raise SpecError(f"{spec.source}: [stiffeners] side must be one of {', '.join(SIDES)}, got {side!r}")
-    density = section.get("density", steel_density(spec.length_unit))  # kg per cubic [units] length
-    if not density > 0:
-        raise SpecError(f"{spec.source}: [stiffeners] density must be > 0, got {density}")
     from tubecad.stiffeners.assembly import distinct_rings
 
-    rings = distinct_rings(build, chosen("rings", len(build.layout.s_rings)))
-    return StiffenerSelection(
-        rings, chosen("stringers", len(build.layout.stringers_deg)), profile, side, section.get("fuse", False), density
-    )
+    selection = spec.stiffeners.select(build.layout, spec.source, spec.length_unit)
+    return replace(selection, rings=distinct_rings(build, selection.rings))
 
 
 def stiffeners_from_spec(
@@ -116,23 +104,24 @@ def stiffeners_from_spec(
             build, selection.rings, selection.stringers, selection.profile, selection.side, build.tolerance, progress
         ), selection
     except (ParameterError, RegularityError, FitError) as exc:
-        raise SpecError(f"{spec.source}: [stiffeners] {exc}") from None
+        raise SpecError(f"{spec.source}: [stiffeners] {exc}", key=_within("stiffeners", exc)) from None
 
 
 def panels_from_spec(spec: TubeSpec, build: TubeBuild) -> list:
     """The [panels] section's panels of the wall ([] without the section)."""
     from tubecad.stiffeners.panels import split_into_panels
 
-    section = spec.sections.get("panels")
+    section = spec.panels
     if section is None:
         return []
     n_s, n_r = len(build.layout.stringers_deg), len(build.layout.s_rings)
-    seams = list(range(n_s)) if section["seams"] == "all" else section["seams"]
-    rings = section.get("rings", "all")
     try:
-        return split_into_panels(build, seams, None if rings == "all" else rings)
+        return split_into_panels(build, section.seam_indices(n_s), section.ring_indices())
     except ParameterError as exc:
-        raise SpecError(f"{spec.source}: [panels] {exc} (the layout has {n_s} stringers and {n_r} rings)") from None
+        raise SpecError(
+            f"{spec.source}: [panels] {exc} (the layout has {n_s} stringers and {n_r} rings)",
+            key=_within("panels", exc),
+        ) from None
 
 
 def split_outputs(outputs) -> tuple[list[Path], list[Path]]:
@@ -173,20 +162,18 @@ def mesh_tolerance_for(
     """(linear deflection, angular deflection in radians) of the spec's mesh outputs, checked
     before anything is built (tubecad.export.meshing: the defaults, and the ranges relative
     to the spec's smallest tube radius); a SpecError names the option and the range."""
-    from tubecad.brep.wall import wall_offsets
     from tubecad.export.meshing import checked_tolerance
 
-    tube, wall = spec.tube, spec.sections.get("wall")
-    radius = tube.radius if isinstance(tube, CurvatureLineTube) else tube.radius_law.min_radius  # a canal surface's law
-    if wall is not None:
+    radius = spec.min_radius  # a tube's constant radius, or a canal surface's smallest r
+    if spec.wall is not None:
         try:
-            radius += wall_offsets(wall["thickness"], wall.get("side", "centered"))[0]
-        except (ParameterError, KeyError):
+            radius += spec.wall.offsets()[0]
+        except ParameterError:
             pass  # the build says what is wrong with [wall]
     try:
         return checked_tolerance(linear, angle_deg, radius, MESH_OPTIONS)
     except ParameterError as exc:
-        raise SpecError(f"{spec.source}: {exc}") from None
+        raise SpecError(f"{spec.source}: {exc}", key=exc.key) from None
 
 
 def check_mesh_options(outputs, mesh_tolerance: float | None, mesh_angle: float | None) -> None:
@@ -225,6 +212,122 @@ def check_output(
     return {"bytes": tmp.stat().st_size, "lines": len(wall_lines(build))}
 
 
+@dataclass
+class SpecBuild:
+    """A spec built: the wall (or tube) ``build``, its stiffeners and panels, the ``shape``
+    its files are written from (the named assembly with [stiffeners] or [panels], else the
+    solid) and the ``report`` so far (the tube's measures, the B-rep's, the stiffeners')."""
+
+    spec: TubeSpec
+    build: TubeBuild
+    stiffeners: list = field(default_factory=list)
+    selection: StiffenerSelection | None = None
+    panels: list = field(default_factory=list)
+    shape: Any = None
+    report: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def named(self) -> bool:
+        """Whether ``shape`` is the named assembly (wall or panels, stiffeners, lines)."""
+        return bool(self.stiffeners or self.panels)
+
+    @property
+    def wall_solids(self) -> int | None:
+        """For the assembly, how many of its first solids are the wall (or its panels)."""
+        return (len(self.panels) or 1) if self.named else None
+
+
+def build_spec(spec: TubeSpec, progress: Progress | None = None, grid: tuple[int, int] = (64, 501)) -> SpecBuild:
+    """Build ``spec``'s solid (the wall with [wall], else the capped tube), its [stiffeners]
+    and [panels] (then the named assembly), and measure them: the report of ``tubecad
+    build``, the tube's checks on a ``grid`` = (nu, ns) grid. Nothing is written."""
+    from tubecad.brep.properties import volume
+    from tubecad.core.units import steel_density
+    from tubecad.spec.report import build_report, stiffener_report, tube_report
+    from tubecad.stiffeners import net_lines
+    from tubecad.stiffeners.assembly import named_assembly
+
+    progress = progress if progress is not None else Progress(enabled=False)
+    unit = spec.length_unit  # [units] length: the model's unit, stated in every file and the report
+    kind = "wall" if spec.wall is not None else "tube"
+    progress.step(f"building the {kind}", 4 if kind == "wall" else 3)
+    result = build_from_spec(spec, progress.update)
+    report = tube_report(spec.tube, *grid, length_unit=unit)
+    report["brep"] = build_report(result, spec.tube)
+    if spec.stiffeners is not None:
+        progress.step("building stiffeners")
+    stiffeners, selection = stiffeners_from_spec(spec, result, progress.update)
+    if spec.panels is not None:
+        progress.step("splitting the wall into panels")
+    panels = panels_from_spec(spec, result)
+    built = SpecBuild(spec, result, stiffeners, selection, panels, result.shape, report)
+    if built.named:
+        fuse = bool(selection and selection.fuse)
+        progress.step("assembling" + (" (fusing the stiffeners into the wall)" if fuse else ""))
+        lines = net_lines(result.surfaces[0], result.layout)
+        built.shape = named_assembly(result, stiffeners, lines, fuse=fuse, panels=panels)
+        density = selection.density if selection else steel_density(unit)
+        report["stiffeners"] = stiffener_report(stiffeners, lines, density, unit)
+        report["panels"] = [
+            {
+                "name": p.name,
+                "s": list(p.s_range),
+                "angles_deg": list(p.angles_deg),
+                "outer_area": p.outer_area,
+                "volume": volume(p.solid),
+                "mass_kg": p.mass(density),
+            }
+            for p in panels
+        ]
+    return built
+
+
+def export_build(
+    built: SpecBuild,
+    outputs,
+    step_schema: str = "AP214",
+    written: list[Path] | None = None,
+    deflection: float | None = None,
+    angular: float | None = None,
+    progress: Progress | None = None,
+) -> dict[str, Any]:
+    """Write ``built``'s shape to each of ``outputs`` (the format by extension), each read
+    back and measured before it is moved into place; returns what was measured per file
+    (also ``built.report["exports"]``, by path). ``deflection``, ``angular``: the mesh
+    outputs' tolerances (default :func:`mesh_tolerance_for`'s)."""
+    from tubecad.export.registry import Exportable, write_output
+
+    written = [] if written is None else written
+    progress = progress if progress is not None else Progress(enabled=False)
+    spec, result, shape = built.spec, built.build, built.shape
+    unit = spec.length_unit
+    if deflection is None or angular is None:
+        default = mesh_tolerance_for(spec)
+        deflection, angular = deflection or default[0], angular or default[1]
+    exports = built.report["exports"] = {}
+    item = Exportable(
+        shape,
+        lambda: wall_lines(result),
+        step_schema,
+        mesh_deflection=deflection,
+        length_unit=unit,
+        mesh_angular=angular,
+        build=result,
+    )
+
+    def check(tmp, fmt, path):
+        progress.advance(1, f"wrote {path.name}")
+        return check_output(tmp, fmt, path, shape, result, built.wall_solids, deflection, unit, angular)
+
+    progress.step("writing and reading back files", 2 * len(outputs))
+    for path in map(Path, outputs):  # STEP of an assembly keeps its names: wall, ring_03, line_ring_03, ...
+        done, info = write_output(item, path, lambda tmp, fmt, path=path: check(tmp, fmt, path))
+        written.append(done)
+        exports[str(path)] = info
+        progress.advance(1, f"checked {path.name}")
+    return exports
+
+
 def build_and_export(
     spec: TubeSpec,
     outputs,
@@ -246,75 +349,20 @@ def build_and_export(
     ``mesh_tolerance`` (model units) and ``mesh_angle`` (degrees), checked before anything is
     built (:func:`mesh_tolerance_for`). ``progress`` hears of each stage (the wall, each
     stiffener, each file written and read back); it shows nothing by default.
+    (:func:`build_spec` and :func:`export_build` are its two halves.)
     """
-    from tubecad.brep.properties import volume
     from tubecad.core.atomic import check_writable, write_text
-    from tubecad.core.units import steel_density
-    from tubecad.export.registry import Exportable, write_output
-    from tubecad.spec.report import build_report, stiffener_report, to_json, tube_report
-    from tubecad.stiffeners import net_lines
-    from tubecad.stiffeners.assembly import named_assembly
+    from tubecad.spec.report import to_json
 
     written = [] if written is None else written
     progress = progress if progress is not None else Progress(enabled=False)
-    unit = spec.length_unit  # [units] length: the model's unit, stated in every file and the report
     outputs = [Path(p) for p in outputs]
     split_outputs(outputs)  # an unknown extension is refused, listing them all, before anything is built
     for path in (*outputs, *([report_path] if report_path is not None else [])):
         check_writable(path)  # a bad output is refused before anything is built or written
     deflection, angular = mesh_tolerance_for(spec, mesh_tolerance, mesh_angle)
-    kind = "wall" if "wall" in spec.sections else "tube"
-    progress.step(f"building the {kind}", 4 if kind == "wall" else 3)
-    result = build_from_spec(spec, progress.update)
-    report = tube_report(spec.tube, 64, 501, length_unit=unit)
-    report["brep"] = build_report(result, spec.tube)
-    if "stiffeners" in spec.sections:
-        progress.step("building stiffeners")
-    stiffeners, selection = stiffeners_from_spec(spec, result, progress.update)
-    if "panels" in spec.sections:
-        progress.step("splitting the wall into panels")
-    panels = panels_from_spec(spec, result)
-    shape = result.shape
-    named = bool(stiffeners or panels)
-    if named:
-        progress.step("assembling" + (" (fusing the stiffeners into the wall)" if selection and selection.fuse else ""))
-        lines = net_lines(result.surfaces[0], result.layout)
-        shape = named_assembly(result, stiffeners, lines, fuse=bool(selection and selection.fuse), panels=panels)
-        density = selection.density if selection else steel_density(unit)
-        report["stiffeners"] = stiffener_report(stiffeners, lines, density, unit)
-        report["panels"] = [
-            {
-                "name": p.name,
-                "s": list(p.s_range),
-                "angles_deg": list(p.angles_deg),
-                "outer_area": p.outer_area,
-                "volume": volume(p.solid),
-                "mass_kg": p.mass(density),
-            }
-            for p in panels
-        ]
-    report["exports"] = {}
-    wall_solids = (len(panels) or 1) if named else None  # the assembly's first solids: the wall, or its panels
-    item = Exportable(
-        shape,
-        lambda: wall_lines(result),
-        step_schema,
-        mesh_deflection=deflection,
-        length_unit=unit,
-        mesh_angular=angular,
-        build=result,
-    )
-
-    def check(tmp, fmt, path):
-        progress.advance(1, f"wrote {path.name}")
-        return check_output(tmp, fmt, path, shape, result, wall_solids, deflection, unit, angular)
-
-    progress.step("writing and reading back files", 2 * len(outputs))
-    for path in outputs:  # STEP of an assembly keeps its names: wall, ring_03, line_ring_03, ...
-        done, info = write_output(item, path, lambda tmp, fmt, path=path: check(tmp, fmt, path))
-        written.append(done)
-        report["exports"][str(path)] = info
-        progress.advance(1, f"checked {path.name}")
+    built = build_spec(spec, progress)
+    export_build(built, outputs, step_schema, written, deflection, angular, progress)
     if report_path is not None:
-        written.append(write_text(report_path, to_json(report)))
-    return report
+        written.append(write_text(report_path, to_json(built.report)))
+    return built.report

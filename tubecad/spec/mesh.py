@@ -31,55 +31,36 @@ def checked_outputs(outputs: list[Path]) -> list[Path]:
 def mesh_from_spec(spec: TubeSpec, **overrides: Any):
     """The spec's wall (or tube) as an :class:`tubecad.fem.FEMesh` with its [mesh] settings
     (``overrides`` win: element, size, ...), [stiffeners] as beams and [panels] as sets."""
-    from tubecad.fem import StiffenerPlan, mesh_settings, shell_mesh
-    from tubecad.spec.layout import layout_from_section
-    from tubecad.stiffeners.profiles import Profile
+    from tubecad.fem import StiffenerPlan, shell_mesh
+    from tubecad.spec.model import MeshSection
 
     source = spec.source
     try:
-        settings = mesh_settings(spec.sections.get("mesh"), **overrides)
+        settings = (spec.mesh or MeshSection()).settings(**overrides)
     except ParameterError as exc:
-        raise SpecError(f"{source}: {exc}") from None
+        raise SpecError(f"{source}: {exc}", key=exc.key or "mesh") from None
     tube = spec.tube
-    layout = layout_from_section(tube, spec.sections.get("layout", {}))
-    wall = spec.sections.get("wall")
+    try:
+        layout = spec.layout.net(tube)
+    except ParameterError as exc:  # parse_spec has checked it
+        raise SpecError(f"{source}: [layout] {exc}", key=exc.key or "layout") from None
+    wall = spec.wall
     plan = None
-    section = spec.sections.get("stiffeners")
-    if section is not None:
-
-        def chosen(key: str, count: int) -> list[int]:
-            value = section.get(key, [])
-            return list(range(count)) if value == "all" else list(value)
-
-        try:
-            profile = Profile(
-                section.get("profile", "flat"),
-                section["height"],
-                section["thickness"],
-                section.get("flange_width", 0.0),
-                section.get("flange_thickness", 0.0),
-            )
-        except ParameterError as exc:
-            raise SpecError(f"{source}: [stiffeners] {exc}") from None
-        plan = StiffenerPlan(
-            chosen("rings", len(layout.s_rings)),
-            chosen("stringers", len(layout.stringers_deg)),
-            profile,
-            section.get("side", "outside"),
-        )
+    if spec.stiffeners is not None:  # the section's one check, the build's too: profile, side, indices
+        chosen = spec.stiffeners.select(layout, source, spec.length_unit)
+        plan = StiffenerPlan(chosen.rings, chosen.stringers, chosen.profile, chosen.side)
         if settings.beams:
             _check_reach(spec, plan, wall, source)
-    panels = spec.sections.get("panels")
+    panels = spec.panels
     seams = rings = None
     if panels is not None:
-        seams = list(range(len(layout.stringers_deg))) if panels["seams"] == "all" else panels["seams"]
-        rings = None if panels.get("rings", "all") == "all" else panels["rings"]
+        seams, rings = panels.seam_indices(len(layout.stringers_deg)), panels.ring_indices()
     try:
         return shell_mesh(
             tube,
             layout,
-            thickness=None if wall is None else wall["thickness"],
-            wall_side="centered" if wall is None else wall.get("side", "centered"),
+            thickness=None if wall is None else wall.thickness,
+            wall_side="centered" if wall is None else wall.side,
             stiffeners=plan,
             seams=seams,
             panel_rings=rings,
@@ -88,37 +69,32 @@ def mesh_from_spec(spec: TubeSpec, **overrides: Any):
         )
     except (ParameterError, RegularityError) as exc:
         text = str(exc)
-        raise SpecError(f"{source}: {text if text.startswith('[') else '[mesh] ' + text}") from None
+        raise SpecError(f"{source}: {text if text.startswith('[') else '[mesh] ' + text}", key=exc.key) from None
 
 
 def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
     """A stiffener too high for the wall's curvature is refused as the solids refuse it
     (tubecad.stiffeners.limits), naming [stiffeners] height."""
-    from tubecad.brep.wall import wall_radii
     from tubecad.stiffeners.limits import checked_reach
-    from tubecad.surface import CurvatureLineTube
 
-    tube = spec.tube
-    if not isinstance(tube, CurvatureLineTube):
+    tube = spec.tube.fast_path()  # a constant law: the tube of that radius
+    if not tube.constant_radius:
         radius = tube.radius_law.min_radius
         if plan.side == "inside" and plan.profile.height >= radius:
             raise SpecError(
                 f"{source}: [stiffeners] height must be < {radius:g} (the smallest radius) inside, "
-                f"got {plan.profile.height:g}"
+                f"got {plan.profile.height:g}",
+                key="stiffeners.height",
             )
         return
-    r_in, r_out = (
-        (tube.radius, tube.radius)
-        if wall is None
-        else wall_radii(tube.radius, wall["thickness"], wall.get("side", "centered"))
-    )
+    r_in, r_out = (tube.radius, tube.radius) if wall is None else wall.radii(tube.radius)
     base = r_out if plan.side == "outside" else r_in
     try:
         for kind, chosen in (("ring", plan.rings), ("stringer", plan.stringers)):
             if chosen:
                 checked_reach(tube.axis, plan.profile, base, plan.side, kind)
     except ParameterError as exc:
-        raise SpecError(f"{source}: [stiffeners] {exc}") from None
+        raise SpecError(f"{source}: [stiffeners] {exc}", key="stiffeners.height") from None
 
 
 def material_and_step(spec: TubeSpec, mesh, with_step: bool):
@@ -126,14 +102,15 @@ def material_and_step(spec: TubeSpec, mesh, with_step: bool):
     from tubecad.core.units import length_unit, steel_density
     from tubecad.fem.inp import Material
     from tubecad.fem.loads import pressure_step
-    from tubecad.fem.settings import analysis_settings
+    from tubecad.spec.model import AnalysisSection
 
     try:
-        settings = analysis_settings(spec.sections.get("analysis"), spec.length_unit, mesh.closed)
+        settings = (spec.analysis or AnalysisSection()).settings(spec.length_unit, mesh.closed)
     except ParameterError as exc:
-        raise SpecError(f"{spec.source}: {exc}") from None
+        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "analysis") from None
     # kg per cubic unit, in the mass unit that N and the length unit make consistent (kg m / unit: mm gives t)
-    density = spec.sections.get("stiffeners", {}).get("density", steel_density(spec.length_unit))
+    given = spec.stiffeners.density if spec.stiffeners is not None else None
+    density = steel_density(spec.length_unit) if given is None else given
     density *= length_unit(spec.length_unit).metres
     material = Material(settings.youngs_modulus, settings.poisson_ratio, density)
     if not with_step:
@@ -158,8 +135,8 @@ def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[A
     material, step = None, None
     if any(p.suffix.lower() == ".inp" for p in outputs):
         if mesh.info["thickness"] is None:
-            raise SpecError(f"{spec.source}: a .inp needs the wall's thickness: add a [wall] section")
-        material, step, _ = material_and_step(spec, mesh, "analysis" in spec.sections)
+            raise SpecError(f"{spec.source}: a .inp needs the wall's thickness: add a [wall] section", key="wall")
+        material, step, _ = material_and_step(spec, mesh, spec.analysis is not None)
     written = []
     for path in outputs:
         try:
@@ -185,10 +162,12 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
     from tubecad.fem.calculix import CalculixError, ccx_executable
     from tubecad.fem.plot import save_deformed
 
-    if "analysis" not in spec.sections:
-        raise SpecError(f"{spec.source}: has no [analysis] section (pressure, ends, youngs_modulus, poisson_ratio)")
-    if "wall" not in spec.sections:
-        raise SpecError(f"{spec.source}: an analysis needs the wall's thickness: add a [wall] section")
+    if spec.analysis is None:
+        raise SpecError(
+            f"{spec.source}: has no [analysis] section (pressure, ends, youngs_modulus, poisson_ratio)", key="analysis"
+        )
+    if spec.wall is None:
+        raise SpecError(f"{spec.source}: an analysis needs the wall's thickness: add a [wall] section", key="wall")
     try:
         ccx_executable()
     except CalculixError as exc:

@@ -3,10 +3,18 @@
 k = 10 / s (a logarithmic spiral in plan), beta = 10 deg, rho = 15. The paper gives no
 span; tubecad uses s in [200, 1200], where the tube is regular (rho k <= 0.75 < 1 and the
 axis never comes back within 2 rho = 30 of itself: its closest return is about 32.8).
+
+``tubecad paper`` is a sample spec built like any other: :data:`PAPER_SPEC` (the wall, 2
+thick, on 11 rings and 8 stringers; samples/paper_log_spiral.toml says the same) goes
+through :func:`~tubecad.spec.build.build_spec` and :func:`~tubecad.spec.build.export_build`
+as ``tubecad build`` takes it; :func:`write_paper` adds the pictures, the stiffened
+assembly (its two profiles, 3 high on the rings and 2 on the stringers, are more than one
+[stiffeners] section says: :func:`paper_stiffeners`), the polylines and the flat patterns.
 """
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from tubecad.curves import LogSpiral
@@ -14,6 +22,7 @@ from tubecad.surface import CurvatureLineTube
 
 if TYPE_CHECKING:
     from tubecad.brep import NetLayout, TubeBuild
+    from tubecad.spec.parse import TubeSpec
     from tubecad.stiffeners.solids import Stiffener
 
 PAPER_A = 10.0
@@ -50,13 +59,43 @@ PAPER_STRINGER_PROFILE = ("flat", 2.0, 1.0)
 STEEL_DENSITY = 7.85e-6  # kg / mm^3
 
 
-def paper_wall() -> TubeBuild:
-    """The wall `tubecad paper` writes: the paper's tube, PAPER_WALL_THICKNESS thick,
-    centred, on PAPER_LAYOUT."""
-    from tubecad.brep import build_wall_solid
+#: the spec `tubecad paper` builds: the paper's tube, its wall PAPER_WALL_THICKNESS thick,
+#: centred, on PAPER_RINGS ring frames and PAPER_STRINGERS stringers
+PAPER_SPEC = f"""# The paper's example (Nesvidomin et al. 2026, Fig. 2): tubecad paper
+[axis]
+curve = "log_spiral"
+a = {PAPER_A!r}
+beta_deg = {PAPER_BETA_DEG!r}
+s = [{PAPER_SPAN[0]!r}, {PAPER_SPAN[1]!r}]
 
-    tube = paper_tube()
-    return build_wall_solid(tube, PAPER_WALL_THICKNESS, "centered", PAPER_LAYOUT(tube))
+[tube]
+radius = {PAPER_RADIUS!r}
+
+[layout]
+rings = {PAPER_RINGS}
+stringers = {PAPER_STRINGERS}
+
+[wall]
+thickness = {PAPER_WALL_THICKNESS!r}
+side = "centered"
+"""
+
+
+def paper_spec() -> TubeSpec:
+    """:data:`PAPER_SPEC`, checked like a spec file (named ``paper`` in messages)."""
+    import tomllib
+
+    from tubecad.spec.parse import parse_spec
+
+    return parse_spec(tomllib.loads(PAPER_SPEC), "paper")
+
+
+def paper_wall() -> TubeBuild:
+    """The wall `tubecad paper` writes: :data:`PAPER_SPEC` built (the paper's tube,
+    PAPER_WALL_THICKNESS thick, centred, on PAPER_LAYOUT)."""
+    from tubecad.spec.build import build_from_spec
+
+    return build_from_spec(paper_spec())
 
 
 def paper_stiffeners(build: TubeBuild) -> list[Stiffener]:
@@ -67,3 +106,64 @@ def paper_stiffeners(build: TubeBuild) -> list[Stiffener]:
 
     rings = build_stiffeners(build, PAPER_STIFFENER_RINGS, [], Profile(*PAPER_RING_PROFILE), "inside")
     return rings + build_stiffeners(build, [], PAPER_STIFFENER_STRINGERS, Profile(*PAPER_STRINGER_PROFILE), "inside")
+
+
+def write_paper(output: str | Path, nu: int | None = None, ns: int | None = None) -> list[Path]:
+    """``tubecad paper``: into ``output`` (created), the projections (projections.png/.svg),
+    the wall of :data:`PAPER_SPEC` as paper.step and paper.iges (each read back and measured),
+    paper_step.png, the stiffened assembly paper_stiffened.step with its picture, the
+    curvature lines as paper_lines.csv/.json, the webs' flat patterns (flat/) and
+    report.json, written last; the tube's checks on an ``nu`` x ``ns`` grid. Returns the
+    files written, in that order."""
+    from tubecad.core.atomic import write_text
+    from tubecad.export.plots import write_projections
+    from tubecad.spec.build import build_spec, export_build
+    from tubecad.spec.grid import DEFAULT_NS, DEFAULT_NU
+    from tubecad.spec.outputs import output_folder, render_step_picture
+    from tubecad.spec.report import to_json
+
+    output = output_folder(output)
+    spec = paper_spec()
+    written = write_projections(spec.tube, output)
+    built = build_spec(spec, grid=(DEFAULT_NU if nu is None else nu, DEFAULT_NS if ns is None else ns))
+    names = ("paper.step", "paper.iges")  # each file measured as read back before it is moved into place
+    exports = export_build(built, [output / name for name in names], written=written)
+    built.report["exports"] = dict(zip(names, exports.values()))
+    written.append(render_step_picture(output / "paper.step", output / "paper_step.png"))
+    written += write_paper_stiffeners(built.build, output, built.report)
+    written.append(write_text(output / "report.json", to_json(built.report)))
+    return written
+
+
+def write_paper_stiffeners(build: TubeBuild, output: Path, report: dict) -> list[Path]:
+    """The paper's default stiffeners on ``build`` (the paper wall): the named assembly
+    paper_stiffened.step, the polylines, its picture and the webs' flat patterns into
+    ``output``; their measures into ``report["stiffeners"]`` (issue 4)."""
+    import build123d as bd
+
+    from tubecad.export.cad import export_named_step
+    from tubecad.export.render import render_shape_png
+    from tubecad.spec.build import wall_lines
+    from tubecad.spec.outputs import write_flat_patterns
+    from tubecad.spec.report import stiffener_report
+    from tubecad.stiffeners import polylines_csv, polylines_json
+    from tubecad.stiffeners.assembly import named_assembly
+
+    stiffeners = paper_stiffeners(build)  # shared with `tubecad view paper`
+    lines = wall_lines(build)  # on the outer surface, then the inner one (``_inner``)
+    step = export_named_step(named_assembly(build, stiffeners, lines), output / "paper_stiffened.step")
+    report["stiffeners"] = stiffener_report(stiffeners, lines, STEEL_DENSITY)
+    written = write_flat_patterns(stiffeners, output / "flat")
+    frame = [c for c in bd.import_step(step).children if c.label.startswith(("ring_", "stringer_"))]
+    picture = render_shape_png(
+        bd.Compound(children=frame),
+        output / "paper_stiffened.png",
+        title="paper_stiffened.step as read back: the stiffeners inside the wall (wall hidden)",
+    )
+    return [
+        step,
+        polylines_csv(lines, output / "paper_lines.csv"),
+        polylines_json(lines, output / "paper_lines.json"),
+        picture,
+        *written,
+    ]

@@ -32,12 +32,25 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from tubecad.core.errors import ParameterError, RegularityError, SpecError
+from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
 from tubecad.curves import Axis
 from tubecad.spec.axis import build_axis
 
 # the key tables live in a light module (no numpy, no OCCT) that ``tubecad schema`` reads too
-from tubecad.spec.keys import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS, UNITS_KEYS, Key
+from tubecad.spec.keys import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS, UNITS_KEYS, Key  # noqa: F401
+from tubecad.spec.model import (
+    AnalysisSection,
+    BatchSection,
+    FabricationSection,
+    FitSection,
+    LayoutSection,
+    MeshSection,
+    PanelsSection,
+    SpecModel,
+    StiffenersSection,
+    UnitsSection,
+    WallSection,
+)
 from tubecad.surface import CanalSurface, CurvatureLineTube, tube_or_canal
 
 MAX_SPEC_BYTES = 1_000_000
@@ -45,11 +58,19 @@ MAX_SPEC_BYTES = 1_000_000
 
 @dataclass(frozen=True)
 class TubeSpec:
-    """A checked spec: the tube it describes and the raw sections, for later stages."""
+    """A checked spec: the tube it describes, its sections typed (``model``, a
+    :class:`~tubecad.spec.model.SpecModel`, also reached as ``spec.wall``, ``spec.stiffeners``,
+    ...) and the checked tables as the file gives them (``sections``, for a script that reads
+    a key by name); the later stages read the typed model only."""
 
     tube: CurvatureLineTube | CanalSurface  # a constant radius, or a radius law
     sections: dict[str, dict[str, Any]]
     source: str
+    model: SpecModel = None  # type: ignore[assignment]  # made from ``sections`` when not given
+
+    def __post_init__(self) -> None:
+        if self.model is None:
+            object.__setattr__(self, "model", SpecModel.from_sections(self.sections))
 
     @property
     def axis(self) -> Axis:
@@ -58,7 +79,57 @@ class TubeSpec:
     @property
     def length_unit(self) -> str:
         """The unit of every length in the spec and in the files written from it ([units] length)."""
-        return self.sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+        return self.model.units.length
+
+    @property
+    def layout(self) -> LayoutSection:
+        return self.model.layout
+
+    @property
+    def wall(self) -> WallSection | None:
+        return self.model.wall
+
+    @property
+    def fit(self) -> FitSection:
+        return self.model.fit
+
+    @property
+    def stiffeners(self) -> StiffenersSection | None:
+        return self.model.stiffeners
+
+    @property
+    def panels(self) -> PanelsSection | None:
+        return self.model.panels
+
+    @property
+    def fabrication(self) -> FabricationSection | None:
+        return self.model.fabrication
+
+    @property
+    def mesh(self) -> MeshSection | None:
+        return self.model.mesh
+
+    @property
+    def analysis(self) -> AnalysisSection | None:
+        return self.model.analysis
+
+    @property
+    def units(self) -> UnitsSection:
+        return self.model.units
+
+    @property
+    def batch(self) -> BatchSection | None:
+        return self.model.batch
+
+    @property
+    def canal(self) -> bool:
+        """Whether the tube is a canal surface (a radius law), not a constant radius."""
+        return not self.tube.constant_radius
+
+    @property
+    def min_radius(self) -> float:
+        """The tube's radius, or the smallest radius of its law."""
+        return self.tube.radius_law.min_radius  # a tube's law is its constant radius
 
 
 def load_spec(path: str | Path) -> TubeSpec:
@@ -90,161 +161,173 @@ def read_spec_data(path: str | Path) -> dict[str, Any]:
 
 
 def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None = None) -> TubeSpec:
-    """Check a parsed spec (a dict as tomllib gives) and build its tube."""
+    """Check a parsed spec (a dict as tomllib gives), build its tube and type its sections
+    (:class:`~tubecad.spec.model.SpecModel`). A :class:`SpecError` names the section and the
+    key in its message and, for code, in its ``key`` (``"wall.thickness"``, ``"layout"``)."""
 
-    def fail(msg: str) -> SpecError:
-        return SpecError(f"{source}: {msg}")
+    def fail(msg: str, key: str | None = None) -> SpecError:
+        return SpecError(f"{source}: {msg}", key=key)
 
     allowed_sections = {"axis": None, "tube": TUBE_KEYS, **EXTRA_SECTIONS}
     for name, value in data.items():
         if name not in allowed_sections:
             raise fail(
-                f"unknown section [{_short(name)}]; allowed sections are {', '.join(f'[{s}]' for s in allowed_sections)}"
+                f"unknown section [{_short(name)}]; allowed sections are {', '.join(f'[{s}]' for s in allowed_sections)}",
+                _short(name),
             )
         if not isinstance(value, dict):
-            raise fail(f"[{name}] must be a table (a [{name}] section), got {_toml_type(value)}")
+            raise fail(f"[{name}] must be a table (a [{name}] section), got {_toml_type(value)}", name)
     for name in ("axis", "tube"):
         if name not in data:
-            raise fail(f"missing section [{name}]")
+            raise fail(f"missing section [{name}]", name)
 
     axis_data = data["axis"]
     curve = axis_data.get("curve")
     if not isinstance(curve, str) or curve not in FAMILY_KEYS:
         if "curve" not in axis_data:
-            raise fail(f"[axis] curve is missing; allowed: {AXIS_COMMON['curve'].help}")
-        raise fail(f"[axis] curve must be one of {AXIS_COMMON['curve'].help}, got {_short(repr(curve))}")
+            raise fail(f"[axis] curve is missing; allowed: {AXIS_COMMON['curve'].help}", "axis.curve")
+        raise fail(f"[axis] curve must be one of {AXIS_COMMON['curve'].help}, got {_short(repr(curve))}", "axis.curve")
     axis_keys = {**AXIS_COMMON, **FAMILY_KEYS[curve]}
     sections = {"axis": _check_keys("axis", axis_data, axis_keys, fail)}
     for name, keys in allowed_sections.items():
         if name != "axis" and name in data:
             sections[name] = _check_keys(name, data[name], keys, fail)  # type: ignore[arg-type]
+    model = SpecModel.from_sections(sections)
 
-    length_unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
-    axis = _with_section("axis", fail, lambda: build_axis(curve, sections["axis"], base, length_unit))
-    tube_data = sections["tube"]
-    radius = tube_data["radius"]
+    length_unit = model.units.length
+    axis = _with_section("axis", fail, lambda: build_axis(curve, model.axis.values, base, length_unit))
+    radius = model.tube.radius
     try:  # a number: the tube; an expression or a table: the canal surface of that radius law
-        tube = tube_or_canal(axis, radius, allow_irregular=tube_data.get("allow_irregular", False))
+        tube = tube_or_canal(axis, radius, allow_irregular=model.tube.allow_irregular)
     except ParameterError as exc:
-        raise fail(f"[tube] {exc}") from None
+        raise fail(f"[tube] {exc}", _key("tube", exc, "radius")) from None
     except RegularityError as exc:
         shown = f"{radius:g}" if isinstance(radius, (int, float)) else _short(repr(radius), 40)
-        raise fail(f"[tube] radius {shown}: {_irregular(exc)}") from None
-    layout = sections.get("layout", {})
+        raise fail(f"[tube] radius {shown}: {_irregular(exc)}", "tube.radius") from None
+    layout = model.layout
     for count, listed in (("rings", "s_rings"), ("stringers", "u_stringers_deg")):
-        if count in layout and listed in layout:
-            raise fail(f"[layout] give either {count} or {listed}, not both")
-    _check_build_sections(tube, sections, fail)
-    return TubeSpec(tube, sections, source)
+        if getattr(layout, count) is not None and getattr(layout, listed) is not None:
+            raise fail(f"[layout] give either {count} or {listed}, not both", f"layout.{count}")
+    _check_build_sections(tube, model, fail)
+    return TubeSpec(tube, sections, source, model)
 
 
 def _check_build_sections(
-    tube: CurvatureLineTube | CanalSurface, sections: dict[str, dict[str, Any]], fail: Callable[[str], SpecError]
+    tube: CurvatureLineTube | CanalSurface, model: SpecModel, fail: Callable[..., SpecError]
 ) -> None:
     """Check what the B-rep needs ([tube] sizes, [layout], [wall], [fit]) against the tube now,
     so that a bad value is refused before anything is built, by ``report`` as by ``build``.
     The rules themselves live with the B-rep code."""
     from tubecad.core.tolerance import MIN_SIZE, check_tolerance
-    from tubecad.spec.layout import layout_from_section
 
-    canal = isinstance(tube, CanalSurface)
-    smallest = tube.radius_law.min_radius if canal else tube.radius
+    canal = not tube.constant_radius
+    smallest = tube.radius_law.min_radius  # a tube's law is its constant radius
     if smallest < MIN_SIZE:
         where = (
             f"; r reaches {smallest:g} at s = {tube.radius_law.s_at_min_radius:.6g}" if canal else f", got {smallest:g}"
         )
-        raise fail(f"[tube] radius must be >= {MIN_SIZE:g} model units for a B-rep{where}")
+        raise fail(f"[tube] radius must be >= {MIN_SIZE:g} model units for a B-rep{where}", "tube.radius")
     if tube.length < MIN_SIZE:
-        raise fail(f"[axis] s must span at least {MIN_SIZE:g} model units for a B-rep, got {tube.length:g}")
-    fit = sections.get("fit", {})
-    if "tolerance" in fit:
-        _with_section("fit", fail, lambda: check_tolerance("tolerance", fit["tolerance"]))
-    _with_section("layout", fail, lambda: layout_from_section(tube, sections.get("layout", {})))
-    if "fabrication" in sections:  # the shop's settings, in the spec's length unit
-        from tubecad.shop.fabrication import fabrication_settings
-
-        unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
+        raise fail(f"[axis] s must span at least {MIN_SIZE:g} model units for a B-rep, got {tube.length:g}", "axis.s")
+    _with_section("fit", fail, lambda: check_tolerance("tolerance", model.fit.tolerance), "tolerance")
+    _with_section("layout", fail, lambda: model.layout.net(tube))
+    unit = model.units.length
+    if model.fabrication is not None:  # the shop's settings, in the spec's length unit
         try:
-            fabrication_settings(sections["fabrication"], unit)
+            model.fabrication.settings(unit)
         except ParameterError as exc:
-            raise fail(str(exc)) from None
-    if "mesh" in sections or "analysis" in sections:  # the mesh's and the analysis' settings
-        from tubecad.fem.settings import analysis_settings, mesh_settings
+            raise fail(str(exc), _key("fabrication", exc)) from None
+    if model.mesh is not None or model.analysis is not None:  # the mesh's and the analysis' settings
+        from tubecad.spec.model import AnalysisSection, MeshSection
 
-        unit = sections.get("units", {}).get("length", UNITS_KEYS["length"].default)
         try:
-            mesh_settings(sections.get("mesh"))
-            analysis_settings(sections.get("analysis"), unit, bool(tube.axis.closed))
+            (model.mesh or MeshSection()).settings()
         except ParameterError as exc:
-            raise fail(str(exc)) from None
+            raise fail(str(exc), _key("mesh", exc)) from None
+        try:
+            (model.analysis or AnalysisSection()).settings(unit, bool(tube.axis.closed))
+        except ParameterError as exc:
+            raise fail(str(exc), _key("analysis", exc)) from None
     if canal:
-        return _check_canal_sections(tube, sections, fail)
-    wall = sections.get("wall")
+        return _check_canal_sections(tube, model, fail)
+    wall = model.wall
     if wall is not None:
-        from tubecad.brep.wall import wall_radii
-
-        r_in, r_out = _with_section(
-            "wall", fail, lambda: wall_radii(tube.radius, wall["thickness"], wall.get("side", "centered"))
-        )
+        r_in, r_out = _with_section("wall", fail, lambda: wall.radii(tube.radius), "thickness")
         try:
             CurvatureLineTube(tube.axis, r_out)
         except ParameterError as exc:
             raise fail(
-                f"[wall] thickness {wall['thickness']:g} puts the wall's outer surface at radius {r_out:g}: {exc}"
+                f"[wall] thickness {wall.thickness:g} puts the wall's outer surface at radius {r_out:g}: {exc}",
+                "wall.thickness",
             ) from None
         except RegularityError as exc:
             raise fail(
-                f"[wall] the wall's outer surface is not regular: thickness {wall['thickness']:g} "
-                f"(side = {wall.get('side', 'centered')!r}) puts it at radius {r_out:g}: {_irregular(exc)}"
+                f"[wall] the wall's outer surface is not regular: thickness {wall.thickness:g} "
+                f"(side = {wall.side!r}) puts it at radius {r_out:g}: {_irregular(exc)}",
+                "wall.thickness",
             ) from None
-        if "stiffeners" in sections:  # a stiffener too high for the wall's curvature
+        if model.stiffeners is not None:  # a stiffener too high for the wall's curvature
             from tubecad.stiffeners.limits import check_spec_heights
 
-            layout = layout_from_section(tube, sections.get("layout", {}))
+            stiffeners, layout = model.stiffeners, model.layout.net(tube)
             _with_section(
-                "stiffeners", fail, lambda: check_spec_heights(tube.axis, layout, (r_in, r_out), sections["stiffeners"])
+                "stiffeners",
+                fail,
+                lambda: check_spec_heights(tube.axis, layout, (r_in, r_out), stiffeners.table()),
+                "height",
             )
 
 
-def _check_canal_sections(
-    surface: CanalSurface, sections: dict[str, dict[str, Any]], fail: Callable[[str], SpecError]
-) -> None:
+def _check_canal_sections(surface: CanalSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
     """A radius law's [wall]: the offsets of the law, the inner one above MIN_SIZE, the outer
     one regular, and a [stiffeners] section's surfaces regular too."""
-    from tubecad.brep.wall import wall_offsets
     from tubecad.core.tolerance import MIN_SIZE
 
-    law, wall = surface.radius_law, sections.get("wall")
+    law, wall = surface.radius_law, model.wall
     for name in ("stiffeners", "panels"):  # the wall itself closes; its stiffeners and panels do not yet
-        if surface.axis.closed and name in sections:
+        if surface.axis.closed and getattr(model, name) is not None:
             raise fail(
                 f"[{name}] on a canal surface (a radius law) on a closed axis are not built yet (the closing "
                 "ring and the stringers' ends on it, moved by a Moebius map); the wall alone builds, and a "
-                "constant radius takes them"
+                "constant radius takes them",
+                name,
             )
     if wall is not None:
-        side = wall.get("side", "centered")
-        d_in, d_out = _with_section("wall", fail, lambda: wall_offsets(wall["thickness"], side))
+        side = wall.side
+        d_in, d_out = _with_section("wall", fail, wall.offsets, "thickness")
         if law.min_radius + d_in < MIN_SIZE:
             raise fail(
-                f"[wall] thickness {wall['thickness']:g} (side = {side!r}) is too thick for the smallest radius "
+                f"[wall] thickness {wall.thickness:g} (side = {side!r}) is too thick for the smallest radius "
                 f"{law.min_radius:g} at s = {law.s_at_min_radius:.6g}: the inner surface must stay at radius "
-                f">= {MIN_SIZE:g}"
+                f">= {MIN_SIZE:g}",
+                "wall.thickness",
             )
         try:
             surface.offset(d_out)
         except (ParameterError, RegularityError) as exc:
             raise fail(
-                f"[wall] the wall's outer surface (the radius law + {d_out:g}) is not regular: {_irregular(exc)}"
+                f"[wall] the wall's outer surface (the radius law + {d_out:g}) is not regular: {_irregular(exc)}",
+                "wall.thickness",
             ) from None
-        if "stiffeners" in sections:  # a stiffener whose own surfaces would fold, or reach past the axis
-            from tubecad.spec.layout import layout_from_section
+        if model.stiffeners is not None:  # a stiffener whose own surfaces would fold, or reach past the axis
             from tubecad.stiffeners.canal import check_spec_heights
 
-            layout = layout_from_section(surface, sections.get("layout", {}))
+            stiffeners, layout = model.stiffeners, model.layout.net(surface)
             _with_section(
-                "stiffeners", fail, lambda: check_spec_heights(surface, layout, (d_in, d_out), sections["stiffeners"])
+                "stiffeners",
+                fail,
+                lambda: check_spec_heights(surface, layout, (d_in, d_out), stiffeners.table()),
+                "height",
             )
+
+
+def _key(section: str, exc: TubecadError, default: str | None = None) -> str:
+    """``section.key`` for an error a rule raised about ``section``: its own key (made
+    ``section.key`` if it names a key alone), else ``default``, else the section."""
+    key = exc.key or default
+    if key is None:
+        return section
+    return key if key == section or key.startswith(f"{section}.") else f"{section}.{key}"
 
 
 def _irregular(exc: RegularityError) -> str:
@@ -258,30 +341,34 @@ def _short(text: str, most: int = 80) -> str:
     return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
 
 
-def _with_section(name: str, fail: Callable[[str], SpecError], build: Callable[[], Any]) -> Any:
+def _with_section(
+    name: str, fail: Callable[..., SpecError], build: Callable[[], Any], default_key: str | None = None
+) -> Any:
+    """``build()``, a ParameterError from it raised as a SpecError on section ``name``
+    (its key: the error's own, else ``default_key``, within the section)."""
     try:
         return build()
     except ParameterError as exc:
-        raise fail(f"[{name}] {exc}") from None
+        raise fail(f"[{name}] {exc}", _key(name, exc, default_key)) from None
 
 
 def _check_keys(
-    section: str, values: dict[str, Any], keys: dict[str, Key], fail: Callable[[str], SpecError]
+    section: str, values: dict[str, Any], keys: dict[str, Key], fail: Callable[..., SpecError]
 ) -> dict[str, Any]:
     for key in values:
         if key not in keys:
-            raise fail(f"unknown key [{section}] {_short(key)}; allowed keys are {', '.join(keys)}")
+            raise fail(f"unknown key [{section}] {_short(key)}; allowed keys are {', '.join(keys)}", section)
     out: dict[str, Any] = {}
     for key, spec in keys.items():
         if key not in values:
             if spec.required:
-                raise fail(f"[{section}] {key} is missing ({spec.help})")
+                raise fail(f"[{section}] {key} is missing ({spec.help})", f"{section}.{key}")
             continue
         out[key] = _check_type(section, key, values[key], spec, fail)
     return out
 
 
-def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[str], SpecError]) -> Any:
+def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[..., SpecError]) -> Any:
     where = f"[{section}] {key}"
 
     def number(v: Any) -> bool:
@@ -327,15 +414,15 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[[s
             "joints": "a table of stiffener name = [positions]",
             "radius": "a number, an expression in s or a table of two or more [s, r] rows",
         }[spec.kind]
-        raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}")
+        raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}", f"{section}.{key}")
     if spec.kind in ("number", "radius") and number(value) and not math.isfinite(value):
-        raise fail(f"{where} must be finite ({spec.help}), got {value}")
+        raise fail(f"{where} must be finite ({spec.help}), got {value}", f"{section}.{key}")
     if spec.kind == "number_or_numbers" and not all(
         math.isfinite(v) for v in (value if isinstance(value, list) else [value])
     ):
-        raise fail(f"{where} must be finite ({spec.help}), got {_short(repr(value))}")
+        raise fail(f"{where} must be finite ({spec.help}), got {_short(repr(value))}", f"{section}.{key}")
     if spec.choices and value not in spec.choices:
-        raise fail(f"{where} must be one of {', '.join(spec.choices)}, got {_short(repr(value))}")
+        raise fail(f"{where} must be one of {', '.join(spec.choices)}, got {_short(repr(value))}", f"{section}.{key}")
     return value
 
 

@@ -23,7 +23,8 @@ def tube_report(
     """Exact measures (docs/MATH.md section 4) and what was measured on an ``nu`` x ``ns`` grid;
     lengths, areas and volumes are in ``length_unit`` (the spec's [units] length), as the
     report states. A canal surface (a radius law) gets :func:`canal_report`."""
-    if isinstance(tube, CanalSurface):
+    tube = tube.fast_path()  # a constant law's canal surface: the tube of that radius
+    if not tube.constant_radius:
         return canal_report(tube, nu, ns, length_unit)
     net = net_errors(tube, nu, ns)
     area = area_by_quadrature(tube)

@@ -19,21 +19,24 @@ from tubecad.spec.parse import TubeSpec
 def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None] | None = None) -> dict[str, Any]:
     """Build ``spec``'s wall, stiffeners and panels, compute the shop package with its
     ``[fabrication]`` settings and write it into ``output``; returns the index."""
-    from tubecad.shop.fabrication import fabrication_settings
     from tubecad.shop.package import shop_data
     from tubecad.shop.writer import write_shop
     from tubecad.spec.build import build_from_spec, panels_from_spec, stiffeners_from_spec
+    from tubecad.spec.model import FabricationSection
 
-    if "wall" not in spec.sections:
+    if spec.wall is None:
         raise SpecError(
-            f"{spec.source}: has no [wall] section; the shop package is made of a wall's stiffeners and panels"
+            f"{spec.source}: has no [wall] section; the shop package is made of a wall's stiffeners and panels",
+            key="wall",
         )
-    if "stiffeners" not in spec.sections and "panels" not in spec.sections:
-        raise SpecError(f"{spec.source}: has neither [stiffeners] nor [panels]; there is nothing for the shop")
+    if spec.stiffeners is None and spec.panels is None:
+        raise SpecError(
+            f"{spec.source}: has neither [stiffeners] nor [panels]; there is nothing for the shop", key="stiffeners"
+        )
     try:
-        fab = fabrication_settings(spec.sections.get("fabrication"), spec.length_unit)
+        fab = (spec.fabrication or FabricationSection()).settings(spec.length_unit)
     except ParameterError as exc:
-        raise SpecError(f"{spec.source}: {exc}") from None
+        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "fabrication") from None
     say = progress or (lambda stage: None)
     say("building the wall")
     build = build_from_spec(spec)

@@ -15,6 +15,7 @@ import build123d as bd
 
 from tubecad.brep import TubeBuild
 from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE
 from tubecad.stiffeners.lines import CurvatureLine, lines_compound
 from tubecad.stiffeners.profiles import Profile
 from tubecad.stiffeners.solids import Stiffener, ring_stiffener, stringer_stiffener
@@ -31,7 +32,7 @@ def build_stiffeners(
     stringers: Sequence[int],
     profile: Profile,
     side: str = "outside",
-    tolerance: float = 1e-8,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
     progress: Callable[[str, int, int], None] | None = None,
 ) -> list[Stiffener]:
     """Stiffeners on the wall of ``build`` at the layout's ring indices ``rings`` and stringer
@@ -66,12 +67,10 @@ def build_stiffeners(
 
 def stiffener_base(build: TubeBuild, side: str) -> CurvatureLineTube | CanalSurface:
     """The wall surface stiffeners on ``side`` stand on: the outer (outside) or the inner
-    (inside) one, as a tube of its radius, or a canal wall's exact offset canal surface."""
+    (inside) one: the exact surface that face was fitted to (the tube of its radius, or a
+    canal wall's exact offset canal surface)."""
     surface = build.surfaces[0] if side == "outside" else build.surfaces[-1]
-    if isinstance(surface.tube, CanalSurface):
-        return surface.tube
-    radius = build.radii[0] if side == "outside" else build.radii[-1]
-    return CurvatureLineTube(surface.tube.axis, radius, allow_irregular=True)
+    return surface.tube
 
 
 def distinct_rings(build: TubeBuild, rings: Sequence[int]) -> list[int]:

@@ -34,10 +34,10 @@ from pathlib import Path
 
 import numpy as np
 
-from tubecad.core.atomic import atomic_path, save_figure
+from tubecad.core.atomic import save_figure
+from tubecad.core.dxf import Drawing
 from tubecad.core.errors import ParameterError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
-from tubecad.core.units import length_unit as length_unit_of
 from tubecad.curves.chebyshev import PiecewiseChebyshev
 from tubecad.surface import CurvatureLineTube
 from tubecad.surface.canal import CanalSurface
@@ -131,24 +131,12 @@ def stringer_rates(
     base: CurvatureLineTube | CanalSurface, theta_deg: float
 ) -> tuple[RateFunction, RateFunction, np.ndarray]:
     """(turn, speed, breaks) along the stringer at ``theta_deg`` on ``base`` (module
-    docstring): on a tube turn = kappa_u = k1 cos u + k2 sin u and speed = 1 - R kappa_u; on a
-    canal surface :func:`canal_stringer_rates`. ``breaks``: the span's ends and the s where
-    turn or speed may kink (an axis' joints, a radius law's knots)."""
-    theta = math.radians(theta_deg)
-    s0, s1 = base.span
-    if isinstance(base, CanalSurface):
-        turn, speed = canal_stringer_rates(base, theta)
-        return turn, speed, np.asarray(base._breaks(), dtype=float)
-    R = base.radius
-
-    def turn(s: np.ndarray) -> np.ndarray:  # kappa_u = k1 cos theta + k2 sin theta (= k cos phi)
-        return base.normal_curvature(theta, s)
-
-    def speed(s: np.ndarray) -> np.ndarray:
-        return 1.0 - R * base.normal_curvature(theta, s)
-
-    joints = [s for s, _ in base.axis.joints if s0 < s < s1]
-    return turn, speed, np.unique(np.concatenate([[s0, s1], joints]))
+    docstring): one formula, :func:`canal_stringer_rates`, which on a tube (r' = r'' = 0, chi = u)
+    is turn = kappa_u = k1 cos u + k2 sin u and speed = 1 - R kappa_u, the same operations bit
+    for bit. ``breaks``: the span's ends and the s where turn or speed may kink (an axis'
+    joints, a radius law's knots: :meth:`~tubecad.surface.CurvatureLineSurface.s_breaks`)."""
+    turn, speed = canal_stringer_rates(base, math.radians(theta_deg))
+    return turn, speed, np.asarray(base.s_breaks(), dtype=float)
 
 
 def stringer_flat_pattern(
@@ -222,9 +210,9 @@ def ring_web_flat_pattern(
 ) -> FlatPattern:
     """The flat web of the ring frame at ``s`` on ``base``, the wall surface it stands on: an
     annulus on a tube, an annular sector on a canal surface."""
-    if isinstance(base, CanalSurface):
-        return canal_ring_flat_pattern(base, s, height, side, name)
-    return ring_flat_pattern(base.radius, height, side, name)
+    if base.constant_radius:  # q = 1: the annulus of radii R and R +- h
+        return ring_flat_pattern(float(base.radius_law.value), height, side, name)
+    return canal_ring_flat_pattern(base, s, height, side, name)
 
 
 def polygon_area(points: np.ndarray) -> float:
@@ -241,52 +229,33 @@ def write_dxf(
     are exact, as bulges). The coordinates are in ``length_unit`` (the spec's
     [units] length), which the file states ($INSUNITS, and $MEASUREMENT: imperial for in and
     ft, metric otherwise); ``gap`` between patterns: default 10 mm in that unit."""
-    import ezdxf
-
-    unit = length_unit_of(length_unit)
-    gap = 10.0 / unit.mm if gap is None else gap
-    doc = ezdxf.new(units=unit.dxf)  # sets $INSUNITS and $MEASUREMENT
-    space = doc.modelspace()
+    drawing = Drawing(length_unit)
+    gap = 10.0 / drawing.unit.mm if gap is None else gap
     x_offset = 0.0
     for pattern in patterns:
         lo = pattern.outline.min(axis=0)
         shift = np.array([x_offset - lo[0], -lo[1]])
-        doc.layers.add(pattern.name)
-        if pattern.sector is not None:  # a canal ring: the sector's arcs exact (bulges), each half <= 180 deg
-            r_in, r_out, angle = pattern.sector
-            bulge = math.tan(angle / 8.0)
-            a = 0.5 * math.pi + 0.5 * angle * np.array([-1.0, 0.0, 1.0])
-            arc = np.stack([np.cos(a), np.sin(a)], axis=1)
-            corners = np.concatenate([r_out * arc, r_in * arc[::-1]]) + shift
-            bulges = [bulge, bulge, 0.0, -bulge, -bulge, 0.0]
-            space.add_lwpolyline(
-                [(x, y, b) for (x, y), b in zip(corners.tolist(), bulges)],
-                format="xyb",
-                close=True,
-                dxfattribs={"layer": pattern.name},
-            )
+        drawing.layer(pattern.name)
+        if pattern.sector is not None:  # a canal ring: the sector's arcs exact (bulges)
+            drawing.sector(*pattern.sector, pattern.name, place=lambda p, shift=shift: p + shift)
         elif pattern.hole is not None:  # a full annulus: two circles
             r_out = float(np.linalg.norm(pattern.outline[0]))
             centre = (x_offset + r_out, r_out)
-            space.add_circle(centre, r_out, dxfattribs={"layer": pattern.name})
-            space.add_circle(centre, float(np.linalg.norm(pattern.hole[0])), dxfattribs={"layer": pattern.name})
+            drawing.circle(centre, r_out, pattern.name)
+            drawing.circle(centre, float(np.linalg.norm(pattern.hole[0])), pattern.name)
         else:
-            space.add_lwpolyline((pattern.outline + shift).tolist(), close=True, dxfattribs={"layer": pattern.name})
+            drawing.polyline(pattern.outline + shift, pattern.name)
         x_offset += float(np.ptp(pattern.outline[:, 0])) + gap
-    with atomic_path(path) as tmp:
-        doc.saveas(tmp)
-    return Path(path)
+    return drawing.save(path)
 
 
 def write_picture(pattern: FlatPattern, folder: str | Path) -> list[Path]:
     """``name``.svg and ``name``.png of one pattern, with its measures in the title."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
     from matplotlib.patches import Polygon
 
-    fig, ax = plt.subplots(figsize=(10, 6))
+    fig = Figure(figsize=(10, 6))
+    ax = fig.subplots()
     ax.add_patch(Polygon(pattern.outline, closed=True, facecolor="#c9d6ea", edgecolor="#10203a", linewidth=0.8))
     if pattern.hole is not None:
         ax.add_patch(Polygon(pattern.hole, closed=True, facecolor="white", edgecolor="#10203a", linewidth=0.8))

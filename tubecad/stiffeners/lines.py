@@ -28,7 +28,6 @@ from tubecad.brep.layout import NetLayout
 from tubecad.core.atomic import write_text
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.fitting import TubeSurface
-from tubecad.fitting.canal_section import CanalSectionSurface
 
 
 @dataclass(frozen=True)
@@ -44,7 +43,7 @@ class CurvatureLine:
     @property
     def canal(self) -> bool:
         """Whether the line lies on a canal surface (a radius law) rather than a tube."""
-        return isinstance(self.surface, CanalSectionSurface)
+        return self.surface.canal
 
     @property
     def radius(self) -> float:

@@ -21,7 +21,6 @@ from tubecad.brep import properties as props
 from tubecad.brep.assembled import Strip, c0_knots, strip_solid
 from tubecad.core.errors import ParameterError
 from tubecad.fitting import exact_section_surface
-from tubecad.fitting.canal_section import CanalSpline
 from tubecad.stiffeners.canal_panels import split_canal_panels
 from tubecad.stiffeners.panel import Panel
 from tubecad.stiffeners.rings import swept_section
@@ -41,7 +40,7 @@ def split_into_panels(build: TubeBuild, seams: list[int], rings: list[int] | Non
     rings = sorted(set(range(n_r) if rings is None else rings) | {0, n_r - 1})
     if any(not 0 <= i < n_r for i in rings):
         raise ParameterError(f"rings must be ring indices in [0, {n_r - 1}], got {rings}")
-    if isinstance(build.frame, CanalSpline):  # a radius law: the wall's own faces, seam faces and cone caps
+    if not build.surfaces[0].tube.constant_radius:  # a radius law: the wall's own faces, seam faces and cone caps
         if build.surfaces[0].tube.axis.closed:
             raise ParameterError(
                 "panels of a canal wall (a radius law) on a closed axis are not built yet (its "

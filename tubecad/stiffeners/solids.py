@@ -29,7 +29,7 @@ from OCP.Geom import Geom_BSplineSurface
 
 from tubecad.brep.assembled import CapPlane, Strip, closed_strip_solid, strip_solid
 from tubecad.core.errors import ParameterError
-from tubecad.core.tolerance import orthogonality_for
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, orthogonality_for
 from tubecad.fitting import FitError, exact_section_surface, fit_frame
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
 from tubecad.stiffeners.canal import along_wall, canal_ring_solid, canal_stringer_solid, checked_levels
@@ -57,8 +57,8 @@ class Stiffener:
     def base_radius(self) -> float:
         """R of a tube; on a canal surface the radius of the ring's characteristic circle
         (r q), or a stringer's mean r over its span."""
-        if isinstance(self.base, CurvatureLineTube):
-            return self.base.radius
+        if self.base.constant_radius:
+            return float(self.base.radius_law.value)
         if self.kind == "ring":
             return float(self.base.circle(np.array([self.value]))[1][0])
         return float(np.mean(self.base.radius_law.r(np.linspace(*self.base.span, 257))))
@@ -85,7 +85,7 @@ def ring_stiffener(
     s: float,
     profile: Profile,
     side: str = "outside",
-    tolerance: float = 1e-8,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
     name: str = "ring",
 ) -> Stiffener:
     """The ring frame at ``s`` on the tube of radius R = tube.radius (the wall's face it stands on):
@@ -93,7 +93,8 @@ def ring_stiffener(
     On a closed axis the ring at either end of the span is the closing ring: its halves
     at both ends, fused into one solid."""
     _check_side(side)
-    if isinstance(tube, CanalSurface):
+    tube = tube.fast_path()  # a constant law's canal surface: the tube of that radius
+    if not tube.constant_radius:
         return _canal_ring(tube, s, profile, side, tolerance, name)
     s0, s1 = tube.span
     closing = tube.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0)
@@ -144,14 +145,15 @@ def stringer_stiffener(
     profile: Profile,
     side: str = "outside",
     span: tuple[float, float] | None = None,
-    tolerance: float = 1e-8,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
     name: str = "stringer",
 ) -> Stiffener:
     """The stringer at angle ``theta_deg`` on the tube of radius R = tube.radius, over ``span``:
     the outline's ruled faces and the wall patch under the web, one solid with shared edges
     (:func:`tubecad.brep.assembled.strip_solid`), on a frame fitted to the farthest corner."""
     _check_side(side)
-    if isinstance(tube, CanalSurface):
+    tube = tube.fast_path()  # a constant law's canal surface: the tube of that radius
+    if not tube.constant_radius:
         return _canal_stringer(tube, theta_deg, profile, side, span, tolerance, name)
     R, sign = tube.radius, (1.0 if side == "outside" else -1.0)
     tw = profile.thickness
@@ -292,7 +294,11 @@ def ruled_surface(frame, theta: float, p: tuple[float, float], q: tuple[float, f
 
 
 def web_face(
-    base: CurvatureLineTube, theta_deg: float, height: float, side: str = "outside", tolerance: float = 1e-8
+    base: CurvatureLineTube,
+    theta_deg: float,
+    height: float,
+    side: str = "outside",
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
 ) -> bd.Face:
     """The web's mid-surface along the stringer at ``theta_deg``: the strip of surface normals
     from the wall (radius R) to R +- height, a ruled B-spline face on the frame fit."""

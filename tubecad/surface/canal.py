@@ -181,7 +181,7 @@ class CanalSurface:
             alpha, half_beta = 0.5 * dr * k2 / q, 0.5 * dr * k1 / q
             return np.stack([np.stack([-half_beta, alpha], -1), np.stack([alpha, half_beta], -1)], -2)
 
-        m = solve_linear_ode(matrix, self._breaks(), np.eye(2), name="radius: the stringers' equation")
+        m = solve_linear_ode(matrix, self.s_breaks(), np.eye(2), name="radius: the stringers' equation")
         dm = m.derivative()
         return m, dm, dm.derivative()
 
@@ -263,11 +263,28 @@ class CanalSurface:
     def _inside(self, s: ArrayLike) -> FloatArray:
         return self.axis._inside(s)
 
-    def _breaks(self) -> FloatArray:
-        """The span's ends, the law's breaks (a table's knots) and the axis' joints, sorted."""
+    def s_breaks(self) -> FloatArray:
+        """The span's ends, the law's breaks (a table's knots) and the axis' joints, sorted:
+        where the surface is only C^k (r''' or k1, k2 may jump there)."""
         s0, s1 = self.span
         joints = [s for s, _ in self.axis.joints if s0 < s < s1]
         return np.unique(np.concatenate([[s0, s1], self.radius_law.breaks, joints]))
+
+    _breaks = s_breaks  # the former private name
+
+    @property
+    def constant_radius(self) -> bool:
+        """Whether the law is constant (r' = 0: chi = chi0, Mb = I, the tube's closed forms
+        apply; :meth:`fast_path` gives that tube)."""
+        return self.radius_law.constant
+
+    def fast_path(self) -> CanalSurface | CurvatureLineTube:
+        """A constant law's surface as the :class:`CurvatureLineTube` of that radius (the
+        same points, the same operations in the same order; its regularity was checked
+        here), any other law the canal surface itself."""
+        if self.radius_law.constant:
+            return CurvatureLineTube(self.axis, self.radius_law.value, allow_irregular=True)  # type: ignore[arg-type]
+        return self
 
     def circle(self, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
         """The characteristic circle at ``s``: (centre c - r r' t, radius r q, plane normal t)."""
@@ -487,7 +504,7 @@ class CanalSurface:
     def _quadrature(self, n_chi: int, panels: int, order: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """(chi, s, weights (s), d chi): Gauss-Legendre panels in s (starting at the law's and
         the axis' breaks), the periodic trapezoid rule in chi."""
-        breaks = self._breaks()
+        breaks = self.s_breaks()
         edges = np.concatenate(
             [
                 np.linspace(a, b, max(1, math.ceil(panels * (b - a) / self.length)) + 1)[:-1]

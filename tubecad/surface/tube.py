@@ -19,6 +19,8 @@ from numpy.typing import ArrayLike
 from tubecad.core.errors import ParameterError, RegularityError
 from tubecad.core.validation import bounded_length, flag
 from tubecad.curves.axis import Axis
+from tubecad.curves.radius_law import RadiusLaw
+from tubecad.curves.radius_law import radius_law as radius_law_of
 from tubecad.surface.forms import FundamentalForms, SurfaceDerivatives
 from tubecad.surface.regularity import RegularityReport, check_regularity
 
@@ -73,6 +75,58 @@ class CurvatureLineTube:
         """The normal offset by ``distance`` (outward > 0): the tube of radius rho + distance
         on the same axis, with the same curvature-line net (docs/MATH.md section 4)."""
         return CurvatureLineTube(self.axis, self.radius + distance, allow_irregular=allow_irregular)
+
+    def restricted(self, span: tuple[float, float]) -> CurvatureLineTube:
+        """The same tube over a sub-span of the axis (a stiffener's); the restricted axis keeps
+        its frame, so a stringer keeps its angle u."""
+        return CurvatureLineTube(self.axis.restricted(span), self.radius, allow_irregular=True)
+
+    # --- the canal surface's members in the tube's closed form (r = rho: r' = 0, q = 1, Mb = I) ---
+    @property
+    def radius_law(self) -> RadiusLaw:
+        """The constant law r(s) = rho (its r', r'', r''' are 0 exactly)."""
+        law = self.__dict__.get("_radius_law")
+        if law is None:
+            law = self.__dict__["_radius_law"] = radius_law_of(self.radius, self.axis.span)
+        return law
+
+    @property
+    def constant_radius(self) -> bool:
+        """Always True: the tube's fast path (closed forms, the 9-component frame fit)."""
+        return True
+
+    def fast_path(self) -> CurvatureLineTube:
+        """The tube itself (it is the fast path)."""
+        return self
+
+    def s_breaks(self) -> FloatArray:
+        """The span's ends and the axis' joints inside it, sorted (where k1, k2 may jump)."""
+        s0, s1 = self.span
+        joints = [s for s, _ in self.axis.joints if s0 < s < s1]
+        return np.unique(np.concatenate([[s0, s1], joints]))
+
+    def circle(self, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The ring at ``s``: (centre c, radius rho, plane normal t): r' = 0 makes the canal
+        surface's c - r r' t the axis point and r q the radius rho."""
+        s = np.asarray(s, dtype=float)
+        t = self.axis.rotation_minimising_frame(s)[0]
+        return self.axis.position(s), np.full(s.shape, self.radius), t
+
+    def moebius_matrix(self, s: ArrayLike) -> FloatArray:
+        """Mb(s) = I, shape s.shape + (2, 2): r' = 0, so the stringers keep their angle."""
+        s = np.asarray(s, dtype=float)
+        return np.broadcast_to(np.eye(2), s.shape + (2, 2)).copy()
+
+    def stringer_angle(self, u: ArrayLike, s: ArrayLike) -> FloatArray:
+        """chi(u, s) = u: a tube's stringers are the lines u = const (broadcast with ``s``)."""
+        return np.asarray(u, dtype=float) + np.zeros(np.shape(s))
+
+    def closing_angle(self, u: ArrayLike) -> FloatArray:
+        """On a closed axis u + h (h the axis' holonomy: r1(s1) = cos h r1(s0) + sin h r2(s0)):
+        where the stringer that leaves the closing ring at ``u`` comes back to it."""
+        if not self.axis.closed:
+            raise ParameterError("closing_angle: the axis is not a closed loop")
+        return np.asarray(u, dtype=float) + self.axis.holonomy
 
     # --- evaluation -------------------------------------------------------------------
     def phi(self, u: ArrayLike, s: ArrayLike) -> FloatArray:

@@ -1,0 +1,138 @@
+"""What a spec's build writes besides its solids, as library code a script calls: the flat
+patterns of its stiffener webs (``tubecad flat``), a picture of a STEP file as read back,
+and the one-line summary of a written file that ``tubecad build`` prints."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from tubecad.core.errors import ParameterError, SpecError
+from tubecad.core.units import DEFAULT_LENGTH_UNIT
+from tubecad.spec.parse import TubeSpec
+
+
+def output_folder(folder: str | Path) -> Path:
+    """``folder``, created if needed; a ParameterError (key ``output``) if it cannot be."""
+    folder = Path(folder)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ParameterError(f"cannot create output folder {str(folder)!r}: {exc.strerror}", key="output") from None
+    return folder
+
+
+def flat_from_spec(spec: TubeSpec, output: str | Path) -> list[Path]:
+    """``tubecad flat``: the flat patterns of the webs of ``spec``'s [stiffeners] (built on
+    its wall) into ``output``: webs.dxf, NAME.svg/.png per web and flat.json (lengths in
+    the spec's [units] length). Returns the files written."""
+    from tubecad.spec.build import build_from_spec, stiffener_selection
+    from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
+
+    if spec.stiffeners is None:
+        raise SpecError(
+            f"{spec.source}: has no [stiffeners] section, so there are no webs to flatten", key="stiffeners"
+        )
+    result = build_from_spec(spec)
+    chosen = stiffener_selection(spec, result)
+    assert chosen is not None  # the spec has [stiffeners]
+    base, height, side = chosen.base(result), chosen.profile.height, chosen.side
+    layout = result.layout
+    folder = output_folder(output)
+    patterns = [ring_web_flat_pattern(base, layout.s_rings[i], height, side, f"ring_{i:02d}") for i in chosen.rings]
+    patterns += [
+        stringer_flat_pattern(base, layout.stringers_deg[j], height, side, f"stringer_{j:02d}")
+        for j in chosen.stringers
+    ]
+    return write_patterns(patterns, folder, spec.length_unit)
+
+
+def write_flat_patterns(stiffeners, folder: Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> list[Path]:
+    """The flat patterns of built ``stiffeners`` (each on its own base surface) into
+    ``folder`` (created): webs.dxf, NAME.svg/.png per web and flat.json (issue 4)."""
+    from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    patterns = [
+        ring_web_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
+        if st.kind == "ring"
+        else stringer_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
+        for st in stiffeners
+    ]
+    return write_patterns(patterns, folder, length_unit)
+
+
+def write_patterns(patterns, folder: Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> list[Path]:
+    """webs.dxf (all), NAME.svg and NAME.png per web, flat.json with the measures; lengths
+    in ``length_unit`` (the spec's [units] length, stated in the DXF and flat.json)."""
+    from shapely.geometry import Polygon
+
+    from tubecad.core.atomic import write_text
+    from tubecad.spec.report import to_json
+    from tubecad.stiffeners.flat import write_dxf, write_picture
+
+    folder = Path(folder)
+    written = [write_dxf(patterns, folder / "webs.dxf", length_unit=length_unit)]
+    for pattern in patterns:
+        written += write_picture(pattern, folder)
+    summary = {
+        "units": {"length": length_unit},
+        "webs": [
+            {
+                "name": p.name,
+                "kind": p.kind,
+                "area": p.area,
+                "base_length": p.base_length,
+                "top_length": p.top_length,
+                "crosses_itself": not Polygon(p.outline).is_valid,
+            }
+            for p in patterns
+        ],
+        "note": "a web that crosses itself cannot be cut as drawn: `tubecad shop` splits it into cuttable "
+        "pieces at butt joints and nests them on plates",
+    }
+    written.append(write_text(folder / "flat.json", to_json(summary)))
+    return written
+
+
+def render_step_picture(step: Path, png: Path) -> Path:
+    """Render the STEP file as read back (tessellated faces, B-rep edges on top)."""
+    from tubecad.export.cad import import_shape
+    from tubecad.export.render import render_shape_png
+
+    return render_shape_png(import_shape(step), png, title=f"{step.name} as read back: faces and B-rep edges")
+
+
+def export_summary(info: dict[str, Any]) -> str:
+    """One line on a written file, from what was measured on it as read back."""
+    if "lines" in info:
+        return f"{info['bytes']} bytes, {info['lines']} curvature lines as polylines"
+    if "triangles" in info:
+        checked = (
+            f", within {info['max_triangle_deviation']:.1e} of the tube (vertices {info['max_vertex_deviation']:.1e})"
+            if "max_triangle_deviation" in info
+            else ""
+        )
+        asked = (
+            f", tolerance {info['deflection']:.3g} and {info['angular_deflection_deg']:.3g} deg"
+            if info.get("deflection") is not None and info.get("angular_deflection_deg") is not None
+            else ""
+        )
+        return f"{info['bytes']} bytes, mesh for visual use: {info['triangles']} triangles{checked}{asked}"
+    measured = (
+        f", file deviation {info['max_deviation']:.2e}, orthogonality {info['max_orthogonality_error']:.2e}"
+        if "max_deviation" in info
+        else ""
+    )
+    return f"{info['bytes']} bytes, read back valid={info['valid']}, faces={info['faces']}{measured}"
+
+
+def build_summary(report: dict[str, Any]) -> list[str]:
+    """The lines ``tubecad build`` prints for one spec: the B-rep, then each file written."""
+    brep = report["brep"]
+    lines = [
+        f"{brep['kind']}: {brep['faces']} faces, {brep['edges']} edges, valid={brep['valid']}, "
+        f"fit deviation {brep['fit']['max_deviation']:.2e}, orthogonality {brep['fit']['max_orthogonality_error']:.2e}"
+    ]
+    return lines + [f"{path}: {export_summary(info)}" for path, info in report["exports"].items()]
