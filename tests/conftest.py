@@ -236,13 +236,14 @@ def _cli_in(folder: Path, args: list[str]) -> None:
 
 
 class CliRun:
-    """A shared ``tubecad`` run: its folder, exit code and output (as click's Result has them)."""
+    """A shared ``tubecad`` run: the folder it wrote, its exit code and output (as click's
+    Result has them, kept in root/cli.json)."""
 
-    def __init__(self, folder: Path):
+    def __init__(self, root: Path, folder: Path | None = None):
         import json
 
-        self.folder = folder
-        said = json.loads((folder / "cli.json").read_text())
+        self.folder = root if folder is None else folder
+        said = json.loads((root / "cli.json").read_text())
         self.exit_code, self.output = said["exit_code"], said["output"]
 
     def report(self, name: str = "r.json") -> dict:
@@ -299,13 +300,13 @@ def sample_build(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
-def paper_run(tmp_path_factory):
-    """``paper_run(nu, ns)``: ``tubecad paper -o DIR --nu NU --ns NS`` once per run, a CliRun."""
+def paper_run(tmp_path_factory) -> CliRun:
+    """``tubecad paper -o ROOT/new/out --nu 64 --ns 501`` (a folder it creates) once per run, a
+    CliRun whose folder is new/out: the suite's one run of the paper command, which every test
+    of its files shares. The grid (--nu, --ns) is only that of the tube's checks in report.json."""
 
-    def run(nu: int, ns: int) -> CliRun:
-        def make(folder: Path) -> None:
-            _cli_in(folder, ["paper", "-o", str(folder), "--nu", str(nu), "--ns", str(ns)])
+    def make(root: Path) -> None:
+        _cli_in(root, ["paper", "-o", str(root / "new" / "out"), "--nu", "64", "--ns", "501"])
 
-        return CliRun(built_once(tmp_path_factory, f"paper-{nu}-{ns}", make))
-
-    return run
+    root = built_once(tmp_path_factory, "paper", make)
+    return CliRun(root, root / "new" / "out")

@@ -127,8 +127,11 @@ CONCRETE = {
     "CanalSpline": "tubecad.fitting.canal_section",
     "CanalSectionSurface": "tubecad.fitting.canal_section",
 }
-#: private methods that other modules used to call on a surface (now public protocol members)
-REMOVED_REACH_INS = {"_breaks"}
+#: private methods that other modules used to call on a surface or an axis (now public protocol
+#: members: ``s_breaks``, ``inside``); flagged on anything but self or cls, wherever defined
+REMOVED_REACH_INS = {"_breaks", "_inside"}
+#: underscored names that are public API elsewhere (a namedtuple's)
+PUBLIC_UNDERSCORED = {"_replace", "_asdict", "_make"}
 
 
 def _modules() -> dict[str, ast.Module]:
@@ -176,19 +179,51 @@ def concrete_dispatch(modules: dict[str, ast.Module]) -> list[str]:
     return sorted(found)
 
 
+def _defined_names(tree: ast.Module) -> set[str]:
+    """The names a module defines anywhere in it: its functions and methods, its classes,
+    and names assigned (a class-level alias ``_inside = inside``)."""
+    names: set[str] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            names |= {t.id for t in targets if isinstance(t, ast.Name)}
+    return names
+
+
+def _foreign_modules(tree: ast.Module) -> set[str]:
+    """The names a module binds to modules or objects imported from outside tubecad (``os``
+    of ``import os``): their underscored members are that library's business."""
+    names: set[str] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names |= {(a.asname or a.name).split(".")[0] for a in node.names if not a.name.startswith("tubecad")}
+        elif isinstance(node, ast.ImportFrom) and not node.level and not (node.module or "").startswith("tubecad"):
+            names |= {a.asname or a.name for a in node.names}
+    return names
+
+
 def private_reach_ins(modules: dict[str, ast.Module]) -> list[str]:
-    """Calls ``x._m(...)`` of a method in :data:`REMOVED_REACH_INS` on anything but self or cls."""
+    """Calls ``x._m(...)`` on anything but self or cls of a private method ``_m`` that the
+    calling module does not define itself (another module's private method: a reach-in),
+    and of a method in :data:`REMOVED_REACH_INS` wherever it is defined. A call on a module
+    imported from outside tubecad (``os._exit``) and a namedtuple's ``_replace`` are not ours."""
     found = []
     for name, tree in modules.items():
+        defined, foreign = _defined_names(tree), _foreign_modules(tree)
         for node in ast.walk(tree):
-            if (
-                isinstance(node, ast.Call)
-                and isinstance(node.func, ast.Attribute)
-                and node.func.attr in REMOVED_REACH_INS
+            if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)):
+                continue
+            attr, owner = node.func.attr, node.func.value
+            if not attr.startswith("_") or attr.startswith("__") or attr in PUBLIC_UNDERSCORED:
+                continue
+            if isinstance(owner, ast.Name) and owner.id in {"self", "cls"}:
+                continue
+            if attr in REMOVED_REACH_INS or not (
+                attr in defined or (isinstance(owner, ast.Name) and owner.id in foreign)
             ):
-                owner = node.func.value
-                if not (isinstance(owner, ast.Name) and owner.id in {"self", "cls"}):
-                    found.append(f"{name}:{node.lineno} .{node.func.attr}()")
+                found.append(f"{name}:{node.lineno} .{attr}()")
     return sorted(found)
 
 
@@ -208,7 +243,7 @@ def test_no_isinstance_on_a_concrete_surface_or_axis():
 
 def test_no_private_reach_in_on_a_surface():
     found = private_reach_ins(_modules())
-    assert not found, "private methods called from another module:\n" + "\n".join(found)
+    assert not found, "private methods called from another module (make them public):\n" + "\n".join(found)
 
 
 def test_the_dispatch_checker_sees_an_isinstance_and_a_reach_in():
@@ -226,3 +261,37 @@ def test_the_dispatch_checker_sees_an_isinstance_and_a_reach_in():
     modules = {"tubecad.surface.canal": own, "tubecad.shop.x": other, "tubecad.curves.families": curves}
     assert concrete_dispatch(modules) == ["tubecad.shop.x:3 CanalSurface", "tubecad.shop.x:3 Helix"]
     assert private_reach_ins(modules) == ["tubecad.shop.x:3 ._breaks()"]
+
+
+def test_the_reach_in_checker_sees_another_modules_private_method():
+    """``x._m()`` is a reach-in unless x is self or cls, or ``_m`` is the calling module's own
+    (a method of one of its classes on another instance), or x a library outside tubecad;
+    ``_inside`` and ``_breaks`` are reach-ins even where the module defines them."""
+    own = ast.parse(
+        "class CanalSurface:\n"
+        "    def _solve(self):\n"
+        "        return 1\n"
+        "    def _inside(self, s):\n"
+        "        return self.axis._inside(s)\n"
+        "    def restricted(self):\n"
+        "        piece = CanalSurface()\n"
+        "        return piece._solve()\n"
+    )
+    other = ast.parse(
+        "import os\n"
+        "from collections import namedtuple\n"
+        "def f(base, canal, row):\n"
+        "    base.axis._inside(0.0)\n"
+        "    canal._solve()\n"
+        "    row._replace(a=1)\n"
+        "    os._exit(0)\n"
+        "    return _helper() + base.inside(0.0)\n"
+        "def _helper():\n"
+        "    return 0\n"
+    )
+    modules = {"tubecad.surface.canal": own, "tubecad.shop.x": other}
+    assert private_reach_ins(modules) == [
+        "tubecad.shop.x:4 ._inside()",
+        "tubecad.shop.x:5 ._solve()",
+        "tubecad.surface.canal:5 ._inside()",
+    ]

@@ -219,7 +219,7 @@ def test_involute_far_out_builds():
 @pytest.mark.slow
 def test_paper_stiffened_step_solids_pass_every_argument_analyzer_check(paper_run):
     """paper_stiffened.step as FreeCAD imports it: each part checked on its own, no finding."""
-    paper = paper_run(16, 101)  # `tubecad paper -o DIR --nu 16 --ns 101`, shared with test_outputs.py
+    paper = paper_run  # `tubecad paper -o DIR --nu 64 --ns 501`, the suite's one paper run (conftest)
     assert paper.exit_code == 0, paper.output
     shape = import_shape(paper.folder / "paper_stiffened.step")
     solids = bd.Compound(shape).solids()

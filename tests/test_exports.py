@@ -92,8 +92,9 @@ def test_interrupt_as_the_temporary_is_created_leaves_no_file(tmp_path, monkeypa
 
 
 @pytest.mark.slow
-def test_paper_command_writes_a_valid_wall_step_and_iges(tmp_path):
-    result = CliRunner().invoke(cli, ["paper", "-o", str(tmp_path), "--nu", "32", "--ns", "201"])
+def test_paper_command_writes_a_valid_wall_step_and_iges(paper_run):
+    result = paper_run  # `tubecad paper -o DIR --nu 64 --ns 501`, the suite's one paper run (conftest)
+    tmp_path = result.folder
     assert result.exit_code == 0, result.output
     report = json.loads((tmp_path / "report.json").read_text())
     brep = report["brep"]

@@ -73,7 +73,7 @@ def test_names_read_back_unique_from_a_wall_file_and_the_stiffened_assembly(tmp_
 
 @pytest.mark.slow
 def test_paper_stiffened_step_names_are_unique(paper_run):
-    result = paper_run(16, 101)  # `tubecad paper -o DIR --nu 16 --ns 101`, shared with test_circle_edges.py
+    result = paper_run  # `tubecad paper -o DIR --nu 64 --ns 501`, the suite's one paper run (conftest)
     tmp_path = result.folder
     assert result.exit_code == 0, result.output
     tree = step_names(tmp_path / "paper_stiffened.step")

@@ -67,9 +67,9 @@ def test_report_of_each_sample_measures_a_curvature_line_net(spec):
 
 
 @pytest.mark.slow
-def test_paper_command_writes_report_and_pictures(tmp_path):
-    out = tmp_path / "new" / "out"
-    result = run("paper", "-o", out, "--nu", 64, "--ns", 501)
+def test_paper_command_writes_report_and_pictures(paper_run):
+    result = paper_run  # `tubecad paper -o ROOT/new/out --nu 64 --ns 501`, the suite's one paper run
+    out = result.folder
     assert result.exit_code == 0, result.output
     report = json.loads((out / "report.json").read_text())
     assert report["parameters"]["axis"] == {"curve": "log_spiral", "a": 10.0, "beta_deg": 10.0, "s": [200.0, 1200.0]}

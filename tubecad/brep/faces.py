@@ -26,11 +26,12 @@ import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any, cast
 
 import numpy as np
 from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-from OCP.Geom import Geom_Circle
+from OCP.Geom import Geom_Circle, Geom_Curve
 from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Line
 from OCP.gp import gp_Ax2, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec2d
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
@@ -93,9 +94,10 @@ def patch_faces(
     bounds = []  # bounds[i][j]: the (edge, pcurve, tolerance) of ring i along face column j, in +u order
     if not canal:
         to_u = [ring_pcurve(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
+    cuts: Sequence[float] | np.ndarray
     for i, s in enumerate(s_rings[:own]):
         if canal:  # the stringers cross each circle at angles that change with s (the Moebius map)
-            circle, cuts, pcurves, tolerance = canal_ring(tube_surface, s, angles)
+            circle, cuts, pcurves, tolerance = canal_ring(cast(CanalSectionSurface, tube_surface), s, angles)
         else:
             circle, gap = ring_circle(tube_surface, s)
             tolerance = max(TOLERANCE, 2.0 * gap)
@@ -167,6 +169,16 @@ def patch_faces(
 
 #: on the closing ring, a stringer's end within this distance of a stringer's start shares its vertex
 CLOSING_MERGE = 0.1 * TOLERANCE
+#: an arc of the closing ring: (theta_a, theta_b, its edge)
+Arc = tuple[float, float, TopoDS_Edge]
+#: the closing ring: its arcs, the first and the last band's (edge, pcurve, tolerance) per
+#: column, and each stringer's end (angle, vertex) on it
+ClosingRing = tuple[
+    list[Arc],
+    list[list[tuple[TopoDS_Edge, Any, float]]],
+    list[list[tuple[TopoDS_Edge, Any, float]]],
+    list[tuple[float, TopoDS_Vertex]],
+]
 
 
 def _closing_ring(
@@ -176,7 +188,7 @@ def _closing_ring(
     angles: list[float],
     start_vertices: list[TopoDS_Vertex],
     holonomy: float,
-):
+) -> ClosingRing:
     """The ring where a closed tube closes: the circle at ``s_first`` (= the one at
     ``s_last``), cut where stringer j starts (angle a_j) and where it ends, turned by the
     holonomy: b_j = a_j + holonomy, since r1(L) = cos(h) r1(0) + sin(h) r2(0). Returns its
@@ -189,10 +201,10 @@ def _closing_ring(
     On a canal surface (:func:`_canal_closing_ring`) the stringers come back moved by a
     Moebius map of the circle rather than turned: b_j = phi(a_j)."""
     if tube_surface.canal:
-        return _canal_closing_ring(tube_surface, s_first, s_last, angles, start_vertices)
+        return _canal_closing_ring(cast(CanalSectionSurface, tube_surface), s_first, s_last, angles, start_vertices)
     two_pi = 2.0 * math.pi
     n = len(start_vertices)
-    rho = tube_surface.tube.radius
+    rho = tube_surface.tube.radius_law.constant_value  # a tube's radius
     circle, gap = ring_circle(tube_surface, s_first)
     theta = np.linspace(0.0, two_pi, 16, endpoint=False) + 0.1  # how far the s_last isoline is from that circle
     u_last = tube_surface.circle.u_of_theta(np.mod(theta - holonomy, two_pi))
@@ -241,7 +253,7 @@ def _canal_closing_ring(
     s_last: float,
     angles: list[float],
     start_vertices: list[TopoDS_Vertex],
-):
+) -> ClosingRing:
     """:func:`_closing_ring` of a canal surface on a closed axis (its law closes: the circle
     at ``s_last`` is the circle at ``s_first``). The ring's circle counts theta from the
     origin stringer's start; stringer j starts at a_j and ends at b_j = phi(o + a_j) - o
@@ -301,7 +313,7 @@ def _cut_closing_ring(
     starts: Sequence[float],
     ends_at: Sequence[float],
     start_vertices: list[TopoDS_Vertex],
-):
+) -> tuple[list[Arc], list[tuple[float, TopoDS_Vertex]]]:
     """The closing ring's arcs (theta_a, theta_b, edge) in +theta order, cut at the stringers'
     starts ``starts`` (with their vertices) and their ends ``ends_at`` (in [0, 2 pi)); an end
     within CLOSING_MERGE of a cut shares its vertex. Returns the arcs and each stringer's
@@ -324,12 +336,14 @@ def _cut_closing_ring(
     return arcs, ends
 
 
-def _first_column(arcs, a0: float, a1: float) -> list:
+def _first_column(arcs: list[Arc], a0: float, a1: float) -> list[Arc]:
     """The arcs (lo, hi, edge) of the closing ring between the angles a0 < a1 (the first band's column)."""
     return [(lo, hi, edge) for lo, hi, edge in arcs if a0 - 1e-12 <= lo and hi <= a1 + 1e-12]
 
 
-def _last_column(arcs, b0: float, width: float, j: int, holonomy: float | None) -> list:
+def _last_column(
+    arcs: list[Arc], b0: float, width: float, j: int, holonomy: float | None
+) -> list[tuple[float, TopoDS_Edge, float]]:
     """The arcs of the closing ring covering [b0, b0 + width] (the last band's column j, where
     the stringers j and j + 1 end), each as (its start lifted into that range, edge, the
     lift: 0 or +- 2 pi), in +theta order."""
@@ -347,7 +361,7 @@ def _last_column(arcs, b0: float, width: float, j: int, holonomy: float | None) 
     return column
 
 
-def _width(arcs, edge: TopoDS_Edge) -> float:
+def _width(arcs: list[Arc], edge: TopoDS_Edge) -> float:
     return next(hi - lo for lo, hi, e in arcs if e.IsSame(edge))
 
 
@@ -425,7 +439,8 @@ def ring_circle(tube_surface: TubeSurface, s: float, samples: int = 16) -> tuple
     centre, t = tube.axis.position(np.array([s]))[0], tube.axis.rotation_minimising_frame(np.array([s]))[0][0]
     x_dir = math.cos(a) * r1[0] + math.sin(a) * r2[0]
     circle = Geom_Circle(
-        gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), tube.radius
+        gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+        tube.radius_law.constant_value,  # a tube's radius
     )
     theta = np.linspace(0.0, 2 * math.pi, samples, endpoint=False) + 0.1
     gap = 0.0
@@ -518,13 +533,13 @@ def canal_arc_pcurve(
     return pcurve, gap
 
 
-def _vertex(builder: BRep_Builder, point) -> TopoDS_Vertex:
+def _vertex(builder: BRep_Builder, point: gp_Pnt) -> TopoDS_Vertex:
     vertex = TopoDS_Vertex()
     builder.MakeVertex(vertex, point, TOLERANCE)
     return vertex
 
 
-def _edge(curve, v0: TopoDS_Vertex, v1: TopoDS_Vertex, t0: float, t1: float) -> TopoDS_Edge:
+def _edge(curve: Geom_Curve, v0: TopoDS_Vertex, v1: TopoDS_Vertex, t0: float, t1: float) -> TopoDS_Edge:
     maker = BRepBuilderAPI_MakeEdge(curve, v0, v1, t0, t1)
     if not maker.IsDone():
         raise TubecadError(f"OCCT could not make an edge on [{t0:g}, {t1:g}] (error {maker.Error()})")

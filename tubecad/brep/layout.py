@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from tubecad.core.errors import ParameterError
-from tubecad.surface import CurvatureLineTube
+from tubecad.surface import CurvatureLineSurface
 
 DEFAULT_RINGS = 11
 DEFAULT_STRINGERS = 8
@@ -29,7 +30,7 @@ class NetLayout:
 
     @classmethod
     def equal(
-        cls, tube: CurvatureLineTube, rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS
+        cls, tube: CurvatureLineSurface, rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS
     ) -> NetLayout:
         """``rings`` frames equally spaced in s (ends included), ``stringers`` at 360 j / M deg
         (a route's joints are added, see :meth:`explicit`)."""
@@ -39,7 +40,12 @@ class NetLayout:
         return cls.explicit(tube, np.linspace(*tube.span, rings), 360.0 * np.arange(stringers) / stringers)
 
     @classmethod
-    def explicit(cls, tube: CurvatureLineTube, s_rings: Sequence[float], stringers_deg: Sequence[float]) -> NetLayout:
+    def explicit(
+        cls,
+        tube: CurvatureLineSurface,
+        s_rings: Sequence[float] | np.ndarray,
+        stringers_deg: Sequence[float] | np.ndarray,
+    ) -> NetLayout:
         """Given lists; the span ends are added to the rings if missing, and on an axis whose
         joints are rings (a route) its joints (a ring within 1e-6 of the span from one moves onto it)."""
         s0, s1 = tube.span
@@ -110,7 +116,7 @@ def _shown(values: np.ndarray) -> str:
     return text
 
 
-def stringer_parameters(stringers_deg: Sequence[float], u_at) -> list[float]:
+def stringer_parameters(stringers_deg: Sequence[float], u_at: Callable[[float], Any]) -> list[float]:
     """OCCT u cuts [u_0 = 0, u_1, ..., 2 pi] for a surface whose u = 0 is the first stringer."""
     cuts = [0.0] + [float(u_at(a)) for a in stringers_deg[1:]] + [2 * math.pi]
     return cuts

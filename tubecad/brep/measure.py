@@ -33,11 +33,13 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS_Face
 
 from tubecad.brep.properties import topods
+from tubecad.curves.axis import Axis
 from tubecad.occ_compat import as_face
+from tubecad.surface import CurvatureLineTube
 from tubecad.surface.checks import distance_to_axis
 
 
-def tube_faces(shape) -> Iterator[TopoDS_Face]:
+def tube_faces(shape: object) -> Iterator[TopoDS_Face]:
     """The faces of ``shape`` on its tubes: not its end caps, which are planar (a file may
     hold a plane as a B-spline, which is recognised as planar too), or conical between the
     end circles of a canal surface's wall."""
@@ -76,7 +78,9 @@ def orthogonality(d1: np.ndarray, d2: np.ndarray) -> np.ndarray:
     return np.abs(np.einsum("ij,ij->i", d1, d2)) / (np.linalg.norm(d1, axis=1) * np.linalg.norm(d2, axis=1))
 
 
-def net_against_tube(tube, points: np.ndarray, d1: np.ndarray, d2: np.ndarray) -> tuple[float, float, float]:
+def net_against_tube(
+    tube: CurvatureLineTube, points: np.ndarray, d1: np.ndarray, d2: np.ndarray
+) -> tuple[float, float, float]:
     """(max deviation, max |cos| between d1 and d2, max angle in degrees from the curvature
     directions) of the samples against ``tube`` (a CurvatureLineTube)."""
     dist, s_star = distance_to_axis(tube.axis, points)
@@ -128,8 +132,8 @@ def surface_levels(build) -> tuple[Callable, list[float]]:
 
 
 def measure_tube_faces(
-    shape,
-    axis,
+    shape: object,
+    axis: Axis,
     radii: Sequence[float],
     samples: int = 3000,
     every_face: bool = True,

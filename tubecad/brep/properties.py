@@ -6,6 +6,8 @@ long multi-span B-spline faces; the adaptive overloads with a relative ``eps`` a
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 from OCP.BRep import BRep_Builder
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
@@ -20,23 +22,23 @@ EPS = 1e-10
 KINDS = {"solid": TopAbs_SOLID, "face": TopAbs_FACE, "edge": TopAbs_EDGE, "vertex": TopAbs_VERTEX}
 
 
-def topods(shape) -> TopoDS_Shape:
+def topods(shape: object) -> TopoDS_Shape:
     """The OCCT shape of a build123d/CadQuery object, or the shape itself."""
     return getattr(shape, "wrapped", shape)
 
 
-def is_valid(shape) -> bool:
+def is_valid(shape: object) -> bool:
     return BRepCheck_Analyzer(topods(shape)).IsValid()
 
 
-def count(shape, kind: str) -> int:
+def count(shape: object, kind: str) -> int:
     """Number of distinct sub-shapes of ``kind`` (solid, face, edge, vertex)."""
     found = IndexedMapOfShape()
     TopExp.MapShapes_s(topods(shape), KINDS[kind], found)
     return found.Extent()
 
 
-def count_circle_edges(shape) -> int:
+def count_circle_edges(shape: object) -> int:
     """Edges whose 3D curve is a circle (OCCT's GeomAbs_Circle, what CAD selectors see)."""
     from OCP.BRepAdaptor import BRepAdaptor_Curve
     from OCP.GeomAbs import GeomAbs_Circle
@@ -48,26 +50,26 @@ def count_circle_edges(shape) -> int:
     )
 
 
-def free_edges(shape) -> int:
+def free_edges(shape: object) -> int:
     """Edges used by fewer than two faces (a closed solid has none)."""
     edge_faces = IndexedDataMapOfShapeListOfShape()
     TopExp.MapShapesAndAncestors_s(topods(shape), TopAbs_EDGE, TopAbs_FACE, edge_faces)
     return sum(1 for i in range(1, edge_faces.Extent() + 1) if edge_faces.FindFromIndex(i).Extent() < 2)
 
 
-def volume(shape, eps: float = EPS) -> float:
+def volume(shape: object, eps: float = EPS) -> float:
     props = GProp_GProps()
     BRepGProp.VolumeProperties_s(topods(shape), props, eps)
     return props.Mass()
 
 
-def area(shape, eps: float = EPS) -> float:
+def area(shape: object, eps: float = EPS) -> float:
     props = GProp_GProps()
     BRepGProp.SurfaceProperties_s(topods(shape), props, eps)
     return props.Mass()
 
 
-def faces_area(faces, eps: float = EPS) -> float:
+def faces_area(faces: Iterable[object], eps: float = EPS) -> float:
     """Total area of a list of faces."""
     builder, compound = BRep_Builder(), TopoDS_Compound()
     builder.MakeCompound(compound)
@@ -91,7 +93,7 @@ ANALYZER_MODES = (
 )
 
 
-def analyzer_findings(shape, modes: tuple[str, ...] = ANALYZER_MODES) -> dict[str, int]:
+def analyzer_findings(shape: object, modes: tuple[str, ...] = ANALYZER_MODES) -> dict[str, int]:
     """The findings of OCCT's BOPAlgo_ArgumentAnalyzer with the checks ``modes`` on (default
     all), as {status name: number of faulty sub-shapes}; {} for a shape fit for booleans.
 

@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any, cast
 
 import build123d as bd
 import numpy as np
@@ -84,19 +85,19 @@ class TubeBuild:
         return [[bd.Face(f) for f in row] for row in self.patches[surface].faces]
 
 
-def _as_tube(tube: object) -> object:
+def _as_tube(tube: CurvatureLineSurface) -> CurvatureLineSurface:
     """A surface in the form that takes the fast path (a CanalSurface of a constant law as the
     tube of that radius: :meth:`~tubecad.surface.CurvatureLineSurface.fast_path`), else ``tube``."""
     return tube.fast_path() if is_surface(tube) else tube
 
 
-def _checked(tube: object, layout: object) -> NetLayout:
+def _checked(tube: object, layout: NetLayout | None) -> NetLayout:
     """The arguments every builder shares: a tube (or a canal surface), a layout (default
     equal), a buildable radius."""
     if not is_surface(tube):
         raise ParameterError(f"tube must be a CurvatureLineTube or a CanalSurface, got {type(tube).__name__}")
     if layout is None:
-        layout = NetLayout.equal(tube)  # type: ignore[arg-type]
+        layout = NetLayout.equal(tube)
     elif not isinstance(layout, NetLayout):
         raise ParameterError(
             f"layout must be a NetLayout (NetLayout.equal or NetLayout.explicit), got {type(layout).__name__}"
@@ -255,19 +256,21 @@ def _surfaces(
     radius law the 21-component spline of the canal surface, one for all r + d
     (:func:`~tubecad.fitting.canal_section.fit_canal`)."""
     orthogonality = orthogonality_for(tolerance)
+    fit: FrameSpline | CanalSpline
     if tube.constant_radius:
-        radii = tuple(float(e.radius_law.value) for e in exact)
-        extra = {"radii": radii} if len(radii) > 1 else {}
-        fit = fit_frame(tube.axis, radii[0], tolerance, orthogonality, rings=layout.s_rings, **extra)
+        radii = tuple(e.radius_law.constant_value for e in exact)
+        extra: dict[str, Any] = {"radii": radii} if len(radii) > 1 else {}
+        frame = fit = fit_frame(tube.axis, radii[0], tolerance, orthogonality, rings=layout.s_rings, **extra)
 
         def section(k: int) -> TubeSurface:
-            return exact_section_surface(exact[k], fit, stringers_deg=layout.stringers_deg)
+            # a constant radius: the surfaces are tubes (fast_path, _wall_surfaces)
+            return exact_section_surface(cast(CurvatureLineTube, exact[k]), frame, stringers_deg=layout.stringers_deg)
 
     else:
-        fit = fit_canal(tube, offsets, tolerance, orthogonality, rings=layout.s_rings)
+        spline = fit = fit_canal(tube, offsets, tolerance, orthogonality, rings=layout.s_rings)
 
         def section(k: int) -> TubeSurface:
-            return canal_section_surface(tube, fit, offsets[k], layout.stringers_deg, exact[k])
+            return canal_section_surface(tube, spline, offsets[k], layout.stringers_deg, exact[k])
 
     step("frame fit")
     names = ("surface",) if len(offsets) == 1 else ("outer surface", "inner surface")
@@ -292,7 +295,7 @@ def _wall_surfaces(
     d_in, d_out = wall_offsets(thickness, side)
     law = tube.radius_law
     if tube.constant_radius:
-        r_in, r_out = wall_radii(float(law.value), thickness, side)
+        r_in, r_out = wall_radii(law.constant_value, thickness, side)
         try:
             return (d_out, d_in), [CurvatureLineTube(tube.axis, r_out), CurvatureLineTube(tube.axis, r_in)]
         except RegularityError as exc:
@@ -333,11 +336,11 @@ def _end_cap(tube: CurvatureLineSurface, built: list[tuple[TubeSurface, PatchFac
 def _radii(tube: CurvatureLineSurface, surfaces: list[TubeSurface]) -> list[float]:
     """Each surface's radius (a tube's rho), or a canal surface's mean r + d over the span."""
     if tube.constant_radius:
-        return [float(surface.tube.radius_law.value) for surface in surfaces]
+        return [surface.tube.radius_law.constant_value for surface in surfaces]
     return [_mean_radius(surface.tube) for surface in surfaces]
 
 
-def _cap(tube: CurvatureLineTube, s: float, rings: list[list[TopoDS_Edge]], outward: bool) -> TopoDS_Face:
+def _cap(tube: CurvatureLineSurface, s: float, rings: list[list[TopoDS_Edge]], outward: bool) -> TopoDS_Face:
     """Planar face in the normal plane at ``s`` bounded by ``rings`` (outer first, then the hole);
     its normal is +t at the end of the tube (``outward``) and -t at the start."""
     a = tube.axis.at(np.array([s]))
@@ -368,7 +371,7 @@ def _plane_cap(
     return face
 
 
-def _solid(shells: list[list[TopoDS_Face]], tube: CurvatureLineTube) -> TopoDS_Solid:
+def _solid(shells: list[list[TopoDS_Face]], tube: CurvatureLineSurface) -> TopoDS_Solid:
     """The solid bounded by closed shells of faces (the first face an outer tube face; a
     closed wall's second shell bounds its cavity).
 
@@ -383,7 +386,7 @@ def _solid(shells: list[list[TopoDS_Face]], tube: CurvatureLineTube) -> TopoDS_S
     return solid
 
 
-def _points_away_from_axis(face: TopoDS_Face, tube: CurvatureLineTube) -> bool:
+def _points_away_from_axis(face: TopoDS_Face, tube: CurvatureLineSurface) -> bool:
     """Does the face's normal (as oriented in the face) point away from the axis at its middle?"""
     u0, u1, s0, s1 = BRepTools.UVBounds_s(face)
     point, normal = gp_Pnt(), gp_Vec()
@@ -403,7 +406,7 @@ def exact_volume(build: TubeBuild, tube: CurvatureLineTube | CanalSurface) -> fl
     V = pi Int (r q)^2 (q^2 - r r'') ds round the loop (:meth:`CanalSurface.swept_measures`:
     the characteristic discs swept), and a wall V(r + d_out) - V(r + d_in)."""
     if not tube.constant_radius:
-        exact = [surface.tube for surface in build.surfaces]
+        exact = [cast(CanalSurface, surface.tube) for surface in build.surfaces]  # (not a tube: canal surfaces)
         if tube.axis.closed:
             return exact[0].swept_measures()[1] - (exact[1].swept_measures()[1] if len(exact) > 1 else 0.0)
         volume = exact[0].volume - (exact[1].volume if len(exact) > 1 else 0.0)
@@ -422,7 +425,7 @@ def exact_volume(build: TubeBuild, tube: CurvatureLineTube | CanalSurface) -> fl
 
 
 # --- canal surfaces ----------------------------------------------------------------------
-def _mean_radius(canal: CanalSurface) -> float:
+def _mean_radius(canal: CurvatureLineSurface) -> float:
     """The arc-length mean of r(s) over the span (Gauss-Legendre panels)."""
     s0, s1 = canal.span
     x, w = np.polynomial.legendre.leggauss(16)

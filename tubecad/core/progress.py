@@ -23,7 +23,10 @@ import os
 import sys
 import time
 from collections.abc import Callable
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
+
+if TYPE_CHECKING:
+    from click._termui_impl import ProgressBar  # what click.progressbar returns (click's own termui imports it so)
 
 #: what the library's long functions take: progress(item, done, total)
 ProgressCallback = Callable[[str, int, int], None]
@@ -62,10 +65,11 @@ class Progress:
         self.enabled = enabled
         self.clock = clock
         self.start = clock()
-        self.label, self.total, self.done, self.item = "", None, 0, ""
+        self.label, self.done, self.item = "", 0, ""
+        self.total: int | None = None
         self.shown = False  # the threshold has passed and something was shown
         self._tty = enabled and _isatty(self.stream)
-        self._bar = None
+        self._bar: ProgressBar[str | None] | None = None
         self._last_bucket = -1
 
     # --- what the build reports ---------------------------------------------------------------
@@ -136,7 +140,7 @@ class Progress:
         if self._bar is None or new_stage:
             if self._bar is not None:
                 self._clear()
-            self._bar = click.progressbar(
+            bar = self._bar = click.progressbar(
                 length=self.total or 1,
                 label=PREFIX + self.label,
                 file=self.stream,
@@ -148,9 +152,11 @@ class Progress:
                 fill_char="#",
                 empty_char="-",
             )
-            self._bar.__enter__()  # draws it (the bar is closed by _clear, never by click's newline)
-        self._bar.pos, self._bar.current_item = min(self.done, self.total or 1), self.item
-        self._bar.render_progress()
+            bar.__enter__()  # draws it (the bar is closed by _clear, never by click's newline)
+        else:
+            bar = self._bar
+        bar.pos, bar.current_item = min(self.done, self.total or 1), self.item
+        bar.render_progress()
 
     def _clear(self) -> None:
         self.stream.write("\r\x1b[K")

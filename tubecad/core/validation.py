@@ -74,7 +74,7 @@ def bounded_length(name: str, value: object, low: float = -math.inf, *, low_open
 def span_pair(name: str, value: Sequence[object], low: float = -math.inf) -> tuple[float, float]:
     """Return an increasing pair (s0, s1) with both ends finite and s0 > ``low``."""
     try:
-        s0, s1 = value  # type: ignore[misc]
+        s0, s1 = value
     except (TypeError, ValueError):
         raise ParameterError(f"{name} must be a pair [start, end], got {value!r:.80}") from None
     s0 = bounded_length(f"{name} start", s0)

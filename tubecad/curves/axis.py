@@ -53,8 +53,9 @@ class Axis(ABC):
     """A spatial axis over the arc-length ``span``; all evaluation methods take arrays of s
     (any shape) and are vectorised."""
 
-    #: the spec's name of this kind of axis (``[axis] curve = ...``)
-    family: ClassVar[str]
+    #: the spec's name of this kind of axis (``[axis] curve = ...``); a class attribute, which
+    #: a parametric axis sets per instance (points and edge axes are parametric curves too)
+    family: str
     #: the open lower bound of arc lengths where the axis is defined
     s_lower_bound: ClassVar[float] = -math.inf
     #: whether the axis' joints are always ring frames of a layout (a route's line-bend joints)
@@ -64,6 +65,8 @@ class Axis(ABC):
     #: the axis as exact straight lines and circular arcs (a route's ``Piece`` list), or None
     #: for a smooth curve: the fit then takes the exact rational frame instead of fitting one
     pieces: Sequence[Any] | None = None
+    #: whether the axis is a closed loop (kinds set it with :func:`closing`)
+    _closed: bool = False
 
     # --- what a kind provides ----------------------------------------------------------
     @abstractmethod
@@ -137,7 +140,12 @@ class Axis(ABC):
         return AxisFrame(s, self.position(s), t, r1, r2, k1, k2)
 
     def _inside(self, s: ArrayLike) -> FloatArray:
-        """``s`` as a float array, checked to lie in the span (for kinds known only there)."""
+        """:meth:`inside` (the former private name, which the kinds call on themselves)."""
+        return self.inside(s)
+
+    def inside(self, s: ArrayLike) -> FloatArray:
+        """``s`` as a float array, checked to lie in the span within 1e-9 of it (for kinds
+        known only there); a ParameterError otherwise."""
         s = np.asarray(s, dtype=float)
         s0, s1 = self.span
         slack = 1e-9 * (s1 - s0)

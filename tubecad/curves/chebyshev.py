@@ -14,6 +14,7 @@ from collections.abc import Callable
 
 import numpy as np
 from numpy.polynomial import chebyshev as C
+from numpy.typing import ArrayLike
 
 from tubecad.core.errors import ParameterError
 
@@ -89,7 +90,7 @@ class PiecewiseChebyshev:
     def value_shape(self) -> tuple[int, ...]:
         return self.coeffs.shape[2:]
 
-    def __call__(self, x: np.ndarray) -> np.ndarray:
+    def __call__(self, x: ArrayLike) -> np.ndarray:
         """Evaluate at ``x`` (any shape; result x.shape + value_shape) by Clenshaw's
         recurrence, vectorised over all points."""
         x = np.asarray(x, dtype=float)

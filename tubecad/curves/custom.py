@@ -91,7 +91,7 @@ class CustomCurvature(SlopeCurve):
                 f"k(s) must return an array shaped like s {np.shape(s)} or a scalar, got shape {value.shape}"
             ) from None
 
-    def _inside(self, s: ArrayLike) -> FloatArray:
+    def inside(self, s: ArrayLike) -> FloatArray:
         s = np.asarray(s, dtype=float)
         s0, s1 = self.span
         slack = 1e-9 * (s1 - s0)

@@ -14,6 +14,7 @@ import math
 import operator
 import sys
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -41,14 +42,14 @@ FUNCTIONS: dict[str, Callable[[np.ndarray], np.ndarray]] = {
     "abs": np.abs,
 }
 CONSTANTS = {"pi": math.pi, "e": math.e}
-BINARY = {
+BINARY: dict[type[ast.operator], Callable[[Any, Any], Any]] = {
     ast.Add: operator.add,
     ast.Sub: operator.sub,
     ast.Mult: operator.mul,
     ast.Div: operator.truediv,
     ast.Pow: operator.pow,
 }
-UNARY = {ast.USub: operator.neg, ast.UAdd: operator.pos}
+UNARY: dict[type[ast.unaryop], Callable[[Any], Any]] = {ast.USub: operator.neg, ast.UAdd: operator.pos}
 
 Compiled = Callable[[np.ndarray], np.ndarray]
 

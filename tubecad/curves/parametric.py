@@ -63,7 +63,7 @@ class ParametricAxis(Axis):
         curve: CurveFunction,
         t_span: tuple[float, float],
         *,
-        breaks: Sequence[float] | None = None,
+        breaks: ArrayLike | None = None,
         joints: Sequence[tuple[float, int]] = (),
         normal: Sequence[float] | None = None,
         description: dict[str, Any] | None = None,

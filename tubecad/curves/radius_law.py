@@ -21,7 +21,7 @@ sample refined, else a one-line ParameterError naming the key and the s where it
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import numpy as np
@@ -64,7 +64,7 @@ class RadiusLaw:
         source: Any,
         pieces: tuple[Callable[[np.ndarray], np.ndarray], ...] | None,
         *,
-        breaks: Sequence[float] = (),
+        breaks: Iterable[float] = (),
         resolution: int = 1,
         offset: float = 0.0,
         periodic: bool = False,
@@ -86,6 +86,14 @@ class RadiusLaw:
     def value(self) -> float | None:
         """The radius of a constant law, else None."""
         return float(self.source) if self.constant else None
+
+    @property
+    def constant_value(self) -> float:
+        """The radius of a constant law (:attr:`value`, typed for the callers that know the
+        law is constant); a ValueError on a varying law."""
+        if not self.constant:
+            raise ValueError(f"{self.name}: a {self.kind} radius law has no constant value")
+        return float(self.source)
 
     def _eval(self, order: int, s: ArrayLike) -> FloatArray:
         s = np.asarray(s, dtype=float)
@@ -288,12 +296,12 @@ def _series_law(
     """An expression (in s, and x, y, z of the axis point if the ``axis`` is given) or a
     callable, resolved as a Chebyshev series with exact derivatives."""
     text = value if isinstance(value, str) else None
-    derived = (
-        None
-        if axis is None
-        else {coordinate: (lambda s, k=k: axis.position(s)[..., k]) for k, coordinate in enumerate("xyz")}
-    )
-    func = compile_expression(value, name, derived=derived) if text is not None else value
+
+    def coordinate(k: int) -> Callable[[np.ndarray], np.ndarray]:
+        return lambda s: axis.position(s)[..., k]
+
+    derived = None if axis is None else {c: coordinate(k) for k, c in enumerate("xyz")}
+    func = compile_expression(value, name, derived=derived) if isinstance(value, str) else value
 
     def values(s: np.ndarray) -> np.ndarray:
         try:
@@ -331,10 +339,10 @@ def _table_law(
     rows = list(value)
     if len(rows) < 2:
         raise ParameterError(f"{name}: a table needs at least 2 rows [s, r], got {len(rows)}")
-    table = []
+    table: list[tuple[float, float]] = []
     for i, row in enumerate(rows):
         try:
-            s_i, r_i = row  # type: ignore[misc]
+            s_i, r_i = row
         except (TypeError, ValueError):
             raise ParameterError(f"{name}: table row {i} must be a pair [s, r], got {row!r:.80}") from None
         s_i = finite_number(f"{name} row {i} s", s_i)
@@ -384,4 +392,4 @@ def _table_law(
     else:
         spline = CubicSpline(data[:, 0], data[:, 1], bc_type="not-a-knot")
     pieces = tuple((lambda s, n=n: spline(s, n)) for n in range(4))
-    return RadiusLaw("table", span, name, data, pieces, breaks=data[1:-1, 0], periodic=periodic)  # type: ignore[arg-type]
+    return RadiusLaw("table", span, name, data, pieces, breaks=data[1:-1, 0], periodic=periodic)

@@ -26,7 +26,7 @@ closing is a joint like the others, and the frame comes back turned by the holon
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -72,6 +72,7 @@ class Piece:
         if self.kind == "line":
             return np.broadcast_to(v, phi.shape + (3,)).copy()
         e1, e2 = self.e1, self.direction
+        assert e1 is not None  # a bend has its e1
         a, b = float(v @ e1), float(v @ e2)
         c, s = np.cos(phi)[..., None], np.sin(phi)[..., None]
         return (v - a * e1 - b * e2) + a * (c * e1 + s * e2) + b * (-s * e1 + c * e2)
@@ -91,6 +92,7 @@ class RouteAxis(Axis):
 
     family = "route"
     rings_at_joints = True
+    pieces: list[Piece]
 
     def __init__(
         self,
@@ -190,7 +192,7 @@ class RouteAxis(Axis):
         return pieces
 
     # --- evaluation ---------------------------------------------------------------------
-    def _each(self, s: ArrayLike):
+    def _each(self, s: ArrayLike) -> Iterator[tuple[Piece, np.ndarray, np.ndarray]]:
         """(piece, mask, local s - s0) for every piece the array ``s`` touches."""
         s = self._inside(s)
         idx = np.clip(np.searchsorted(self._starts, s, side="right") - 1, 0, len(self.pieces) - 1)

@@ -55,7 +55,7 @@ class SlopeCurve(Axis):
     """
 
     #: name used in spec files (``[axis] curve = ...``)
-    family: ClassVar[str]
+    family: str
     #: the open lower bound of arc lengths where the family is defined
     s_lower_bound: ClassVar[float] = -math.inf
 

@@ -170,17 +170,18 @@ def read_mesh_triangles(
         mesher = bd.Mesher()
         reader = mesher.model.QueryReader("3mf")
         reader.ReadFromFile(str(path))
-        nodes, faces = [], []
+        points: list[tuple[float, ...]] = []
+        triangles: list[list[int]] = []
         objects = mesher.model.GetMeshObjects()
         for _ in range(objects.Count()):
             objects.MoveNext()
             mesh = objects.GetCurrentMeshObject()
-            faces += [[i + len(nodes) for i in t.Indices] for t in mesh.GetTriangleIndices()]
-            nodes += [tuple(v.Coordinates) for v in mesh.GetVertices()]
+            triangles += [[i + len(points) for i in t.Indices] for t in mesh.GetTriangleIndices()]
+            points += [tuple(v.Coordinates) for v in mesh.GetVertices()]
         # lib3mf's units (micron, millimeter, centimeter, inch, foot, meter) in millimetres
         file_mm = {0: 1e-3, 1: 1.0, 2: 10.0, 3: 25.4, 4: 304.8, 5: 1000.0}.get(int(mesher.model.GetUnit()), 1.0)
-        vertices = np.array(nodes, dtype=float).reshape(-1, 3) * (file_mm / unit.mm)
-        return vertices, np.array(faces, dtype=int).reshape(-1, 3)
+        vertices = np.array(points, dtype=float).reshape(-1, 3) * (file_mm / unit.mm)
+        return vertices, np.array(triangles, dtype=int).reshape(-1, 3)
     return _read_gltf(path, unit.metres)
 
 

@@ -45,7 +45,10 @@ def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int =
         facing = (cell_normals @ view) < 0
         colours = np.where(facing[:, None], [[0.55, 0.72, 0.95]], [[0.75, 0.78, 0.85]]) * shade[:, None]
         polys = PolyCollection(
-            cells[order][:, :, [i, j]], facecolors=np.clip(colours[order], 0, 1), edgecolors="#1d2a44", linewidths=0.35
+            cells[order][:, :, [i, j]],  # type: ignore[arg-type]  # (an (n, k, 2) array is fine; the stubs say Sequence)
+            facecolors=np.clip(colours[order], 0, 1),
+            edgecolors="#1d2a44",
+            linewidths=0.35,
         )
         ax.add_collection(polys)
         ax.plot(axis_line[:, i], axis_line[:, j], "-.", color="#b03030", linewidth=0.7, label="axis")
@@ -56,8 +59,10 @@ def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int =
         ax.set_ylabel("XYZ"[j])
         ax.legend(loc="upper left", fontsize=8)
     a = tube.axis
+    parameters, beta_deg = getattr(a, "parameters", None), getattr(a, "beta_deg", None)  # a slope curve's
+    kind = a.family if parameters is None or beta_deg is None else f"{a.family} {parameters()}, beta = {beta_deg:g} deg"
     fig.suptitle(
-        f"Tube referred to lines of curvature: {a.family} {a.parameters()}, beta = {a.beta_deg:g} deg, "
+        f"Tube referred to lines of curvature: {kind}, "
         f"rho = {tube.radius:g}, s in [{a.span[0]:g}, {a.span[1]:g}]\n"
         f"{rings} ring frames (s = const) x {stringers} stringers (u = const)",
         fontsize=10,

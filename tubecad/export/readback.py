@@ -81,7 +81,7 @@ def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> 
 
     axis = build.surfaces[0].tube.axis
     named = wall_solids is not None
-    if named:  # the wall's solids come first in the file, in the order they were written
+    if wall_solids is not None:  # the wall's solids come first in the file, in the order they were written
         shape = _first_solids(shape, wall_solids)
     level, levels = surface_levels(build)
     size = None if list(levels) == list(build.radii) else min(build.radii)  # a canal wall's levels are offsets

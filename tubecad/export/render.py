@@ -89,7 +89,12 @@ def render_shape_png(
         paint = colours[keep][owner]
         order = np.argsort(parts[:, :, 2].mean(axis=1))  # far first
         ax.add_collection(
-            PolyCollection(parts[order][:, :, :2], facecolors=paint[order], edgecolors=paint[order], linewidths=0.6)
+            PolyCollection(
+                parts[order][:, :, :2],  # type: ignore[arg-type]  # (an (n, 3, 2) array is fine; the stubs say Sequence)
+                facecolors=paint[order],
+                edgecolors=paint[order],
+                linewidths=0.6,
+            )
         )
     visible, hidden = _split_edges(edges, parts, diag)
     ax.add_collection(LineCollection(hidden, colors=edge_color, linewidths=0.4, alpha=0.22))

@@ -152,9 +152,9 @@ def triangulate_build(build, tolerance: float, angular: float) -> int:
                     builder, surface, patches, face, (i, j), block, angles[j], arcs[i], u_cuts, tolerance, bottom, top
                 )
     for face, end, cone in _caps(build):
-        rings = [grid[:-1, 0 if end == 0 else -1] for grid in grids]
+        cap_rings = [grid[:-1, 0 if end == 0 else -1] for grid in grids]
         cap = _cone_cap_face if cone else _cap_face
-        total += cap(builder, build, face, end, rings, first_column, tolerance)
+        total += cap(builder, build, face, end, cap_rings, first_column, tolerance)
     return total
 
 
@@ -665,7 +665,12 @@ def _polygon(builder, edge, node_lists: list[np.ndarray], tri: Poly_Triangulatio
 
 
 def mesh_deviation(
-    axis, radii: Sequence[float], vertices: np.ndarray, triangles: np.ndarray, level=None, scale: float | None = None
+    axis,
+    radii: Sequence[float] | np.ndarray,
+    vertices: np.ndarray,
+    triangles: np.ndarray,
+    level=None,
+    scale: float | None = None,
 ) -> tuple[float, float]:
     """(max vertex deviation, max triangle deviation) of a mesh of tubes of ``radii`` about
     ``axis``: how far its vertices, and its triangles, lie from the exact tube each triangle

@@ -5,6 +5,8 @@ surface with stiffeners as beams (:func:`shell_mesh`), written for CalculiX/Abaq
 
 Exports are lazy (tubecad.core.lazy): the settings load without numpy, for the spec checker."""
 
+from typing import TYPE_CHECKING
+
 from tubecad.core.lazy import lazy_exports
 
 _PUBLIC = {
@@ -20,3 +22,23 @@ _PUBLIC = {
 
 __all__ = list(_PUBLIC)
 __getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())
+
+
+if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported here at run time)
+    from tubecad.fem.calculix import CalculixError as CalculixError
+    from tubecad.fem.calculix import read_frd as read_frd
+    from tubecad.fem.calculix import run_ccx as run_ccx
+    from tubecad.fem.inp import Material as Material
+    from tubecad.fem.inp import Step as Step
+    from tubecad.fem.inp import inp_text as inp_text
+    from tubecad.fem.inp import write_inp as write_inp
+    from tubecad.fem.model import BeamSection as BeamSection
+    from tubecad.fem.model import ElementBlock as ElementBlock
+    from tubecad.fem.model import FEMesh as FEMesh
+    from tubecad.fem.model import ShellSection as ShellSection
+    from tubecad.fem.settings import AnalysisSettings as AnalysisSettings
+    from tubecad.fem.settings import MeshSettings as MeshSettings
+    from tubecad.fem.settings import analysis_settings as analysis_settings
+    from tubecad.fem.settings import mesh_settings as mesh_settings
+    from tubecad.fem.shell import StiffenerPlan as StiffenerPlan
+    from tubecad.fem.shell import shell_mesh as shell_mesh

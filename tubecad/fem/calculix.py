@@ -67,7 +67,10 @@ def run_ccx(deck: str | Path, timeout: float = 600.0, threads: int | None = None
 def read_frd(path: str | Path) -> dict[str, FrdBlock]:
     """The nodal result blocks of a ``.frd`` file by name (DISP, STRESS, ...; the last step's)."""
     blocks: dict[str, FrdBlock] = {}
-    name, comps, nodes, rows = None, [], [], []
+    name: str | None = None
+    comps: list[str] = []
+    nodes: list[int] = []
+    rows: list[list[float]] = []
     with open(path, encoding="ascii", errors="replace") as fh:
         for line in fh:
             key = line[:3]

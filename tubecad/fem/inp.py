@@ -141,9 +141,9 @@ def inp_text(
     )
     if material.density is not None:
         w(f"*DENSITY\n{number(material.density)}\n")
-    for sec in mesh.shell_sections:
+    for shell in mesh.shell_sections:
         w(
-            f"*SHELL SECTION, ELSET={sec.block}, MATERIAL={material.name}, OFFSET={sec.offset:g}\n{number(sec.thickness)}\n"
+            f"*SHELL SECTION, ELSET={shell.block}, MATERIAL={material.name}, OFFSET={shell.offset:g}\n{number(shell.thickness)}\n"
         )
     for sec in mesh.beam_sections:
         o1, o2 = sec.offsets

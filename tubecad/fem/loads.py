@@ -49,11 +49,11 @@ def ring_forces(
     loop = np.concatenate([ring_block_nodes, ring_block_nodes[:1]])
     forces = np.zeros(len(ring_block_nodes))
     step = order
-    lengths = []
+    pieces = []
     for k in range(0, len(ring_block_nodes), step):
         ends = loop[[k, k + step]]
-        lengths.append(np.linalg.norm(mesh.nodes[ends[1]] - mesh.nodes[ends[0]]))
-    lengths = np.asarray(lengths)
+        pieces.append(np.linalg.norm(mesh.nodes[ends[1]] - mesh.nodes[ends[0]]))
+    lengths = np.asarray(pieces)
     q = total / lengths.sum()
     n = len(ring_block_nodes)
     for e, k in enumerate(range(0, n, step)):
@@ -86,15 +86,17 @@ def pressure_step(
     if mesh.closed and ends != "free":
         raise ParameterError(f"[analysis] ends = {ends!r} needs end rings; a closed tube has none: use ends = 'free'")
     if ends == "fixed":
-        held = [
+        fixed = [
             (int(n), d)
             for n in np.concatenate([mesh.node_sets["start_ring"], mesh.node_sets["end_ring"]])
             for d in (1, 2, 3)
         ]
-        return Step(pressure, ends, tuple(held))
+        return Step(pressure, ends, tuple(fixed))
     held = three_two_one(mesh, mesh.node_sets["ring_00"])
     loads: list[tuple[int, int, float]] = []
     if ends == "capped":
+        if lattice_rings is None:
+            raise ParameterError("[analysis] ends = 'capped' needs the end rings' nodes (lattice_rings)")
         s0, s1 = surface.span
         order = 2 if mesh.blocks[0].element.startswith("S8") else 1
         for s, ring, sign in ((s0, lattice_rings[0], -1.0), (s1, lattice_rings[1], 1.0)):

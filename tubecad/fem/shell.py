@@ -73,7 +73,8 @@ def shell_mesh(
         d_in = d_out = 0.0
     else:
         d_in, d_out = wall_offsets(thickness, wall_side)
-    refs = {
+    #: per reference surface: (element set, offset d from the surface, shell offset or None: no section)
+    refs: dict[str, list[tuple[str, float, float | None]]] = {
         "mid": [("wall", 0.5 * (d_in + d_out), 0.0)],
         "inner": [("wall", d_in, -0.5)],
         "outer": [("wall", d_out, 0.5)],
@@ -105,7 +106,11 @@ def shell_mesh(
 
     ids = lattice_ids(grid)
     per_surface = int(ids.max()) + 1
-    nodes, normals, t_ring, t_str, params = [], [], [], [], []
+    nodes: list[np.ndarray] = []
+    normals: list[np.ndarray] = []
+    t_ring: list[np.ndarray] = []
+    t_str: list[np.ndarray] = []
+    params: list[np.ndarray] = []
     for _, d, _ in references:
         X, N, Tu, Ts = _lattice_geometry(offset_surface[d], grid)
         keep = np.zeros(per_surface, dtype=np.int64)
@@ -318,6 +323,8 @@ def _add_beams(
     closed: bool,
 ) -> None:
     """Beam blocks of the stiffened rings and stringers on the lattice ``ids`` (:mod:`.beams`)."""
+    profile = plan.profile
+    assert profile is not None  # (a plan with beams has a profile: see shell_mesh)
     p = grid.order
     rows, cols = ids.shape
     span = layout.s_rings[0], layout.s_rings[-1]
@@ -344,7 +351,7 @@ def _add_beams(
         n1 = beam_directions(base.normal(a_mid, s_mid), tangent)
         across = float(np.sign(np.einsum("ij,ij->i", across, n1).mean()))  # W . n1: the profile's w along n1
         members = []
-        for rect in profile_rectangles(plan.profile):
+        for rect in profile_rectangles(profile):
             part = clipped(rect, low, high) if kind == "ring" else rect
             if part is None:
                 continue

@@ -57,8 +57,7 @@ from tubecad.fitting.frame_spline import (
     refine_spline,
 )
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
-from tubecad.surface.canal import CanalSurface
-from tubecad.surface.protocol import is_surface
+from tubecad.surface.protocol import CurvatureLineSurface, is_surface
 
 #: angles chi0 around the surface at which the fit is measured (per s sample)
 MEASURE_ANGLES = 24
@@ -79,7 +78,7 @@ def _quadratic_coefficients(m: np.ndarray) -> tuple[list[np.ndarray], list[np.nd
     return D, B, C
 
 
-def canal_functions(canal: CanalSurface, s: np.ndarray) -> np.ndarray:
+def canal_functions(canal: CurvatureLineSurface, s: np.ndarray) -> np.ndarray:
     """The exact 21-vector (A0, A1, A2 as (xyz, w); N0, N1, N2 as xyz) at ``s``, shape (len(s), 21)."""
     s = np.asarray(s, dtype=float)
     D, B, C = _quadratic_coefficients(canal.moebius_matrix(s))
@@ -164,7 +163,7 @@ class CanalSpline(SplineSize):
 
 
 def fit_canal(
-    canal: CanalSurface,
+    canal: CurvatureLineSurface,
     offsets: Sequence[float] = (0.0,),
     tolerance: float = DEFAULT_FIT_TOLERANCE,
     orthogonality: float = DEFAULT_ORTHOGONALITY,
@@ -190,7 +189,7 @@ def fit_canal(
     offsets = tuple(float(d) for d in offsets) or (0.0,)
     axis, law = canal.axis, canal.radius_law
     joints = _joint_multiplicities(axis, degree)
-    rings = np.asarray(rings, dtype=float)
+    ring_s = np.asarray(rings, dtype=float)
     # a table's knots: the functions are C1 there, knots of multiplicity degree - 1. One a
     # sliver away from a joint or ring (see _table_knots) is not interpolated across (the
     # values in the sliver cannot give its derivatives: their rounding is amplified by
@@ -199,7 +198,7 @@ def fit_canal(
     # of F'' there) and gets b back at multiplicity degree - 1 with that term added exactly
     # (knot insertion). One within rounding of a joint or ring is taken onto it.
     slivers = []
-    for b, fixed in _table_knots(canal, np.concatenate([rings, list(joints)]), orthogonality):
+    for b, fixed in _table_knots(canal, np.concatenate([ring_s, list(joints)]), orthogonality):
         if fixed is None or b == fixed:
             joints[b] = max(joints.get(b, 1), degree - 1)
         else:
@@ -209,7 +208,7 @@ def fit_canal(
         for (b, fixed), K in zip(slivers, _jumps(canal, [b for b, _ in slivers]))
         if not _droppable(canal, offsets, b, fixed, K, tolerance, orthogonality)
     ]
-    breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([rings, list(joints)]))
+    breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([ring_s, list(joints)]))
     chi0 = np.linspace(0.0, 2.0 * math.pi, MEASURE_ANGLES, endpoint=False) + 0.05
 
     def values(s: np.ndarray) -> np.ndarray:
@@ -278,7 +277,9 @@ KEEP_NOISE = 2.0
 COINCIDENT = 1e-12
 
 
-def _table_knots(canal: CanalSurface, fixed: np.ndarray, orthogonality: float) -> list[tuple[float, float | None]]:
+def _table_knots(
+    canal: CurvatureLineSurface, fixed: np.ndarray, orthogonality: float
+) -> list[tuple[float, float | None]]:
     """Per radius table knot b: (b, the joint or ring it is a sliver away from, or None); a
     knot within COINCIDENT of the span of one is returned as that break, twice."""
     s0, s1 = canal.span
@@ -296,13 +297,13 @@ def _table_knots(canal: CanalSurface, fixed: np.ndarray, orthogonality: float) -
     return out
 
 
-def _size(canal: CanalSurface) -> float:
+def _size(canal: CurvatureLineSurface) -> float:
     """The largest |c| + r over the span: the size of the fitted functions' values."""
     s = np.linspace(*canal.span, 257)
     return float(np.linalg.norm(canal.axis.position(s), axis=1).max() + canal.radius_law.max_radius)
 
 
-def _jumps(canal: CanalSurface, knots: Sequence[float]) -> list[np.ndarray]:
+def _jumps(canal: CurvatureLineSurface, knots: Sequence[float]) -> list[np.ndarray]:
     """K = [F''](b) per table knot b, the jump of the 21-vector's second derivative. Only
     r''' jumps there (r, r', r'', Mb, Mb', Mb'' and the axis are continuous: b is no joint),
     and F depends on r'' only through r': K = dF/dr' [r''']."""
@@ -318,7 +319,7 @@ def _jumps(canal: CanalSurface, knots: Sequence[float]) -> list[np.ndarray]:
 
 
 def _droppable(
-    canal: CanalSurface,
+    canal: CurvatureLineSurface,
     offsets: Sequence[float],
     b: float,
     fixed: float,
@@ -355,7 +356,7 @@ def _droppable(
     )
 
 
-def _dr_partial(canal: CanalSurface, s: np.ndarray) -> np.ndarray:
+def _dr_partial(canal: CurvatureLineSurface, s: np.ndarray) -> np.ndarray:
     """dF/dr' with Mb, r and the axis held, (len(s), 21): n_k = -r' D_k t + q (B_k r1 + C_k r2),
     q = sqrt(1 - r'^2), so dn_k = -D_k t - r' / q (B_k r1 + C_k r2) and dA_k = (r dn_k, 0)."""
     D, B, C = _quadratic_coefficients(canal.moebius_matrix(s))
@@ -470,11 +471,11 @@ class CanalSectionSurface(TubeSurface):
 
 
 def canal_section_surface(
-    canal: CanalSurface,
+    canal: CurvatureLineSurface,
     fit: CanalSpline,
     offset: float = 0.0,
     stringers_deg: Sequence[float] | None = None,
-    exact: CanalSurface | None = None,
+    exact: CurvatureLineSurface | None = None,
 ) -> CanalSectionSurface:
     """The periodic-in-u rational surface of the offset by ``offset`` of ``canal`` on ``fit``
     (``exact``: that offset surface, if already made). With ``stringers_deg`` (angles chi0

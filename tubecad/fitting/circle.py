@@ -87,15 +87,22 @@ class CircleSpline:
             spans = theta * m / m.sum()
             u = start + np.concatenate([[0.0], np.cumsum(spans)])
             u[-1] = stop
-            x.append(math.cos(start)), y.append(math.sin(start)), w.append(1.0)
-            knots.append(start), mults.append(2)
+            x.append(math.cos(start))
+            y.append(math.sin(start))
+            w.append(1.0)
+            knots.append(start)
+            mults.append(2)
             for i in range(n):
                 mid = start + (i + 0.5) * a
-                x.append(math.cos(mid) / math.cos(a / 2)), y.append(math.sin(mid) / math.cos(a / 2)), w.append(m[i])
+                x.append(math.cos(mid) / math.cos(a / 2))
+                y.append(math.sin(mid) / math.cos(a / 2))
+                w.append(m[i])
                 if i > 0:
-                    knots.append(u[i]), mults.append(1)
+                    knots.append(u[i])
+                    mults.append(1)
                 arcs.append(_Arc(start + i * a, a, u[i], u[i + 1] - u[i], J[i], m[i], J[i + 1]))
-        knots.append(TWO_PI), mults.append(2)
+        knots.append(TWO_PI)
+        mults.append(2)
         return cls(
             tuple(map(float, b)), np.array(x), np.array(y), np.array(w), np.array(knots), np.array(mults), tuple(arcs)
         )

@@ -20,7 +20,7 @@ from OCP.Geom import Geom_BSplineSurface
 from tubecad.fitting.circle import CircleSpline
 from tubecad.fitting.frame_spline import FrameSpline
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
-from tubecad.surface import CurvatureLineTube
+from tubecad.surface import CurvatureLineSurface, CurvatureLineTube
 
 
 @dataclass(frozen=True)
@@ -33,7 +33,8 @@ class TubeSurface:
     """
 
     surface: Geom_BSplineSurface
-    tube: CurvatureLineTube
+    #: the exact surface it approximates (a CanalSurface for a CanalSectionSurface)
+    tube: CurvatureLineSurface
     origin_deg: float
     circle: CircleSpline
     #: v -> s where the surface's parameter v is not the arc length (a route's rational frame)

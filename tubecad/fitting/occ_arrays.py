@@ -10,14 +10,14 @@ from OCP.gp import gp_Pnt
 from tubecad.occ_compat import Array1OfInteger, Array1OfReal, Array2OfPnt, Array2OfReal
 
 
-def reals(values: Sequence[float]) -> Array1OfReal:
+def reals(values: Sequence[float] | np.ndarray) -> Array1OfReal:
     out = Array1OfReal(1, len(values))
     for i, v in enumerate(values):
         out.SetValue(i + 1, float(v))
     return out
 
 
-def integers(values: Sequence[int]) -> Array1OfInteger:
+def integers(values: Sequence[int] | np.ndarray) -> Array1OfInteger:
     out = Array1OfInteger(1, len(values))
     for i, v in enumerate(values):
         out.SetValue(i + 1, int(v))

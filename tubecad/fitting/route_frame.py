@@ -114,6 +114,7 @@ def route_breaks(axis: RouteAxis, rings: Sequence[float]) -> np.ndarray:
 def _affine(piece: Piece):
     """The map (X, Y) -> F = (c, r1, r2) of a bend (pole by pole; see the module)."""
     e1, e2 = piece.e1, piece.direction
+    assert e1 is not None  # a bend has its e1
 
     def frame_vector(v: np.ndarray, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
         a, b = float(v @ e1), float(v @ e2)

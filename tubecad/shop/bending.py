@@ -234,7 +234,7 @@ def ring_arcs(
         )
     surface = offset_surface(base, float(level), key="level")
     at = np.array([float(s)])
-    _, r1, r2 = base.axis.rotation_minimising_frame(base.axis._inside(at))
+    _, r1, r2 = base.axis.rotation_minimising_frame(base.axis.inside(at))
     centre, radius, _ = surface.circle(at)  # a tube's: the axis point, R + level
     centre, a = centre[0], float(radius[0])
     step = 2 * math.pi / count

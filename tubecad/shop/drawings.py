@@ -121,7 +121,7 @@ def write_plate_svg(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
     def group(layer: str) -> ET.Element:
         colour, stroke_mm = SVG_STYLE.get(layer, ("#000000", 0.3))
         return ET.SubElement(
-            flip, "g", id=layer, fill="none", stroke=colour, **{"stroke-width": f"{stroke_mm / mm:.6g}"}
+            flip, "g", {"id": layer, "fill": "none", "stroke": colour, "stroke-width": f"{stroke_mm / mm:.6g}"}
         )
 
     def path_d(points: np.ndarray, close: bool = True) -> str:
@@ -133,19 +133,19 @@ def write_plate_svg(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
     for placed in plate.pieces:
         rings = [placed.outline] + ([] if placed.hole is None else [placed.hole])
         ET.SubElement(
-            parts, "path", d=" ".join(path_d(r) for r in rings), id=placed.piece.name, **{"fill-rule": "evenodd"}
+            parts, "path", {"d": " ".join(path_d(r) for r in rings), "id": placed.piece.name, "fill-rule": "evenodd"}
         )
         for points in cut_paths(placed, fab.kerf):
             ET.SubElement(cuts, "path", d=path_d(points))
         for _, edge in joint_edges(placed):
             ET.SubElement(joints, "path", d=path_d(edge, close=False))
     text = ET.SubElement(
-        svg, "g", id="TEXT", fill="#10203a", **{"font-family": "sans-serif", "font-size": f"{height * mm:.6g}"}
+        svg, "g", {"id": "TEXT", "fill": "#10203a", "font-family": "sans-serif", "font-size": f"{height * mm:.6g}"}
     )
     for placed in plate.pieces:
         x, y = label_point(placed)
         ET.SubElement(
-            text, "text", x=f"{(x + pad) * mm:.6g}", y=f"{(width + pad - y) * mm:.6g}", **{"text-anchor": "middle"}
+            text, "text", {"x": f"{(x + pad) * mm:.6g}", "y": f"{(width + pad - y) * mm:.6g}", "text-anchor": "middle"}
         ).text = placed.piece.name
     ET.SubElement(text, "text", x=f"{pad * mm:.6g}", y=f"{(width + 2.5 * pad) * mm:.6g}").text = (
         f"{plate.name}  {length:g} x {width:g} {fab.length_unit}  kerf {fab.kerf:g}  "

@@ -56,8 +56,12 @@ class Fabrication:
 
 
 def _finite(key: str, value: object, low: float, low_open: bool, what: str) -> float:
-    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-    if not ok or (value <= low if low_open else value < low):
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, (int, float))
+        or not math.isfinite(value)
+        or (value <= low if low_open else value < low)
+    ):
         bound = f"> {low:g}" if low_open else f">= {low:g}"
         raise ParameterError(f"[fabrication] {key} must be a finite number {bound} ({what}), got {value!r:.40}")
     return float(value)

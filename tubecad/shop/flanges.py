@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -34,10 +35,9 @@ from tubecad.core.errors import ParameterError, RegularityError
 from tubecad.curves.chebyshev import PiecewiseChebyshev
 from tubecad.stiffeners.flat import FlatPattern, RateFunction, _side_sign
 from tubecad.stiffeners.profiles import Profile
-from tubecad.surface import CurvatureLineTube
-from tubecad.surface.canal import CanalSurface
+from tubecad.surface import CurvatureLineSurface
 
-Surface = CurvatureLineTube | CanalSurface
+Surface = CurvatureLineSurface  # a tube or a canal surface
 
 
 @dataclass(frozen=True)
@@ -208,13 +208,13 @@ def ring_flange_flat_pattern(
     :mod:`.bending`)."""
     level = flange_level(profile, side)
     w0, w1 = flange_widths(profile)
-    at = base.axis._inside(np.array([float(s)]))  # s inside the span
+    at = base.axis.inside(np.array([float(s)]))  # s inside the span
     # only this circle of the offset matters, not the whole offset surface (a tube's law: r = R, r' = 0)
     r, dr = float(base.radius_law.r(at)[0]), float(base.radius_law.dr(at)[0])
     if not r + level > 0.0:
         raise ParameterError(f"height: the ring flange at s = {s:g} would lie at radius {r:g} {level:+g} <= 0")
     a = (r + level) * math.sqrt(1.0 - dr * dr)
-    extra = dict(centre_length=2 * math.pi * a, widths=(w0, w1), level=level)
+    extra: dict[str, Any] = dict(centre_length=2 * math.pi * a, widths=(w0, w1), level=level)
     if abs(dr) <= 1e-12:  # a cylinder band: develops to a rectangle
         length = 2 * math.pi * a
         outline = np.array([[0.0, w0], [length, w0], [length, w1], [0.0, w1]])

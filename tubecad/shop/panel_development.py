@@ -54,7 +54,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal, overload
 
 import numpy as np
 
@@ -65,12 +65,11 @@ from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.core.units import length_unit as length_unit_of
 from tubecad.core.validation import span_pair
 from tubecad.curves.chebyshev import PiecewiseChebyshev
-from tubecad.surface import CurvatureLineTube, is_surface
-from tubecad.surface.canal import CanalSurface
+from tubecad.surface import CurvatureLineSurface, is_surface
 from tubecad.surface.forms import SurfaceDerivatives
 
 FloatArray = np.ndarray
-WallSurface = CurvatureLineTube | CanalSurface
+WallSurface = CurvatureLineSurface  # a tube or a canal surface
 #: most grid samples along either direction
 MAX_SAMPLES = 4097
 #: the development DXF's layers, name -> DXF colour index
@@ -237,6 +236,14 @@ class PanelConstruction:
 
         return _Rings(theta, q, _Primitive(d_velocity, lo, hi, um, 1.0, "the rings' development, d/ds"))
 
+    @overload
+    def evaluate(self, u: FloatArray, s: FloatArray, derivatives: Literal[False] = False) -> FloatArray: ...
+
+    @overload
+    def evaluate(
+        self, u: FloatArray, s: FloatArray, derivatives: Literal[True]
+    ) -> tuple[FloatArray, FloatArray, FloatArray]: ...
+
     def evaluate(
         self, u: FloatArray, s: FloatArray, derivatives: bool = False
     ) -> FloatArray | tuple[FloatArray, FloatArray, FloatArray]:
@@ -254,6 +261,7 @@ class PanelConstruction:
         beta = alpha - 0.5 * math.pi + rings.theta.columns(u, column)
         p_u = np.linalg.norm(d.S_u, axis=-1)[:, None] * np.stack([np.cos(beta), np.sin(beta)], axis=-1)
         gamma_s = np.linalg.norm(dm.S_s, axis=-1)[:, None] * np.stack([np.cos(alpha), np.sin(alpha)], axis=-1)
+        assert rings.q_s is not None  # (made with the derivatives)
         q_s = rings.q_s.columns(u, column)
         p_s = gamma_s + _turns(dm)[1][:, None] * _rotate(q, alpha) + _rotate(q_s, alpha - 0.5 * math.pi)
         return p, p_u, p_s

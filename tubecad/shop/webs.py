@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 import string
 from dataclasses import dataclass
+from typing import Any, Literal
 
 import numpy as np
 from scipy.optimize import brentq
@@ -250,6 +251,7 @@ def _annulus(st: Stiffener, whole: FlatPattern) -> tuple[float, float, float]:
     if whole.sector is not None:
         r_in, r_out, angle = whole.sector
         return r_in, r_out, angle / (2 * math.pi)
+    assert whole.hole is not None  # a full ring's pattern: the annulus
     return float(np.linalg.norm(whole.hole[0])), float(np.linalg.norm(whole.outline[0])), 1.0
 
 
@@ -340,7 +342,11 @@ def _ring_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
     centre = st.base.circle(np.array([s]))[0][0]  # a tube's: the axis point
     t, r1, r2 = (v[0] for v in axis.rotation_minimising_frame(np.array([s])))
     solid = st.solid
-    for angle, keep in ((a_deg, bd.Keep.TOP), (b_deg, bd.Keep.BOTTOM)):
+    halves: tuple[tuple[float, Literal[bd.Keep.TOP, bd.Keep.BOTTOM]], ...] = (
+        (a_deg, bd.Keep.TOP),
+        (b_deg, bd.Keep.BOTTOM),
+    )
+    for angle, keep in halves:
         chi = math.radians(angle)
         tangent = -math.sin(chi) * r1 + math.cos(chi) * r2
         plane = bd.Plane(
@@ -348,8 +354,8 @@ def _ring_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
             z_dir=tuple(map(float, tangent)),
             x_dir=tuple(map(float, math.cos(chi) * r1 + math.sin(chi) * r2)),
         )
-        solid = solid.split(plane, keep=keep)
-        solids = solid.solids() if hasattr(solid, "solids") else [solid]
+        pieces: Any = solid.split(plane, keep=keep)  # a Solid, a list of them, or None
+        solids = pieces.solids() if hasattr(pieces, "solids") else [pieces]
         if len(solids) != 1:
             raise ParameterError(f"{st.name}: cutting the ring at {angle:g} deg gave {len(solids)} solids")
         solid = solids[0]

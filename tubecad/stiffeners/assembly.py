@@ -19,7 +19,7 @@ from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE
 from tubecad.stiffeners.lines import CurvatureLine, lines_compound
 from tubecad.stiffeners.profiles import Profile
 from tubecad.stiffeners.solids import Stiffener, ring_stiffener, stringer_stiffener
-from tubecad.surface import CanalSurface, CurvatureLineTube
+from tubecad.surface import CurvatureLineSurface
 
 WALL_COLOUR = bd.Color(0.62, 0.68, 0.78)
 RING_COLOUR = bd.Color(0.85, 0.45, 0.20)
@@ -65,7 +65,7 @@ def build_stiffeners(
     return out
 
 
-def stiffener_base(build: TubeBuild, side: str) -> CurvatureLineTube | CanalSurface:
+def stiffener_base(build: TubeBuild, side: str) -> CurvatureLineSurface:
     """The wall surface stiffeners on ``side`` stand on: the outer (outside) or the inner
     (inside) one: the exact surface that face was fitted to (the tube of its radius, or a
     canal wall's exact offset canal surface)."""

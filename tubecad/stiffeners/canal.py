@@ -5,6 +5,12 @@ centre c(s): they sweep the *normal cone* K(s) (apex c(s), axis t(s), generators
 n = -r' t + q e), a plane where r' = 0. Its offsets r + d share the circles' planes and
 the stringers, so:
 
+Both are built from the shared stiffener path (:func:`tubecad.stiffeners.solids.ring_stiffener`,
+:func:`~tubecad.stiffeners.solids.stringer_stiffener`: the checks, the names, the assembly of
+the strips), which takes the tube's fast path where r' = 0; this module holds the stringer's
+canal geometry, the ring frame's is in :mod:`.rings` (:func:`.rings.canal_ring_solid`) and the
+height check of the offsets in :mod:`.limits` (:func:`.limits.checked_levels`).
+
 - **Ring frame** at s: its cross-section is a rectilinear polygon in (s, d), d the offset
   from the wall surface it stands on, swept round: every side of constant d is a face of
   the canal surface of r + d between two characteristic circles (exact rational circles
@@ -32,27 +38,37 @@ the stringers, so:
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 
 import numpy as np
 from OCP.Geom import Geom_BSplineSurface
-from OCP.TopoDS import TopoDS_Face, TopoDS_Solid
+from OCP.TopoDS import TopoDS_Solid
 
-from tubecad.brep.assembled import CapPlane, Strip, closed_solid, strip_solid
-from tubecad.brep.faces import patch_faces
-from tubecad.brep.solids import normal_cone_face
-from tubecad.core.errors import ParameterError, RegularityError
-from tubecad.core.tolerance import MIN_SIZE, orthogonality_for
-from tubecad.fitting.canal_section import canal_section_surface, fit_canal
+from tubecad.brep.assembled import CapPlane, Strip, strip_solid
 from tubecad.fitting.frame_spline import _initial_breaks, _joint_multiplicities, _with_rings, refine_spline
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals
+from tubecad.stiffeners.limits import check_canal_spec_heights, checked_levels
 from tubecad.stiffeners.profiles import Profile
+from tubecad.stiffeners.rings import QUARTERS, along_wall, canal_ring_solid, wall_speed
 from tubecad.surface.canal import CanalSurface
 
-Section = list[tuple[float, float]]
+#: the [stiffeners] height check of a canal wall (now :func:`.limits.check_canal_spec_heights`)
+check_spec_heights = check_canal_spec_heights
 
-#: the ring's tube faces are cut at these angles (C1 circle arcs of at most a quarter turn)
-QUARTERS = (0.0, 90.0, 180.0, 270.0)
+# the canal ring frame's pieces, importable from here as before
+__all__ = [
+    "QUARTERS",
+    "along_wall",
+    "canal_ring_solid",
+    "canal_stringer_solid",
+    "canal_stringer_strips",
+    "check_spec_heights",
+    "checked_levels",
+    "stringer_frame",
+    "stringer_station_span",
+    "wall_points_across",
+    "wall_speed",
+]
+
 #: wall points across a stringer's base, through which its base face is interpolated (degree - 1)
 BASE_NODES = 7
 #: Newton steps for a wall point in a stringer's section plane (quadratic: 1e-16 after 4-5)
@@ -60,122 +76,6 @@ NEWTON_STEPS = 8
 #: the stringer's corner curves: degree in s and the spans they start from
 STRINGER_DEGREE = 7
 STRINGER_SPANS = 8
-
-
-# --- ring frames ---------------------------------------------------------------------------
-def wall_speed(base: CanalSurface, s: np.ndarray) -> np.ndarray:
-    """q - r r'' / q: how fast the characteristic circles advance along the wall per unit s,
-    averaged round the circle (the stringers' speed sqrt(G) less its part that varies round
-    it with the axis' curvature)."""
-    law = base.radius_law
-    dr = law.dr(s)
-    q = np.sqrt(1.0 - dr * dr)
-    return q - law.r(s) * law.ddr(s) / q
-
-
-def along_wall(base: CanalSurface, s: float, w: float) -> float:
-    """The s of the circle w along the wall from the circle at ``s``: Int_s^x speed = w
-    (:func:`wall_speed`, Gauss-Legendre), by Newton from x = s + w; clamped to the span
-    (the ring's section is clipped there anyway)."""
-    if w == 0.0:
-        return s
-    s0, s1 = base.span
-    nodes, weights = np.polynomial.legendre.leggauss(12)
-    x = s + w
-    for _ in range(8):
-        lo, hi = sorted((s, min(max(x, s0), s1)))
-        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
-        done = float((wall_speed(base, mid + half * nodes) * weights).sum() * half) * math.copysign(1.0, x - s)
-        step = (w - done) / float(wall_speed(base, np.array([min(max(x, s0), s1)]))[0])
-        x += step
-        if abs(step) < 1e-14 * max(1.0, abs(x)):
-            break
-    return x
-
-
-def checked_levels(base: CanalSurface, levels: Sequence[float], name: str) -> dict[float, CanalSurface]:
-    """The offsets r + d of ``base`` at ``levels``, each checked regular (a ParameterError
-    naming ``height``: too high a stiffener folds its own surface, as on a tube
-    (R + height) max|k| must stay < 1) and above MIN_SIZE."""
-    out = {}
-    for d in levels:
-        if d == 0.0:
-            out[d] = base
-            continue
-        law = base.radius_law
-        if law.min_radius + d < MIN_SIZE:
-            raise ParameterError(
-                f"height: {name} reaches in to r {d:+g}, and the radius law's r is {law.min_radius:g} "
-                f"at s = {law.s_at_min_radius:.6g}: r {d:+g} must stay >= {MIN_SIZE:g} (lower the "
-                "stiffener)"
-            )
-        try:
-            out[d] = base.offset(d)
-        except RegularityError as exc:
-            raise ParameterError(
-                f"height: {name} reaches the canal surface of r {d:+g}, which is not regular "
-                f"(lower the stiffener): {exc}"
-            ) from None
-    return out
-
-
-def check_spec_heights(surface: CanalSurface, layout, offsets: tuple[float, float], section: dict) -> None:
-    """A [stiffeners] section on the wall between the offsets (d_in, d_out) of ``surface``:
-    each stiffener's own surfaces regular and off the axis (:func:`checked_levels`; a ring
-    over its own width), before anything is built. Other faults are left to the build."""
-    from tubecad.stiffeners.limits import chosen_indices, spec_profile
-
-    picked = spec_profile(section)
-    if picked is None:
-        return
-    profile, side = picked
-    sign, wall = (1.0, offsets[1]) if side == "outside" else (-1.0, offsets[0])
-    levels = sorted({wall + sign * h for _, h in profile.outline()})
-    s0, s1 = surface.span
-    w = [w for w, _ in profile.outline()]
-    for i in chosen_indices(section, "rings", len(layout.s_rings)):
-        s = float(layout.s_rings[i])
-        lo, hi = max(s0, s + min(w)), min(s1, s + max(w))
-        if hi > lo:
-            checked_levels(surface.restricted((lo, hi)), levels, f"the ring at s = {s:g}")
-    if chosen_indices(section, "stringers", len(layout.stringers_deg)):
-        checked_levels(surface, levels, "a stringer")
-
-
-def canal_ring_solid(base: CanalSurface, section: Section, tolerance: float) -> TopoDS_Solid:
-    """The solid swept round by the counter-clockwise rectilinear ``section`` (s, d) of a
-    ring frame on ``base`` (module docstring), on one canal fit of every level d."""
-    s_values = sorted({p[0] for p in section})
-    lo, hi = s_values[0], s_values[-1]
-    s0, s1 = base.span
-    widen = max(hi - lo, 1e-3 * (s1 - s0))  # a little room either side: the fit's ends stay off the faces
-    sub = base.restricted((max(s0, lo - widen), min(s1, hi + widen)))
-    levels = sorted({p[1] for p in section})
-    exact = checked_levels(sub, levels, "the ring")
-    fit = fit_canal(sub, levels, tolerance, orthogonality_for(tolerance), rings=s_values)
-    joints = [s for s, _ in sub.axis.joints]
-    surfaces = {d: canal_section_surface(sub, fit, d, QUARTERS, exact[d]) for d in levels}
-    faces: list[TopoDS_Face] = []
-    circles = {}  # (s, d) -> the ring edges of the corner's circle
-    n = len(section)
-    for i in range(n):  # the sides of constant d: canal faces; the solid lies at larger d when one runs along +s
-        (sa, da), (sb, db) = section[i], section[(i + 1) % n]
-        if da == db:
-            a, b = sorted((sa, sb))
-            rings = [a, *[x for x in joints if a < x < b], b]
-            patches = patch_faces(surfaces[da], rings, QUARTERS, reverse=sa < sb)
-            faces += patches.all_faces()
-            circles[(a, da)], circles[(b, da)] = patches.rings[0], patches.rings[-1]
-    for i in range(n):  # the sides of constant s: normal cones; the solid lies at smaller s when one runs along +d
-        (sa, da), (sb, db) = section[i], section[(i + 1) % n]
-        if sa == sb:
-            (d_lo, d_hi) = sorted((da, db))
-            faces.append(
-                normal_cone_face(
-                    sa, surfaces[d_lo], circles[(sa, d_lo)], surfaces[d_hi], circles[(sa, d_hi)], outward=db > da
-                )
-            )
-    return closed_solid(faces)
 
 
 # --- stringers -----------------------------------------------------------------------------

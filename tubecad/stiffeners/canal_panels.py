@@ -1,4 +1,5 @@
-"""Panels of a canal surface's wall (a radius law r(s); docs/MATH.md section 8).
+"""The faces of a canal surface's wall panels (a radius law r(s); docs/MATH.md section 8),
+for the one panel path :func:`tubecad.stiffeners.panels.split_into_panels`.
 
 A canal panel between the rings s_a < s_b and the seam stringers chi_a -> chi_b
 (counter-clockwise) is assembled from the wall build's own faces and edges, with new faces
@@ -25,7 +26,7 @@ wall's faces of those bays and two full normal-cone annuli.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from typing import TYPE_CHECKING, cast
 
 import build123d as bd
 import numpy as np
@@ -46,58 +47,12 @@ from tubecad.brep.solids import FLAT_CAP_SLOPE, normal_cone_face
 from tubecad.core.errors import TubecadError
 from tubecad.fitting.occ_arrays import integers, points_2d, reals, reals_2d
 from tubecad.occ_compat import Array1OfPnt
-from tubecad.stiffeners.panel import Panel
+
+if TYPE_CHECKING:
+    from tubecad.fitting import CanalSectionSurface
 
 #: points per radial segment at which its distance from the cap's cone is measured
 RADIAL_GAP_SAMPLES = 9
-
-
-def split_canal_panels(build: TubeBuild, seams: Sequence[int], rings: Sequence[int]) -> list[Panel]:
-    """The panels of a canal wall ``build`` between the layout rings ``rings`` (indices,
-    increasing, first and last included) and the seam stringers ``seams`` (indices), in
-    the order of :func:`.panels.split_into_panels` (ring bay by ring bay, seam bays from
-    the first seam counter-clockwise)."""
-
-    outer, inner = build.patches
-    layout = build.layout
-    s_rings = list(layout.s_rings)
-    n_s = len(layout.stringers_deg)
-    seams = sorted(set(seams))
-    bays = list(zip(seams, seams[1:] + [seams[0] + n_s]))  # stringer indices j_a -> j_b (j_b may wrap)
-    panels = []
-    if len(seams) == 1:  # the ring bay all round: the wall's faces and two full cone annuli
-        caps = {
-            k: normal_cone_face(
-                s_rings[k], build.surfaces[1], inner.rings[k], build.surfaces[0], outer.rings[k], outward=True
-            )
-            for k in rings
-        }
-        deg = layout.stringers_deg[seams[0]]
-        for i, (ia, ib) in enumerate(zip(rings, rings[1:])):
-            wall = [f for patches in (outer, inner) for row in patches.faces[ia:ib] for f in row]
-            solid = closed_solid(wall + [TopoDS_Face.Reversed(caps[ia]), caps[ib]])
-            area = props.faces_area([f for row in outer.faces[ia:ib] for f in row])
-            panels.append(
-                Panel(f"panel_r{i}_s0", (s_rings[ia], s_rings[ib]), (deg, deg + 360.0), bd.Solid(solid), area)
-            )
-        return panels
-    walls = CanalWallEdges(build)
-    for i, (ia, ib) in enumerate(zip(rings, rings[1:])):
-        for n, (ja, jb) in enumerate(bays):
-            columns = [j % n_s for j in range(ja, jb)]
-            faces = [patches.faces[row][j] for patches in (outer, inner) for row in range(ia, ib) for j in columns]
-            for row in range(ia, ib):
-                faces += [walls.seam_face(jb % n_s, row), TopoDS_Face.Reversed(walls.seam_face(ja, row))]
-            faces += [TopoDS_Face.Reversed(walls.cap(ia, ja, jb)), walls.cap(ib, ja, jb)]
-            area = props.faces_area([outer.faces[row][j] for row in range(ia, ib) for j in columns])
-            a_deg = layout.stringers_deg[ja]
-            b_deg = layout.stringers_deg[jb % n_s] + (360.0 if jb >= n_s else 0.0)
-            panels.append(
-                Panel(
-                    f"panel_r{i}_s{n}", (s_rings[ia], s_rings[ib]), (a_deg, b_deg), bd.Solid(closed_solid(faces)), area
-                )
-            )
-    return panels
 
 
 class CanalWallEdges:
@@ -110,12 +65,41 @@ class CanalWallEdges:
     def __init__(self, build: TubeBuild):
         self.build = build
         self.outer, self.inner = build.patches
-        self.outer_surface, self.inner_surface = build.surfaces
+        # a canal wall's two surfaces
+        self.outer_surface, self.inner_surface = cast("list[CanalSectionSurface]", build.surfaces)
         self.thickness = float(self.outer_surface.offset - self.inner_surface.offset)
         self.n_s = len(build.layout.stringers_deg)
         self._radial: dict[tuple[int, int], TopoDS_Edge] = {}
         self._seam: dict[tuple[int, int], TopoDS_Face] = {}
         self._cap: dict[tuple[int, int, int], TopoDS_Face] = {}
+        self._annulus: dict[int, TopoDS_Face] = {}
+
+    def panel(self, ia: int, ib: int, ja: int, jb: int) -> tuple[bd.Solid, float]:
+        """The solid and outer area of the panel between the rings ia < ib and the stringers
+        ja -> jb (ja < jb <= ja + n_s, indices past the last stringer wrap round; jb = ja + n_s:
+        the ring bays all round, the wall's faces and two full normal-cone annuli)."""
+        outer, inner, n_s = self.outer, self.inner, self.n_s
+        if jb - ja == n_s:
+            wall = [f for patches in (outer, inner) for row in patches.faces[ia:ib] for f in row]
+            solid = closed_solid(wall + [TopoDS_Face.Reversed(self.annulus(ia)), self.annulus(ib)])
+            return bd.Solid(solid), props.faces_area([f for row in outer.faces[ia:ib] for f in row])
+        columns = [j % n_s for j in range(ja, jb)]
+        faces = [patches.faces[row][j] for patches in (outer, inner) for row in range(ia, ib) for j in columns]
+        for row in range(ia, ib):
+            faces += [self.seam_face(jb % n_s, row), TopoDS_Face.Reversed(self.seam_face(ja, row))]
+        faces += [TopoDS_Face.Reversed(self.cap(ia, ja, jb)), self.cap(ib, ja, jb)]
+        area = props.faces_area([outer.faces[row][j] for row in range(ia, ib) for j in columns])
+        return bd.Solid(closed_solid(faces)), area
+
+    def annulus(self, k: int) -> TopoDS_Face:
+        """The whole normal cone (or plane) annulus at ring k between the inner and outer
+        circles, its normal along +t."""
+        if k not in self._annulus:
+            s = self.build.layout.s_rings[k]
+            self._annulus[k] = normal_cone_face(
+                s, self.inner_surface, self.inner.rings[k], self.outer_surface, self.outer.rings[k], outward=True
+            )
+        return self._annulus[k]
 
     def vertex(self, patches, k: int, j: int) -> TopoDS_Vertex:
         """The wall's vertex on ring k and stringer j of ``patches``."""

@@ -39,8 +39,7 @@ from tubecad.core.dxf import Drawing
 from tubecad.core.errors import ParameterError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.curves.chebyshev import PiecewiseChebyshev
-from tubecad.surface import CurvatureLineTube
-from tubecad.surface.canal import CanalSurface
+from tubecad.surface import CurvatureLineSurface
 
 RateFunction = Callable[[np.ndarray], np.ndarray]
 
@@ -109,7 +108,7 @@ def developed_strip(
     )
 
 
-def canal_stringer_rates(canal: CanalSurface, chi0: float) -> tuple[RateFunction, RateFunction]:
+def canal_stringer_rates(canal: CurvatureLineSurface, chi0: float) -> tuple[RateFunction, RateFunction]:
     """(turn, speed) along the canal stringer ``chi0`` (radians): turn = kappa_n sqrt(G) =
     r'' / q + k1 cos chi + k2 sin chi and speed = sqrt(G) = q - r turn (module docstring)."""
     law, axis = canal.radius_law, canal.axis
@@ -127,9 +126,7 @@ def canal_stringer_rates(canal: CanalSurface, chi0: float) -> tuple[RateFunction
     return turn, speed
 
 
-def stringer_rates(
-    base: CurvatureLineTube | CanalSurface, theta_deg: float
-) -> tuple[RateFunction, RateFunction, np.ndarray]:
+def stringer_rates(base: CurvatureLineSurface, theta_deg: float) -> tuple[RateFunction, RateFunction, np.ndarray]:
     """(turn, speed, breaks) along the stringer at ``theta_deg`` on ``base`` (module
     docstring): one formula, :func:`canal_stringer_rates`, which on a tube (r' = r'' = 0, chi = u)
     is turn = kappa_u = k1 cos u + k2 sin u and speed = 1 - R kappa_u, the same operations bit
@@ -140,7 +137,7 @@ def stringer_rates(
 
 
 def stringer_flat_pattern(
-    base: CurvatureLineTube | CanalSurface,
+    base: CurvatureLineSurface,
     theta_deg: float,
     height: float,
     side: str = "outside",
@@ -193,11 +190,11 @@ def ring_flat_pattern(
 
 
 def canal_ring_flat_pattern(
-    canal: CanalSurface, s: float, height: float, side: str = "outside", name: str = "ring", samples: int = 721
+    canal: CurvatureLineSurface, s: float, height: float, side: str = "outside", name: str = "ring", samples: int = 721
 ) -> FlatPattern:
     """The flat web of the ring frame on ``canal``'s characteristic circle at ``s``: the annular
     sector of (slant) radii r(s) and r(s) +- h and angle 2 pi q(s)."""
-    s = float(canal._inside(s))
+    s = float(canal.inside(s))
     law = canal.radius_law
     r, dr = float(law.r(s)), float(law.dr(s))
     if side == "inside" and not height < r:
@@ -206,13 +203,18 @@ def canal_ring_flat_pattern(
 
 
 def ring_web_flat_pattern(
-    base: CurvatureLineTube | CanalSurface, s: float, height: float, side: str = "outside", name: str = "ring"
+    base: CurvatureLineSurface, s: float, height: float, side: str = "outside", name: str = "ring"
 ) -> FlatPattern:
     """The flat web of the ring frame at ``s`` on ``base``, the wall surface it stands on: an
     annulus on a tube, an annular sector on a canal surface."""
     if base.constant_radius:  # q = 1: the annulus of radii R and R +- h
-        return ring_flat_pattern(float(base.radius_law.value), height, side, name)
+        return ring_flat_pattern(base.radius_law.constant_value, height, side, name)
     return canal_ring_flat_pattern(base, s, height, side, name)
+
+
+def _shifted(shift: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+    """p -> p + ``shift`` (a pattern's place on the sheet)."""
+    return lambda p: p + shift
 
 
 def polygon_area(points: np.ndarray) -> float:
@@ -237,7 +239,7 @@ def write_dxf(
         shift = np.array([x_offset - lo[0], -lo[1]])
         drawing.layer(pattern.name)
         if pattern.sector is not None:  # a canal ring: the sector's arcs exact (bulges)
-            drawing.sector(*pattern.sector, pattern.name, place=lambda p, shift=shift: p + shift)
+            drawing.sector(*pattern.sector, pattern.name, place=_shifted(shift))
         elif pattern.hole is not None:  # a full annulus: two circles
             r_out = float(np.linalg.norm(pattern.outline[0]))
             centre = (x_offset + r_out, r_out)

@@ -12,20 +12,25 @@ regular, and its frame can be fitted, only while d max|k| < 1 over its span. The
 Outside, d max|k| < 1 gives height < 1 / max|k| - R for a ring and
 height < sqrt(1 / max|k|^2 - w_max^2) - R for a stringer. Inside, the stiffener reaches
 in to R - height, which must stay >= MIN_SIZE.
+
+On a canal surface (a radius law) a stiffener's surfaces are the offsets r + d of the wall:
+each must be regular and stay off the axis (:func:`checked_levels`).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from tubecad.core.errors import ParameterError
+from tubecad.core.errors import ParameterError, RegularityError
 from tubecad.core.tolerance import MIN_SIZE
 from tubecad.curves.axis import Axis
 from tubecad.fitting.frame_spline import FitError
 from tubecad.stiffeners.profiles import Profile
+from tubecad.surface.protocol import CurvatureLineSurface
 
 SAMPLES = 2001
 
@@ -125,21 +130,80 @@ def chosen_indices(section: dict, key: str, count: int) -> list[int]:
     return [i for i in indices if isinstance(i, int) and 0 <= i < count]
 
 
+def spec_stiffeners(
+    section: dict, layout, span: tuple[float, float], profile: Profile
+) -> tuple[list[tuple[float, float, float]], bool]:
+    """What a [stiffeners] section stands on the wall: (s, lo, hi) for each ring it picks,
+    [lo, hi] the ring's own width about s within ``span`` (where it sees the wall), and
+    whether it picks any stringer."""
+    s0, s1 = span
+    w = [w for w, _ in profile.outline()]
+    rings = []
+    for i in chosen_indices(section, "rings", len(layout.s_rings)):
+        s = float(layout.s_rings[i])
+        lo, hi = max(s0, s + min(w)), min(s1, s + max(w))
+        if hi > lo:
+            rings.append((s, lo, hi))
+    return rings, bool(chosen_indices(section, "stringers", len(layout.stringers_deg)))
+
+
 def check_spec_heights(axis: Axis, layout, radii: tuple[float, float], section: dict) -> None:
-    """A [stiffeners] section's height against the wall between ``radii`` = (r_in, r_out) on
-    ``axis`` with ``layout`` (a NetLayout), before anything is built (ParameterError as
+    """A [stiffeners] section's height against the tube wall between ``radii`` = (r_in, r_out)
+    on ``axis`` with ``layout`` (a NetLayout), before anything is built (ParameterError as
     :func:`checked_reach`). Other faults (keys, profile, indices) are left to the build."""
     picked = spec_profile(section)
     if picked is None:
         return
     profile, side = picked
     radius = radii[1] if side == "outside" else radii[0]
-    s0, s1 = axis.span
-    w = [w for w, _ in profile.outline()]
-    for i in chosen_indices(section, "rings", len(layout.s_rings)):  # a ring sees the curvature over its own width
-        s = float(layout.s_rings[i])
-        lo, hi = max(s0, s + min(w)), min(s1, s + max(w))
-        if hi > lo:
-            checked_reach(axis.restricted((lo, hi)), profile, radius, side, "ring")
-    if chosen_indices(section, "stringers", len(layout.stringers_deg)):
+    rings, stringers = spec_stiffeners(section, layout, axis.span, profile)
+    for _, lo, hi in rings:  # a ring sees the curvature over its own width
+        checked_reach(axis.restricted((lo, hi)), profile, radius, side, "ring")
+    if stringers:
         checked_reach(axis, profile, radius, side, "stringer")
+
+
+def check_canal_spec_heights(
+    surface: CurvatureLineSurface, layout, offsets: tuple[float, float], section: dict
+) -> None:
+    """A [stiffeners] section on the canal wall between the offsets (d_in, d_out) of
+    ``surface``: each stiffener's own surfaces regular and off the axis
+    (:func:`checked_levels`; a ring over its own width), before anything is built. Other
+    faults are left to the build."""
+    picked = spec_profile(section)
+    if picked is None:
+        return
+    profile, side = picked
+    sign, wall = (1.0, offsets[1]) if side == "outside" else (-1.0, offsets[0])
+    levels = sorted({wall + sign * h for _, h in profile.outline()})
+    rings, stringers = spec_stiffeners(section, layout, surface.span, profile)
+    for s, lo, hi in rings:
+        checked_levels(surface.restricted((lo, hi)), levels, f"the ring at s = {s:g}")
+    if stringers:
+        checked_levels(surface, levels, "a stringer")
+
+
+def checked_levels(base: CurvatureLineSurface, levels: Sequence[float], name: str) -> dict[float, CurvatureLineSurface]:
+    """The offsets r + d of ``base`` at ``levels``, each checked regular (a ParameterError
+    naming ``height``: too high a stiffener folds its own surface, as on a tube
+    (R + height) max|k| must stay < 1) and above MIN_SIZE."""
+    out = {}
+    for d in levels:
+        if d == 0.0:
+            out[d] = base
+            continue
+        law = base.radius_law
+        if law.min_radius + d < MIN_SIZE:
+            raise ParameterError(
+                f"height: {name} reaches in to r {d:+g}, and the radius law's r is {law.min_radius:g} "
+                f"at s = {law.s_at_min_radius:.6g}: r {d:+g} must stay >= {MIN_SIZE:g} (lower the "
+                "stiffener)"
+            )
+        try:
+            out[d] = base.offset(d)
+        except RegularityError as exc:
+            raise ParameterError(
+                f"height: {name} reaches the canal surface of r {d:+g}, which is not regular "
+                f"(lower the stiffener): {exc}"
+            ) from None
+    return out

@@ -16,6 +16,7 @@ import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import cast
 
 import build123d as bd
 import numpy as np
@@ -27,7 +28,7 @@ from tubecad.brep.faces import ring_circle
 from tubecad.brep.layout import NetLayout
 from tubecad.core.atomic import write_text
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
-from tubecad.fitting import TubeSurface
+from tubecad.fitting import CanalSectionSurface, TubeSurface
 
 
 @dataclass(frozen=True)
@@ -48,17 +49,18 @@ class CurvatureLine:
     @property
     def radius(self) -> float:
         """The tube's radius; on a canal surface r(s) + d, at a ring's s or averaged along a stringer."""
-        if not self.canal:
-            return self.surface.tube.radius
         law = self.surface.tube.radius_law
-        return float(law.r(self.value) if self.kind == "ring" else np.mean(law.r(np.linspace(*law.span, 257))))
+        if not self.canal:
+            return law.constant_value  # the tube's radius
+        s0, s1 = law.span
+        return float(law.r(self.value) if self.kind == "ring" else np.mean(law.r(np.linspace(s0, s1, 257))))
 
     def edge(self) -> bd.Edge:
         """The line as a build123d Edge: a ring is the exact circle (Geom_Circle, as the
         wall's ring edges), a stringer the fitted surface's isoline."""
         surf = self.surface.surface
         if self.kind == "ring" and self.canal:  # the characteristic circle
-            centre, radius, t, x_dir, _ = self.surface.ring(self.value)
+            centre, radius, t, x_dir, _ = cast(CanalSectionSurface, self.surface).ring(self.value)
             circle = Geom_Circle(
                 gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), radius
             )
@@ -82,7 +84,7 @@ class CurvatureLine:
             _, r1, r2 = tube.axis.rotation_minimising_frame(s)
             tangent = -np.sin(theta)[:, None] * r1 + np.cos(theta)[:, None] * r2
         else:
-            s = np.linspace(*tube.span, points)
+            s = np.linspace(tube.span[0], tube.span[1], points)
             theta = np.full_like(s, math.radians(self.value))
             tangent = tube.axis.rotation_minimising_frame(s)[0]  # S_s = (1 - rho kappa_u) t, 1 - rho kappa_u > 0
         return {
@@ -102,7 +104,7 @@ class CurvatureLine:
             chi0 = math.radians(self.surface.origin_deg) + np.linspace(0.0, 2 * math.pi, points, endpoint=False)
             s = np.full_like(chi0, self.value)
         else:
-            s = np.linspace(*canal.span, points)
+            s = np.linspace(canal.span[0], canal.span[1], points)
             chi0 = np.full_like(s, math.radians(self.value))
         d = canal.derivatives(chi0, s)
         tangent = d.S_u if self.kind == "ring" else d.S_s

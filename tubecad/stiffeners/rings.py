@@ -1,6 +1,14 @@
 """Ring frames as solids of revolution about their ring's axis, built with no boolean.
 
-A ring frame's cross-section is a rectilinear polygon in the (s, r) half-plane (s the arc
+One path for every wall surface (:func:`ring_frame_solid`): the profile's outline placed
+at the ring and clipped to the span (:func:`ring_section`, shared), the height checked
+before anything is fitted, and the section swept round the surface. On a tube (r = const,
+the fast path) the section lies in (s, r) and sweeps into tube faces and planar annuli
+(below); on a canal surface (a radius law) it lies in (s, d), d the offset from the wall,
+its widths laid off along the wall, and sweeps into canal faces and pieces of the normal
+cones (:func:`canal_ring_solid`, docs/MATH.md section 8.6).
+
+On a tube: a ring frame's cross-section is a rectilinear polygon in the (s, r) half-plane (s the arc
 length along the axis, r the distance from it) swept once round the tube:
 - every polygon edge of constant r is a tube face of radius r over an s-interval (the
   exact-section NURBS on one frame fit of the ring's short span, see :func:`fit_span`);
@@ -31,14 +39,17 @@ from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Vec2d
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Vertex
 
 from tubecad.brep.assembled import TOLERANCE, CapPlane, c0_knots, closed_solid, edge, patch_face, plane_face, vertex
-from tubecad.brep.faces import ring_pcurve
+from tubecad.brep.faces import patch_faces, ring_pcurve
+from tubecad.brep.solids import normal_cone_face
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import MIN_SIZE, orthogonality_for
 from tubecad.curves.axis import Axis
-from tubecad.fitting import TubeSurface, exact_section_surface, fit_frame
-from tubecad.stiffeners.limits import max_curvature
+from tubecad.fitting import FitError, TubeSurface, exact_section_surface, fit_frame
+from tubecad.fitting.canal_section import canal_section_surface, fit_canal
+from tubecad.stiffeners.limits import checked_levels, checked_reach, fit_failure, max_curvature
 from tubecad.stiffeners.profiles import Profile
 from tubecad.surface import CurvatureLineTube
+from tubecad.surface.protocol import CurvatureLineSurface
 
 Section = list[tuple[float, float]]
 
@@ -55,7 +66,7 @@ def ring_section(
     (s + w, R + h) outside or (s + w, R - h) inside and closed by its base r = R, clipped to
     ``span``, counter-clockwise in (s, r). Corners within MIN_SIZE of a span end snap to it.
     ``along(w)``, if given, is the s of the point w along the wall from s (a canal
-    surface's rings advance at their own speed: :func:`.canal.along_wall`)."""
+    surface's rings advance at their own speed: :func:`along_wall`)."""
     sign = 1.0 if side == "outside" else -1.0
     lo, hi = span
     place = along or (lambda w: s + w)
@@ -110,6 +121,30 @@ def section_area(section: Section) -> float:
 def section_volume(section: Section) -> float:
     """The exact volume of the swept section: -pi sum r^2 (s_b - s_a) over its edges."""
     return -math.pi * sum(a[1] ** 2 * (b[0] - a[0]) for a, b in zip(section, section[1:] + section[:1]) if a[1] == b[1])
+
+
+def ring_frame_solid(
+    base: CurvatureLineSurface, s: float, profile: Profile, side: str, tolerance: float, name: str = "ring"
+) -> TopoDS_Solid:
+    """The ring frame at ``s`` on the wall surface ``base`` as one solid (module docstring):
+    its section (:func:`ring_section`; on a canal surface its widths laid off along the wall)
+    swept round, after the height is checked (a ParameterError) and with a failed fit named
+    by ``name`` (a FitError). The tube's fast path: :func:`ring_solid`; a canal surface:
+    :func:`canal_ring_solid`."""
+    if base.constant_radius:
+        radius = base.radius_law.constant_value
+        section = ring_section(profile, s, radius, side, base.span)
+        sub = base.axis.restricted((min(p[0] for p in section), max(p[0] for p in section)))
+        reach = checked_reach(sub, profile, radius, side, "ring")  # before anything is fitted
+        try:
+            return ring_solid(base.axis, section, tolerance)
+        except FitError as exc:
+            raise fit_failure(exc, name, sub, reach) from None
+    section = ring_section(profile, s, 0.0, side, base.span, along=lambda w: along_wall(base, s, w))
+    try:
+        return canal_ring_solid(base, section, tolerance)  # its levels checked regular first
+    except FitError as exc:
+        raise FitError(f"{name}: {exc}") from None
 
 
 def ring_solid(axis: Axis, section: Section, tolerance: float) -> TopoDS_Solid:
@@ -238,7 +273,8 @@ def _circle(arcs: _Arcs, s: float) -> _Circle:
     a = math.radians(ts.origin_deg)
     x_dir = math.cos(a) * r1 + math.sin(a) * r2
     circle = Geom_Circle(
-        gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), ts.tube.radius
+        gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
+        ts.tube.radius_law.constant_value,  # a tube's radius
     )
     m = len(arcs.cuts) - 1
     vertices = [vertex(surface.Value(u, s)) for u in arcs.cuts[:-1]]
@@ -292,3 +328,74 @@ def _annulus(outer: _Circle, inner: _Circle, outward: bool) -> TopoDS_Face:
         loops.append([(arc, along) for arc in (circle.arcs if along else circle.arcs[::-1])])
     plane = outer.plane
     return plane_face(plane.origin, plane.normal if outward else -plane.normal, plane.x_dir, loops)
+
+
+# --- ring frames on a canal surface (a radius law; docs/MATH.md section 8.6) -------------
+#: the ring's canal faces are cut at these angles (C1 circle arcs of at most a quarter turn)
+QUARTERS = (0.0, 90.0, 180.0, 270.0)
+
+
+def wall_speed(base: CurvatureLineSurface, s: np.ndarray) -> np.ndarray:
+    """q - r r'' / q: how fast the characteristic circles advance along the wall per unit s,
+    averaged round the circle (the stringers' speed sqrt(G) less its part that varies round
+    it with the axis' curvature)."""
+    law = base.radius_law
+    dr = law.dr(s)
+    q = np.sqrt(1.0 - dr * dr)
+    return q - law.r(s) * law.ddr(s) / q
+
+
+def along_wall(base: CurvatureLineSurface, s: float, w: float) -> float:
+    """The s of the circle w along the wall from the circle at ``s``: Int_s^x speed = w
+    (:func:`wall_speed`, Gauss-Legendre), by Newton from x = s + w; clamped to the span
+    (the ring's section is clipped there anyway)."""
+    if w == 0.0:
+        return s
+    s0, s1 = base.span
+    nodes, weights = np.polynomial.legendre.leggauss(12)
+    x = s + w
+    for _ in range(8):
+        lo, hi = sorted((s, min(max(x, s0), s1)))
+        mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        done = float((wall_speed(base, mid + half * nodes) * weights).sum() * half) * math.copysign(1.0, x - s)
+        step = (w - done) / float(wall_speed(base, np.array([min(max(x, s0), s1)]))[0])
+        x += step
+        if abs(step) < 1e-14 * max(1.0, abs(x)):
+            break
+    return x
+
+
+def canal_ring_solid(base: CurvatureLineSurface, section: Section, tolerance: float) -> TopoDS_Solid:
+    """The solid swept round by the counter-clockwise rectilinear ``section`` (s, d) of a
+    ring frame on ``base`` (module docstring), on one canal fit of every level d."""
+    s_values = sorted({p[0] for p in section})
+    lo, hi = s_values[0], s_values[-1]
+    s0, s1 = base.span
+    widen = max(hi - lo, 1e-3 * (s1 - s0))  # a little room either side: the fit's ends stay off the faces
+    sub = base.restricted((max(s0, lo - widen), min(s1, hi + widen)))
+    levels = sorted({p[1] for p in section})
+    exact = checked_levels(sub, levels, "the ring")
+    fit = fit_canal(sub, levels, tolerance, orthogonality_for(tolerance), rings=s_values)
+    joints = [s for s, _ in sub.axis.joints]
+    surfaces = {d: canal_section_surface(sub, fit, d, QUARTERS, exact[d]) for d in levels}
+    faces: list[TopoDS_Face] = []
+    circles = {}  # (s, d) -> the ring edges of the corner's circle
+    n = len(section)
+    for i in range(n):  # the sides of constant d: canal faces; the solid lies at larger d when one runs along +s
+        (sa, da), (sb, db) = section[i], section[(i + 1) % n]
+        if da == db:
+            a, b = sorted((sa, sb))
+            rings = [a, *[x for x in joints if a < x < b], b]
+            patches = patch_faces(surfaces[da], rings, QUARTERS, reverse=sa < sb)
+            faces += patches.all_faces()
+            circles[(a, da)], circles[(b, da)] = patches.rings[0], patches.rings[-1]
+    for i in range(n):  # the sides of constant s: normal cones; the solid lies at smaller s when one runs along +d
+        (sa, da), (sb, db) = section[i], section[(i + 1) % n]
+        if sa == sb:
+            (d_lo, d_hi) = sorted((da, db))
+            faces.append(
+                normal_cone_face(
+                    sa, surfaces[d_lo], circles[(sa, d_lo)], surfaces[d_hi], circles[(sa, d_hi)], outward=db > da
+                )
+            )
+    return closed_solid(faces)

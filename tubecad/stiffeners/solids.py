@@ -1,5 +1,11 @@
 """Stiffener solids standing on a wall along its curvature lines (issues 4 and 9).
 
+One path for every wall surface (:func:`ring_stiffener`, :func:`stringer_stiffener`: the
+checks, the closing ring, the names, the strips' assembly and the :class:`Stiffener`); the
+tube (r = const) takes its fast path, described here, and a canal surface (a radius law) the
+geometry of docs/MATH.md section 8.6 (:func:`.rings.canal_ring_solid`,
+:func:`.canal.canal_stringer_strips`).
+
 Ring frame at s_i: its cross-section, a polygon in the (s, r) half-plane (the profile's
 web s_i -+ t/2 between radii R and R +- h, and a T or L flange), swept round the tube
 (:mod:`.rings`): tube faces, planar annuli in the normal planes and circle edges, one
@@ -21,6 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import cast
 
 import build123d as bd
 import numpy as np
@@ -32,11 +39,12 @@ from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, orthogonality_for
 from tubecad.fitting import FitError, exact_section_surface, fit_frame
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
-from tubecad.stiffeners.canal import along_wall, canal_ring_solid, canal_stringer_solid, checked_levels
-from tubecad.stiffeners.limits import checked_reach, fit_failure
+from tubecad.stiffeners.canal import canal_stringer_strips
+from tubecad.stiffeners.limits import checked_levels, checked_reach, fit_failure
 from tubecad.stiffeners.profiles import SIDES, Profile
-from tubecad.stiffeners.rings import ring_section, ring_solid
+from tubecad.stiffeners.rings import Section, ring_frame_solid
 from tubecad.surface import CanalSurface, CurvatureLineTube
+from tubecad.surface.protocol import CurvatureLineSurface
 
 
 @dataclass
@@ -51,14 +59,14 @@ class Stiffener:
     side: str
     #: the wall surface it stands on, over its own span: a tube, or a canal surface (then a
     #: stringer's ``value`` is its angle chi0 at the wall's start, in degrees)
-    base: CurvatureLineTube | CanalSurface
+    base: CurvatureLineSurface
 
     @property
     def base_radius(self) -> float:
         """R of a tube; on a canal surface the radius of the ring's characteristic circle
         (r q), or a stringer's mean r over its span."""
         if self.base.constant_radius:
-            return float(self.base.radius_law.value)
+            return self.base.radius_law.constant_value
         if self.kind == "ring":
             return float(self.base.circle(np.array([self.value]))[1][0])
         return float(np.mean(self.base.radius_law.r(np.linspace(*self.base.span, 257))))
@@ -81,53 +89,32 @@ class Stiffener:
 
 
 def ring_stiffener(
-    tube: CurvatureLineTube,
+    tube: CurvatureLineSurface,
     s: float,
     profile: Profile,
     side: str = "outside",
     tolerance: float = DEFAULT_FIT_TOLERANCE,
     name: str = "ring",
 ) -> Stiffener:
-    """The ring frame at ``s`` on the tube of radius R = tube.radius (the wall's face it stands on):
-    its cross-section swept round the tube as one solid (:mod:`.rings`), clipped to the span.
-    On a closed axis the ring at either end of the span is the closing ring: its halves
-    at both ends, fused into one solid."""
+    """The ring frame at ``s`` on the wall surface ``tube`` it stands on (a tube of radius
+    R = tube.radius, or a canal surface): its cross-section swept round as one solid, clipped
+    to the span (:func:`.rings.ring_frame_solid`). On a closed tube the ring at either end of
+    the span is the closing ring: its halves at both ends, fused into one solid."""
     _check_side(side)
-    tube = tube.fast_path()  # a constant law's canal surface: the tube of that radius
-    if not tube.constant_radius:
-        return _canal_ring(tube, s, profile, side, tolerance, name)
-    s0, s1 = tube.span
-    closing = tube.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0)
-    ends = (s0, s1) if closing else (s,)  # the closing ring of a closed tube stands on both ends of the span
-    halves = []
-    for at in ends:
-        section = ring_section(profile, at, tube.radius, side, tube.span)
-        sub = tube.axis.restricted((min(p[0] for p in section), max(p[0] for p in section)))
-        reach = checked_reach(sub, profile, tube.radius, side, "ring")  # before anything is fitted
-        try:
-            halves.append(bd.Solid(ring_solid(tube.axis, section, tolerance)))
-        except FitError as exc:
-            raise fit_failure(exc, name, sub, reach) from None
-    solid = halves[0] if len(halves) == 1 else _fused(halves, name)
-    base = CurvatureLineTube(tube.axis, tube.radius, allow_irregular=True)
-    return Stiffener(name, "ring", float(ends[0]), solid, profile, side, base)
-
-
-def _canal_ring(base: CanalSurface, s: float, profile: Profile, side: str, tolerance: float, name: str) -> Stiffener:
-    """The ring frame at ``s`` on the canal surface ``base`` (:mod:`.canal`): its widths laid
-    off along the wall, its web on the normal cones."""
+    base = tube.fast_path()  # a constant law's canal surface: the tube of that radius
     s0, s1 = base.span
-    if base.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0):
+    closing = base.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0)
+    if closing and not base.constant_radius:
         raise ParameterError(
             f"{name}: the closing ring frame of a canal wall (a radius law) on a closed axis is not "
             "built yet; the other ring frames are"
         )
-    section = ring_section(profile, s, 0.0, side, base.span, along=lambda w: along_wall(base, s, w))
-    try:
-        solid = canal_ring_solid(base, section, tolerance)
-    except FitError as exc:
-        raise FitError(f"{name}: {exc}") from None
-    return Stiffener(name, "ring", float(s), bd.Solid(solid), profile, side, base)
+    ends = (s0, s1) if closing else (s,)  # the closing ring of a closed tube stands on both ends of the span
+    halves = [bd.Solid(ring_frame_solid(base, at, profile, side, tolerance, name)) for at in ends]
+    solid = halves[0] if len(halves) == 1 else _fused(halves, name)
+    if base.constant_radius:
+        base = CurvatureLineTube(base.axis, base.radius_law.constant_value, allow_irregular=True)
+    return Stiffener(name, "ring", float(ends[0]), solid, profile, side, base)
 
 
 def _fused(halves: list[bd.Solid], name: str) -> bd.Solid:
@@ -140,7 +127,7 @@ def _fused(halves: list[bd.Solid], name: str) -> bd.Solid:
 
 
 def stringer_stiffener(
-    tube: CurvatureLineTube,
+    tube: CurvatureLineSurface,
     theta_deg: float,
     profile: Profile,
     side: str = "outside",
@@ -148,14 +135,68 @@ def stringer_stiffener(
     tolerance: float = DEFAULT_FIT_TOLERANCE,
     name: str = "stringer",
 ) -> Stiffener:
-    """The stringer at angle ``theta_deg`` on the tube of radius R = tube.radius, over ``span``:
-    the outline's ruled faces and the wall patch under the web, one solid with shared edges
-    (:func:`tubecad.brep.assembled.strip_solid`), on a frame fitted to the farthest corner."""
+    """The stringer at angle ``theta_deg`` on the wall surface ``tube`` it stands on, over
+    ``span``: the outline's ruled faces and the wall under the web, one solid with shared
+    edges (:func:`tubecad.brep.assembled.strip_solid`). On a tube of radius R = tube.radius
+    (the fast path: :func:`_tube_stringer_strips`) on a frame fitted to the farthest corner;
+    on a canal surface its angle is chi0 at the span's start, its corner curves fitted to
+    the exact points (:func:`tubecad.stiffeners.canal.canal_stringer_strips`)."""
     _check_side(side)
-    tube = tube.fast_path()  # a constant law's canal surface: the tube of that radius
-    if not tube.constant_radius:
-        return _canal_stringer(tube, theta_deg, profile, side, span, tolerance, name)
-    R, sign = tube.radius, (1.0 if side == "outside" else -1.0)
+    base = tube.fast_path()  # a constant law's canal surface: the tube of that radius
+    sign = 1.0 if side == "outside" else -1.0
+    if base.constant_radius:
+        strips, (s0, s1), caps, cuts, corners, base = _tube_stringer_strips(
+            base, theta_deg, profile, side, span, tolerance, name
+        )
+    else:
+        if base.axis.closed and span is None:
+            raise ParameterError(
+                f"{name}: stringers of a canal wall (a radius law) on a closed axis are not built yet "
+                "(they end on the closing ring moved by a Moebius map); give a span short of it"
+            )
+        smallest = base.radius_law.min_radius
+        if not profile.thickness < 2 * smallest:
+            raise ParameterError(
+                f"thickness must be < 2 r = {2 * smallest:g} (the wall's smallest radius, at s = "
+                f"{base.radius_law.s_at_min_radius:.6g}), got {profile.thickness:g}"
+            )
+        checked_levels(base, sorted({sign * h for _, h in profile.outline()}), name)  # before anything is fitted
+        try:
+            strips, (s0, s1), caps, cuts, _ = canal_stringer_strips(
+                cast(CanalSurface, base),  # not a constant radius: a canal surface
+                math.radians(theta_deg),
+                profile,
+                side,
+                span or base.span,
+                tolerance,
+            )
+        except FitError as exc:
+            raise FitError(f"{name}: {exc}") from None
+        corners = [(w, sign * v) for w, v in profile.outline()]
+    # the outline runs counter-clockwise in (w, v), i.e. clockwise about the line's tangent
+    # (+t on a tube: E x N = -t), when the stiffener stands outside; mirrored (inside) it
+    # runs counter-clockwise
+    ccw = _shoelace(corners) < 0
+    if caps is None:  # a tube's stringer round a closed axis that closes on itself
+        solid, _ = closed_strip_solid(strips, s0, s1, ccw, cuts)
+    else:
+        solid, _ = strip_solid(strips, s0, s1, (caps[0], caps[1]), ccw, cuts)
+    return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, base)
+
+
+def _tube_stringer_strips(
+    tube: CurvatureLineSurface,
+    theta_deg: float,
+    profile: Profile,
+    side: str,
+    span: tuple[float, float] | None,
+    tolerance: float,
+    name: str,
+) -> tuple[list[Strip], tuple[float, float], list[CapPlane] | None, list[float], Section, CurvatureLineTube]:
+    """The tube's fast path of :func:`stringer_stiffener`: (strips, span, cap planes or None
+    where it closes on itself round a closed axis, C0 cuts along s, the outline's corners
+    (w, distance from the axis), the wall it stands on)."""
+    R, sign = tube.radius_law.constant_value, (1.0 if side == "outside" else -1.0)
     tw = profile.thickness
     if not tw < 2 * R:
         raise ParameterError(f"thickness must be < 2 R = {2 * R:g}, got {tw:g}")
@@ -178,45 +219,9 @@ def stringer_stiffener(
     base = exact_section_surface(base_tube, frame, origin_deg=math.degrees(theta - delta))
     u1 = float(base.u_at(math.degrees(theta + delta)))
     strips.append(Strip(surface_part(base.surface, 0.0, u1), 0.0, u1))
-    # the outline runs counter-clockwise in (w, v), i.e. clockwise about +t (E x N = -t),
-    # when the stiffener stands outside; mirrored (inside) it runs counter-clockwise
-    ccw = _shoelace(corners) < 0
     cuts = [s for s, continuity in axis.joints if continuity == 0]  # e.g. a route's line-bend joints: faces end there
-    if _closes_on_itself(axis, corners, name):
-        solid, _ = closed_strip_solid(strips, s0, s1, ccw, cuts)
-    else:
-        solid, _ = strip_solid(strips, s0, s1, (cap_plane(frame, s0), cap_plane(frame, s1)), ccw, cuts)
-    return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, base_tube)
-
-
-def _canal_stringer(
-    base: CanalSurface,
-    chi0_deg: float,
-    profile: Profile,
-    side: str,
-    span: tuple[float, float] | None,
-    tolerance: float,
-    name: str,
-) -> Stiffener:
-    """The stringer chi0 = ``chi0_deg`` on the canal surface ``base`` (:mod:`.canal`)."""
-    if base.axis.closed and span is None:
-        raise ParameterError(
-            f"{name}: stringers of a canal wall (a radius law) on a closed axis are not built yet "
-            "(they end on the closing ring moved by a Moebius map); give a span short of it"
-        )
-    smallest = base.radius_law.min_radius
-    if not profile.thickness < 2 * smallest:
-        raise ParameterError(
-            f"thickness must be < 2 r = {2 * smallest:g} (the wall's smallest radius, at s = "
-            f"{base.radius_law.s_at_min_radius:.6g}), got {profile.thickness:g}"
-        )
-    sign = 1.0 if side == "outside" else -1.0
-    checked_levels(base, sorted({sign * h for _, h in profile.outline()}), name)  # before anything is fitted
-    try:
-        solid, _, _ = canal_stringer_solid(base, math.radians(chi0_deg), profile, side, span or base.span, tolerance)
-    except FitError as exc:
-        raise FitError(f"{name}: {exc}") from None
-    return Stiffener(name, "stringer", float(chi0_deg), bd.Solid(solid), profile, side, base)
+    caps = None if _closes_on_itself(axis, corners, name) else [cap_plane(frame, s0), cap_plane(frame, s1)]
+    return strips, (s0, s1), caps, cuts, corners, base_tube
 
 
 #: a stringer round a closed axis closes on itself when its section comes back within this

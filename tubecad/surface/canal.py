@@ -131,6 +131,12 @@ class _Angles:
     us: FloatArray | None = None
     ss: FloatArray | None = None
 
+    def rates(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        """(chi_u, chi_s, chi_uu, chi_us, chi_ss), which an ``order`` 2 evaluation gives."""
+        u, s, uu, us, ss = self.u, self.s, self.uu, self.us, self.ss
+        assert u is not None and s is not None and uu is not None and us is not None and ss is not None
+        return u, s, uu, us, ss
+
 
 class CanalSurface:
     """The canal surface about ``axis`` with the radius law ``radius_law`` (a
@@ -260,8 +266,11 @@ class CanalSurface:
         """L, the axis length over the span."""
         return self.axis.length
 
-    def _inside(self, s: ArrayLike) -> FloatArray:
-        return self.axis._inside(s)
+    def inside(self, s: ArrayLike) -> FloatArray:
+        """``s`` as a float array, checked to lie in the span (:meth:`Axis.inside`)."""
+        return self.axis.inside(s)
+
+    _inside = inside
 
     def s_breaks(self) -> FloatArray:
         """The span's ends, the law's breaks (a table's knots) and the axis' joints, sorted:
@@ -283,7 +292,7 @@ class CanalSurface:
         same points, the same operations in the same order; its regularity was checked
         here), any other law the canal surface itself."""
         if self.radius_law.constant:
-            return CurvatureLineTube(self.axis, self.radius_law.value, allow_irregular=True)  # type: ignore[arg-type]
+            return CurvatureLineTube(self.axis, self.radius_law.constant_value, allow_irregular=True)
         return self
 
     def circle(self, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -415,17 +424,18 @@ class CanalSurface:
         chi0, s = np.broadcast_arrays(np.asarray(chi0, dtype=float), self._inside(s))
         ang = self._angles(chi0, s, order=2)
         x = self._sphere_derivatives(ang.cos, ang.sin, s)
+        c_u, c_s, c_uu, c_us, c_ss = ang.rates()
 
         def v(y: FloatArray) -> FloatArray:
             return y[..., None]
 
         return SurfaceDerivatives(
             S=x["X"],
-            S_u=x["X_chi"] * v(ang.u),
-            S_s=x["X_s"] + x["X_chi"] * v(ang.s),
-            S_uu=x["X_chichi"] * v(ang.u**2) + x["X_chi"] * v(ang.uu),
-            S_us=x["X_chichi"] * v(ang.u * ang.s) + x["X_chis"] * v(ang.u) + x["X_chi"] * v(ang.us),
-            S_ss=x["X_ss"] + 2.0 * x["X_chis"] * v(ang.s) + x["X_chichi"] * v(ang.s**2) + x["X_chi"] * v(ang.ss),
+            S_u=x["X_chi"] * v(c_u),
+            S_s=x["X_s"] + x["X_chi"] * v(c_s),
+            S_uu=x["X_chichi"] * v(c_u**2) + x["X_chi"] * v(c_uu),
+            S_us=x["X_chichi"] * v(c_u * c_s) + x["X_chis"] * v(c_u) + x["X_chi"] * v(c_us),
+            S_ss=x["X_ss"] + 2.0 * x["X_chis"] * v(c_s) + x["X_chichi"] * v(c_s**2) + x["X_chi"] * v(c_ss),
         )
 
     def tangents(self, chi0: ArrayLike, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -433,7 +443,8 @@ class CanalSurface:
         chi0, s = np.broadcast_arrays(np.asarray(chi0, dtype=float), self._inside(s))
         ang = self._angles(chi0, s, order=2)
         x = self._sphere_derivatives(ang.cos, ang.sin, s, second=False)
-        return x["X"], x["X_chi"] * ang.u[..., None], x["X_s"] + x["X_chi"] * ang.s[..., None]
+        c_u, c_s, *_ = ang.rates()
+        return x["X"], x["X_chi"] * c_u[..., None], x["X_s"] + x["X_chi"] * c_s[..., None]
 
     def fundamental_forms(self, chi0: ArrayLike, s: ArrayLike) -> FundamentalForms:
         """E, F, G, L, M, N at (chi0, s), computed from the derivative vectors."""
@@ -501,7 +512,7 @@ class CanalSurface:
         return best
 
     # --- measures ----------------------------------------------------------------------------
-    def _quadrature(self, n_chi: int, panels: int, order: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    def _quadrature(self, n_chi: int, panels: int, order: int) -> tuple[FloatArray, FloatArray, FloatArray, float]:
         """(chi, s, weights (s), d chi): Gauss-Legendre panels in s (starting at the law's and
         the axis' breaks), the periodic trapezoid rule in chi."""
         breaks = self.s_breaks()
@@ -585,5 +596,5 @@ def tube_or_canal(
     (an expression, a callable, a table) the :class:`CanalSurface`."""
     law = radius_law_of(radius, axis.span, axis=axis)
     if law.constant:
-        return CurvatureLineTube(axis, law.value, allow_irregular=allow_irregular)  # type: ignore[arg-type]
+        return CurvatureLineTube(axis, law.constant_value, allow_irregular=allow_irregular)
     return CanalSurface(axis, law, allow_irregular=allow_irregular)

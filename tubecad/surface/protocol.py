@@ -20,7 +20,7 @@ the concrete class (tests/test_architecture.py checks it).
 
 from __future__ import annotations
 
-from typing import Any, Protocol, runtime_checkable
+from typing import Any, Protocol, TypeGuard, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -95,6 +95,10 @@ class CurvatureLineSurface(Protocol):
         with the same circles' planes and the same stringers chi(u, s)."""
         ...
 
+    def inside(self, s: ArrayLike) -> FloatArray:
+        """``s`` as a float array, checked to lie in the span (a ParameterError otherwise)."""
+        ...
+
     def restricted(self, span: tuple[float, float]) -> CurvatureLineSurface:
         """The same surface over a sub-span, its stringers named by their angle at the
         sub-span's start (:meth:`stringer_angle` of this surface there converts)."""
@@ -125,6 +129,6 @@ class CurvatureLineSurface(Protocol):
         ...
 
 
-def is_surface(value: object) -> bool:
+def is_surface(value: object) -> TypeGuard[CurvatureLineSurface]:
     """Whether ``value`` is a curvature-line surface (a CurvatureLineTube or a CanalSurface)."""
     return isinstance(value, CurvatureLineSurface)

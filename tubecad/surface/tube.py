@@ -99,6 +99,10 @@ class CurvatureLineTube:
         """The tube itself (it is the fast path)."""
         return self
 
+    def inside(self, s: ArrayLike) -> FloatArray:
+        """``s`` as a float array, checked to lie in the span (:meth:`Axis.inside`)."""
+        return self.axis.inside(s)
+
     def s_breaks(self) -> FloatArray:
         """The span's ends and the axis' joints inside it, sorted (where k1, k2 may jump)."""
         s0, s1 = self.span
@@ -131,7 +135,10 @@ class CurvatureLineTube:
     # --- evaluation -------------------------------------------------------------------
     def phi(self, u: ArrayLike, s: ArrayLike) -> FloatArray:
         """phi = u - Int sigma ds: the angle from the principal normal n (paper eq. 6; slope curves)."""
-        return np.asarray(u, dtype=float) - self.axis.twist(s)
+        twist = getattr(self.axis, "twist", None)  # Int sigma ds: a slope curve's
+        if twist is None:
+            raise ParameterError(f"phi: only a slope curve has the twist Int sigma ds, not a {self.axis.family} axis")
+        return np.asarray(u, dtype=float) - twist(s)
 
     def normal_curvature(self, u: ArrayLike, s: ArrayLike) -> FloatArray:
         """kappa_u = k1 cos u + k2 sin u (= k cos phi): the axis curvature seen along the
