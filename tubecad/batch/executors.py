@@ -23,7 +23,7 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 from multiprocessing.connection import wait
-from typing import Any, Protocol
+from typing import Any, Protocol, cast
 
 
 @dataclass(frozen=True)
@@ -64,7 +64,8 @@ class InlineExecutor:
     description = "this process"
 
     def __init__(self, run: Callable[[Any], Any]) -> None:
-        self._run, self._done = run, []
+        self._run = run
+        self._done: list[tuple[int, Any]] = []
 
     def submit(self, index: int, job: Any) -> None:
         self._done.append((index, self._run(job)))
@@ -139,18 +140,19 @@ class ProcessExecutor:
         if not busy:
             return []
         ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy], timeout))
-        out = []
+        out: list[tuple[int, Any]] = []
         for worker in busy:
+            held = cast(int, worker.index)  # busy: the workers holding a job (index not None)
             if worker.conn in ready:
                 try:
                     index, result = worker.conn.recv()
                 except (EOFError, OSError):
-                    out.append((worker.index, self._lost(worker)))
+                    out.append((held, self._lost(worker)))
                     continue
                 worker.index = None
                 out.append((index, result))
             elif worker.process.sentinel in ready:
-                out.append((worker.index, self._lost(worker)))
+                out.append((held, self._lost(worker)))
         return out
 
     def _lost(self, worker: _Worker) -> Lost:

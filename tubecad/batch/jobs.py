@@ -85,7 +85,8 @@ class JobResult:
     valid: bool = False
     built: str = ""  # what was built, for the job's line: "wall 50 faces valid + 5 ring + 4 stringer stiffeners (T)"
     attempts: int = 1
-    hashes: dict[str, str] = field(default_factory=dict)  # file name -> content hash (tubecad.batch.manifest)
+    # file name -> content hash (tubecad.batch.manifest; None: the file could not be read)
+    hashes: dict[str, str | None] = field(default_factory=dict)
     spec_hash: str | None = None
     skipped: bool = False  # built by an earlier run, unchanged (resumed)
 
@@ -310,7 +311,8 @@ def run_job(job: Job) -> JobResult:
     try:
         if _stopping:
             raise KeyboardInterrupt
-        mesh = {
+        # only the tolerances given, by keyword (build_and_export's defaults otherwise)
+        mesh: dict[str, Any] = {
             k: v for k, v in (("mesh_tolerance", job.mesh_tolerance), ("mesh_angle", job.mesh_angle)) if v is not None
         }
         report = build_and_export(job_spec(job), job.outputs, job.step_schema, Path(job.report), written, **mesh)

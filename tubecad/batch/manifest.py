@@ -76,7 +76,7 @@ def read_manifest(folder: Path) -> dict[str, dict[str, Any]]:
         return {}
 
 
-def up_to_date(entry: dict[str, Any] | None, job, digest: str) -> bool:
+def up_to_date(entry: dict[str, Any] | None, job, digest: str | None) -> bool:
     """Whether ``entry`` (from the manifest) shows ``job`` built from the spec hashing to
     ``digest``, with every output present and unchanged."""
     if not entry or entry.get("status") != "ok" or entry.get("spec_hash") != digest:

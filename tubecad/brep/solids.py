@@ -395,7 +395,7 @@ def _points_away_from_axis(face: TopoDS_Face, tube: CurvatureLineSurface) -> boo
     return normal.Dot(gp_Vec(*(np.array([point.X(), point.Y(), point.Z()]) - centre))) > 0
 
 
-def exact_volume(build: TubeBuild, tube: CurvatureLineTube | CanalSurface) -> float:
+def exact_volume(build: TubeBuild, tube: CurvatureLineSurface) -> float:
     """pi (r_out^2 - r_in^2) L for a wall, pi rho^2 L for a tube solid (docs/MATH.md section 4).
 
     A canal surface: the volume its surface encloses with the discs of its end circles

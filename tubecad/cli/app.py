@@ -617,4 +617,4 @@ def _interrupted() -> None:
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    main()  # it exits itself, with the run's exit code

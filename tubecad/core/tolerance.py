@@ -37,7 +37,7 @@ def check_tolerance(name: str, value: object) -> float:
         or not isinstance(value, (int, float, np.integer, np.floating))
         or not (math.isfinite(value) and 0 < value < 1)
     ):
-        raise ParameterError(f"fit {name} must be in (0, 1) model units, got {value!r:.80}")
+        raise ParameterError(f"fit {name} must be in (0, 1) model units, got {value!r:.80}", key=name)
     return float(value)
 
 

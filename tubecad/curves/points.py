@@ -67,7 +67,7 @@ def shown(point: np.ndarray) -> str:
 
 
 def points_axis(
-    points: Sequence[Sequence[float]],
+    points: Sequence[Sequence[float]] | np.ndarray,
     *,
     parameterisation: str = "centripetal",
     normal: Sequence[float] | None = None,

@@ -96,7 +96,7 @@ class RouteAxis(Axis):
 
     def __init__(
         self,
-        points: Sequence[Sequence[float]],
+        points: Sequence[Sequence[float]] | np.ndarray,
         bend_radius: float | Sequence[float],
         *,
         normal: Sequence[float] | None = None,

@@ -79,7 +79,7 @@ class ExportError(TubecadError):
 
 def write_cad(
     fmt: str,
-    shape,
+    shape: object,
     path: str | Path,
     step_schema: str = "AP214",
     name: str = "tubecad",
@@ -121,7 +121,11 @@ def step_settings(schema: str = "AP214", length_unit: str = DEFAULT_LENGTH_UNIT)
 
 
 def write_step(
-    shape, path: str | Path, schema: str = "AP214", name: str = "tubecad", length_unit: str = DEFAULT_LENGTH_UNIT
+    shape: object,
+    path: str | Path,
+    schema: str = "AP214",
+    name: str = "tubecad",
+    length_unit: str = DEFAULT_LENGTH_UNIT,
 ) -> None:
     """Write ``shape`` to STEP at ``path`` (not atomic) with OCCT's XCAF writer: names and
     colours of a build123d assembly are kept, and the top product is called ``name``. The

@@ -21,6 +21,7 @@ import json
 import struct
 import tempfile
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,12 +31,15 @@ from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.core.units import length_unit as unit_of
 from tubecad.export.meshing import ANGULAR_DEFLECTION, RELATIVE_DEFLECTION  # noqa: F401  (the defaults, tubecad.export.meshing)
 
+if TYPE_CHECKING:
+    from tubecad.brep import TubeBuild
+
 
 class MeshError(TubecadError):
     """A mesh file could not be written or read."""
 
 
-def default_deflection(shape) -> float:
+def default_deflection(shape: object) -> float:
     """1e-3 of the smallest extent of ``shape``'s bounding box (a tube: of its diameter)."""
     from OCP.Bnd import Bnd_Box
     from OCP.BRepBndLib import BRepBndLib
@@ -49,7 +53,7 @@ def default_deflection(shape) -> float:
     return RELATIVE_DEFLECTION * (min(extents) if extents else 1.0)
 
 
-def _solids(shape) -> list:
+def _solids(shape: object) -> list:
     """The leaves of a build123d assembly that have faces (curve compounds carry no triangles)."""
     import build123d as bd
 
@@ -60,12 +64,12 @@ def _solids(shape) -> list:
 
 def write_mesh(
     fmt: str,
-    shape,
+    shape: object,
     path: str | Path,
     deflection: float | None = None,
     angular: float = ANGULAR_DEFLECTION,
     length_unit: str = DEFAULT_LENGTH_UNIT,
-    build=None,
+    build: TubeBuild | None = None,
 ) -> None:
     """Write ``shape`` as ``fmt`` ('stl', '3mf', 'gltf' or 'glb') to ``path`` (not atomic);
     its coordinates are in ``length_unit``. Its triangles stay within ``deflection`` (model

@@ -22,10 +22,17 @@ from __future__ import annotations
 import ctypes
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from tubecad.core.errors import ParameterError
+
+if TYPE_CHECKING:
+    import build123d as bd
+    from OCP.TopoDS import TopoDS_Shape
+
+    from tubecad.brep import TubeBuild
 
 #: default linear deflection of a mesh, relative to the smallest tube radius (or size) meshed
 RELATIVE_DEFLECTION = 1e-3
@@ -63,7 +70,7 @@ def checked_tolerance(
     return float(linear), math.radians(angle_deg)
 
 
-def tessellate(parts: list, deflection: float, angular: float, build=None) -> None:
+def tessellate(parts: list, deflection: float, angular: float, build: TubeBuild | None = None) -> None:
     """Triangulate the faces of ``parts`` (build123d shapes): ``build``'s tube or wall faces
     on their curvature-line grid (they are the same faces in an assembly that holds the
     build's wall), every other part by BRepMesh with absolute tolerances. Remove them with
@@ -80,7 +87,7 @@ def tessellate(parts: list, deflection: float, angular: float, build=None) -> No
     # nodes do not follow yet (they follow a turn): BRepMesh meshes a closed canal surface
     exact = build.surfaces[0].tube if build is not None else None
     on_grid = exact is not None and (exact.constant_radius or not exact.axis.closed)
-    if on_grid and any(p.wrapped.IsSame(build.shape.wrapped) for p in parts):
+    if build is not None and on_grid and any(p.wrapped.IsSame(build.shape.wrapped) for p in parts):
         triangulate_build(build, deflection, angular)
     rest = [p for p in parts if not BRepTools.Triangulation_s(p.wrapped, deflection)]
     if rest:
@@ -90,7 +97,7 @@ def tessellate(parts: list, deflection: float, angular: float, build=None) -> No
         BRepMesh_IncrementalMesh(whole.wrapped, params)  # the faces in parallel
 
 
-def meshed_deflection(shape) -> float:
+def meshed_deflection(shape: TopoDS_Shape) -> float:
     """The largest deflection OCCT records on the triangulations of ``shape``'s faces (BRepMesh
     records what it reached, which may be a little above what it was asked for)."""
     from OCP.BRep import BRep_Tool
@@ -110,7 +117,7 @@ def meshed_deflection(shape) -> float:
     return largest
 
 
-def face_triangles(shape) -> tuple[np.ndarray, np.ndarray]:
+def face_triangles(shape: TopoDS_Shape) -> tuple[np.ndarray, np.ndarray]:
     """The triangulations on ``shape``'s faces as (vertices n x 3, triangles m x 3, 0-based),
     each triangle counter-clockwise about the outward normal (reversed faces flipped)."""
     from OCP.BRep import BRep_Tool
@@ -139,7 +146,7 @@ def face_triangles(shape) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(nodes), np.concatenate(triangles)
 
 
-def write_3mf(parts: list, path: Path, unit) -> None:
+def write_3mf(parts: list, path: Path, unit: bd.Unit) -> None:
     """One 3MF mesh object per part (named after its label, coloured by its colour), from the
     triangulations on its faces; coincident vertices merged, so each solid is one closed mesh."""
     import build123d as bd

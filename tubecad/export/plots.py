@@ -71,7 +71,9 @@ def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int =
     return fig
 
 
-def write_projections(tube: CurvatureLineTube, folder: str | Path, stem: str = "projections", **kwargs) -> list[Path]:
+def write_projections(
+    tube: CurvatureLineTube, folder: str | Path, stem: str = "projections", **kwargs: int
+) -> list[Path]:
     """Write ``stem``.png and ``stem``.svg into ``folder`` (atomically); return their paths."""
     return save_figure(projection_figure(tube, **kwargs), folder, stem)
 

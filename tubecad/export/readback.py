@@ -18,11 +18,16 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from tubecad.brep import properties as props
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.export.cad import ExportError, import_shape
+
+if TYPE_CHECKING:
+    from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
+
+    from tubecad.brep import TubeBuild
 
 #: samples per file for the read-back measure (spread over the tube faces, at least 2 x 2 each)
 READBACK_SAMPLES = 3000
@@ -36,8 +41,8 @@ class FileAccuracyError(ExportError):
 
 def readback_report(
     path: str | Path,
-    written,
-    build=None,
+    written: object,
+    build: TubeBuild | None = None,
     target: str | Path | None = None,
     wall_solids: int | None = None,
     length_unit: str = DEFAULT_LENGTH_UNIT,
@@ -71,7 +76,7 @@ def readback_report(
     return out
 
 
-def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> dict[str, Any]:
+def measure_file(shape: TopoDS_Shape, build: TubeBuild, target: Path, wall_solids: int | None = None) -> dict[str, Any]:
     """The file's tube faces against the exact tubes (build.radii on build's axis); raises
     FileAccuracyError when the file does not meet the build's tolerance or orthogonality.
     ``wall_solids``: see :func:`readback_report`."""
@@ -122,7 +127,7 @@ def measure_file(shape, build, target: Path, wall_solids: int | None = None) -> 
 def mesh_report(
     path: str | Path,
     fmt: str,
-    build=None,
+    build: TubeBuild | None = None,
     deflection: float | None = None,
     target: str | Path | None = None,
     wall_solids: int | None = None,
@@ -169,7 +174,7 @@ def mesh_report(
     return out
 
 
-def _first_solids(shape, n: int):
+def _first_solids(shape: TopoDS_Shape, n: int) -> TopoDS_Compound:
     """A compound of the first ``n`` solids of ``shape``, in file order."""
     from OCP.BRep import BRep_Builder
     from OCP.TopAbs import TopAbs_SOLID

@@ -66,7 +66,7 @@ class Exportable:
     length_unit: str = DEFAULT_LENGTH_UNIT
 
 
-def _cad(fmt: str):
+def _cad(fmt: str) -> Writer:
     def write(item: Exportable, path: Path, name: str) -> None:
         from tubecad.export.cad import write_cad
 
@@ -75,7 +75,7 @@ def _cad(fmt: str):
     return write
 
 
-def _mesh(fmt: str):
+def _mesh(fmt: str) -> Writer:
     def write(item: Exportable, path: Path, name: str) -> None:
         from tubecad.export.mesh import write_mesh
         from tubecad.export.meshing import ANGULAR_DEFLECTION
@@ -86,7 +86,7 @@ def _mesh(fmt: str):
     return write
 
 
-def _polylines(fmt: str):
+def _polylines(fmt: str) -> Writer:
     def write(item: Exportable, path: Path, name: str) -> None:
         from tubecad.stiffeners.lines import polylines_csv_text, polylines_json_text
 
@@ -99,7 +99,7 @@ def _polylines(fmt: str):
     return write
 
 
-def _shape(item: Exportable, path: Path):
+def _shape(item: Exportable, path: Path) -> Any:
     if item.shape is None:
         raise ParameterError(f"output {path.name!r}: this output has no shape to write")
     return item.shape
@@ -127,7 +127,11 @@ def write_output(
 
 
 def export_shape(
-    shape, path: str | Path, step_schema: str = "AP214", name: str | None = None, length_unit: str = DEFAULT_LENGTH_UNIT
+    shape: object,
+    path: str | Path,
+    step_schema: str = "AP214",
+    name: str | None = None,
+    length_unit: str = DEFAULT_LENGTH_UNIT,
 ) -> Path:
     """Write ``shape`` (OCCT or build123d/CadQuery) to ``path`` in the format of its extension:
     STEP, IGES, BREP, or a mesh for visual use (STL, 3MF, glTF), see :data:`FORMATS`.

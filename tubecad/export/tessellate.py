@@ -38,8 +38,9 @@ lie on the cone's generators; a tube solid's end discs are strips across their c
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from OCP.BRep import BRep_Builder
@@ -55,6 +56,15 @@ from tubecad.brep.faces import CLOSING_MERGE
 from tubecad.brep.layout import stringer_parameters
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.occ_compat import as_edge, as_face
+
+if TYPE_CHECKING:
+    from OCP.TopoDS import TopoDS_Edge, TopoDS_Face
+
+    from tubecad.brep import TubeBuild
+    from tubecad.brep.faces import PatchFaces
+    from tubecad.curves import Axis
+    from tubecad.fitting.exact_section import TubeSurface
+    from tubecad.surface.protocol import CurvatureLineSurface
 
 #: the share of the linear tolerance given to each grid direction (around, along)
 SHARE = 0.45
@@ -88,7 +98,9 @@ def grid_angles(stringers_deg: Sequence[float], step: float) -> list[np.ndarray]
     return [np.linspace(a, b, max(1, math.ceil(math.radians(b - a) / step)) + 1) for a, b in zip(ends[:-1], ends[1:])]
 
 
-def grid_arcs(axis, s_rings: Sequence[float], radius: float, tolerance: float, angular: float) -> list[np.ndarray]:
+def grid_arcs(
+    axis: Axis, s_rings: Sequence[float], radius: float, tolerance: float, angular: float
+) -> list[np.ndarray]:
     """Per ring bay: the arc lengths (both ends) of its grid rows, equally spaced. The bay's
     curvature is sampled up to its ends from inside: at a route's line-bend joint k jumps,
     and the bend's k must not refine the straight bay beside it."""
@@ -102,7 +114,7 @@ def grid_arcs(axis, s_rings: Sequence[float], radius: float, tolerance: float, a
     return rows
 
 
-def triangulate_build(build, tolerance: float, angular: float) -> int:
+def triangulate_build(build: TubeBuild, tolerance: float, angular: float) -> int:
     """Attach a triangulation to every face of ``build.shape`` (a TubeBuild's tube or wall):
     its tube faces on the curvature-line grid, its planar caps between the end rings (a
     closed axis has none: its first and last bands share the closing ring's nodes).
@@ -168,7 +180,7 @@ FORM_SAMPLES = (17, 17)
 CANAL_PASSES = 6
 
 
-def canal_grid(build, tolerance: float, angular: float) -> tuple[list[np.ndarray], list[np.ndarray]]:
+def canal_grid(build: TubeBuild, tolerance: float, angular: float) -> tuple[list[np.ndarray], list[np.ndarray]]:
     """The grid of a canal surface's build (its surfaces' ``tube`` CanalSurfaces, the exact
     r + d): per sector its columns' angles chi0 (degrees, both ends), per ring bay its rows'
     s (both ends), as :func:`grid_angles` and :func:`grid_arcs` give a tube's.
@@ -268,10 +280,11 @@ def _canal_errors(
     ring, along = np.zeros(len(angles)), np.zeros(len(arcs))
     diagonal = np.zeros((len(arcs), len(angles)))
 
-    def normal(surface, x: np.ndarray, s: np.ndarray) -> np.ndarray:  # X = c + r n: the sphere's normal
+    # X = c + r n: the sphere's normal
+    def normal(surface: CurvatureLineSurface, x: np.ndarray, s: np.ndarray) -> np.ndarray:
         return (x - surface.axis.position(s)[None]) / surface.radius_law.r(s)[None, :, None]
 
-    def off(chord: np.ndarray, chi0: np.ndarray, s: np.ndarray, surface) -> np.ndarray:
+    def off(chord: np.ndarray, chi0: np.ndarray, s: np.ndarray, surface: CurvatureLineSurface) -> np.ndarray:
         x = surface.points(chi0[:, None], s[None, :])
         return np.abs(np.einsum("...i,...i", chord - x, normal(surface, x, s)))
 
@@ -334,8 +347,8 @@ class _ClosingRing:
 
     def __init__(
         self,
-        surface,
-        patches,
+        surface: TubeSurface,
+        patches: PatchFaces,
         grid: np.ndarray,
         s0: float,
         columns: np.ndarray,
@@ -394,10 +407,10 @@ class _ClosingRing:
 
 
 def _tube_face(
-    builder,
-    surface,
-    patches,
-    face,
+    builder: BRep_Builder,
+    surface: TubeSurface,
+    patches: PatchFaces,
+    face: TopoDS_Face,
     where: tuple[int, int],
     points: np.ndarray,
     angles: np.ndarray,
@@ -438,10 +451,10 @@ def _tube_face(
 
 
 def _closing_face(
-    builder,
-    surface,
-    patches,
-    face,
+    builder: BRep_Builder,
+    surface: TubeSurface,
+    patches: PatchFaces,
+    face: TopoDS_Face,
     where: tuple[int, int],
     points: np.ndarray,
     angles: np.ndarray,
@@ -513,7 +526,13 @@ def _fans(row: np.ndarray, match: np.ndarray, regular: np.ndarray, below: bool) 
     return np.array(triangles, dtype=int).reshape(-1, 3)
 
 
-def _closing_polygons(builder, arcs, ids: np.ndarray, row: _Row, tri) -> None:
+def _closing_polygons(
+    builder: BRep_Builder,
+    arcs: list[tuple[float, float, TopoDS_Edge]],
+    ids: np.ndarray,
+    row: _Row,
+    tri: Poly_Triangulation,
+) -> None:
     """The polygon of each closing arc on a face's closing row: the row's nodes between the
     arc's ends (the arcs whose middle, lifted by 2 pi k, falls within the row)."""
     two_pi = 2.0 * math.pi
@@ -534,7 +553,7 @@ def _closing_polygons(builder, arcs, ids: np.ndarray, row: _Row, tri) -> None:
         raise TubecadError("the closing ring's arcs do not match its mesh nodes")
 
 
-def _caps(build):
+def _caps(build: TubeBuild) -> Iterator[tuple[TopoDS_Face, int, bool]]:
     """(face, end, conical) of each end cap of the solid, end 0 at the start of the span and 1
     at its end (none on an open shell): planar, or a canal wall's piece of the normal cone."""
     span = build.layout.s_rings[0], build.layout.s_rings[-1]
@@ -552,7 +571,13 @@ def _caps(build):
 
 
 def _cap_face(
-    builder, build, face, end: int, rings: list[np.ndarray], first_column: np.ndarray, tolerance: float
+    builder: BRep_Builder,
+    build: TubeBuild,
+    face: TopoDS_Face,
+    end: int,
+    rings: list[np.ndarray],
+    first_column: np.ndarray,
+    tolerance: float,
 ) -> int:
     """The planar cap at ``end`` of the span: a strip between the outer and inner ``rings``
     (a wall), or a fan from the centre (a tube); UV in the plane's own axes. Returns its
@@ -594,7 +619,13 @@ def _cap_face(
 
 
 def _cone_cap_face(
-    builder, build, face, end: int, rings: list[np.ndarray], first_column: np.ndarray, tolerance: float
+    builder: BRep_Builder,
+    build: TubeBuild,
+    face: TopoDS_Face,
+    end: int,
+    rings: list[np.ndarray],
+    first_column: np.ndarray,
+    tolerance: float,
 ) -> int:
     """A canal wall's cap at ``end``, the piece of the normal cone through its outer and inner
     end circles (tubecad.brep.solids.normal_cone_face): the strip between the ``rings``' nodes.
@@ -653,7 +684,7 @@ def _triangulation(points: np.ndarray, uv: np.ndarray, triangles: np.ndarray, to
     return tri
 
 
-def _polygon(builder, edge, node_lists: list[np.ndarray], tri: Poly_Triangulation) -> None:
+def _polygon(builder: BRep_Builder, edge: TopoDS_Edge, node_lists: list[np.ndarray], tri: Poly_Triangulation) -> None:
     """The edge's nodes on ``tri`` (two lists for a seam edge), in the edge's direction."""
     polygons = []
     for nodes in node_lists:
@@ -665,11 +696,11 @@ def _polygon(builder, edge, node_lists: list[np.ndarray], tri: Poly_Triangulatio
 
 
 def mesh_deviation(
-    axis,
+    axis: Axis,
     radii: Sequence[float] | np.ndarray,
     vertices: np.ndarray,
     triangles: np.ndarray,
-    level=None,
+    level: Callable[..., tuple[np.ndarray, np.ndarray]] | None = None,
     scale: float | None = None,
 ) -> tuple[float, float]:
     """(max vertex deviation, max triangle deviation) of a mesh of tubes of ``radii`` about

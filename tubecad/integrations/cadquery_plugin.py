@@ -50,5 +50,6 @@ def curvature_line_wall(
     return self.newObject([cq.Solid(build.shape.wrapped)])
 
 
-cq.Workplane.curvatureLineTube = curvature_line_tube
-cq.Workplane.curvatureLineWall = curvature_line_wall
+# the plugin's methods, patched onto Workplane (CadQuery's plugin convention; its class does not declare them)
+cq.Workplane.curvatureLineTube = curvature_line_tube  # type: ignore[attr-defined]
+cq.Workplane.curvatureLineWall = curvature_line_wall  # type: ignore[attr-defined]

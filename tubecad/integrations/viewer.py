@@ -207,8 +207,8 @@ def style(tree: bd.Compound, wall_alpha: float = WALL_ALPHA) -> bd.Compound:
     for child in tree.children:
         if child.label == "wall":
             for node in (child, *child.children):  # the panels, if any
-                rgb = tuple(node.color or WALL_COLOUR)[:3]
-                node.color = bd.Color(*rgb, wall_alpha)
+                red, green, blue = tuple(node.color or WALL_COLOUR)[:3]
+                node.color = bd.Color(red, green, blue, wall_alpha)
         elif child.label == "curvature_lines":
             for edge in child.children:
                 rgb = LINE_RING_RGB if edge.label.startswith("line_ring_") else LINE_STRINGER_RGB

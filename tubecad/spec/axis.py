@@ -27,7 +27,7 @@ def build_axis(curve: str, values: dict[str, Any], base: Path | None = None, len
         cls = FAMILIES[curve]
         span = span_pair("s", values["s"], cls.s_lower_bound)
         params = {k: v for k, v in values.items() if k not in ("curve", "beta_deg", "s")}
-        return cls(beta_deg=values["beta_deg"], span=span, **params)  # type: ignore[call-arg]
+        return cls(beta_deg=values["beta_deg"], span=span, **params)
     if curve == "natural":
         from tubecad.curves.natural import NaturalAxis
 
@@ -92,7 +92,7 @@ def _points(values: dict[str, Any], base: Path | None) -> np.ndarray:
     path = _file(values["file"], base)
     if path.stat().st_size > MAX_FILE_BYTES:
         raise ParameterError(f"file {values['file']!r} is larger than {MAX_FILE_BYTES} bytes")
-    rows = []
+    rows: list[list[float]] = []
     with open(path, encoding="utf-8", errors="replace") as handle:
         for number, line in enumerate(handle, 1):
             fields = [f.strip() for f in line.replace(";", ",").split(",") if f.strip()]

@@ -4,6 +4,7 @@ and :func:`build_and_export`, the body of ``tubecad build`` for one spec."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -295,7 +296,7 @@ def export_build(
     back and measured before it is moved into place; returns what was measured per file
     (also ``built.report["exports"]``, by path). ``deflection``, ``angular``: the mesh
     outputs' tolerances (default :func:`mesh_tolerance_for`'s)."""
-    from tubecad.export.registry import Exportable, write_output
+    from tubecad.export.registry import Exportable, OutputFormat, write_output
 
     written = [] if written is None else written
     progress = progress if progress is not None else Progress(enabled=False)
@@ -315,13 +316,13 @@ def export_build(
         build=result,
     )
 
-    def check(tmp, fmt, path):
+    def check(tmp: Path, fmt: OutputFormat, path: Path) -> dict[str, Any]:
         progress.advance(1, f"wrote {path.name}")
         return check_output(tmp, fmt, path, shape, result, built.wall_solids, deflection, unit, angular)
 
     progress.step("writing and reading back files", 2 * len(outputs))
     for path in map(Path, outputs):  # STEP of an assembly keeps its names: wall, ring_03, line_ring_03, ...
-        done, info = write_output(item, path, lambda tmp, fmt, path=path: check(tmp, fmt, path))
+        done, info = write_output(item, path, partial(check, path=path))
         written.append(done)
         exports[str(path)] = info
         progress.advance(1, f"checked {path.name}")

@@ -87,7 +87,8 @@ def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
                 key="stiffeners.height",
             )
         return
-    r_in, r_out = (tube.radius, tube.radius) if wall is None else wall.radii(tube.radius)
+    radius = tube.radius_law.constant_value  # a constant radius: the tube's rho
+    r_in, r_out = (radius, radius) if wall is None else wall.radii(radius)
     base = r_out if plan.side == "outside" else r_in
     try:
         for kind, chosen in (("ring", plan.rings), ("stringer", plan.stringers)):

@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from tubecad.fem.settings import AnalysisSettings, MeshSettings
     from tubecad.shop.fabrication import Fabrication
     from tubecad.stiffeners.profiles import Profile
+    from tubecad.surface.protocol import CurvatureLineSurface
 
 #: a [stiffeners] or [panels] choice of layout lines: "all", or their indices
 Selection = Literal["all"] | tuple[int, ...]
@@ -79,7 +80,7 @@ class LayoutSection:
             if value is not None and not isinstance(value, tuple):
                 object.__setattr__(self, name, tuple(value))
 
-    def net(self, tube: Any) -> NetLayout:
+    def net(self, tube: CurvatureLineSurface) -> NetLayout:
         """The layout on ``tube``: the given positions, else the counts (default 11 rings,
         8 stringers) equally spaced; a ParameterError names the key at fault."""
         import numpy as np

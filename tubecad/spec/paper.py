@@ -15,7 +15,7 @@ assembly (its two profiles, 3 high on the rings and 2 on the stringers, are more
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from tubecad.curves import LogSpiral
 from tubecad.surface import CurvatureLineTube
@@ -124,7 +124,8 @@ def write_paper(output: str | Path, nu: int | None = None, ns: int | None = None
 
     output = output_folder(output)
     spec = paper_spec()
-    written = write_projections(spec.tube, output)
+    # PAPER_SPEC's [tube] radius is a number: its surface is the CurvatureLineTube
+    written = write_projections(cast(CurvatureLineTube, spec.tube), output)
     built = build_spec(spec, grid=(DEFAULT_NU if nu is None else nu, DEFAULT_NS if ns is None else ns))
     names = ("paper.step", "paper.iges")  # each file measured as read back before it is moved into place
     exports = export_build(built, [output / name for name in names], written=written)

@@ -30,7 +30,7 @@ import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
 from tubecad.curves import Axis
@@ -52,6 +52,7 @@ from tubecad.spec.model import (
     WallSection,
 )
 from tubecad.surface import CanalSurface, CurvatureLineTube, tube_or_canal
+from tubecad.surface.protocol import CurvatureLineSurface
 
 MAX_SPEC_BYTES = 1_000_000
 
@@ -212,9 +213,7 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
     return TubeSpec(tube, sections, source, model)
 
 
-def _check_build_sections(
-    tube: CurvatureLineTube | CanalSurface, model: SpecModel, fail: Callable[..., SpecError]
-) -> None:
+def _check_build_sections(tube: CurvatureLineSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
     """Check what the B-rep needs ([tube] sizes, [layout], [wall], [fit]) against the tube now,
     so that a bad value is refused before anything is built, by ``report`` as by ``build``.
     The rules themselves live with the B-rep code."""
@@ -248,11 +247,12 @@ def _check_build_sections(
             (model.analysis or AnalysisSection()).settings(unit, bool(tube.axis.closed))
         except ParameterError as exc:
             raise fail(str(exc), _key("analysis", exc)) from None
-    if canal:
-        return _check_canal_sections(tube, model, fail)
+    if canal:  # a varying radius law: only a CanalSurface has one
+        return _check_canal_sections(cast(CanalSurface, tube), model, fail)
     wall = model.wall
     if wall is not None:
-        r_in, r_out = _with_section("wall", fail, lambda: wall.radii(tube.radius), "thickness")
+        radius = tube.radius_law.constant_value  # a constant radius: the tube's rho
+        r_in, r_out = _with_section("wall", fail, lambda: wall.radii(radius), "thickness")
         try:
             CurvatureLineTube(tube.axis, r_out)
         except ParameterError as exc:
@@ -330,7 +330,7 @@ def _key(section: str, exc: TubecadError, default: str | None = None) -> str:
     return key if key == section or key.startswith(f"{section}.") else f"{section}.{key}"
 
 
-def _irregular(exc: RegularityError) -> str:
+def _irregular(exc: TubecadError) -> str:
     return str(exc).replace(
         "(pass allow_irregular=True to build it anyway)", "(set [tube] allow_irregular = true to build it anyway)"
     )

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 from importlib.metadata import PackageNotFoundError, version
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -12,10 +12,11 @@ from tubecad.core.units import DEFAULT_LENGTH_UNIT, density_unit
 from tubecad.spec.grid import DEFAULT_NS, DEFAULT_NU  # noqa: E402  (re-exported)
 from tubecad.surface import CanalSurface, CurvatureLineTube
 from tubecad.surface.checks import area_by_quadrature, axis_distance_errors, net_errors
+from tubecad.surface.protocol import CurvatureLineSurface
 
 
 def tube_report(
-    tube: CurvatureLineTube | CanalSurface,
+    tube: CurvatureLineSurface,
     nu: int = DEFAULT_NU,
     ns: int = DEFAULT_NS,
     length_unit: str = DEFAULT_LENGTH_UNIT,
@@ -23,9 +24,12 @@ def tube_report(
     """Exact measures (docs/MATH.md section 4) and what was measured on an ``nu`` x ``ns`` grid;
     lengths, areas and volumes are in ``length_unit`` (the spec's [units] length), as the
     report states. A canal surface (a radius law) gets :func:`canal_report`."""
-    tube = tube.fast_path()  # a constant law's canal surface: the tube of that radius
-    if not tube.constant_radius:
-        return canal_report(tube, nu, ns, length_unit)
+    fast = tube.fast_path()  # a constant law's canal surface: the tube of that radius
+    if not fast.constant_radius:
+        # a varying radius law: only a CanalSurface has one
+        return canal_report(cast(CanalSurface, fast), nu, ns, length_unit)
+    # fast_path() of a constant radius is the CurvatureLineTube (closed forms, exact measures)
+    tube = cast(CurvatureLineTube, fast)
     net = net_errors(tube, nu, ns)
     area = area_by_quadrature(tube)
     u = np.linspace(0.0, 2.0 * np.pi, 32, endpoint=False)[:, None]
@@ -120,7 +124,7 @@ def _version() -> str:
 
 
 def build_report(
-    build, tube: CurvatureLineTube, nu: int = 48, ns: int = 1500, self_intersection: bool = False
+    build, tube: CurvatureLineSurface, nu: int = 48, ns: int = 1500, self_intersection: bool = False
 ) -> dict[str, Any]:
     """What was measured on a built B-rep shape (issue 3): per surface the fit's deviation
     and orthogonality by dense sampling of the OCCT surface, poles; topology and validity;

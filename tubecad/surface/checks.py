@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tubecad.surface.protocol import CurvatureLineSurface
 from tubecad.surface.tube import CurvatureLineTube
 
 
@@ -25,7 +26,7 @@ class NetErrors:
     ns: int
 
 
-def net_errors(tube: CurvatureLineTube, nu: int = 256, ns: int = 2001, chunk: int = 256) -> NetErrors:
+def net_errors(tube: CurvatureLineSurface, nu: int = 256, ns: int = 2001, chunk: int = 256) -> NetErrors:
     """Measure the curvature-line net on ``nu`` x ``ns`` points (s in chunks to bound memory)."""
     u = np.linspace(0.0, 2.0 * math.pi, nu, endpoint=False)[:, None]
     s_all = np.linspace(*tube.span, ns)

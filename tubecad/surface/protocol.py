@@ -83,7 +83,7 @@ class CurvatureLineSurface(Protocol):
         ...
 
     def derivatives(self, u: ArrayLike, s: ArrayLike) -> SurfaceDerivatives:
-        """X and its partial derivatives in (u, s) up to second order (MATH.md sections 7, 8)."""
+        """X and its partial derivatives in (u, s) up to second order (docs/MATH.md sections 7, 8)."""
         ...
 
     def fundamental_forms(self, u: ArrayLike, s: ArrayLike) -> FundamentalForms:
