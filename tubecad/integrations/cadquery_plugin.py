@@ -51,5 +51,5 @@ def curvature_line_wall(
 
 
 # the plugin's methods, patched onto Workplane (CadQuery's plugin convention; its class does not declare them)
-cq.Workplane.curvatureLineTube = curvature_line_tube  # type: ignore[attr-defined]
-cq.Workplane.curvatureLineWall = curvature_line_wall  # type: ignore[attr-defined]
+cq.Workplane.curvatureLineTube = curvature_line_tube  # type: ignore[attr-defined,unused-ignore]
+cq.Workplane.curvatureLineWall = curvature_line_wall  # type: ignore[attr-defined,unused-ignore]
