@@ -77,7 +77,11 @@ stringers = [0, 2]
 """
 
 
-SAMPLES = Path(__file__).resolve().parent.parent / "samples"
+#: this folder (tests/), the repository, and its samples: tests sit in tests/unit/<package>/,
+#: tests/e2e/ and tests/design/, so they take their paths from here
+TESTS = Path(__file__).resolve().parent
+ROOT = TESTS.parent
+SAMPLES = ROOT / "samples"
 
 
 def sample_wall_spec(name: str) -> str:
@@ -310,3 +314,18 @@ def paper_run(tmp_path_factory) -> CliRun:
 
     root = built_once(tmp_path_factory, "paper", make)
     return CliRun(root, root / "new" / "out")
+
+
+def edges_of(shape) -> list:
+    """The edges of ``shape`` (a build123d or OCP shape), as TopoDS_Edges, in explorer order."""
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+
+    from tubecad.brep import properties as props
+    from tubecad.occ_compat import as_edge
+
+    explorer, out = TopExp_Explorer(props.topods(shape), TopAbs_EDGE), []
+    while explorer.More():
+        out.append(as_edge(explorer.Current()))
+        explorer.Next()
+    return out

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from OCP.BRep import BRep_Tool
 from OCP.BRepTools import BRepTools
+from OCP.Geom import Geom_BSplineSurface
 from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Plane
 from OCP.GeomAdaptor import GeomAdaptor_Surface
 from OCP.GeomLib import GeomLib_IsPlanarSurface
@@ -34,6 +35,7 @@ from OCP.TopoDS import TopoDS_Face
 
 from tubecad.brep.properties import topods
 from tubecad.curves.axis import Axis
+from tubecad.fitting.nurbs import SurfaceArrays
 from tubecad.occ_compat import as_face
 from tubecad.surface import CurvatureLineTube
 from tubecad.surface.checks import distance_to_axis
@@ -60,6 +62,8 @@ def sample_face(face: TopoDS_Face, nu: int, nv: int) -> tuple[np.ndarray, np.nda
     u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
     us = u0 + (np.arange(nu) + 0.37) * (u1 - u0) / nu
     vs = v0 + (np.arange(nv) + 0.29) * (v1 - v0) / nv
+    if isinstance(surface, Geom_BSplineSurface):  # what tubecad writes and reads back: on the grid at once
+        return tuple(a.reshape(-1, 3) for a in SurfaceArrays.from_occ(surface).grid_d1(us, vs))  # type: ignore[return-value]
     out = np.empty((3, nu * nv, 3))
     p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
     k = 0

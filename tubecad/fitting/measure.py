@@ -1,6 +1,7 @@
 """Measure an OCCT tube surface against the exact tube by dense sampling.
 
-The OCCT surface itself is evaluated (Geom_Surface.D1), never the fitter's residual:
+The OCCT surface itself is evaluated (its poles, weights and knots, on the whole grid at once:
+:class:`tubecad.fitting.nurbs.SurfaceArrays`), never the fitter's residual:
 - deviation: max |S_occ(u, s) - S_exact(theta(u), s)| (parameter-matched, so an upper
   bound of the distance to the exact tube);
 - orthogonality: max |cos| of the angle between dS/du and dS/ds.
@@ -11,9 +12,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from OCP.gp import gp_Pnt, gp_Vec
 
 from tubecad.fitting.exact_section import TubeSurface
+from tubecad.fitting.nurbs import SurfaceArrays
 
 
 @dataclass(frozen=True)
@@ -30,16 +31,7 @@ def measure_surface(ts: TubeSurface, nu: int = 48, ns: int = 1500) -> SurfaceMea
     us = u0 + (np.arange(nu) + 0.37) * (u1 - u0) / nu
     ss = np.linspace(s0, s1, ns)
     ss[1:-1] += 0.29 * (ss[1] - ss[0])  # off the sample lattice of the fit, inside the span
-    pts = np.empty((nu, ns, 3))
-    du = np.empty((nu, ns, 3))
-    ds = np.empty((nu, ns, 3))
-    p, vu, vs = gp_Pnt(), gp_Vec(), gp_Vec()
-    for i, u in enumerate(us):
-        for j, s in enumerate(ss):
-            surf.D1(u, s, p, vu, vs)
-            pts[i, j] = p.X(), p.Y(), p.Z()
-            du[i, j] = vu.X(), vu.Y(), vu.Z()
-            ds[i, j] = vs.X(), vs.Y(), vs.Z()
+    pts, du, ds = SurfaceArrays.from_occ(surf).grid_d1(us, ss)
     exact = ts.tube.points(ts.theta_at(us)[:, None], ts.s_at(ss)[None, :])
     deviation = np.linalg.norm(pts - exact, axis=-1).max()
     cos = np.abs(np.einsum("ijk,ijk->ij", du, ds)) / np.linalg.norm(du, axis=-1) / np.linalg.norm(ds, axis=-1)

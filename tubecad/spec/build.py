@@ -202,6 +202,7 @@ def check_output(
 ) -> dict[str, Any]:
     """Read a just-written temporary file back and measure it (tubecad.export.readback);
     raises if it does not hold the build's tolerance, so the file is never moved into place.
+    ``shape``: the shape written (or its :class:`~tubecad.export.readback.WrittenShape`);
     ``wall_solids``: for an assembly, how many of its first solids are the wall;
     ``length_unit``: the model's unit, which the file is read back into."""
     from tubecad.export.readback import mesh_report, readback_report
@@ -296,6 +297,7 @@ def export_build(
     back and measured before it is moved into place; returns what was measured per file
     (also ``built.report["exports"]``, by path). ``deflection``, ``angular``: the mesh
     outputs' tolerances (default :func:`mesh_tolerance_for`'s)."""
+    from tubecad.export.readback import WrittenShape
     from tubecad.export.registry import Exportable, OutputFormat, write_output
 
     written = [] if written is None else written
@@ -316,9 +318,13 @@ def export_build(
         build=result,
     )
 
+    reference = WrittenShape(shape)  # its area and volume integrated once for all the files
+    if shape is result.shape and "volume" in built.report.get("brep", {}):
+        reference = WrittenShape(shape, {"volume": built.report["brep"]["volume"]})  # build_report's, of this shape
+
     def check(tmp: Path, fmt: OutputFormat, path: Path) -> dict[str, Any]:
         progress.advance(1, f"wrote {path.name}")
-        return check_output(tmp, fmt, path, shape, result, built.wall_solids, deflection, unit, angular)
+        return check_output(tmp, fmt, path, reference, result, built.wall_solids, deflection, unit, angular)
 
     progress.step("writing and reading back files", 2 * len(outputs))
     for path in map(Path, outputs):  # STEP of an assembly keeps its names: wall, ring_03, line_ring_03, ...

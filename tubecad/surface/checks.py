@@ -52,6 +52,10 @@ def area_by_quadrature(tube: CurvatureLineTube, nu: int = 64, panels: int = 64, 
     return float((jac * ws).sum() * (2.0 * math.pi / nu))
 
 
+#: Newton's steps below this fraction of the span are round-off: the iteration stops there
+CONVERGED = 1e-15
+
+
 def distance_to_axis(
     axis, points: np.ndarray, s_guess: np.ndarray | None = None, iters: int = 12
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -73,13 +77,20 @@ def distance_to_axis(
 
         samples = np.linspace(lo, hi, 4001)
         s_guess = samples[cKDTree(axis.position(samples)).query(p)[1]]
-    x = inside(np.asarray(s_guess, dtype=float))
+    flat_p = p.reshape(-1, 3)
+    flat_x = (inside(np.asarray(s_guess, dtype=float)) * np.ones(p.shape[:-1])).ravel().copy()
+    active = np.arange(len(flat_x))  # the points still moving: a converged one is left where it is
     for _ in range(iters):
-        a = axis.at(x)
-        r = p - a.position
+        a = axis.at(flat_x[active])
+        r = flat_p[active] - a.position
         f = np.einsum("...i,...i", r, a.t)
         fp = -1.0 + np.einsum("...i,...i", r, a.curvature_vector)
-        x = inside(x - f / fp)
+        step = f / fp
+        flat_x[active] = inside(flat_x[active] - step)
+        active = active[np.abs(step) > CONVERGED * (hi - lo)]
+        if not len(active):
+            break
+    x = flat_x.reshape(p.shape[:-1])
     return np.linalg.norm(p - axis.position(x), axis=-1), x
 
 
@@ -107,17 +118,24 @@ def envelope_distance(
             g = np.linalg.norm(flat[rows, None, :] - centres[None, :, :], axis=-1) - radii[None, :]
             best[rows] = np.argmin(g, axis=1)
         s_guess = samples[best].reshape(p.shape[:-1])
-    x = np.clip(np.asarray(s_guess, dtype=float), lo, hi)
+    flat_p = p.reshape(-1, 3)
+    flat_x = (np.clip(np.asarray(s_guess, dtype=float), lo, hi) * np.ones(p.shape[:-1])).ravel().copy()
+    active = np.arange(len(flat_x))  # the points still moving
     for _ in range(iters):
-        a = axis.at(x)
-        r = p - a.position
+        xa = flat_x[active]
+        a = axis.at(xa)
+        r = flat_p[active] - a.position
         d = np.linalg.norm(r, axis=-1)
         along = np.einsum("...i,...i", r, a.t)
-        slope = -along / d - law.dr(x)
-        bend = (1.0 - np.einsum("...i,...i", r, a.curvature_vector)) / d - along**2 / d**3 - law.ddr(x)
+        slope = -along / d - law.dr(xa)
+        bend = (1.0 - np.einsum("...i,...i", r, a.curvature_vector)) / d - along**2 / d**3 - law.ddr(xa)
         with np.errstate(divide="ignore", invalid="ignore"):
             step = np.where(bend > 0.0, slope / bend, 0.0)
-        x = np.clip(x - step, lo, hi)
+        flat_x[active] = np.clip(xa - step, lo, hi)
+        active = active[np.abs(step) > CONVERGED * (hi - lo)]
+        if not len(active):
+            break
+    x = flat_x.reshape(p.shape[:-1])
     return np.linalg.norm(p - axis.position(x), axis=-1) - law.r(x), x
 
 

@@ -15,7 +15,7 @@ the tube's grid and step rules), ``fast_path()`` gives the object that takes it.
 
 :class:`~tubecad.surface.tube.CurvatureLineTube` and :class:`~tubecad.surface.canal.CanalSurface`
 both satisfy :class:`CurvatureLineSurface`; code after the surface asks these members, never
-the concrete class (tests/test_architecture.py checks it).
+the concrete class (tests/design/test_architecture.py checks it).
 """
 
 from __future__ import annotations

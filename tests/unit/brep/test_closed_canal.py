@@ -1,0 +1,291 @@
+"""Canal surfaces on closed axes: the radius law closes (a periodic law; a table whose last
+r repeats the first is the periodic cubic spline), the stringers come back to the closing
+ring moved by a Moebius map of the circle, phi(chi0) = chi(chi0, s1) + h, and the shell,
+solid and wall are valid closed B-reps (no caps, the wall's inner shell its cavity).
+
+Independent facts: the volume a closed canal surface encloses is that of its
+characteristic discs swept round the loop, pi Int (r q)^2 (q^2 - r r'') ds, integrated here
+by scipy's quad from the closed-form law (for a constant r it is pi r^2 L, the torus'
+2 pi^2 R r^2 on a circle); the stringers' ends come from integrating their own equation
+d chi / ds = (r' / q) (k2 cos chi - k1 sin chi) by scipy's solve_ivp (not the code's
+Moebius matrix); a periodic table is compared with scipy's periodic CubicSpline.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from conftest import ROOT
+from scipy.integrate import quad, solve_ivp
+from scipy.interpolate import CubicSpline
+
+from tubecad.brep import NetLayout, build_tube_shell, build_tube_solid, build_wall_solid
+from tubecad.brep import properties as props
+from tubecad.brep.solids import exact_volume
+from tubecad.cli.app import cli
+from tubecad.core.errors import ParameterError
+from tubecad.curves.parametric import ParametricAxis
+from tubecad.surface import CanalSurface, CurvatureLineTube, tube_or_canal
+from tubecad.surface.checks import envelope_distance
+
+TWO_PI = 2 * math.pi
+SAMPLE = ROOT / "samples" / "saddle_canal_closed.toml"
+#: every check of OCCT's pre-boolean analyzer but the self-intersection one (minutes on the
+#: trefoil's walls; the torus-like wall below gets every check)
+CHECKS = tuple(mode for mode in props.ANALYZER_MODES if mode != "SelfInterMode")
+R_TORUS, R0, AMPLITUDE = 10.0, 2.0, 0.5  # circle axis; r = R0 + AMPLITUDE cos(2 pi s / L)
+T_R0, T_AMPLITUDE = 0.3, 0.05  # the trefoil's law
+
+
+def circle(t: np.ndarray) -> np.ndarray:
+    return np.stack([R_TORUS * np.cos(t), R_TORUS * np.sin(t), 0.0 * t], axis=-1)
+
+
+def trefoil(t: np.ndarray) -> np.ndarray:
+    return np.stack([np.sin(t) + 2 * np.sin(2 * t), np.cos(t) - 2 * np.cos(2 * t), -np.sin(3 * t)], axis=-1)
+
+
+def cosine_law(r0: float, a: float, length: float):
+    """r, r', r'' of r0 + a cos(2 pi s / L), by hand."""
+    w = TWO_PI / length
+    return (
+        lambda s: r0 + a * math.cos(w * s),
+        lambda s: -a * w * math.sin(w * s),
+        lambda s: -a * w * w * math.cos(w * s),
+    )
+
+
+def swept_volume(r, dr, ddr, length: float, offset: float = 0.0) -> float:
+    """pi Int (R q)^2 (q^2 - R r'') ds round the loop, R = r + offset, by adaptive quadrature."""
+
+    def integrand(s: float) -> float:
+        big, q2 = r(s) + offset, 1.0 - dr(s) ** 2
+        return math.pi * big * big * q2 * (q2 - big * ddr(s))
+
+    return quad(integrand, 0.0, length, limit=400, epsabs=0.0, epsrel=1e-13)[0]
+
+
+def stringer_ends(canal: CanalSurface, dr, chi0: np.ndarray) -> np.ndarray:
+    """chi(s1) of the stringers that start at chi0, by solve_ivp on their own equation."""
+    axis = canal.axis
+
+    def rhs(s: float, chi: np.ndarray) -> np.ndarray:
+        k1, k2 = (float(np.asarray(k).ravel()[0]) for k in axis.normal_development(np.array([s])))
+        slope = dr(s)
+        return slope / math.sqrt(1.0 - slope * slope) * (k2 * np.cos(chi) - k1 * np.sin(chi))
+
+    sol = solve_ivp(rhs, axis.span, chi0, method="DOP853", rtol=1e-12, atol=1e-13)
+    assert sol.success
+    return sol.y[:, -1]
+
+
+@pytest.fixture(scope="module")
+def torus_canal() -> CanalSurface:
+    axis = ParametricAxis(circle, (0.0, TWO_PI))
+    assert axis.closed and abs(axis.holonomy) < 1e-12
+    return CanalSurface(axis, f"{R0!r} + {AMPLITUDE!r} * cos(2 * pi * s / {axis.length!r})")
+
+
+@pytest.fixture(scope="module")
+def trefoil_canal() -> CanalSurface:
+    axis = ParametricAxis(trefoil, (0.0, TWO_PI))
+    assert axis.closed and abs(axis.holonomy) > 1.0
+    return CanalSurface(axis, f"{T_R0!r} + {T_AMPLITUDE!r} * cos(2 * pi * s / {axis.length!r})")
+
+
+def test_a_closed_law_and_a_periodic_table(torus_canal):
+    axis = torus_canal.axis
+    L = axis.length
+    law = torus_canal.radius_law
+    assert law.periodic and "periodic" in law.describe()
+    rows = [[0.0, 2.0], [0.2 * L, 2.6], [0.5 * L, 1.7], [0.8 * L, 2.2], [L, 2.0]]
+    table = tube_or_canal(axis, rows)
+    assert isinstance(table, CanalSurface) and "periodic cubic spline" in table.radius_law.describe()["interpolation"]
+    reference = CubicSpline(np.array(rows)[:, 0], np.array(rows)[:, 1], bc_type="periodic")
+    s = np.linspace(0.0, L, 101)
+    for n, got in enumerate((table.radius_law.r, table.radius_law.dr, table.radius_law.ddr)):
+        assert np.abs(got(s) - reference(s, n)).max() < 1e-12
+        ends = got(np.array([0.0, L]))
+        assert abs(ends[1] - ends[0]) < 1e-12  # C2 round the loop
+    # the periodic table's closed solid: valid, watertight, its volume the discs' swept volume
+    solid = build_tube_solid(table, NetLayout.equal(table, 7, 4))
+    assert props.is_valid(solid.shape) and props.free_edges(solid.shape) == 0
+    expected = swept_volume(
+        lambda x: float(reference(x)), lambda x: float(reference(x, 1)), lambda x: float(reference(x, 2)), L
+    )
+    assert props.volume(solid.shape) == pytest.approx(expected, rel=1e-9)
+    # a constant radius on a closed axis stays today's tube
+    assert isinstance(tube_or_canal(axis, 2.0), CurvatureLineTube)
+
+
+def test_the_closing_map(trefoil_canal):
+    """phi(chi0) = chi(chi0, s1) + h: chi0 + h for a constant law; otherwise from the
+    stringers' own equation, and increasing (the stringers' ends keep their order)."""
+    axis = trefoil_canal.axis
+    chi0 = np.linspace(0.0, TWO_PI, 12, endpoint=False)
+    constant = CanalSurface(axis, 0.3)
+    assert np.abs(constant.closing_angle(chi0) - (chi0 + axis.holonomy)).max() < 1e-15
+    _, dr, _ = cosine_law(T_R0, T_AMPLITUDE, axis.length)
+    phi = trefoil_canal.closing_angle(chi0)
+    assert np.abs(phi - (stringer_ends(trefoil_canal, dr, chi0) + axis.holonomy)).max() < 1e-9
+    assert np.abs(phi - chi0 - axis.holonomy).max() > 1e-3  # moved, not only turned
+    dense = np.linspace(0.0, TWO_PI, 721)
+    assert np.all(np.diff(trefoil_canal.closing_angle(dense)) > 0)
+
+
+@pytest.mark.slow
+def test_the_torus_like_canal_wall(torus_canal):
+    """(a) A circle axis, r = 2 + 0.5 cos(2 pi s / L): the closed shell, solid and wall."""
+    L = torus_canal.length
+    r, dr, ddr = cosine_law(R0, AMPLITUDE, L)
+    assert swept_volume(lambda s: R0, lambda s: 0.0, lambda s: 0.0, L) == pytest.approx(
+        2 * math.pi**2 * R_TORUS * R0**2, rel=1e-13
+    )
+    layout = NetLayout.equal(torus_canal, 9, 4)
+    shell = build_tube_shell(torus_canal, layout).shape
+    assert props.is_valid(shell) and props.free_edges(shell) == 0 and shell.wrapped.Closed()
+    solid = build_tube_solid(torus_canal, layout)
+    assert props.is_valid(solid.shape) and props.free_edges(solid.shape) == 0
+    assert props.count(solid.shape, "face") == 8 * 4  # no caps
+    assert props.volume(solid.shape) == pytest.approx(swept_volume(r, dr, ddr, L), rel=1e-9)
+    thickness = 0.2
+    wall = build_wall_solid(torus_canal, thickness, "centered", layout)
+    shape = wall.shape
+    assert props.is_valid(shape) and props.free_edges(shape) == 0
+    assert props.analyzer_findings(shape) == {}
+    expected = swept_volume(r, dr, ddr, L, 0.1) - swept_volume(r, dr, ddr, L, -0.1)
+    assert props.volume(shape) == pytest.approx(expected, rel=1e-9)
+    assert exact_volume(wall, torus_canal) == pytest.approx(expected, rel=1e-11)
+
+
+@pytest.mark.slow
+def test_the_trefoil_canal_wall(trefoil_canal):
+    """(b) The whole trefoil knot with a periodic law: valid and watertight, every stringer
+    ends on the closing ring at phi(a_j) (the exact circle point there, phi from the
+    stringers' own equation), and the faces within the fit tolerance of the envelope."""
+    axis = trefoil_canal.axis
+    L, h = axis.length, axis.holonomy
+    r, dr, ddr = cosine_law(T_R0, T_AMPLITUDE, L)
+    rings, stringers, thickness = 9, 4, 0.04
+    layout = NetLayout.equal(trefoil_canal, rings, stringers)
+    wall = build_wall_solid(trefoil_canal, thickness, "centered", layout)
+    shape = wall.shape
+    assert props.is_valid(shape) and props.free_edges(shape) == 0
+    assert props.analyzer_findings(shape, CHECKS) == {}
+    # the closing ring is cut at the stringers' starts and their (moved) ends, on both surfaces
+    assert props.count(shape, "vertex") == 2 * ((rings - 2) * stringers + 2 * stringers)
+    expected = swept_volume(r, dr, ddr, L, 0.02) - swept_volume(r, dr, ddr, L, -0.02)
+    assert props.volume(shape) == pytest.approx(expected, rel=1e-9)
+
+    start = axis.at(np.array([0.0]))
+    c0, t0, r1, r2 = start.position[0], start.t[0], start.r1[0], start.r2[0]
+    chi0 = np.radians(layout.stringers_deg)
+    ends = stringer_ends(trefoil_canal, dr, chi0) + h
+    for surface, offset in enumerate((0.02, -0.02)):
+        radius, slope = r(0.0) + offset, dr(0.0)
+        centre, size = c0 - radius * slope * t0, radius * math.sqrt(1.0 - slope * slope)
+        for wire, phi in zip(wall.stringer_wires(surface), ends):
+            end = np.array(tuple(wire.edges()[-1].position_at(1.0)))
+            exact = centre + size * (math.cos(phi) * r1 + math.sin(phi) * r2)
+            assert np.linalg.norm(end - exact) < 1e-8
+    # the fit: measured bound and the faces' points on the exact envelopes
+    assert wall.frame.position_bound <= 0.5 * wall.tolerance
+    for surface, offset in enumerate((0.02, -0.02)):
+        exact = trefoil_canal.offset(offset)
+        points = np.array(
+            [
+                tuple(face.position_at(u, v))
+                for face in [f for row in wall.face_grid(surface) for f in row]
+                for u in (0.1, 0.5, 0.9)
+                for v in (0.1, 0.5, 0.9)
+            ]
+        )
+        distance, _ = envelope_distance(exact, points)
+        assert np.abs(distance).max() < wall.tolerance
+
+
+def run(*args):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+CLOSED_TREFOIL = """
+[axis]
+curve = "parametric"
+x = "40 * (sin(t) + 2 * sin(2 * t))"
+y = "40 * (cos(t) - 2 * cos(2 * t))"
+z = "-40 * sin(3 * t)"
+t = [0.0, 6.283185307179586]
+closed = true
+
+[tube]
+radius = {radius}
+
+[layout]
+rings = 5
+stringers = 4
+
+[wall]
+thickness = 1.0
+"""
+
+
+@pytest.mark.parametrize(
+    "radius, says",
+    [
+        ('"8 + 0.001 * s"', "[tube] radius: on a closed axis the law must close (r and r' at s = "),
+        ('"8 + 0.5 * sin(s / 40)"', "they differ by"),
+        ("[[-10.0, 8.0], [300.0, 9.0], [2000.0, 8.0]]", "[tube] radius: on a closed axis the table must run from"),
+        (
+            "[[0.0, 8.0], [300.0, 9.0], [700.0, 8.5], [1400.0, 8.5]]",
+            "[tube] radius: on a closed axis a table must close (row 0 has r = 8 at s = 0 but row 3 has r = 8.5",
+        ),
+    ],
+)
+def test_a_law_that_does_not_close_is_refused(tmp_path, radius, says):
+    """(c) On a closed axis: a law whose r or r' differs at the ends, a table that does not span
+    the loop or whose ends differ: one line naming radius, exit 2, no file written."""
+    text = CLOSED_TREFOIL.format(radius=radius)
+    if "1400.0" in radius:  # the table's last row at the loop's end
+        from tubecad.spec.parse import load_spec
+
+        path = tmp_path / "probe.toml"
+        path.write_text(CLOSED_TREFOIL.format(radius=8.0))
+        text = text.replace("1400.0", repr(load_spec(path).tube.length))
+    path = tmp_path / "spec.toml"
+    path.write_text(text)
+    out = tmp_path / "x.step"
+    result = run("build", path, "-o", out)
+    assert result.exit_code == 2 and says in result.output, result.output
+    assert len(result.output.strip().splitlines()) == 1 and not out.exists()
+    with pytest.raises(ParameterError, match="radius: on a closed axis"):
+        CanalSurface(ParametricAxis(trefoil, (0.0, TWO_PI)), "0.3 + 0.001 * s")
+
+
+@pytest.mark.slow
+def test_the_closed_canal_sample_builds_to_step(sample_build):
+    """(d) samples/saddle_canal_closed.toml: a closed axis, a radius law, [layout], [wall]."""
+    result = sample_build(SAMPLE.stem)  # the suite's one build of the sample, to STEP and IGES
+    out = result.folder / "a.step"
+    assert result.exit_code == 0, result.output
+    report = result.report()
+    brep = report["brep"]
+    assert brep["valid"] and brep["free_edges"] == 0 and brep["boolean_check"]["findings"] == {}
+    assert brep["volume_relative_error"] < 1e-9 and brep["fit"]["max_deviation"] < 1e-8
+    back = report["exports"][str(out)]
+    assert back["valid"] and back["faces"] == brep["faces"] and back["volume_relative_error"] < 1e-6
+
+
+def test_stiffeners_on_a_closed_canal_wall_are_refused_in_one_line(tmp_path):
+    """The wall closes; its ring frames and stringers are not built on a closed canal axis yet."""
+    path = tmp_path / "spec.toml"
+    path.write_text(
+        CLOSED_TREFOIL.format(radius='"8 + 0.02 * x"') + "\n[stiffeners]\nrings = [1]\nheight = 2.0\nthickness = 0.5\n"
+    )
+    out = tmp_path / "x.step"
+    result = run("build", path, "-o", out)
+    assert (
+        result.exit_code == 2
+        and "[stiffeners] on a canal surface (a radius law) on a closed axis are not built yet" in result.output
+    ), result.output
+    assert len(result.output.strip().splitlines()) == 1 and not out.exists()

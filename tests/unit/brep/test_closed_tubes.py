@@ -1,0 +1,438 @@
+"""Closed tubes (issue 11 item 3): no caps, the rotation-minimising frame comes back turned by
+the holonomy, the stringers meet the closing ring shifted by it, and the shell, solid and
+wall are valid closed B-reps with shared edges.
+
+Independent facts: a circle's tube is the torus (sqrt(x^2 + y^2) - R)^2 + z^2 = rho^2 with
+volume 2 pi^2 R rho^2 (Pappus); a tube's volume is pi rho^2 L whatever its axis, closed or
+not; a trefoil's holonomy is minus its total torsion mod 2 pi (quadrature of the Frenet
+torsion of the closed-form curve, not the code's frame).
+"""
+
+import math
+
+import build123d as bd
+import numpy as np
+import pytest
+from OCP.TopAbs import TopAbs_SHELL
+from OCP.TopExp import TopExp_Explorer
+from scipy.integrate import quad
+
+from tubecad.brep import NetLayout, build_tube_shell, build_tube_solid, build_wall_solid
+from tubecad.brep import properties as props
+from tubecad.core.errors import ParameterError
+from tubecad.curves.parametric import ParametricAxis
+from tubecad.curves.route import RouteAxis
+from tubecad.stiffeners.assembly import build_stiffeners
+from tubecad.stiffeners.profiles import Profile
+from tubecad.surface import CurvatureLineTube
+
+TWO_PI = 2 * math.pi
+#: every check of OCCT's pre-boolean analyzer but the self-intersection one (tens of seconds
+#: on these walls; the faces are cut at the closing ring, which the other checks cover)
+CHECKS = tuple(mode for mode in props.ANALYZER_MODES if mode != "SelfInterMode")
+R_TORUS, RHO_TORUS = 10.0, 1.0
+
+
+def circle(t: np.ndarray) -> np.ndarray:
+    return np.stack([R_TORUS * np.cos(t), R_TORUS * np.sin(t), 0.0 * t], axis=-1)
+
+
+def trefoil(t: np.ndarray) -> np.ndarray:
+    return np.stack([np.sin(t) + 2 * np.sin(2 * t), np.cos(t) - 2 * np.cos(2 * t), -np.sin(3 * t)], axis=-1)
+
+
+def trefoil_derivatives(t: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """x', x'', x''' of the trefoil, by hand."""
+    d1 = np.array([math.cos(t) + 4 * math.cos(2 * t), -math.sin(t) + 4 * math.sin(2 * t), -3 * math.cos(3 * t)])
+    d2 = np.array([-math.sin(t) - 8 * math.sin(2 * t), -math.cos(t) + 8 * math.cos(2 * t), 9 * math.sin(3 * t)])
+    d3 = np.array([-math.cos(t) - 16 * math.cos(2 * t), math.sin(t) - 16 * math.sin(2 * t), 27 * math.cos(3 * t)])
+    return d1, d2, d3
+
+
+def shells(shape) -> int:
+    explorer, n = TopExp_Explorer(props.topods(shape), TopAbs_SHELL), 0
+    while explorer.More():
+        n += 1
+        explorer.Next()
+    return n
+
+
+@pytest.fixture(scope="module")
+def torus_tube() -> CurvatureLineTube:
+    axis = ParametricAxis(circle, (0.0, TWO_PI))
+    assert axis.closed and abs(axis.holonomy) < 1e-12  # a planar loop: the frame closes
+    return CurvatureLineTube(axis, RHO_TORUS)
+
+
+@pytest.fixture(scope="module")
+def trefoil_tube() -> CurvatureLineTube:
+    return CurvatureLineTube(ParametricAxis(trefoil, (0.0, TWO_PI)), 0.3)
+
+
+@pytest.mark.parametrize("stringers", [1, 4])
+def test_the_closed_tube_of_a_circle_is_the_torus(torus_tube, stringers):
+    build = build_tube_solid(torus_tube, NetLayout.equal(torus_tube, 5, stringers))
+    shape = build.shape
+    assert props.is_valid(shape) and props.free_edges(shape) == 0
+    assert props.count(shape, "face") == 4 * stringers  # no caps; the closing ring joins the last band to the first
+    assert props.count(shape, "vertex") == 4 * stringers  # holonomy 0: every stringer ends where it started
+    assert props.volume(shape) == pytest.approx(2 * math.pi**2 * R_TORUS * RHO_TORUS**2, rel=1e-10)
+    for face in shape.faces():  # every point of every face on the torus
+        for u in np.linspace(0.05, 0.95, 5):
+            for v in np.linspace(0.0, 1.0, 5):
+                x, y, z = face.position_at(u, v)
+                assert abs((math.hypot(x, y) - R_TORUS) ** 2 + z**2 - RHO_TORUS**2) < 2e-8 * RHO_TORUS
+
+
+def test_a_closed_tube_shell_is_closed(trefoil_tube):
+    shell = build_tube_shell(trefoil_tube, NetLayout.equal(trefoil_tube, 5, 3)).shape
+    assert props.is_valid(shell) and props.free_edges(shell) == 0 and shell.wrapped.Closed()
+
+
+@pytest.mark.slow
+def test_the_trefoil_wall_is_a_valid_solid_with_a_cavity(trefoil_tube):
+    rings, stringers = 9, 4
+    build = build_wall_solid(trefoil_tube, 0.06, "centered", NetLayout.equal(trefoil_tube, rings, stringers))
+    shape = build.shape
+    assert props.is_valid(shape) and props.free_edges(shape) == 0
+    assert props.analyzer_findings(shape, CHECKS) == {}
+    assert shells(shape) == 2 and props.count(shape, "face") == 2 * (rings - 1) * stringers
+    length = trefoil_tube.length
+    assert props.volume(shape) == pytest.approx(math.pi * (0.33**2 - 0.27**2) * length, rel=1e-9)
+
+
+def test_the_stringers_meet_the_closing_ring_turned_by_minus_the_total_torsion(trefoil_tube):
+    """Stringer j leaves the closing ring at angle th_j (from r1(0)) and comes back to it at
+    th_j + h: its end vertex is the exact tube point S(th_j, L) and lies on the ring circle at
+    s = 0 at that angle, with h = -Int tau ds mod 2 pi from the closed-form trefoil."""
+    axis = trefoil_tube.axis
+    total, _ = quad(
+        lambda t: (
+            lambda d: float(np.cross(d[0], d[1]) @ d[2] / np.sum(np.cross(d[0], d[1]) ** 2) * np.linalg.norm(d[0]))
+        )(trefoil_derivatives(t)),
+        0.0,
+        TWO_PI,
+        limit=400,
+        epsabs=1e-13,
+        epsrel=1e-13,
+    )
+    holonomy = math.remainder(-total, TWO_PI)
+    assert abs(math.remainder(axis.holonomy - holonomy, TWO_PI)) < 1e-9
+    layout = NetLayout.equal(trefoil_tube, 5, 4)
+    build = build_tube_solid(trefoil_tube, layout)
+    L = axis.span[1]
+    start = axis.at(np.array([0.0]))
+    c0, r1, r2 = start.position[0], start.r1[0], start.r2[0]
+    for wire, theta_deg in zip(build.stringer_wires(), layout.stringers_deg):
+        end = np.array(tuple(wire.edges()[-1].position_at(1.0)))
+        exact = trefoil_tube.points(np.array(math.radians(theta_deg)), np.array(L))
+        assert np.linalg.norm(end - exact) < 1e-8
+        turned = math.radians(theta_deg) + holonomy
+        on_ring = c0 + 0.3 * (math.cos(turned) * r1 + math.sin(turned) * r2)
+        assert np.linalg.norm(end - on_ring) < 1e-8
+    # the closing ring is cut at both the starts and the (shifted) ends: 8 arcs, shared by 8 faces
+    assert props.count(build.shape, "vertex") == (5 - 2) * 4 + 8
+
+
+def test_a_closed_tube_needs_a_ring_besides_the_closing_one(torus_tube):
+    with pytest.raises(ParameterError, match="rings must be >= 3"):
+        build_tube_solid(torus_tube, NetLayout.equal(torus_tube, 2, 4))
+
+
+@pytest.mark.slow
+def test_stiffeners_on_a_closed_wall(trefoil_tube):
+    """Rings (the closing ring one solid, not two halves) and stringers that end on the closing
+    ring at their shifted angle: each a valid solid fit for booleans."""
+    layout = NetLayout.equal(trefoil_tube, 5, 4)
+    wall = build_wall_solid(trefoil_tube, 0.04, "centered", layout)
+    profile = Profile("T", 0.15, 0.02, 0.08, 0.015)
+    stiffeners = build_stiffeners(wall, [0, 2, 4], [0, 1, 2, 3], profile, "outside")
+    assert [st.name for st in stiffeners] == [
+        "ring_00",
+        "ring_02",
+        "stringer_00",
+        "stringer_01",
+        "stringer_02",
+        "stringer_03",
+    ]  # ring 4 is ring 0
+    for st in stiffeners:
+        assert props.is_valid(st.solid) and props.analyzer_findings(st.solid, CHECKS) == {}, st.name
+    closing, middle = (props.volume(st.solid) for st in stiffeners[:2])
+    assert closing == pytest.approx(middle, rel=1e-9)  # the two halves make one whole ring
+
+
+def closed_square_route(side: float = 40.0, bend: float = 5.0) -> RouteAxis:
+    return RouteAxis([[0, 0, 0], [side, 0, 0], [side, side, 0], [0, side, 0], [0, 0, 0]], bend)
+
+
+@pytest.mark.slow
+def test_stringers_on_a_planar_loop_close_on_themselves():
+    """A planar closed route: holonomy 0, so a stringer comes back onto its own start and is
+    one ring-like solid without caps, whose volume is its section's area times the path of
+    its centroid (Pappus)."""
+    axis = closed_square_route()
+    assert axis.closed and abs(axis.holonomy) < 1e-12
+    tube = CurvatureLineTube(axis, 2.0)
+    wall = build_wall_solid(tube, 0.2, "centered", NetLayout.equal(tube, 5, 8))  # 8: GProp is exact on 45 deg arcs
+    assert props.is_valid(wall.shape) and props.analyzer_findings(wall.shape, CHECKS) == {}
+    assert props.volume(wall.shape) == pytest.approx(math.pi * (2.1**2 - 1.9**2) * axis.length, rel=1e-10)
+    profile = Profile("flat", 0.8, 0.2)
+    [stringer] = build_stiffeners(wall, [], [1], profile, "outside")
+    assert props.is_valid(stringer.solid) and props.analyzer_findings(stringer.solid) == {}
+    planar = [f for f in stringer.solid.faces() if f.geom_type == "PLANE" or str(f.geom_type).endswith("PLANE")]
+    assert planar == [] and props.free_edges(stringer.solid) == 0
+    # Pappus, bend by bend: a section of area A whose centroid lies c_n inward of the axis
+    # sweeps A (R_b - c_n) phi_b round each bend and A l along each line, so on a convex
+    # planar loop (sum phi_b = 2 pi) V = A (L - 2 pi c_n). The section is cut mid-leg, where
+    # the axis is (20, 0, 0), its tangent +x and the inward normal +y.
+    [section] = stringer.solid.intersect(
+        bd.Face.make_rect(40, 40, bd.Plane(origin=(20, 0, 0), z_dir=(1, 0, 0)))
+    ).faces()
+    area, centroid = section.area, section.center()
+    assert abs(centroid.X - 20) < 1e-9
+    assert props.volume(stringer.solid) == pytest.approx(area * (axis.length - TWO_PI * centroid.Y), rel=1e-9)
+
+
+def test_a_stringer_that_would_touch_its_own_start_is_refused():
+    """A closed loop slightly out of plane: the frame comes back turned by a small holonomy,
+    less than the stringer's width seen from the axis, so its end would overlap its start."""
+    axis = RouteAxis([[0, 0, 0], [40, 0, 0], [40, 40, 1.0], [0, 40, 3.0], [0, 0, 0]], 5.0)
+    turn = abs(math.degrees(axis.holonomy))
+    assert 1e-3 < turn < 1
+    tube = CurvatureLineTube(axis, 2.0)
+    wall = build_wall_solid(tube, 0.2, "centered", NetLayout.equal(tube, 5, 4))
+    with pytest.raises(ParameterError, match=r"stringer_01 would touch its own start .* holonomy"):
+        build_stiffeners(wall, [], [1], Profile("T", 0.8, 0.2, 0.6, 0.1), "outside")
+
+
+SMALL_CLOSED_SPEC = """
+[axis]
+curve = "parametric"
+x = "sin(t) + 2 * sin(2 * t)"
+y = "cos(t) - 2 * cos(2 * t)"
+z = "-sin(3 * t)"
+t = [0.0, 6.283185307179586]
+
+[tube]
+radius = 0.3
+
+[layout]
+rings = 5
+stringers = 4
+
+[wall]
+thickness = 0.04
+
+[stiffeners]
+rings = "all"
+stringers = [0, 2]
+profile = "flat"
+height = 0.1
+thickness = 0.02
+"""
+
+
+@pytest.mark.slow
+def test_build_a_closed_wall_with_stiffeners_to_step_and_a_closed_mesh(tmp_path):
+    """`tubecad build`: the named STEP reads back valid (wall, one closing ring, the others,
+    stringers) and the report gives the holonomy. The wall's STL, closed and holding its
+    volume, is the next test's (test_a_closed_wall_meshes_on_its_grid_closed_at_the_default_tolerance)."""
+    import json
+
+    from click.testing import CliRunner
+
+    from tubecad.cli.app import cli
+    from tubecad.export.cad import import_shape
+
+    spec = tmp_path / "closed.toml"
+    spec.write_text(SMALL_CLOSED_SPEC)
+    result = CliRunner().invoke(
+        cli, ["build", str(spec), "-o", str(tmp_path / "c.step"), "--report", str(tmp_path / "r.json"), "-q"]
+    )
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert report["closed"] is True and report["holonomy_deg"] == pytest.approx(-127.485438056, abs=1e-6)
+    assert report["brep"]["valid"] and report["brep"]["free_edges"] == 0
+    shape = import_shape(tmp_path / "c.step")
+    assert props.is_valid(shape) and props.count(shape, "solid") == 1 + 4 + 2  # wall, rings 0-3, 2 stringers
+
+
+def test_a_closing_with_a_kink_is_refused(tmp_path):
+    """Ends that meet at a corner (the teardrop x = sin t, y = sin t cos t, whose tangents at
+    t = 0 and pi differ): closed = true is refused in one line naming the key, no file."""
+    from conftest import assert_build_refused
+
+    text = (
+        '[axis]\ncurve = "parametric"\nx = "10 * sin(t)"\ny = "10 * sin(t) * cos(t)"\nz = "0"\n'
+        "t = [0.0, 3.141592653589793]\nclosed = true\n[tube]\nradius = 0.5\n"
+    )
+    assert_build_refused(tmp_path, text, "[axis] closed = true, but the tangents at the axis' ends differ by")
+
+
+@pytest.mark.slow
+def test_a_periodic_build123d_spline_gives_a_closed_wall():
+    """A closed spline Edge of a build123d model: its wall is closed, valid, of volume
+    pi (R^2 - r^2) L."""
+    from tubecad.curves.edge import edge_axis
+
+    points = [(0, 0, 0), (30, 5, 4), (40, 30, -3), (10, 40, 6), (-10, 20, 0)]
+    axis = edge_axis(bd.Spline(*points, periodic=True))
+    assert axis.closed
+    tube = CurvatureLineTube(axis, 2.0)
+    wall = build_wall_solid(tube, 0.4, "centered", NetLayout.equal(tube, 5, 8))
+    assert props.is_valid(wall.shape) and props.free_edges(wall.shape) == 0
+    assert props.analyzer_findings(wall.shape, CHECKS) == {}
+    assert props.volume(wall.shape) == pytest.approx(math.pi * (2.2**2 - 1.8**2) * axis.length, rel=1e-9)
+
+
+# --- closed meshes on the curvature-line grid (tubecad.export.tessellate) ------------------
+def closed_mesh(vertices: np.ndarray, triangles: np.ndarray) -> tuple[set, float]:
+    """(how many triangles use each edge, as a set; the signed volume) of a mesh."""
+    edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1)
+    _, uses = np.unique(edges, axis=0, return_counts=True)
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    return set(uses.tolist()), float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+
+
+def grid_counts(axis, layout, radius: float, tolerance: float, angular: float = 0.1) -> tuple[int, int, float]:
+    """The grid's columns round the tube and row steps along it, from the step rules alone:
+    each sector between stringers cut into equal steps of at most angle_step, each ring bay
+    into equal steps of at most arc_step at the bay's largest axis curvature (sampled densely
+    inside the bay: the curvature may jump at its ends, a route's line-bend joints); and the
+    ring polygon's area deficit 1 - sum(sin(step)) / (2 pi)."""
+    from tubecad.export.tessellate import angle_step, arc_step
+
+    step = angle_step(radius, tolerance, angular)
+    ends = [*layout.stringers_deg, layout.stringers_deg[0] + 360.0]
+    sectors = [math.radians(b - a) for a, b in zip(ends[:-1], ends[1:])]
+    cuts = [math.ceil(width / step) for width in sectors]
+    deficit = 1.0 - sum(n * math.sin(width / n) for n, width in zip(cuts, sectors)) / TWO_PI
+    rows = 0
+    for s0, s1 in zip(layout.s_rings[:-1], layout.s_rings[1:]):
+        k = float(np.max(np.abs(axis.curvature(np.linspace(s0, s1, 1001)[1:-1]))))
+        rows += max(1, math.ceil((s1 - s0) / arc_step(k, radius, tolerance, angular)))
+    return sum(cuts), rows, deficit
+
+
+def on_closing_ring(axis, vertices: np.ndarray, reach: float) -> int:
+    """How many vertices lie in the closing ring's plane (the normal plane at the span's
+    start), within ``reach`` of the axis."""
+    start = axis.at(np.array([axis.span[0]]))
+    offset = vertices - start.position[0]
+    return int(np.count_nonzero((np.abs(offset @ start.t[0]) < 1e-5) & (np.linalg.norm(offset, axis=1) < reach)))
+
+
+def grid_mesh(build, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
+    """``build`` meshed as the writers mesh it (tubecad.export.meshing.tessellate), its
+    vertices merged by coordinates like a mesh file read back."""
+    from OCP.BRepTools import BRepTools
+
+    from tubecad.export.meshing import face_triangles, tessellate
+
+    tessellate([build.shape], tolerance, 0.1, build)
+    assert BRepTools.Triangulation_s(build.shape.wrapped, tolerance)  # every face and edge: nothing left to BRepMesh
+    vertices, triangles = face_triangles(build.shape.wrapped)
+    _, first, inverse = np.unique(np.round(vertices, 9), axis=0, return_index=True, return_inverse=True)
+    return vertices[first], inverse.reshape(-1)[triangles]
+
+
+@pytest.mark.slow
+def test_a_closed_wall_meshes_on_its_grid_closed_at_the_default_tolerance(tmp_path):
+    """`tubecad build -o x.stl` of the small closed trefoil wall at the default tolerance: the
+    STL is closed (each edge shared by two triangles), its signed volume short of
+    pi (R^2 - r^2) L by the chords (at least the ring polygon's deficit), and it has the open
+    grid's triangles (2 per cell, from the step rules) plus one per extra node on the closing
+    ring, which holds the columns and the columns turned by the holonomy, on both tubes."""
+    import json
+
+    from click.testing import CliRunner
+
+    from tubecad.cli.app import cli
+    from tubecad.export.mesh import read_mesh_triangles
+
+    spec = tmp_path / "plain.toml"
+    spec.write_text(SMALL_CLOSED_SPEC.split("[stiffeners]")[0])
+    out = tmp_path / "x.stl"
+    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(out), "--report", str(tmp_path / "r.json"), "-q"])
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "r.json").read_text())
+    mesh = report["exports"][str(out)]
+    tolerance = 1e-3 * 0.28  # the default: 1e-3 of the smallest radius
+    assert mesh["deflection"] == pytest.approx(tolerance) and mesh["max_triangle_deviation"] <= tolerance
+    vertices, triangles = read_mesh_triangles(out, "stl")
+    uses, volume = closed_mesh(vertices, triangles)
+    assert uses == {2}
+    axis = ParametricAxis(trefoil, (0.0, TWO_PI))
+    assert axis.length == pytest.approx(report["length"], rel=1e-9)
+    columns, rows, deficit = grid_counts(axis, NetLayout.equal(CurvatureLineTube(axis, 0.3), 5, 4), 0.32, tolerance)
+    short = 1.0 - volume / (math.pi * (0.32**2 - 0.28**2) * axis.length)
+    assert deficit < short < 6.5e-4  # measured 5.71e-4; the ring polygons alone 4.89e-4
+    assert on_closing_ring(axis, vertices, 0.5) == 2 * 2 * columns  # h = -127.5 deg: no column turned onto another
+    expected = 2 * (2 * columns * rows) + 2 * (2 * columns)  # two tubes; a fan triangle per extra ring node, twice
+    assert len(triangles) == pytest.approx(expected, rel=0.01)
+    assert len(triangles) < 0.5e6  # BRepMesh made 1.06 M here
+
+
+@pytest.mark.slow
+def test_a_closed_seam_tube_meshes_on_its_grid(trefoil_tube):
+    """One stringer: a single face per band, round the whole tube on the seam edge, both on
+    the first band's closing row and on the last band's (which starts at the stringer's end,
+    turned by the holonomy). Closed, within the tolerance, the grid's triangle count."""
+    tolerance = 0.003
+    build = build_tube_solid(trefoil_tube, NetLayout.equal(trefoil_tube, 5, 1))
+    vertices, triangles = grid_mesh(build, tolerance)
+    uses, volume = closed_mesh(vertices, triangles)
+    assert uses == {2}
+    axis = trefoil_tube.axis
+    columns, rows, deficit = grid_counts(axis, build.layout, 0.3, tolerance)
+    short = 1.0 - volume / (math.pi * 0.3**2 * axis.length)
+    assert deficit < short < 2.4e-3  # measured 2.16e-3; the ring polygon alone 1.66e-3
+    assert on_closing_ring(axis, vertices, 0.5) == 2 * columns
+    assert len(triangles) == pytest.approx(2 * columns * rows + 2 * columns, rel=0.01)
+    from tubecad.export.tessellate import mesh_deviation
+
+    _, sag = mesh_deviation(axis, build.radii, vertices, triangles)
+    assert sag <= tolerance
+
+
+def test_a_planar_closed_route_meshes_on_its_grid_without_extra_ring_nodes():
+    """Holonomy 0: every column ends where it started, so the closing ring has just the
+    columns, and the closed wall has exactly the open grid's triangles."""
+    from tubecad.export.tessellate import mesh_deviation
+
+    tolerance = 0.02
+    axis = closed_square_route()
+    tube = CurvatureLineTube(axis, 2.0)
+    build = build_wall_solid(tube, 0.2, "centered", NetLayout.equal(tube, 5, 8))
+    vertices, triangles = grid_mesh(build, tolerance)
+    uses, volume = closed_mesh(vertices, triangles)
+    assert uses == {2}
+    columns, rows, deficit = grid_counts(axis, build.layout, 2.1, tolerance)
+    short = 1.0 - volume / (math.pi * (2.1**2 - 1.9**2) * axis.length)
+    assert deficit < short < 2.1e-3  # measured 1.94e-3; the ring polygons alone 1.61e-3
+    assert on_closing_ring(axis, vertices, 3.0) == 2 * columns
+    assert len(triangles) == 2 * (2 * columns * rows)
+    _, sag = mesh_deviation(axis, build.radii, vertices, triangles)
+    assert sag <= tolerance
+
+
+def test_stringer_ends_merged_onto_the_next_starts_mesh_without_extra_ring_nodes():
+    """A trefoil flattened to z = -a sin 3t with a chosen for a holonomy of -90 deg (to 1e-13):
+    with 4 stringers each one ends on its neighbour's start (the B-rep merges the vertices,
+    and every column turned by h lands on a column), so the closing ring has just the columns
+    and the closed wall the open grid's triangles."""
+    a = 0.5793423926063525
+    axis = ParametricAxis(lambda t: trefoil(t) * np.array([1.0, 1.0, a]), (0.0, TWO_PI))
+    assert abs(axis.holonomy + math.pi / 2) < 1e-10
+    tube = CurvatureLineTube(axis, 0.3)
+    build = build_wall_solid(tube, 0.04, "centered", NetLayout.equal(tube, 4, 4))
+    assert [len(p.closing_arcs) for p in build.patches] == [4, 4]  # merged: no arcs of their own for the ends
+    tolerance = 0.003
+    vertices, triangles = grid_mesh(build, tolerance)
+    uses, volume = closed_mesh(vertices, triangles)
+    assert uses == {2}
+    columns, rows, deficit = grid_counts(axis, build.layout, 0.32, tolerance)
+    short = 1.0 - volume / (math.pi * (0.32**2 - 0.28**2) * axis.length)
+    assert deficit < short < 2.4e-3  # measured 2.14e-3
+    assert on_closing_ring(axis, vertices, 0.5) == 2 * columns
+    assert len(triangles) == 2 * (2 * columns * rows)

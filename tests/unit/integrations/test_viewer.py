@@ -1,0 +1,449 @@
+"""The viewer (issue 4): `tubecad view SPEC` and `tubecad.show(...)` send the named, coloured
+tree to OCP CAD Viewer.
+
+- What would be sent (OCP_VSCODE_PYTEST=1, no viewer needed): part names, colours, the wall's
+  alpha, and bounding boxes of the tessellation checked against the exact tube.
+- No viewer: exit code 2, one line naming the port, before anything heavy is imported.
+- End to end (slow): the standalone viewer on 127.0.0.1 on a free port, opened in headless
+  Chromium over the DevTools protocol; `tubecad view paper` is run against it and the
+  screenshot must show the model (the splash logo gone, the wall, rings and lines on screen).
+"""
+
+from __future__ import annotations
+
+import base64
+import contextlib
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+import numpy as np
+import pytest
+from conftest import ROOT
+
+KEEP_SCREENSHOT = Path("/tmp/viewer_screenshot.png")  # a copy to look at (the test's own is in tmp_path)
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+def tubecad_command() -> list[str]:
+    exe = Path(sys.executable).parent / "tubecad"
+    return [str(exe)] if exe.exists() else [sys.executable, "-m", "tubecad.cli.console"]
+
+
+def clean_env(home: Path, **extra: str) -> dict[str, str]:
+    """The environment without ocp_vscode's switches, with its own HOME (the viewers' registry
+    ~/.ocpvscode stays untouched)."""
+    env = {k: v for k, v in os.environ.items() if k not in ("OCP_PORT", "OCP_VSCODE_PYTEST", "OCP_VIEWER_PYTEST")}
+    return {**env, "HOME": str(home), "MPLBACKEND": "Agg", "PYTHONUNBUFFERED": "1", **extra}
+
+
+# ---------------------------------------------------------------------------------------------
+# what would be sent
+
+
+def sent_parts(shown) -> dict[str, dict]:
+    """Leaf name -> type, colour, alpha and bounding box (min, max) of its tessellation."""
+    (instances, shapes, _config, _count), _mapping = shown.sent
+    out: dict[str, dict] = {}
+
+    def walk(node: dict) -> None:
+        for part in node.get("parts", []):
+            assert part.get("loc") in (None, ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))), part["name"]
+            if "parts" in part:
+                out[part["name"]] = {"type": "group"}
+                walk(part)
+                continue
+            shape = part["shape"]
+            flat = instances[shape["ref"]]["vertices"] if "ref" in shape else shape.get("edges", shape.get("vertices"))
+            points = np.asarray(flat, dtype=float).reshape(-1, 3)
+            out[part["name"]] = {
+                "type": part["type"],
+                "color": part["color"],
+                "alpha": part.get("alpha", 1.0),
+                "bbox": (points.min(axis=0), points.max(axis=0)),
+            }
+
+    walk(shapes)
+    return out
+
+
+def hex_colour(rgb) -> str:
+    return "#" + "".join(f"{round(c * 255):02x}" for c in tuple(rgb)[:3])
+
+
+def circle_half_extent(radius: float, normal: np.ndarray) -> np.ndarray:
+    """Half the bounding box of a circle of ``radius`` about ``normal``: r sqrt(1 - n_i^2)."""
+    return radius * np.sqrt(np.clip(1.0 - normal**2, 0.0, None))
+
+
+def tube_bbox(axis, radius: float, span) -> tuple[np.ndarray, np.ndarray]:
+    """The exact bounding box of the tube of ``radius`` (its circles' extents along the axis)."""
+    s = np.linspace(*span, 20001)
+    centre, tangent = axis.position(s), axis.frame(s)[0]
+    half = circle_half_extent(radius, tangent)
+    return (centre - half).min(axis=0), (centre + half).max(axis=0)
+
+
+@pytest.fixture(scope="module")
+def small_wall():
+    from tubecad import paper_tube
+    from tubecad.brep import NetLayout, build_wall_solid
+    from tubecad.stiffeners.assembly import build_stiffeners
+    from tubecad.stiffeners.profiles import Profile
+
+    tube = paper_tube()
+    build = build_wall_solid(tube, 2.0, "centered", NetLayout.equal(tube, 5, 4))
+    stiffeners = build_stiffeners(build, [1, 3], [0, 2], Profile("flat", 2.0, 1.0), "inside")
+    return build, stiffeners
+
+
+@pytest.mark.slow
+def test_show_records_the_named_coloured_tree(monkeypatch, small_wall):
+    """Names, colours, the wall's alpha and the bounding boxes of what would be sent."""
+    import tubecad
+    from tubecad.integrations.viewer import LINE_RING_RGB, LINE_STRINGER_RGB, WALL_ALPHA
+    from tubecad.stiffeners.assembly import RING_COLOUR, STRINGER_COLOUR, WALL_COLOUR
+
+    monkeypatch.setenv("OCP_VSCODE_PYTEST", "1")
+    monkeypatch.delenv("OCP_VIEWER_PYTEST", raising=False)
+    build, stiffeners = small_wall
+    shown = tubecad.show(build, stiffeners=stiffeners, port=free_port())  # nothing listens: recorded, not sent
+    assert os.environ.get("OCP_VIEWER_PYTEST") is None  # set for the call only
+    parts = sent_parts(shown)
+    layout, axis = build.layout, build.surfaces[0].tube.axis
+    r_out, r_in = build.radii
+    n_rings, n_stringers = len(layout.s_rings), len(layout.stringers_deg)
+    lines = [f"line_ring_{i:02d}{sfx}" for sfx in ("", "_inner") for i in range(n_rings)]
+    lines += [f"line_stringer_{j:02d}{sfx}" for sfx in ("", "_inner") for j in range(n_stringers)]
+    assert set(parts) == {"wall", "ring_01", "ring_03", "stringer_00", "stringer_02", "curvature_lines", *lines}
+    assert shown.names[:5] == ["wall", "ring_01", "ring_03", "stringer_00", "stringer_02"]
+    assert shown.recorded and shown.summary().startswith(
+        f"tubecad: wall, 2 ring and 2 stringer stiffeners, {len(lines)} curvature lines recorded"
+    )
+
+    # colours: the wall translucent, rings and stringers (stiffeners and lines) each their own
+    wall = parts["wall"]
+    assert wall["type"] == "shapes" and wall["color"] == hex_colour(WALL_COLOUR) and wall["alpha"] == WALL_ALPHA == 0.4
+    for name in ("ring_01", "ring_03"):
+        assert parts[name]["color"] == hex_colour(RING_COLOUR) and parts[name]["alpha"] == 1.0
+    for name in ("stringer_00", "stringer_02"):
+        assert parts[name]["color"] == hex_colour(STRINGER_COLOUR) and parts[name]["alpha"] == 1.0
+    for name in lines:
+        assert parts[name]["type"] == "edges"
+        assert parts[name]["color"] == hex_colour(LINE_RING_RGB if name.startswith("line_ring_") else LINE_STRINGER_RGB)
+    palette = (WALL_COLOUR, RING_COLOUR, STRINGER_COLOUR, LINE_RING_RGB, LINE_STRINGER_RGB)
+    assert len({hex_colour(c) for c in palette}) == len(palette)
+
+    # bounding boxes against the exact tube: the mesh's vertices lie on it, so its box is the
+    # tube's to within the tessellation's chord error (measured: wall 0.06, ring lines 0.002)
+    low, high = tube_bbox(axis, r_out, axis.span)
+    np.testing.assert_allclose(wall["bbox"][0], low, atol=0.1)
+    np.testing.assert_allclose(wall["bbox"][1], high, atol=0.1)
+    for i in range(n_rings):  # a ring line is the circle about c(s_i) with normal t(s_i)
+        centre, tangent = axis.position(layout.s_rings[i]), axis.frame(layout.s_rings[i])[0]
+        for name, radius in ((f"line_ring_{i:02d}", r_out), (f"line_ring_{i:02d}_inner", r_in)):
+            lo, hi = parts[name]["bbox"]
+            np.testing.assert_allclose((lo + hi) / 2, centre, atol=0.01, err_msg=name)
+            np.testing.assert_allclose((hi - lo) / 2, circle_half_extent(radius, tangent), atol=0.01, err_msg=name)
+    width = stiffeners[0].profile.thickness
+    for i in (1, 3):  # a ring frame (flat bar inside, on the inner wall) spans the circle of radius r_in,
+        s_i = layout.s_rings[i]  # its faces in the normal planes at s_i -+ width / 2: wider outside the bend
+        tangent = axis.frame(s_i)[0]
+        lo, hi = parts[f"ring_{i:02d}"]["bbox"]
+        np.testing.assert_allclose(
+            (hi - lo) / 2, circle_half_extent(r_in, tangent) + width / 2 * np.abs(tangent), atol=0.02
+        )
+        off_centre = width / 2 * r_in * float(axis.curvature(s_i))  # measured 0.107 at s = 450
+        assert np.abs((lo + hi) / 2 - axis.position(s_i)).max() < off_centre + 0.02
+    for name, part in parts.items():  # everything lies within the wall's box
+        if "bbox" in part:
+            assert np.all(part["bbox"][0] >= low - 0.1) and np.all(part["bbox"][1] <= high + 0.1), name
+
+
+@pytest.mark.slow
+def test_show_of_a_spec_with_panels(monkeypatch, tmp_path):
+    """A spec path: [panels] become the wall's children, each translucent."""
+    from conftest import PAPER_SPEC
+
+    import tubecad
+
+    spec = tmp_path / "panelled.toml"
+    spec.write_text(
+        PAPER_SPEC + "\n[layout]\nrings = 3\nstringers = 4\n\n[wall]\nthickness = 2.0\n\n[panels]\nseams = [0, 2]\n"
+    )
+    monkeypatch.setenv("OCP_VSCODE_PYTEST", "1")
+    shown = tubecad.show(spec)
+    parts = sent_parts(shown)
+    panels = [f"panel_r{i}_s{j}" for i in range(2) for j in range(2)]
+    assert parts["wall"] == {"type": "group"} and shown.trees[0].label == "panelled"
+    assert shown.names[: 1 + len(panels)] == ["wall", *panels]
+    assert all(parts[p]["alpha"] == 0.4 and parts[p]["type"] == "shapes" for p in panels)
+    assert not any(n.startswith(("ring_", "stringer_")) for n in parts)
+    assert sum(n.startswith("line_") for n in parts) == 2 * (3 + 4)
+    assert shown.summary().startswith("panelled: 4 panels, 14 curvature lines")
+
+
+def test_show_refuses_what_it_cannot_show(monkeypatch):
+    import tubecad
+    from tubecad import ParameterError, SpecError
+
+    monkeypatch.setenv("OCP_VSCODE_PYTEST", "1")
+    with pytest.raises(ParameterError, match="show needs something to show"):
+        tubecad.show()
+    with pytest.raises(ParameterError, match="got int"):
+        tubecad.show(3)
+    with pytest.raises(ParameterError, match="stiffeners, panels, lines and fuse go with a TubeBuild"):
+        tubecad.show("paper", lines=False)
+    with pytest.raises(ParameterError, match=r"wall_alpha must be in \(0, 1\], got 0"):
+        tubecad.show("paper", wall_alpha=0)
+    with pytest.raises(SpecError, match="cannot read spec file"):
+        tubecad.show("no_such_spec.toml")
+    with pytest.raises(ParameterError, match=r"port must be a port number in \[1, 65535\], got 0"):
+        tubecad.show("paper", port=0)
+    monkeypatch.setenv("OCP_PORT", "abc")
+    with pytest.raises(ParameterError, match="OCP_PORT must be a port number"):
+        tubecad.show("paper")
+
+
+# ---------------------------------------------------------------------------------------------
+# no viewer
+
+
+def test_no_viewer_is_one_line_and_exit_2_before_anything_is_built(tmp_path):
+    """The port is checked first: nothing heavy (OCCT, build123d, ocp_vscode) is imported."""
+    port = free_port()
+    code = (
+        "import sys\nfrom tubecad.cli.app import main\ntry:\n    main()\nexcept SystemExit as exc:\n"
+        "    print('EXIT', exc.code, sorted(m for m in ('OCP', 'build123d', 'ocp_vscode', 'numpy') if m in sys.modules))"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code, "view", "paper", "--port", str(port)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env=clean_env(tmp_path),
+    )
+    assert done.stdout.strip().splitlines()[-1] == "EXIT 2 []", done.stdout + done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and f"no viewer on 127.0.0.1:{port}" in lines[0], done.stderr
+    assert f"python -m ocp_viewer --port {port}" in lines[0] and "OCP CAD Viewer" in lines[0]
+
+
+def test_no_viewer_console_script_and_ocp_port(tmp_path):
+    """The installed console script, the port taken from OCP_PORT; a generous guard only
+    (the check itself is a socket connect with a 0.5 s timeout; measured ~0.1 s in all)."""
+    port = free_port()
+    done = subprocess.run(
+        [*tubecad_command(), "view", str(ROOT / "samples" / "helix_stiffened.toml")],
+        capture_output=True,
+        text=True,
+        timeout=30,
+        env=clean_env(tmp_path, OCP_PORT=str(port)),
+    )
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.count("\n") == 1 and f"127.0.0.1:{port}" in done.stderr, done.stderr
+
+
+# ---------------------------------------------------------------------------------------------
+# end to end: the standalone viewer in headless Chromium
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+#: headless as root with a closed network; WebGL runs on SwiftShader
+CHROMIUM_FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--enable-unsafe-swiftshader",
+    "--window-size=1200,800",
+    "--remote-debugging-port=0",
+]
+
+
+def wait_for(condition, what, timeout: float = 60.0, process: subprocess.Popen | None = None):
+    """Poll ``condition`` until it returns something true; ``what`` (a string, or a callable
+    giving one) names it in the failure."""
+    deadline = time.monotonic() + timeout
+    while True:
+        value = condition()
+        if value:
+            return value
+        said = what() if callable(what) else what
+        if process is not None and process.poll() is not None:
+            pytest.fail(f"{said}: the process ended with {process.returncode}")
+        if time.monotonic() > deadline:
+            pytest.fail(f"{said}: not within {timeout} s")
+        time.sleep(0.2)
+
+
+def stop(process: subprocess.Popen) -> None:
+    """End a process we started, and its group (Chromium's helpers)."""
+    if process.poll() is None:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(process.pid, signal.SIGTERM)
+        try:
+            process.wait(10)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait(10)
+
+
+class DevTools:
+    """The least of the Chrome DevTools protocol: one page, calls answered in order."""
+
+    def __init__(self, socket):
+        self.socket = socket
+        self.count = 0
+
+    def call(self, method: str, **params):
+        self.count += 1
+        self.socket.send(json.dumps({"id": self.count, "method": method, "params": params}))
+        while True:
+            message = json.loads(self.socket.recv(timeout=60))
+            if message.get("id") == self.count:
+                assert "error" not in message, message
+                return message["result"]
+
+    def screenshot(self) -> bytes:
+        return base64.b64decode(self.call("Page.captureScreenshot", format="png")["data"])
+
+    def text(self) -> str:
+        return self.call("Runtime.evaluate", expression="document.body.innerText")["result"]["value"]
+
+
+@contextlib.contextmanager
+def devtools(url: str):
+    from websockets.sync.client import connect  # ocp_vscode's own dependency
+
+    with connect(url, max_size=None, open_timeout=10) as socket:
+        yield DevTools(socket)
+
+
+def pixel_counts(png: bytes) -> dict[str, int]:
+    """Pixels of the viewer's canvas (right of the tree, below the toolbar) by colour."""
+    import io
+
+    from PIL import Image
+
+    rgb = np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)[60:, 270:]
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    near = lambda colour, tol=25: np.abs(rgb - np.array(colour)).max(axis=-1) < tol  # noqa: E731
+    return {
+        "logo": int(near((0x5F, 0xA8, 0xF0)).sum()),  # the splash's blue "OCP"
+        "wall": int(((b > r + 15) & (r > 140)).sum()),  # the translucent blue-grey wall over white
+        "stringer_lines": int(((b > r + 60) & (b > 120) & (r < 90)).sum()),  # dark blue
+        "rings": int(((r > g + 40) & (r > b + 40) & (r < 230)).sum()),  # ring frames and lines (not the red grid axis)
+    }
+
+
+@pytest.mark.slow
+@pytest.mark.requires("chromium")  # CI installs Debian's chromium in .ci/run
+def test_view_paper_in_the_standalone_viewer(tmp_path):
+    """`tubecad view paper` against `python -m ocp_viewer` on a free port, seen in headless Chromium."""
+    pytest.importorskip("websockets")
+    port = free_port()
+    env = clean_env(tmp_path)
+    viewer_log = tmp_path / "viewer.log"
+    processes: list[subprocess.Popen] = []
+    try:
+        with open(viewer_log, "w") as log:
+            viewer = subprocess.Popen(
+                [sys.executable, "-m", "ocp_viewer", "--host", "127.0.0.1", "--port", str(port)],
+                stdout=log,
+                stderr=subprocess.STDOUT,
+                env=env,
+                start_new_session=True,
+            )
+        processes.append(viewer)
+        url = f"http://127.0.0.1:{port}/viewer"
+        wait_for(lambda: "OCP Viewer runs at" in viewer_log.read_text(), "the viewer starts", process=viewer)
+
+        profile = tmp_path / "chromium-profile"
+        browser = subprocess.Popen(
+            [CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", url],
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+        )
+        processes.append(browser)
+        active = profile / "DevToolsActivePort"
+        wait_for(lambda: active.is_file() and active.read_text().strip(), "Chromium's DevTools port", process=browser)
+        devtools_port = int(active.read_text().split()[0])
+
+        def page_socket():
+            with urllib.request.urlopen(f"http://127.0.0.1:{devtools_port}/json/list", timeout=5) as answer:
+                pages = [t for t in json.load(answer) if t["type"] == "page" and t["url"].startswith(url)]
+            return pages[0]["webSocketDebuggerUrl"] if pages else None
+
+        with devtools(wait_for(page_socket, "the viewer page in Chromium", process=browser)) as page:
+            # the page registers with the viewer, which relays models only to a registered page
+            wait_for(lambda: "Browser as viewer client registered" in viewer_log.read_text(), "the page registers")
+
+            def splash_on_screen():
+                png = page.screenshot()
+                return png if pixel_counts(png)["logo"] > 5000 else None
+
+            empty = wait_for(splash_on_screen, "the splash logo on the empty viewer")
+            (tmp_path / "empty.png").write_bytes(empty)
+            before = pixel_counts(empty)
+
+            done = subprocess.run(
+                [*tubecad_command(), "view", "paper", "--port", str(port)],
+                capture_output=True,
+                text=True,
+                timeout=600,
+                env=env,
+            )
+            assert done.returncode == 0, done.stderr
+            assert done.stdout.strip() == (
+                f"paper: wall, 9 ring and 4 stringer stiffeners, 38 curvature lines "
+                f"sent to the viewer on 127.0.0.1:{port}"
+            )
+
+            seen: dict[str, int] = {}
+
+            def model_on_screen():
+                png = page.screenshot()
+                counts = pixel_counts(png)
+                seen.update(counts)
+                shown = (
+                    counts["logo"] < 50
+                    and counts["wall"] > 3000
+                    and counts["stringer_lines"] > 3000
+                    and counts["rings"] > 500
+                )
+                return (png, counts) if shown else None
+
+            # thresholds: measured empty (splash) ~22000 logo, 0 wall, ~1200 blue, ~10 ring pixels;
+            # the paper ~0 logo, ~17500 wall, ~14900 blue, ~1900 ring pixels (1200 x 657 page)
+            png, after = wait_for(
+                model_on_screen, lambda: f"the paper on screen (empty: {before}, last: {seen})", timeout=120
+            )
+            print("pixel counts, empty viewer:", before, "with the paper:", after)
+            (tmp_path / "paper.png").write_bytes(png)
+            with contextlib.suppress(OSError):
+                KEEP_SCREENSHOT.write_bytes(png)
+            assert after["stringer_lines"] > 3 * before["stringer_lines"] and after["wall"] > before["wall"] + 3000
+            tree = page.text()  # the viewer's navigation tree names the parts
+            for name in ("paper", "wall", "ring_01", "ring_09", "stringer_00", "stringer_06", "curvature_lines"):
+                assert name in tree, name
+    finally:
+        for process in reversed(processes):
+            stop(process)
