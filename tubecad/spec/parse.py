@@ -284,13 +284,20 @@ def _check_canal_sections(surface: CanalSurface, model: SpecModel, fail: Callabl
     from tubecad.core.tolerance import MIN_SIZE
 
     law, wall = surface.radius_law, model.wall
-    for name in ("stiffeners", "panels"):  # the wall itself closes; its stiffeners and panels do not yet
-        if surface.axis.closed and getattr(model, name) is not None:
+    if surface.axis.closed:  # the wall and its ring frames close; its stringers and panels do not yet
+        if model.stiffeners is not None and model.stiffeners.stringers:
             raise fail(
-                f"[{name}] on a canal surface (a radius law) on a closed axis are not built yet (the closing "
-                "ring and the stringers' ends on it, moved by a Moebius map); the wall alone builds, and a "
-                "constant radius takes them",
-                name,
+                "[stiffeners] stringers on a canal surface (a radius law) on a closed axis are not built yet "
+                "(they end on the closing ring moved by a Moebius map); its ring frames are, and a constant "
+                "radius takes both",
+                "stiffeners.stringers",
+            )
+        if model.panels is not None:
+            raise fail(
+                "[panels] on a canal surface (a radius law) on a closed axis are not built yet (their seams "
+                "close on the closing ring moved by a Moebius map); the wall and its ring frames build, and a "
+                "constant radius takes panels",
+                "panels",
             )
     if wall is not None:
         side = wall.side

@@ -98,18 +98,15 @@ def ring_stiffener(
 ) -> Stiffener:
     """The ring frame at ``s`` on the wall surface ``tube`` it stands on (a tube of radius
     R = tube.radius, or a canal surface): its cross-section swept round as one solid, clipped
-    to the span (:func:`.rings.ring_frame_solid`). On a closed tube the ring at either end of
+    to the span (:func:`.rings.ring_frame_solid`). On a closed axis the ring at either end of
     the span is the closing ring: its halves at both ends, fused into one solid."""
     _check_side(side)
     base = tube.fast_path()  # a constant law's canal surface: the tube of that radius
     s0, s1 = base.span
     closing = base.axis.closed and min(abs(s - s0), abs(s - s1)) <= 1e-9 * (s1 - s0)
-    if closing and not base.constant_radius:
-        raise ParameterError(
-            f"{name}: the closing ring frame of a canal wall (a radius law) on a closed axis is not "
-            "built yet; the other ring frames are"
-        )
-    ends = (s0, s1) if closing else (s,)  # the closing ring of a closed tube stands on both ends of the span
+    # the closing ring of a closed tube or canal surface stands on both ends of the span: a half
+    # at each (clipped there), which meet in the closing circle's normal cone (a plane where r' = 0)
+    ends = (s0, s1) if closing else (s,)
     halves = [bd.Solid(ring_frame_solid(base, at, profile, side, tolerance, name)) for at in ends]
     solid = halves[0] if len(halves) == 1 else _fused(halves, name)
     if base.constant_radius:
