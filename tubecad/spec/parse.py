@@ -284,18 +284,11 @@ def _check_canal_sections(surface: CanalSurface, model: SpecModel, fail: Callabl
     from tubecad.core.tolerance import MIN_SIZE
 
     law, wall = surface.radius_law, model.wall
-    if surface.axis.closed:  # the wall and its ring frames close; its stringers and panels do not yet
-        if model.stiffeners is not None and model.stiffeners.stringers:
-            raise fail(
-                "[stiffeners] stringers on a canal surface (a radius law) on a closed axis are not built yet "
-                "(they end on the closing ring moved by a Moebius map); its ring frames are, and a constant "
-                "radius takes both",
-                "stiffeners.stringers",
-            )
+    if surface.axis.closed:  # the wall, its ring frames and stringers close; its panels do not yet
         if model.panels is not None:
             raise fail(
                 "[panels] on a canal surface (a radius law) on a closed axis are not built yet (their seams "
-                "close on the closing ring moved by a Moebius map); the wall and its ring frames build, and a "
+                "close on the closing ring moved by a Moebius map); the wall and its stiffeners build, and a "
                 "constant radius takes panels",
                 "panels",
             )

@@ -147,10 +147,7 @@ def stringer_stiffener(
         )
     else:
         if base.axis.closed and span is None:
-            raise ParameterError(
-                f"{name}: stringers of a canal wall (a radius law) on a closed axis are not built yet "
-                "(they end on the closing ring moved by a Moebius map); give a span short of it"
-            )
+            _clears_its_start(cast(CanalSurface, base), math.radians(theta_deg), profile, side, name)
         smallest = base.radius_law.min_radius
         if not profile.thickness < 2 * smallest:
             raise ParameterError(
@@ -245,6 +242,26 @@ def _closes_on_itself(axis, corners: list[tuple[float, float]], name: str) -> bo
             f"stringer's angular width {math.degrees(width):.6g} deg; leave it out or narrow the profile"
         )
     return False
+
+
+def _clears_its_start(base: CanalSurface, chi0: float, profile: Profile, side: str, name: str) -> None:
+    """Round a closed axis a canal wall's stringer leaving the closing circle at chi0 comes
+    back to it at phi(chi0) (the Moebius map, :meth:`CanalSurface.closing_angle`), where its
+    end cap must clear its start cap: |phi - chi0| must exceed the section's angular width
+    on the circle of radius r q (a corner w across and v off the wall: atan2(|w|, q (r + v))),
+    else refused, named. A stringer that closes on itself (phi = chi0) is not built on a
+    canal wall yet (a tube's is: one solid, no caps)."""
+    s0 = base.span[0]
+    turn = math.remainder(float(base.closing_angle(chi0)) - chi0, 2 * math.pi)
+    r, q = float(base.radius_law.r(s0)), math.sqrt(1.0 - float(base.radius_law.dr(s0)) ** 2)
+    sign = 1.0 if side == "outside" else -1.0
+    width = max(2.0 * math.atan2(abs(w), q * (r + sign * v)) for w, v in profile.outline())
+    if abs(turn) <= width + 1e-9:
+        raise ParameterError(
+            f"{name} would touch its own start where the closed canal wall closes: it comes back "
+            f"{math.degrees(turn):.6g} deg from where it started (the closing ring's Moebius map), less "
+            f"than its angular width {math.degrees(width):.6g} deg; leave it out or narrow the profile"
+        )
 
 
 def cap_plane(frame, s: float) -> CapPlane:

@@ -13,6 +13,7 @@ Moebius matrix); a periodic table is compared with scipy's periodic CubicSpline.
 
 import math
 
+import build123d as bd
 import numpy as np
 import pytest
 from click.testing import CliRunner
@@ -276,22 +277,58 @@ def test_the_closed_canal_sample_builds_to_step(sample_build):
     assert back["valid"] and back["faces"] == brep["faces"] and back["volume_relative_error"] < 1e-6
 
 
-def test_stringers_on_a_closed_canal_wall_are_refused_in_one_line(tmp_path):
-    """The wall and its ring frames close; its stringers (and panels) are not built on a closed
+def test_panels_on_a_closed_canal_wall_are_refused_in_one_line(tmp_path):
+    """The wall, its ring frames and its stringers close; its panels are not built on a closed
     canal axis yet: refused in one line naming the key, before anything is written."""
-    for extra, says in (
-        (
-            "\n[stiffeners]\nrings = [1]\nstringers = [0]\nheight = 2.0\nthickness = 0.5\n",
-            "[stiffeners] stringers on a canal surface (a radius law) on a closed axis are not built yet",
-        ),
-        ("\n[panels]\nseams = [0]\n", "[panels] on a canal surface (a radius law) on a closed axis are not built yet"),
-    ):
-        path = tmp_path / "spec.toml"
-        path.write_text(CLOSED_TREFOIL.format(radius='"8 + 0.02 * x"') + extra)
-        out = tmp_path / "x.step"
-        result = run("build", path, "-o", out)
-        assert result.exit_code == 2 and says in result.output, result.output
-        assert len(result.output.strip().splitlines()) == 1 and not out.exists()
+    path = tmp_path / "spec.toml"
+    path.write_text(CLOSED_TREFOIL.format(radius='"8 + 0.02 * x"') + "\n[panels]\nseams = [0]\n")
+    out = tmp_path / "x.step"
+    result = run("build", path, "-o", out)
+    says = "[panels] on a canal surface (a radius law) on a closed axis are not built yet"
+    assert result.exit_code == 2 and says in result.output, result.output
+    assert len(result.output.strip().splitlines()) == 1 and not out.exists()
+
+
+@pytest.mark.slow
+def test_a_stringer_round_a_closed_canal_wall_ends_where_its_equation_takes_it(tmp_path):
+    """A stringer all round the closed trefoil's canal wall (r = 8 + 0.02 x): one valid solid,
+    fit for booleans, whose end cap stands on the closing circle at chi(s1) + h, chi(s1) from
+    solve_ivp on d chi / ds = (r' / q) (k2 cos chi - k1 sin chi) (r' = 0.02 t_x) and h the
+    holonomy, while its start cap is at chi0: the Moebius map moves it by -126.9 deg."""
+    from tubecad.spec.parse import load_spec
+    from tubecad.stiffeners.profiles import Profile
+    from tubecad.stiffeners.solids import stringer_stiffener
+
+    spec = tmp_path / "spec.toml"
+    spec.write_text(CLOSED_TREFOIL.format(radius='"8 + 0.02 * x"'))
+    canal = load_spec(spec).tube
+    axis, chi0 = canal.axis, math.radians(30.0)
+    stringer = stringer_stiffener(canal, 30.0, Profile("flat", 3.0, 1.0), tolerance=1e-8, name="stringer_00")
+    assert stringer.solid.is_valid and props.analyzer_findings(stringer.solid, CHECKS) == {}
+    caps = [f for f in stringer.solid.faces() if f.geom_type == bd.GeomType.PLANE]
+    assert len(caps) == 2
+    centre = np.ravel(canal.circle(np.array(axis.span[0]))[0])
+    _, r1, r2 = (np.ravel(v) for v in axis.rotation_minimising_frame(np.array(axis.span[0])))
+    angles = sorted(
+        math.atan2((np.array(list(f.center())) - centre) @ r2, (np.array(list(f.center())) - centre) @ r1) for f in caps
+    )
+    end = stringer_ends(
+        canal, lambda s: 0.02 * float(np.ravel(axis.rotation_minimising_frame(np.array([s]))[0])[0]), np.array([chi0])
+    )[0]
+    expected = math.remainder(end + axis.holonomy, TWO_PI)
+    assert min(abs(math.remainder(a - chi0, TWO_PI)) for a in angles) < 1e-9  # measured 1.6e-14
+    assert min(abs(math.remainder(a - expected, TWO_PI)) for a in angles) < 1e-9  # measured 1.9e-11
+
+
+def test_a_stringer_that_would_touch_its_own_start_is_refused_in_one_line(tmp_path):
+    """On the saddle sample a stringer comes back 0.12 deg past its start, less than its
+    angular width: `tubecad build` refuses it in one line, naming it, and writes nothing."""
+    spec = tmp_path / "spec.toml"
+    spec.write_text(SAMPLE.read_text() + "\n[stiffeners]\nstringers = [0]\nheight = 2.0\nthickness = 0.5\n")
+    out = tmp_path / "c.step"
+    result = run("build", spec, "-o", out, "-q")  # -q: no progress lines, the error alone
+    assert result.exit_code == 2 and "would touch its own start where the closed canal wall closes" in result.output
+    assert len(result.output.strip().splitlines()) == 1 and not out.exists()
 
 
 def saddle(start: float) -> CanalSurface:
