@@ -284,14 +284,6 @@ def _check_canal_sections(surface: CanalSurface, model: SpecModel, fail: Callabl
     from tubecad.core.tolerance import MIN_SIZE
 
     law, wall = surface.radius_law, model.wall
-    if surface.axis.closed:  # the wall, its ring frames and stringers close; its panels do not yet
-        if model.panels is not None:
-            raise fail(
-                "[panels] on a canal surface (a radius law) on a closed axis are not built yet (their seams "
-                "close on the closing ring moved by a Moebius map); the wall and its stiffeners build, and a "
-                "constant radius takes panels",
-                "panels",
-            )
     if wall is not None:
         side = wall.side
         d_in, d_out = _with_section("wall", fail, wall.offsets, "thickness")

@@ -20,7 +20,10 @@ that share them (nothing is sewn, nothing is cut):
 
 Neighbouring panels share their seam faces and caps (one reversed), so the panels fit
 together into the wall exactly. With a single seam a panel is its ring bay all round: the
-wall's faces of those bays and two full normal-cone annuli.
+wall's faces of those bays and two full normal-cone annuli. Round a closed axis the closing
+ring is cut at the seams' start angles chi0 and at their end angles phi(chi0) (the Moebius
+map's): the first bay's caps there run between start angles, the last bay's between end
+angles, both on the closing circle as made at s0 (whose frame its shared edges use).
 """
 
 from __future__ import annotations
@@ -69,6 +72,14 @@ class CanalWallEdges:
         self.outer_surface, self.inner_surface = cast("list[CanalSectionSurface]", build.surfaces)
         self.thickness = float(self.outer_surface.offset - self.inner_surface.offset)
         self.n_s = len(build.layout.stringers_deg)
+        self.last = len(build.layout.s_rings) - 1
+        canal = self.outer_surface.tube
+        # round a closed axis the closing ring (the first and the last, the same edges) is cut at
+        # the stringers' start angles chi0 and at their end angles phi(chi0), the Moebius map's
+        self._closing: dict[int, list[float]] = {}
+        if canal.axis.closed and len(self.outer.rings[0]) > self.n_s:
+            starts = np.radians(np.asarray(build.layout.stringers_deg, dtype=float))
+            self._closing = {0: list(starts), self.last: list(np.asarray(canal.closing_angle(starts), dtype=float))}
         self._radial: dict[tuple[int, int], TopoDS_Edge] = {}
         self._seam: dict[tuple[int, int], TopoDS_Face] = {}
         self._cap: dict[tuple[int, int, int], TopoDS_Face] = {}
@@ -95,15 +106,50 @@ class CanalWallEdges:
         """The whole normal cone (or plane) annulus at ring k between the inner and outer
         circles, its normal along +t."""
         if k not in self._annulus:
-            s = self.build.layout.s_rings[k]
+            s = self.ring_s(k)
             self._annulus[k] = normal_cone_face(
                 s, self.inner_surface, self.inner.rings[k], self.outer_surface, self.outer.rings[k], outward=True
             )
         return self._annulus[k]
 
+    def ring_s(self, k: int) -> float:
+        """Where ring k's circle is made: its s, but the closing ring's last use at s0, whose
+        frame (r1(s0), not r1(s1) turned by the holonomy) its shared edges are parameterised in."""
+        return float(self.build.layout.s_rings[0 if k in self._closing else k])
+
+    def arc_index(self, k: int, j: int) -> int:
+        """The index in ``rings[k]`` of the ring arc that starts at stringer j: j itself, but on
+        the closing ring of a closed axis (cut at both the start and the end angles, in
+        angular order) the arc starting at chi0_j on the first ring and at phi(chi0_j) on the
+        last."""
+        if k not in self._closing:
+            return j
+        angle = self._closing[k][j] % (2.0 * math.pi)
+        starts = [BRep_Tool.Range_s(e)[0] % (2.0 * math.pi) for e in self.outer.rings[k]]
+        gaps = [abs(math.remainder(a - angle, 2.0 * math.pi)) for a in starts]
+        best = int(np.argmin(gaps))
+        if gaps[best] > 1e-7:
+            raise TubecadError(
+                f"no ring arc of the closing ring starts at stringer {j} ({math.degrees(angle):.6g} deg)"
+            )
+        return best
+
+    def arcs(self, patches, k: int, ja: int, jb: int) -> tuple[list[TopoDS_Edge], list[float]]:
+        """The ring arcs of ``patches`` at ring k from stringer ja to jb (jb > ja, indices past
+        the last stringer wrap round), each with its lift: 2 pi where it comes after the
+        circle's seam at u = 2 pi (its u = theta + 2 pi on the cap)."""
+        ring = patches.rings[k]
+        if k not in self._closing:
+            columns = range(ja, jb)
+            return [ring[j % self.n_s] for j in columns], [2.0 * math.pi if j >= self.n_s else 0.0 for j in columns]
+        first, stop = self.arc_index(k, ja % self.n_s), self.arc_index(k, jb % self.n_s)
+        count = (stop - first) % len(ring) or len(ring)
+        indices = [first + i for i in range(count)]
+        return [ring[i % len(ring)] for i in indices], [2.0 * math.pi if i >= len(ring) else 0.0 for i in indices]
+
     def vertex(self, patches, k: int, j: int) -> TopoDS_Vertex:
         """The wall's vertex on ring k and stringer j of ``patches``."""
-        return TopExp.FirstVertex_s(patches.rings[k][j])
+        return TopExp.FirstVertex_s(patches.rings[k][self.arc_index(k, j)])
 
     def radial(self, k: int, j: int) -> TopoDS_Edge:
         """The straight segment from the inner to the outer vertex at ring k on stringer j,
@@ -154,12 +200,10 @@ class CanalWallEdges:
         return self._cap[k, ja, jb]
 
     def _make_cap(self, k: int, ja: int, jb: int) -> TopoDS_Face:
-        s = float(self.build.layout.s_rings[k])
+        s = self.ring_s(k)
         n_s = self.n_s
-        columns = [j % n_s for j in range(ja, jb)]
-        lifts = [2.0 * math.pi if j >= n_s else 0.0 for j in range(ja, jb)]  # wrapped arcs: u = theta + 2 pi
-        arcs_in = [self.inner.rings[k][j] for j in columns]
-        arcs_out = [self.outer.rings[k][j] for j in columns]
+        arcs_in, lifts = self.arcs(self.inner, k, ja, jb)  # wrapped arcs: u = theta + 2 pi
+        arcs_out, _ = self.arcs(self.outer, k, ja, jb)
         radial_a, radial_b = self.radial(k, ja), self.radial(k, jb % n_s)
         high, low = self.outer_surface, self.inner_surface
         centre, _, t, x_dir, _ = high.ring(s)

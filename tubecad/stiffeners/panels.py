@@ -48,11 +48,6 @@ def split_into_panels(build: TubeBuild, seams: list[int], rings: list[int] | Non
     if any(not 0 <= i < n_r for i in rings):
         raise ParameterError(f"rings must be ring indices in [0, {n_r - 1}], got {rings}")
     surface = build.surfaces[0].tube
-    if not surface.constant_radius and surface.axis.closed:
-        raise ParameterError(
-            "panels of a canal wall (a radius law) on a closed axis are not built yet (its "
-            "stringers close on the closing ring moved by a Moebius map); the wall alone builds"
-        )
     # the layout's angles increase with the index: seam bays j_a -> j_b, j_b past n_s wrapping round
     ordered = sorted(set(seams))
     bays = list(zip(ordered, ordered[1:] + [ordered[0] + n_s]))
