@@ -113,8 +113,9 @@ class CanalWallEdges:
         return self._annulus[k]
 
     def ring_s(self, k: int) -> float:
-        """Where ring k's circle is made: its s, but the closing ring's last use at s0, whose
-        frame (r1(s0), not r1(s1) turned by the holonomy) its shared edges are parameterised in."""
+        """The s at which ring k's circle is made: its own, but s0 for the closing ring at either
+        end of a closed axis, since its shared edges are parameterised in the frame at s0
+        (r1(s0), not r1(s1), which the holonomy turns)."""
         return float(self.build.layout.s_rings[0 if k in self._closing else k])
 
     def arc_index(self, k: int, j: int) -> int:
