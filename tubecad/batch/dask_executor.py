@@ -160,9 +160,10 @@ class DaskExecutor:
                 del self._futures[future]
                 self._jobs.pop(index, None)
 
-    def stop(self) -> None:
+    def stop(self) -> list[tuple[int, Any]]:
         self.client.cancel(list(self._futures))
         self._futures.clear()
+        return []
 
     def close(self) -> None:
         self.client.close()

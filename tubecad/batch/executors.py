@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import contextlib
 import multiprocessing
+import signal
 import time
 from collections import deque
 from collections.abc import Callable
@@ -50,8 +51,9 @@ class Executor(Protocol):
     def cancel(self, index: int) -> None:
         """Stop the run of ``index`` (it timed out); its worker is replaced."""
 
-    def stop(self) -> None:
-        """Ctrl-C: stop every run without partial files."""
+    def stop(self) -> list[tuple[int, Any]]:
+        """Ctrl-C: stop every run without partial files; returns the (index, result) of runs
+        that had ended as the stop came (their files are whole and kept)."""
 
     def close(self) -> None:
         """Release the workers."""
@@ -77,8 +79,8 @@ class InlineExecutor:
     def cancel(self, index: int) -> None:  # pragma: no cover - a run here has ended before it could time out
         pass
 
-    def stop(self) -> None:
-        pass
+    def stop(self) -> list[tuple[int, Any]]:
+        return []
 
     def close(self) -> None:
         pass
@@ -88,14 +90,24 @@ def _worker_main(conn, run_name: str) -> None:
     """A worker process: run the jobs it is sent, one at a time, until told to stop."""
     from importlib import import_module
 
-    from tubecad.batch.jobs import init_worker
+    from tubecad.batch import jobs
 
-    init_worker()
+    jobs.init_worker()
+    idle = [False]
+
+    def on_sigterm(signum, frame) -> None:
+        if idle[0]:  # between jobs: nothing to clean up
+            raise SystemExit(0)
+        jobs.on_sigterm(signum, frame)  # in a job: its files removed; sending a result: after it
+
+    signal.signal(signal.SIGTERM, on_sigterm)
     module, _, name = run_name.rpartition(".")
     run = getattr(import_module(module), name)
     while True:
         try:
+            idle[0] = True
             message = conn.recv()
+            idle[0] = False
         except (EOFError, OSError):
             return
         if message is None:
@@ -103,6 +115,8 @@ def _worker_main(conn, run_name: str) -> None:
         index, job = message
         result = run(job)  # SIGTERM in a job: KeyboardInterrupt, its files removed, the process ends
         conn.send((index, result))
+        if jobs._stopping:  # SIGTERM after the job had ended: its result is sent, nothing more to do
+            return
 
 
 @dataclass
@@ -179,16 +193,21 @@ class ProcessExecutor:
             if worker.index == index:
                 self._replace(worker)
 
-    def stop(self) -> None:
+    def stop(self) -> list[tuple[int, Any]]:
         busy = [w for w in self._workers if w.index is not None]
         for worker in busy:
             with contextlib.suppress(Exception):
                 worker.process.terminate()
+        ended: list[tuple[int, Any]] = []
         for worker in busy:
             worker.process.join(10.0)
             if worker.process.is_alive():
                 worker.process.kill()
             worker.index = None
+            with contextlib.suppress(EOFError, OSError):
+                if worker.conn.poll():  # the job had ended, its files written, as the stop came
+                    ended.append(worker.conn.recv())
+        return ended
 
     def close(self) -> None:
         for worker in self._workers:
@@ -246,7 +265,10 @@ def run_jobs(
     except KeyboardInterrupt:
         while True:  # a second Ctrl-C only repeats the stop
             try:
-                executor.stop()
+                for index, result in executor.stop():
+                    if not isinstance(result, Lost):
+                        started.pop(index, None)
+                        finished(index, result)
                 break
             except KeyboardInterrupt:
                 continue

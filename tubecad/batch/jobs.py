@@ -364,10 +364,10 @@ def one_line(exc: BaseException) -> str:
 def init_worker() -> None:
     """Workers leave Ctrl-C to the main process, which stops them with SIGTERM."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, _on_sigterm)
+    signal.signal(signal.SIGTERM, on_sigterm)
 
 
-def _on_sigterm(signum, frame) -> None:
+def on_sigterm(signum, frame) -> None:
     global _stopping
     _stopping = True
     if _busy:

@@ -227,3 +227,19 @@ def test_a_shipped_job_builds_without_the_submitters_files(tmp_path):
     assert sorted(files) == [f"{job.name}.report.json", f"{job.name}.step"]
     assert json.loads(files[f"{job.name}.report.json"])["parameters"]["tube"]["radius"] == 2
     assert not (tmp_path / "out").exists()  # nothing written here: the bytes came back
+
+
+def test_a_result_that_ended_as_ctrl_c_came_is_kept_and_its_worker_ends_at_once():
+    """The race of Ctrl-C with a job's end: the result is in the pipe, its files written,
+    when the stop comes. The stop hands it over (the batch records it) and the worker, now
+    between jobs, ends on SIGTERM without the 10 s grace."""
+    executor = ProcessExecutor(1, run="json.dumps")  # any picklable job in, a result out
+    try:
+        executor.submit(0, [1, 2])
+        (worker,) = executor._workers
+        assert worker.conn.poll(60)  # the job has ended; its result waits to be read
+        start = time.monotonic()
+        assert executor.stop() == [(0, "[1, 2]")]
+        assert time.monotonic() - start < 5.0 and worker.process.exitcode == 0
+    finally:
+        executor.close()
