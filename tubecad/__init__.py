@@ -11,8 +11,9 @@ The pipeline, one folder per stage:
 - :mod:`tubecad.export`: CAD files, meshes and pictures;
 - :mod:`tubecad.fem` and :mod:`tubecad.shop`: analysis meshes and shop-floor outputs;
 - :mod:`tubecad.spec` and :mod:`tubecad.batch`: spec files, their builds and reports, batches;
+- :mod:`tubecad.parts`: the build123d objects ``CurvatureTube`` and ``CurvatureWall``;
 - :mod:`tubecad.cli` and :mod:`tubecad.integrations`: the ``tubecad`` command line, the viewer
-  and the CadQuery plugin;
+  and the CadQuery plugin (``curvatureTube``, ``curvatureWall``);
 - :mod:`tubecad.core`: errors, units, validation, the tolerance policy, atomic writes.
 
 Names are imported on first use (PEP 562), so ``tubecad --help`` and a Ctrl-C at
@@ -34,6 +35,11 @@ _PUBLIC = {
     "expression_curve": "tubecad.curves.parametric",
     "points_axis": "tubecad.curves.points",
     "edge_axis": "tubecad.curves.edge",
+    "RouteAxis": "tubecad.curves.route",
+    "CurvatureTube": "tubecad.parts",
+    "CurvatureWall": "tubecad.parts",
+    "NetLayout": "tubecad.brep.layout",
+    "Profile": "tubecad.stiffeners.profiles",
     "CurvatureLineTube": "tubecad.surface",
     "FundamentalForms": "tubecad.surface",
     "paper_tube": "tubecad.spec.paper",

@@ -24,6 +24,7 @@ LAYERS = [
     {"fem", "shop"},
     {"spec"},
     {"batch"},
+    {"parts"},
     {"integrations"},
     {"cli"},
 ]

@@ -32,12 +32,10 @@ class NetLayout:
     def equal(
         cls, tube: CurvatureLineSurface, rings: int = DEFAULT_RINGS, stringers: int = DEFAULT_STRINGERS
     ) -> NetLayout:
-        """``rings`` frames equally spaced in s (ends included), ``stringers`` at 360 j / M deg
-        (a route's joints are added, see :meth:`explicit`)."""
-        _whole("rings", rings, 2, MAX_RINGS)
-        _whole("stringers", stringers, 1, MAX_STRINGERS)
-        _face_count(rings, stringers)
-        return cls.explicit(tube, np.linspace(*tube.span, rings), 360.0 * np.arange(stringers) / stringers)
+        """``rings`` frames equally spaced in s (:func:`equal_rings`: ends included on an open
+        axis, N distinct rings on a closed one), ``stringers`` at 360 j / M deg (a route's
+        joints are added, see :meth:`explicit`)."""
+        return cls.explicit(tube, equal_rings(tube, rings, stringers), equal_stringers(stringers))
 
     @classmethod
     def explicit(
@@ -76,6 +74,23 @@ class NetLayout:
     @property
     def faces_per_tube(self) -> int:
         return (len(self.s_rings) - 1) * len(self.stringers_deg)
+
+
+def equal_rings(tube: CurvatureLineSurface, rings: int, stringers: int = 1) -> np.ndarray:
+    """The arc lengths of ``rings`` ring frames equally spaced over the span: on an open axis
+    the ends included, s0 + j L / (N - 1), j = 0..N-1; on a closed axis N distinct rings,
+    s0 + j L / N, j = 0..N (the last, at s1, is the first one again: the closing ring). A
+    ParameterError names ``rings`` (at least 2: a closed tube needs a ring besides the closing one)."""
+    closed = tube.axis.closed
+    _whole("rings", rings, 2, MAX_RINGS)
+    _face_count(rings + closed, stringers)
+    return np.linspace(*tube.span, rings + 1 if closed else rings)
+
+
+def equal_stringers(stringers: int) -> np.ndarray:
+    """The angles of ``stringers`` stringers equally spaced round: 360 j / M deg, j = 0..M-1."""
+    _whole("stringers", stringers, 1, MAX_STRINGERS)
+    return 360.0 * np.arange(stringers) / stringers
 
 
 def _whole(name: str, value: object, least: int, most: int) -> None:

@@ -129,7 +129,9 @@ def _checked(tube: object, layout: NetLayout | None) -> NetLayout:
     if tube.axis.closed:
         law.check_closes()  # (checked when the CanalSurface was made; a law made elsewhere is checked here)
         if len(layout.s_rings) < 3:
-            raise ParameterError("a closed tube needs a ring frame besides the closing one: rings must be >= 3")
+            raise ParameterError(
+                "a closed tube needs a ring frame besides the closing one: rings must be >= 2 (s_rings: one arc length inside the span)"
+            )
         return layout
     ends = tube.axis.position(np.array(tube.span))
     gap = float(np.linalg.norm(ends[1] - ends[0]))

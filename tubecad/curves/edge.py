@@ -77,7 +77,9 @@ def edge_axis(
             angle = np.degrees(np.arccos(np.clip(before @ after, -1.0, 1.0)))
             raise ParameterError(
                 f"edge: the {kind} has a kink at ({p.X():.6g}, {p.Y():.6g}, {p.Z():.6g}), its tangent "
-                f"turns {angle:.3g} deg there; a tube needs a tangent-continuous axis"
+                f"turns {angle:.3g} deg there; a tube needs a tangent-continuous axis: for a pipe of "
+                f'straight legs and bends give its corner points to RouteAxis (curve = "route" in a '
+                f"spec) with a bend_radius"
             )
     joints = [(float(t), 0 if (t in below_c2 or t in below_c1) else 1) for t in breaks[1:-1]]
     point = gp_Pnt()

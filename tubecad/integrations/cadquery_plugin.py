@@ -1,14 +1,27 @@
-"""CadQuery Workplane plugin: curvature-line tubes and walls on the Workplane stack.
+"""CadQuery Workplane plugin: ``curvatureTube`` and ``curvatureWall``, the build123d objects'
+twins (the same arguments, the same engine: :mod:`tubecad.parts.engine`).
 
     import cadquery as cq
     import tubecad.integrations.cadquery_plugin  # registers the methods
-    wall = cq.Workplane().curvatureLineWall(tube, thickness=2.0, rings=11, stringers=8)
 
-The solids are in the tube's own (global) coordinates, as built; they are cq.Solid objects
-whose faces are bounded by the chosen ring frames and stringers.
+    axis = cq.Edge.makeSpline([cq.Vector(0, 0, 0), cq.Vector(100, 60, 80), cq.Vector(250, 20, 160)])
+    wall = cq.Workplane().curvatureWall(axis, radius=12, thickness=1.5, rings=9, stringers=8)
+    solid = wall.val()
+    assert len(solid.rings) == 9 and solid.rings[3].label == "ring_03"
+
+The solid is pushed onto the stack in the axis' own (global) coordinates, as built, and
+combined with what is there as CadQuery's own solids are (``combine``); it is a ``cq.Solid``
+whose faces are bounded by the chosen ring frames and stringers, which it carries as
+``rings``, ``stringers`` (``inner_rings``, ``inner_stringers`` on a wall): lists of labelled
+``cq.Wire`` of its own edges. ``curvatureLineTube`` and ``curvatureLineWall`` (a tube object
+in, CadQuery 2.x plugin of tubecad 0.x) are deprecated names of the same.
 """
 
 from __future__ import annotations
+
+import warnings
+from collections.abc import Sequence
+from typing import Any
 
 try:
     import cadquery as cq
@@ -18,38 +31,115 @@ except ImportError as exc:  # CadQuery is an extra: it pins OCP 7.9, build123d 0
         "(CadQuery 2.8 runs on OCP 7.9, so it brings build123d 0.12)"
     ) from exc
 
-from tubecad.brep import NetLayout, build_tube_solid, build_wall_solid
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
-from tubecad.surface import CurvatureLineTube
+from tubecad.occ_compat import as_edge
+from tubecad.parts.engine import PartArguments, build_part, edge_map_of, net_edges
+
+
+def curvature_tube(
+    self: cq.Workplane,
+    axis: Any,
+    radius: Any,
+    rings: int | Sequence[float] = DEFAULT_RINGS,
+    stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+    tolerance: float = DEFAULT_TOLERANCE,
+    bend_radius: float | Sequence[float] | None = None,
+    normal: Sequence[float] | None = None,
+    closed: bool | None = None,
+    allow_irregular: bool = False,
+    combine: bool = True,
+) -> cq.Workplane:
+    """The solid tube of ``radius`` about ``axis`` (arguments: tubecad.CurvatureTube's)."""
+    args = PartArguments(
+        axis, radius, None, "centered", rings, stringers, tolerance, bend_radius, normal, closed, allow_irregular
+    )
+    return _pushed(self, args, combine)
+
+
+def curvature_wall(
+    self: cq.Workplane,
+    axis: Any,
+    radius: Any,
+    thickness: float,
+    side: str = "centered",
+    rings: int | Sequence[float] = DEFAULT_RINGS,
+    stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+    tolerance: float = DEFAULT_TOLERANCE,
+    bend_radius: float | Sequence[float] | None = None,
+    normal: Sequence[float] | None = None,
+    closed: bool | None = None,
+    allow_irregular: bool = False,
+    combine: bool = True,
+) -> cq.Workplane:
+    """The wall of ``thickness`` round the tube of ``radius`` about ``axis`` (arguments:
+    tubecad.CurvatureWall's)."""
+    args = PartArguments(
+        axis, radius, thickness, side, rings, stringers, tolerance, bend_radius, normal, closed, allow_irregular
+    )
+    return _pushed(self, args, combine)
+
+
+def _pushed(workplane: cq.Workplane, args: PartArguments, combine: bool) -> cq.Workplane:
+    _, build = build_part(args)
+    solid = cq.Solid(build.shape.wrapped)
+    net = net_edges(build)
+    edge_map = edge_map_of(solid.wrapped)
+    for name, lines in (
+        ("rings", net.rings),
+        ("stringers", net.stringers),
+        ("inner_rings", net.inner_rings),
+        ("inner_stringers", net.inner_stringers),
+    ):
+        if lines or name in ("rings", "stringers"):
+            setattr(solid, name, [_wire(label, [edge_map.FindKey(i) for i in found]) for label, found in lines.items()])
+    try:
+        base = workplane.findSolid()
+    except ValueError:  # nothing solid on the stack or its parents
+        base = None
+    if not combine or base is None:
+        return workplane.newObject([solid])
+    return workplane.union(solid)
+
+
+def _wire(label: str, edges: list) -> cq.Wire:
+    wire = cq.Wire.assembleEdges([cq.Edge(as_edge(e)) for e in edges])
+    wire.label = label
+    return wire
 
 
 def curvature_line_tube(
-    self: cq.Workplane,
-    tube: CurvatureLineTube,
-    rings: int = DEFAULT_RINGS,
-    stringers: int = DEFAULT_STRINGERS,
-    tolerance: float = DEFAULT_TOLERANCE,
-) -> cq.Workplane:
-    """Push the capped tube solid of ``tube`` onto the stack."""
-    build = build_tube_solid(tube, NetLayout.equal(tube, rings, stringers), tolerance)
-    return self.newObject([cq.Solid(build.shape.wrapped)])
+    self: cq.Workplane, tube, rings=DEFAULT_RINGS, stringers=DEFAULT_STRINGERS, tolerance=DEFAULT_TOLERANCE
+):
+    """Deprecated: ``curvatureTube(tube.axis, tube.radius_law, ...)``."""
+    warnings.warn(
+        "curvatureLineTube(tube, ...) is deprecated: use curvatureTube(axis, radius, ...)",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return curvature_tube(self, tube.axis, tube.radius_law, rings, stringers, tolerance, combine=False)
 
 
 def curvature_line_wall(
     self: cq.Workplane,
-    tube: CurvatureLineTube,
-    thickness: float,
-    side: str = "centered",
-    rings: int = DEFAULT_RINGS,
-    stringers: int = DEFAULT_STRINGERS,
-    tolerance: float = DEFAULT_TOLERANCE,
-) -> cq.Workplane:
-    """Push the wall solid (inner and outer curvature-line tubes, annular caps) onto the stack."""
-    build = build_wall_solid(tube, thickness, side, NetLayout.equal(tube, rings, stringers), tolerance)
-    return self.newObject([cq.Solid(build.shape.wrapped)])
+    tube,
+    thickness,
+    side="centered",
+    rings=DEFAULT_RINGS,
+    stringers=DEFAULT_STRINGERS,
+    tolerance=DEFAULT_TOLERANCE,
+):
+    """Deprecated: ``curvatureWall(tube.axis, tube.radius_law, thickness, ...)``."""
+    warnings.warn(
+        "curvatureLineWall(tube, ...) is deprecated: use curvatureWall(axis, radius, thickness, ...)",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return curvature_wall(self, tube.axis, tube.radius_law, thickness, side, rings, stringers, tolerance, combine=False)
 
 
 # the plugin's methods, patched onto Workplane (CadQuery's plugin convention; its class does not declare them)
+cq.Workplane.curvatureTube = curvature_tube  # type: ignore[attr-defined,unused-ignore]
+cq.Workplane.curvatureWall = curvature_wall  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureLineTube = curvature_line_tube  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureLineWall = curvature_line_wall  # type: ignore[attr-defined,unused-ignore]

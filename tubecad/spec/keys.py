@@ -151,7 +151,7 @@ LAYOUT_KEYS = {
     "rings": Key(
         "integer",
         required=False,
-        help="ring frames equally spaced in s, ends included, 2 to 10000",
+        help="ring frames equally spaced in s, ends included (a closed axis: that many distinct rings), 2 to 10000",
         low=2,
         high=10_000,
         low_open=False,

@@ -83,22 +83,18 @@ class LayoutSection:
     def net(self, tube: CurvatureLineSurface) -> NetLayout:
         """The layout on ``tube``: the given positions, else the counts (default 11 rings,
         8 stringers) equally spaced; a ParameterError names the key at fault."""
-        import numpy as np
-
-        from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS, NetLayout
+        from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS, NetLayout, equal_rings, equal_stringers
 
         if self.s_rings is not None:
             s_rings: Any = self.s_rings
         else:
             rings = DEFAULT_RINGS if self.rings is None else self.rings
-            _keyed("layout.rings", lambda: NetLayout.equal(tube, rings, 1))  # checks the count
-            s_rings = np.linspace(*tube.span, rings)
+            s_rings = _keyed("layout.rings", lambda: equal_rings(tube, rings))  # N distinct rings on a loop
         if self.u_stringers_deg is not None:
             angles: Any = self.u_stringers_deg
         else:
             stringers = DEFAULT_STRINGERS if self.stringers is None else self.stringers
-            _keyed("layout.stringers", lambda: NetLayout.equal(tube, 2, stringers))
-            angles = 360.0 * np.arange(stringers) / stringers
+            angles = _keyed("layout.stringers", lambda: equal_stringers(stringers))
         return _keyed("layout", lambda: NetLayout.explicit(tube, s_rings, angles))
 
 

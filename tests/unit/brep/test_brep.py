@@ -167,12 +167,12 @@ def test_solids_work_in_build123d_and_cadquery():
     solid = tube_solid(tube, NetLayout.equal(tube, 3, 4))
     clipped = solid & bd.Box(400, 400, 40)  # a build123d boolean on the curvature-line solid
     assert clipped.is_valid and 0 < clipped.volume < solid.volume
-    workplane = cq.Workplane().curvatureLineWall(tube, thickness=1.0, rings=3, stringers=4)
+    workplane = cq.Workplane().curvatureWall(tube.axis, 15.0, thickness=1.0, rings=3, stringers=4)
     wall = workplane.val()
     assert isinstance(wall, cq.Solid) and wall.isValid()
     assert wall.Volume() == pytest.approx(math.pi * (15.5**2 - 14.5**2) * 200.0, rel=1e-6)
     assert len(wall.Faces()) == 2 * 2 * 4 + 2
-    tube_wp = cq.Workplane().curvatureLineTube(tube, rings=2, stringers=1)
+    tube_wp = cq.Workplane().curvatureTube(tube.axis, 15.0, rings=2, stringers=1)
     # (cq's Volume() uses OCCT's fixed Gauss rule, ~1e-4 off on faces wider than a quarter
     # turn; the adaptive integration is exact: see README, "Measuring mass properties")
     assert props.volume(tube_wp.val()) == pytest.approx(math.pi * 15**2 * 200.0, rel=1e-9)

@@ -143,7 +143,7 @@ def test_the_torus_like_canal_wall(torus_canal):
     assert swept_volume(lambda s: R0, lambda s: 0.0, lambda s: 0.0, L) == pytest.approx(
         2 * math.pi**2 * R_TORUS * R0**2, rel=1e-13
     )
-    layout = NetLayout.equal(torus_canal, 9, 4)
+    layout = NetLayout.equal(torus_canal, 8, 4)
     shell = build_tube_shell(torus_canal, layout).shape
     assert props.is_valid(shell) and props.free_edges(shell) == 0 and shell.wrapped.Closed()
     solid = build_tube_solid(torus_canal, layout)
@@ -168,14 +168,14 @@ def test_the_trefoil_canal_wall(trefoil_canal):
     axis = trefoil_canal.axis
     L, h = axis.length, axis.holonomy
     r, dr, ddr = cosine_law(T_R0, T_AMPLITUDE, L)
-    rings, stringers, thickness = 9, 4, 0.04
+    rings, stringers, thickness = 8, 4, 0.04  # eight distinct rings round the loop
     layout = NetLayout.equal(trefoil_canal, rings, stringers)
     wall = build_wall_solid(trefoil_canal, thickness, "centered", layout)
     shape = wall.shape
     assert props.is_valid(shape) and props.free_edges(shape) == 0
     assert props.analyzer_findings(shape, CHECKS) == {}
     # the closing ring is cut at the stringers' starts and their (moved) ends, on both surfaces
-    assert props.count(shape, "vertex") == 2 * ((rings - 2) * stringers + 2 * stringers)
+    assert props.count(shape, "vertex") == 2 * ((rings - 1) * stringers + 2 * stringers)
     expected = swept_volume(r, dr, ddr, L, 0.02) - swept_volume(r, dr, ddr, L, -0.02)
     assert props.volume(shape) == pytest.approx(expected, rel=1e-9)
 
@@ -291,7 +291,7 @@ def test_panels_of_a_closed_canal_wall_fit_together_into_it(tmp_path, seams):
     spec = tmp_path / "spec.toml"
     spec.write_text(CLOSED_TREFOIL.format(radius='"8 + 0.02 * x"'))
     canal = load_spec(spec).tube
-    wall = build_wall_solid(canal, 1.0, layout=NetLayout.equal(canal, 5, 4))
+    wall = build_wall_solid(canal, 1.0, layout=NetLayout.equal(canal, 4, 4))
     panels = split_into_panels(wall, seams)
     assert len(panels) == 4 * len(seams)
     assert all(p.solid.is_valid and props.analyzer_findings(p.solid, CHECKS) == {} for p in panels)

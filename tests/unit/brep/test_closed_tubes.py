@@ -71,7 +71,7 @@ def trefoil_tube() -> CurvatureLineTube:
 
 @pytest.mark.parametrize("stringers", [1, 4])
 def test_the_closed_tube_of_a_circle_is_the_torus(torus_tube, stringers):
-    build = build_tube_solid(torus_tube, NetLayout.equal(torus_tube, 5, stringers))
+    build = build_tube_solid(torus_tube, NetLayout.equal(torus_tube, 4, stringers))
     shape = build.shape
     assert props.is_valid(shape) and props.free_edges(shape) == 0
     assert props.count(shape, "face") == 4 * stringers  # no caps; the closing ring joins the last band to the first
@@ -91,12 +91,12 @@ def test_a_closed_tube_shell_is_closed(trefoil_tube):
 
 @pytest.mark.slow
 def test_the_trefoil_wall_is_a_valid_solid_with_a_cavity(trefoil_tube):
-    rings, stringers = 9, 4
+    rings, stringers = 8, 4  # eight distinct rings: the closing ring and seven more
     build = build_wall_solid(trefoil_tube, 0.06, "centered", NetLayout.equal(trefoil_tube, rings, stringers))
     shape = build.shape
     assert props.is_valid(shape) and props.free_edges(shape) == 0
     assert props.analyzer_findings(shape, CHECKS) == {}
-    assert shells(shape) == 2 and props.count(shape, "face") == 2 * (rings - 1) * stringers
+    assert shells(shape) == 2 and props.count(shape, "face") == 2 * rings * stringers
     length = trefoil_tube.length
     assert props.volume(shape) == pytest.approx(math.pi * (0.33**2 - 0.27**2) * length, rel=1e-9)
 
@@ -118,7 +118,7 @@ def test_the_stringers_meet_the_closing_ring_turned_by_minus_the_total_torsion(t
     )
     holonomy = math.remainder(-total, TWO_PI)
     assert abs(math.remainder(axis.holonomy - holonomy, TWO_PI)) < 1e-9
-    layout = NetLayout.equal(trefoil_tube, 5, 4)
+    layout = NetLayout.equal(trefoil_tube, 4, 4)
     build = build_tube_solid(trefoil_tube, layout)
     L = axis.span[1]
     start = axis.at(np.array([0.0]))
@@ -135,15 +135,17 @@ def test_the_stringers_meet_the_closing_ring_turned_by_minus_the_total_torsion(t
 
 
 def test_a_closed_tube_needs_a_ring_besides_the_closing_one(torus_tube):
-    with pytest.raises(ParameterError, match="rings must be >= 3"):
-        build_tube_solid(torus_tube, NetLayout.equal(torus_tube, 2, 4))
+    with pytest.raises(ParameterError, match="rings must be a whole number >= 2"):
+        NetLayout.equal(torus_tube, 1, 4)
+    with pytest.raises(ParameterError, match="a ring frame besides the closing one: rings must be >= 2"):
+        build_tube_solid(torus_tube, NetLayout.explicit(torus_tube, [0.0], [0.0, 90.0]))
 
 
 @pytest.mark.slow
 def test_stiffeners_on_a_closed_wall(trefoil_tube):
     """Rings (the closing ring one solid, not two halves) and stringers that end on the closing
     ring at their shifted angle: each a valid solid fit for booleans."""
-    layout = NetLayout.equal(trefoil_tube, 5, 4)
+    layout = NetLayout.equal(trefoil_tube, 4, 4)
     wall = build_wall_solid(trefoil_tube, 0.04, "centered", layout)
     profile = Profile("T", 0.15, 0.02, 0.08, 0.015)
     stiffeners = build_stiffeners(wall, [0, 2, 4], [0, 1, 2, 3], profile, "outside")
@@ -217,7 +219,7 @@ t = [0.0, 6.283185307179586]
 radius = 0.3
 
 [layout]
-rings = 5
+rings = 4
 stringers = 4
 
 [wall]

@@ -1,0 +1,81 @@
+"""The CadQuery plugin's curvatureTube and curvatureWall (issue 23): the build123d objects'
+twins, the same arguments and engine; tested where CadQuery is installed (CI's OCP 7.9
+environment), with booleans, a fillet on an end ring and a STEP round trip."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+cq = pytest.importorskip("cadquery", reason="CadQuery is the extra tubecad[cadquery]")
+
+import tubecad.integrations.cadquery_plugin  # noqa: E402,F401  (registers the methods)
+from tubecad import ParameterError  # noqa: E402
+from tubecad.brep import properties as props  # noqa: E402
+
+pytestmark = pytest.mark.slow
+
+POINTS = [cq.Vector(0, 0, 0), cq.Vector(100, 60, 80), cq.Vector(250, 20, 160)]
+
+
+@pytest.fixture(scope="module")
+def wall():
+    axis = cq.Edge.makeSpline(POINTS)
+    return cq.Workplane().curvatureWall(axis, radius=12, thickness=1.5, rings=9, stringers=8).val()
+
+
+def test_the_wall_is_valid_and_carries_its_named_lines(wall):
+    assert isinstance(wall, cq.Solid) and wall.isValid()
+    assert len(wall.rings) == 9 and [w.label for w in wall.rings][:2] == ["ring_00", "ring_01"]
+    assert len(wall.stringers) == 8 and len(wall.inner_rings) == 9
+    net = [
+        e
+        for group in (wall.rings, wall.stringers, wall.inner_rings, wall.inner_stringers)
+        for w in group
+        for e in w.Edges()
+    ]
+    edges = wall.Edges()
+    assert len(edges) == len(net) and all(any(e.wrapped.IsSame(n.wrapped) for n in net) for e in edges)
+    assert len(wall.Faces()) == 2 * 8 * 8 + 2
+
+
+def test_the_same_wall_as_the_build123d_object(wall):
+    import build123d as bd
+
+    from tubecad import CurvatureWall
+
+    twin = CurvatureWall(bd.Edge(cq.Edge.makeSpline(POINTS).wrapped), radius=12, thickness=1.5, rings=9, stringers=8)
+    assert props.volume(wall.wrapped) == pytest.approx(props.volume(twin.wrapped), rel=1e-12)
+
+
+def test_combined_with_the_stack_cut_filleted_and_round_tripped(wall, tmp_path):
+    axis = cq.Edge.makeLine(cq.Vector(0, 0, 0), cq.Vector(0, 0, 100))
+    plate = cq.Workplane().box(80, 80, 10).curvatureWall(axis, radius=10, thickness=2, rings=3, stringers=4)
+    solid = plate.val()
+    assert solid.isValid() and len(plate.solids().vals()) == 1  # fused with the plate
+    assert props.volume(solid.wrapped) == pytest.approx(80 * 80 * 10 + math.pi * (11**2 - 9**2) * 95, rel=1e-9)
+    tube = cq.Workplane().curvatureWall(axis, radius=10, thickness=2, rings=3, stringers=4).val()
+    rounded = tube.fillet(0.5, tube.rings[-1].Edges())
+    assert rounded.isValid() and rounded.Volume() < tube.Volume()
+    cut = cq.Workplane().add(tube).cut(cq.Workplane().box(30, 30, 30)).val()
+    assert cut.isValid() and props.volume(cut.wrapped) == pytest.approx(math.pi * (11**2 - 9**2) * 85, rel=1e-9)
+    path = tmp_path / "wall.step"
+    cq.exporters.export(cq.Workplane().add(cut), str(path))
+    back = cq.importers.importStep(str(path)).val()
+    assert back.isValid() and props.volume(back.wrapped) == pytest.approx(props.volume(cut.wrapped), rel=1e-9)
+
+
+def test_the_old_names_still_work_and_say_so():
+    from tubecad import CurvatureLineTube
+    from tubecad.curves.edge import edge_axis
+
+    tube = CurvatureLineTube(edge_axis(cq.Edge.makeSpline(POINTS)), 12.0)
+    with pytest.warns(DeprecationWarning, match="use curvatureWall"):
+        old = cq.Workplane().curvatureLineWall(tube, thickness=1.5, rings=3, stringers=4).val()
+    assert old.isValid() and len(old.rings) == 3
+
+
+def test_a_bad_axis_is_refused_by_name():
+    with pytest.raises(ParameterError, match="axis must be a tubecad Axis"):
+        cq.Workplane().curvatureTube(42, radius=5)

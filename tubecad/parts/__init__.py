@@ -1,0 +1,23 @@
+"""CAD-native objects over the library: build123d parts (``CurvatureTube``, ``CurvatureWall``)
+and the engine the CadQuery plugin shares with them.
+
+Exports are lazy (tubecad.core.lazy): importing the package loads no OCCT."""
+
+from typing import TYPE_CHECKING
+
+from tubecad.core.lazy import lazy_exports
+
+_PUBLIC = {
+    "CurvatureTube": "tubecad.parts.build123d_parts",
+    "CurvatureWall": "tubecad.parts.build123d_parts",
+    "as_axis": "tubecad.parts.axis_input",
+}
+
+__all__ = list(_PUBLIC)
+__getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())
+
+
+if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported here at run time)
+    from tubecad.parts.axis_input import as_axis as as_axis
+    from tubecad.parts.build123d_parts import CurvatureTube as CurvatureTube
+    from tubecad.parts.build123d_parts import CurvatureWall as CurvatureWall

@@ -1,0 +1,65 @@
+"""What a CAD user hands over as an axis, made a tubecad :class:`~tubecad.curves.Axis`.
+
+One rule for the build123d objects and the CadQuery plugin alike:
+
+- an :class:`~tubecad.curves.Axis` (any kind: slope curve, natural equations, parametric,
+  route, ...) is taken as it is;
+- a build123d or CadQuery ``Edge`` or ``Wire``, a ``TopoDS`` edge or wire, or an OCCT
+  ``Geom_Curve``: the curve itself (:func:`~tubecad.curves.edge.edge_axis`);
+- a sequence of points: with ``bend_radius`` the pipe route of straight legs and circular
+  bends through them (:class:`~tubecad.curves.route.RouteAxis`), without it the C2 cubic
+  spline through them (:func:`~tubecad.curves.points.points_axis`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from tubecad.core.errors import ParameterError
+from tubecad.curves import Axis
+
+AXIS_KINDS = "a tubecad Axis, a build123d or CadQuery Edge or Wire, or a sequence of (x, y, z) points"
+
+
+def as_axis(
+    axis: Any,
+    *,
+    bend_radius: float | Sequence[float] | None = None,
+    normal: Sequence[float] | None = None,
+    closed: bool | None = None,
+) -> Axis:
+    """The :class:`~tubecad.curves.Axis` that ``axis`` stands for (see the module)."""
+    if isinstance(axis, Axis):
+        if bend_radius is not None or normal is not None or closed is not None:
+            raise ParameterError(
+                "bend_radius, normal and closed apply to an axis given as points or an edge, not to an Axis"
+            )
+        return axis
+    if _is_curve(axis):
+        if bend_radius is not None:
+            raise ParameterError(
+                "bend_radius applies to an axis given as points (a route); an edge keeps its own shape"
+            )
+        from tubecad.curves.edge import edge_axis
+
+        return edge_axis(axis, normal=normal, closed=closed)
+    if isinstance(axis, (str, bytes)) or not isinstance(axis, Sequence | np.ndarray):
+        raise ParameterError(f"axis must be {AXIS_KINDS}, got {type(axis).__name__}")
+    if bend_radius is not None:
+        from tubecad.curves.route import RouteAxis
+
+        return RouteAxis(axis, bend_radius, normal=normal, closed=closed)
+    from tubecad.curves.points import points_axis
+
+    return points_axis(axis, normal=normal, closed=closed)
+
+
+def _is_curve(axis: Any) -> bool:
+    """An OCCT curve or a CAD object holding an OCCT shape (build123d and CadQuery: ``.wrapped``)."""
+    if hasattr(axis, "wrapped"):
+        return True
+    module = type(axis).__module__ or ""
+    return module.startswith("OCP.")

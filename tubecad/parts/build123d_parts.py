@@ -1,0 +1,199 @@
+"""build123d objects: ``CurvatureTube`` and ``CurvatureWall``.
+
+Part objects as build123d's own (``Box``, ``Cylinder``) and bd_warehouse's: usable in
+builder mode (``mode``, ``rotation``, ``align``, inside ``Locations``) and in algebra mode
+(``+``, ``-``, ``*``, ``Pos(...) * part``). The geometry comes from tubecad's private
+engine (:mod:`tubecad.parts.engine`): the tube parameterised by its lines of curvature,
+fitted into OCCT B-splines with exact circles, whose face edges are the chosen ring
+frames and stringers. Those lines are reachable on the object, labelled::
+
+    from build123d import BuildPart, Box, Mode, Spline
+    from tubecad import CurvatureWall
+
+    path = Spline((0, 0, 0), (100, 60, 80), (250, 20, 160))  # a BuildLine object: made outside BuildPart
+    with BuildPart() as p:
+        Box(400, 400, 20)
+        wall = CurvatureWall(path, radius=12, thickness=1.5, rings=9, stringers=8, mode=Mode.ADD)
+    assert len(wall.rings) == 9 and wall.rings[3].label == "ring_03"
+
+The object keeps its curvature lines through its own placement (``align``, ``rotation``,
+``Locations``); a boolean's result is a new build123d ``Part``, whose faces still carry the
+lines as edges but without the names.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from functools import cached_property
+from typing import Any
+
+import build123d as bd
+
+from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
+from tubecad.core.tolerance import DEFAULT_TOLERANCE
+from tubecad.parts.engine import NetEdges, PartArguments, build_part, net_edges
+
+
+class _Engine:
+    """What the part was built from: the exact surface, the B-rep build, the lines' edges.
+    Shared, not copied, by the part's copies (OCCT objects do not deep-copy)."""
+
+    def __init__(self, surface: Any, build: Any, net: NetEdges) -> None:
+        self.surface, self.build, self.net = surface, build, net
+
+    def __deepcopy__(self, memo: dict) -> _Engine:
+        return self
+
+
+class _CurvatureNetPart(bd.BasePartObject):
+    """A part whose face edges are curvature lines: ``rings``, ``stringers`` (and on a wall
+    ``inner_rings``, ``inner_stringers``) as labelled wires of this part's own edges."""
+
+    _applies_to = [bd.BuildPart._tag]
+
+    def __init__(self, args: PartArguments, rotation: bd.RotationLike, align: Any, mode: bd.Mode) -> None:
+        surface, build = build_part(args)
+        self._tubecad = _Engine(surface, build, net_edges(build))
+        solid = bd.Solid(build.shape.wrapped)
+        super().__init__(part=solid, rotation=rotation, align=align, mode=mode)
+
+    @property
+    def surface(self):
+        """The exact curvature-line surface (:class:`~tubecad.surface.CurvatureLineTube` or
+        :class:`~tubecad.surface.canal.CanalSurface`) the faces were fitted to."""
+        return self._tubecad.surface
+
+    @property
+    def layout(self):
+        """The :class:`~tubecad.brep.NetLayout`: ring arc lengths and stringer angles."""
+        return self._tubecad.build.layout
+
+    @property
+    def rings(self) -> bd.ShapeList[bd.Wire]:
+        """The ring frames (s = const lines of curvature) on the outer surface: one closed wire
+        per ring, labelled ``ring_00``, ``ring_01``, ...; N distinct rings on a closed axis."""
+        return self._wires(self._net.rings)
+
+    @property
+    def stringers(self) -> bd.ShapeList[bd.Wire]:
+        """The stringers (the other family of lines of curvature) on the outer surface, from
+        the first ring to the last: ``stringer_00``, ``stringer_01``, ..."""
+        return self._wires(self._net.stringers)
+
+    @property
+    def report(self) -> dict[str, Any]:
+        """What was measured on this part (computed on first use, about a second): the fit's
+        deviation from the exact surface and the isolines' orthogonality on dense samples,
+        poles, validity, OCCT's pre-boolean checks, volume against the exact one
+        (:func:`tubecad.spec.report.build_report`)."""
+        return self._report
+
+    @cached_property
+    def _report(self) -> dict[str, Any]:
+        from tubecad.spec.report import build_report
+
+        return build_report(self._tubecad.build, self._tubecad.surface)
+
+    @property
+    def _net(self) -> NetEdges:
+        return self._tubecad.net
+
+    def _wires(self, lines: dict[str, list[int]]) -> bd.ShapeList[bd.Wire]:
+        """One wire per line and per placed copy of the part, of the part's own edges."""
+        from tubecad.occ_compat import as_edge
+        from tubecad.parts.engine import edge_map_of
+
+        out = []
+        for copy in self.solids():
+            edge_map = edge_map_of(copy.wrapped)
+            for name, indices in lines.items():
+                wire = bd.Wire([bd.Edge(as_edge(edge_map.FindKey(i))) for i in indices])
+                wire.label = name
+                out.append(wire)
+        return bd.ShapeList(out)
+
+
+class CurvatureTube(_CurvatureNetPart):
+    """A solid tube of ``radius`` about ``axis`` (closed by flat discs at both ends; none on a
+    closed axis), its faces bounded by ``rings`` ring frames and ``stringers`` stringers.
+
+    Args:
+        axis: a tubecad Axis (any kind), a build123d or CadQuery Edge or Wire, or a sequence
+            of (x, y, z) points (with ``bend_radius``: a pipe route of lines and bends;
+            without: the C2 cubic spline through them).
+        radius: a number, or a radius law r(s) (an expression string in s, a callable, a
+            table ``[(s, r), ...]``): a canal surface.
+        rings: how many ring frames, equally spaced in arc length (ends included; on a closed
+            axis N distinct rings), or their arc lengths.
+        stringers: how many stringers, equally spaced round, or their angles in degrees from
+            the rotation-minimising normal r1.
+        tolerance: the fit's tolerance, in model units (the measured deviation is in ``report``).
+        bend_radius, normal, closed: for an axis given as points or an edge (see
+            :func:`tubecad.parts.axis_input.as_axis`).
+        allow_irregular: build even where the surface folds (refused by default).
+        rotation, align, mode: as for build123d's ``Box``; ``align=None`` (the default)
+            keeps the tube where its axis is.
+    """
+
+    def __init__(
+        self,
+        axis: Any,
+        radius: Any,
+        *,
+        rings: int | Sequence[float] = DEFAULT_RINGS,
+        stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+        tolerance: float = DEFAULT_TOLERANCE,
+        bend_radius: float | Sequence[float] | None = None,
+        normal: Sequence[float] | None = None,
+        closed: bool | None = None,
+        allow_irregular: bool = False,
+        rotation: bd.RotationLike = (0, 0, 0),
+        align: bd.Align | tuple[bd.Align, bd.Align, bd.Align] | None = None,
+        mode: bd.Mode = bd.Mode.ADD,
+    ) -> None:
+        args = PartArguments(
+            axis, radius, None, "centered", rings, stringers, tolerance, bend_radius, normal, closed, allow_irregular
+        )
+        super().__init__(args, rotation, align, mode)
+
+
+class CurvatureWall(_CurvatureNetPart):
+    """The wall of ``thickness`` round the tube of ``radius`` about ``axis``: the solid
+    between the two surfaces offset along the normal (``side``: ``centered``, ``inside`` or
+    ``outside`` the tube), closed by annular caps at the ends (none on a closed axis). Its
+    faces are bounded by the ring frames and stringers on both surfaces; ``rings`` and
+    ``stringers`` are the outer surface's, ``inner_rings`` and ``inner_stringers`` the
+    inner one's. The other arguments are :class:`CurvatureTube`'s."""
+
+    def __init__(
+        self,
+        axis: Any,
+        radius: Any,
+        thickness: float,
+        *,
+        side: str = "centered",
+        rings: int | Sequence[float] = DEFAULT_RINGS,
+        stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+        tolerance: float = DEFAULT_TOLERANCE,
+        bend_radius: float | Sequence[float] | None = None,
+        normal: Sequence[float] | None = None,
+        closed: bool | None = None,
+        allow_irregular: bool = False,
+        rotation: bd.RotationLike = (0, 0, 0),
+        align: bd.Align | tuple[bd.Align, bd.Align, bd.Align] | None = None,
+        mode: bd.Mode = bd.Mode.ADD,
+    ) -> None:
+        args = PartArguments(
+            axis, radius, thickness, side, rings, stringers, tolerance, bend_radius, normal, closed, allow_irregular
+        )
+        super().__init__(args, rotation, align, mode)
+
+    @property
+    def inner_rings(self) -> bd.ShapeList[bd.Wire]:
+        """The ring frames on the inner surface (``ring_00``, ...)."""
+        return self._wires(self._net.inner_rings)
+
+    @property
+    def inner_stringers(self) -> bd.ShapeList[bd.Wire]:
+        """The stringers on the inner surface (``stringer_00``, ...)."""
+        return self._wires(self._net.inner_stringers)

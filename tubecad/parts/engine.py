@@ -1,0 +1,122 @@
+"""The private engine behind the plugin objects: an axis, a radius (or a radius law) and a
+layout in; the B-rep build and its curvature-line edges out, labelled as tubecad names them.
+
+Both front ends (:mod:`tubecad.parts.build123d_parts`, the CadQuery plugin) call
+:func:`build_part` and :func:`net_edges`, so their arguments and results are the same.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from tubecad.brep import NetLayout, TubeBuild, build_tube_solid, build_wall_solid
+from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import DEFAULT_TOLERANCE
+from tubecad.parts.axis_input import as_axis
+from tubecad.surface import CurvatureLineSurface
+from tubecad.surface.canal import tube_or_canal
+
+
+@dataclass(frozen=True)
+class PartArguments:
+    """What a plugin object is built from (the keyword arguments of ``CurvatureTube`` and
+    ``CurvatureWall``, checked)."""
+
+    axis: Any
+    radius: Any
+    thickness: float | None = None
+    side: str = "centered"
+    rings: int | Sequence[float] = DEFAULT_RINGS
+    stringers: int | Sequence[float] = DEFAULT_STRINGERS
+    tolerance: float = DEFAULT_TOLERANCE
+    bend_radius: float | Sequence[float] | None = None
+    normal: Sequence[float] | None = None
+    closed: bool | None = None
+    allow_irregular: bool = False
+
+
+def build_part(args: PartArguments) -> tuple[CurvatureLineSurface, TubeBuild]:
+    """(the exact surface, its B-rep build): the capped tube solid, or with a ``thickness``
+    the wall solid between the surfaces offset along the normal (``side``)."""
+    axis = as_axis(args.axis, bend_radius=args.bend_radius, normal=args.normal, closed=args.closed)
+    surface = tube_or_canal(axis, args.radius, allow_irregular=args.allow_irregular)
+    layout = layout_of(surface, args.rings, args.stringers)
+    if args.thickness is None:
+        return surface, build_tube_solid(surface, layout, args.tolerance)
+    return surface, build_wall_solid(surface, args.thickness, args.side, layout, args.tolerance)
+
+
+def layout_of(surface: CurvatureLineSurface, rings: Any, stringers: Any) -> NetLayout:
+    """A count of rings (equally spaced in s; N distinct rings on a closed axis) or their arc
+    lengths, and a count of stringers (equally spaced round) or their angles in degrees."""
+    from tubecad.brep.layout import equal_rings, equal_stringers
+
+    s_rings = equal_rings(surface, rings) if _is_count(rings, "rings") else rings
+    angles = equal_stringers(stringers) if _is_count(stringers, "stringers") else stringers
+    return NetLayout.explicit(surface, s_rings, angles)
+
+
+def _is_count(value: Any, name: str) -> bool:
+    if isinstance(value, bool):
+        raise ParameterError(f"{name} must be a whole number or a list of positions, got {value!r}")
+    return isinstance(value, int) or (isinstance(value, float) and value.is_integer())
+
+
+@dataclass(frozen=True)
+class NetEdges:
+    """The chosen curvature lines as B-rep edges of the build's solid, by name (``ring_03``,
+    ``stringer_05``): for each line the indices of its edges in the solid's edge map
+    (``TopExp.MapShapes``, 1-based), in order along the line; on the outer surface and (a
+    wall) on the inner one. Indices, not shapes: a placed or copied solid explores its edges
+    in the same order, so the same indices find the line on it."""
+
+    rings: dict[str, list[int]]
+    stringers: dict[str, list[int]]
+    inner_rings: dict[str, list[int]]
+    inner_stringers: dict[str, list[int]]
+
+    def __deepcopy__(self, memo: dict) -> NetEdges:  # plain numbers, never changed: shared by copies
+        return self
+
+
+def net_edges(build: TubeBuild) -> NetEdges:
+    """The ring and stringer edges of ``build``'s solid, by name. On a closed axis the closing
+    ring (the first and last ring of the layout) is ``ring_00`` once, made of all its arcs."""
+    edge_map = edge_map_of(build.shape.wrapped)
+    closed = build.surfaces[0].tube.axis.closed
+    out = []
+    for patches in build.patches:
+        rings = patches.rings[:-1] if closed else patches.rings
+        named = {f"ring_{i:02d}": list(edges) for i, edges in enumerate(rings)}
+        if closed and patches.closing_arcs:
+            named["ring_00"] = [arc for _, _, arc in patches.closing_arcs]
+        stringers = {f"stringer_{j:02d}": list(col) for j, col in enumerate(patches.stringers)}
+        out.append(
+            tuple(
+                {name: _indices(edge_map, edges, name) for name, edges in lines.items()} for lines in (named, stringers)
+            )
+        )
+    inner = out[1] if len(out) > 1 else ({}, {})
+    return NetEdges(out[0][0], out[0][1], inner[0], inner[1])
+
+
+def edge_map_of(shape: Any) -> Any:
+    """The solid's edges, each once, in OCCT's exploration order (TopTools_IndexedMapOfShape)."""
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp
+
+    from tubecad.occ_compat import IndexedMapOfShape
+
+    edge_map = IndexedMapOfShape()
+    TopExp.MapShapes_s(shape, TopAbs_EDGE, edge_map)
+    return edge_map
+
+
+def _indices(edge_map: Any, edges: list[Any], name: str) -> list[int]:
+    found = [edge_map.FindIndex(e) for e in edges]
+    if 0 in found:  # pragma: no cover - the solid is made of these very faces and edges
+        raise AssertionError(f"{name}: an edge of the line is not an edge of the solid")
+    return found
