@@ -194,3 +194,36 @@ def test_help_loads_no_occt(args):
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip().splitlines()[-1] == "LOADED []"
+
+
+def test_a_spec_mistake_is_refused_before_occt_and_numpy_load(tmp_path):
+    """`build`, `shop`, `mesh` and `report` check the spec before the CAD kernel (and the
+    maths) load: a misspelt key is refused with its one-line message and exit code 2, and
+    neither OCCT, build123d nor numpy was imported for it (issue 23: under 1 s)."""
+    import subprocess
+    import sys
+
+    bad = tmp_path / "bad.toml"
+    bad.write_text((SAMPLES / "helix.toml").read_text().replace("radius =", "radiuss =", 1))
+    code = (
+        "import sys\nfrom tubecad.cli.app import cli\nfor args in %r:\n"
+        "    try:\n        cli.main(args, standalone_mode=False)\n"
+        "    except Exception as exc:\n        print('REFUSED', getattr(exc, 'exit_code', None), exc)\n"
+        "print('LOADED', sorted(m for m in ('OCP', 'build123d', 'numpy') if m in sys.modules))"
+        % (
+            [
+                ["build", str(bad), "-o", str(tmp_path / "x.step")],
+                ["shop", str(bad), "-o", str(tmp_path / "shop")],
+                ["mesh", str(bad), "-o", str(tmp_path / "x.inp")],
+                ["report", str(bad)],
+            ],
+        )
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    lines = done.stdout.strip().splitlines()
+    assert lines[-1] == "LOADED []", done.stdout + done.stderr
+    refusals = [line for line in lines if line.startswith("REFUSED")]
+    assert len(refusals) == 4 and all(
+        r.startswith("REFUSED 2 ") and "unknown key [tube] radiuss" in r for r in refusals
+    )
+    assert not list(tmp_path.glob("x.*")) and not (tmp_path / "shop").exists()

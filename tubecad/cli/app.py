@@ -63,6 +63,18 @@ class UserError(click.ClickException):
     exit_code = 2
 
 
+def _checked_spec(path: Path):
+    """SPEC read and checked before the CAD kernel is loaded (tubecad.spec.parse is light), so
+    that a mistake in it is refused at once, not after the 3-6 s OCCT and build123d take."""
+    from tubecad.spec.parse import load_spec
+
+    try:
+        with interrupts_end_at_once():  # nothing is written yet: a Ctrl-C in its imports ends here
+            return load_spec(path)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+
+
 grid_options = [
     click.option(
         "--nu",
@@ -133,11 +145,10 @@ def paper(output: Path, nu: int, ns: int) -> None:
 @with_grid_options
 def report(spec: Path, nu: int, ns: int) -> None:
     """Print the JSON report of the tube described by SPEC (a TOML file)."""
-    with interrupts_end_at_once():  # numpy/scipy and the spec checker, never OCCT
-        from tubecad.spec.parse import load_spec
+    checked = _checked_spec(spec)
+    with interrupts_end_at_once():  # numpy/scipy, never OCCT
         from tubecad.spec.report import to_json, tube_report
     try:
-        checked = load_spec(spec)
         click.echo(to_json(tube_report(checked.tube, nu, ns, checked.length_unit)), nl=False)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
@@ -305,12 +316,12 @@ def build(
     DIR/NAME.report.json, a line per finished job goes to stderr, DIR/batch.json lists every
     job; the exit code is 2 if any job failed.
     """
+    checked = None if len(specs) > 1 or sweeps or out_dir is not None else _checked_spec(specs[0])
     _load()
     with interrupts_end_at_once():
         from tubecad.core.progress import Progress
         from tubecad.spec.build import build_and_export, check_mesh_options, split_outputs
         from tubecad.spec.outputs import build_summary
-        from tubecad.spec.parse import load_spec
 
     try:
         check_mesh_options(outputs or [f"job.{f}" for f in formats or ("step",)], mesh_tolerance, mesh_angle)
@@ -345,12 +356,13 @@ def build(
         )
     if not outputs:
         raise click.UsageError("Missing option '-o' / '--output' (or -d/--out-dir DIR for batch mode).")
+    assert checked is not None  # one SPEC, not a batch: read above
     written: list[Path] = []
     try:
         split_outputs(outputs)  # an unknown extension is refused before anything is built
         with Progress(enabled=not quiet) as progress:  # on stderr, once the build has run for 2 s
             report = build_and_export(
-                load_spec(specs[0]), outputs, step_schema, report_path, written, mesh_tolerance, mesh_angle, progress
+                checked, outputs, step_schema, report_path, written, mesh_tolerance, mesh_angle, progress
             )
     except TubecadError as exc:
         for path in written:  # a failed build (e.g. a file that cannot hold the tolerance) leaves no files
@@ -432,15 +444,15 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
     and pin-jig heights (CSV, picture); index.json and a one-page overview. Nothing is written
     unless all of it is.
     """
+    checked = _checked_spec(spec)
     _load()
     with interrupts_end_at_once():
-        from tubecad.spec.parse import load_spec
         from tubecad.spec.shop import shop_from_spec
 
     live = not quiet and sys.stderr.isatty()  # stages on a terminal only: a log or a pipe gets the result lines
     say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
     try:
-        index = shop_from_spec(load_spec(spec), output, say)
+        index = shop_from_spec(checked, output, say)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
@@ -500,14 +512,14 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
     on the layout's rings and stringers, the [stiffeners] as beams (B31/B32) on the shells' nodes,
     and node and element sets named after the parts (ring_03, stringer_05, panel_r2_s1,
     start_ring, end_ring). A .inp also gets the material and, with [analysis], its pressure step."""
+    checked = _checked_spec(spec)
     _load()
     with interrupts_end_at_once():
         from tubecad.spec.mesh import checked_outputs, write_mesh
-        from tubecad.spec.parse import load_spec
 
     try:
         checked_outputs(list(outputs))
-        built, written = write_mesh(load_spec(spec), list(outputs), element=element, size=size)
+        built, written = write_mesh(checked, list(outputs), element=element, size=size)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     q = built.info["quality"]

@@ -30,11 +30,9 @@ import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
-from tubecad.curves import Axis
-from tubecad.spec.axis import build_axis
 
 # the key tables live in a light module (no numpy, no OCCT) that ``tubecad schema`` reads too
 from tubecad.spec.keys import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS, UNITS_KEYS, Key  # noqa: F401
@@ -51,8 +49,11 @@ from tubecad.spec.model import (
     UnitsSection,
     WallSection,
 )
-from tubecad.surface import CanalSurface, CurvatureLineTube, tube_or_canal
-from tubecad.surface.protocol import CurvatureLineSurface
+
+if TYPE_CHECKING:  # the axis and the surface load numpy and scipy: imported once the keys are checked
+    from tubecad.curves import Axis
+    from tubecad.surface import CanalSurface, CurvatureLineTube
+    from tubecad.surface.protocol import CurvatureLineSurface
 
 MAX_SPEC_BYTES = 1_000_000
 
@@ -195,6 +196,11 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
             sections[name] = _check_keys(name, data[name], keys, fail)  # type: ignore[arg-type]
     model = SpecModel.from_sections(sections)
 
+    # the keys and their values are checked: now the maths (numpy, scipy), never before, so a
+    # mistake in the file is refused in a fraction of a second
+    from tubecad.spec.axis import build_axis
+    from tubecad.surface import tube_or_canal
+
     length_unit = model.units.length
     axis = _with_section("axis", fail, lambda: build_axis(curve, model.axis.values, base, length_unit))
     radius = model.tube.radius
@@ -248,11 +254,13 @@ def _check_build_sections(tube: CurvatureLineSurface, model: SpecModel, fail: Ca
         except ParameterError as exc:
             raise fail(str(exc), _key("analysis", exc)) from None
     if canal:  # a varying radius law: only a CanalSurface has one
-        return _check_canal_sections(cast(CanalSurface, tube), model, fail)
+        return _check_canal_sections(cast("CanalSurface", tube), model, fail)
     wall = model.wall
     if wall is not None:
         radius = tube.radius_law.constant_value  # a constant radius: the tube's rho
         r_in, r_out = _with_section("wall", fail, lambda: wall.radii(radius), "thickness")
+        from tubecad.surface import CurvatureLineTube
+
         try:
             CurvatureLineTube(tube.axis, r_out)
         except ParameterError as exc:
