@@ -356,9 +356,15 @@ def what_was_built(report: dict[str, Any], valid: bool = True) -> str:
     return text
 
 
+#: a runaway message (an unexpected exception's repr of a huge value) is cut here; tubecad's own are far shorter
+MAX_ERROR = 2000
+
+
 def one_line(exc: BaseException) -> str:
+    """The error of a failed job on one line, whole up to :data:`MAX_ERROR` characters."""
     text = str(exc) if isinstance(exc, TubecadError) else f"{type(exc).__name__}: {exc}"
-    return " ".join(text.split()) or type(exc).__name__
+    line = " ".join(text.split()) or type(exc).__name__
+    return line if len(line) <= MAX_ERROR else line[: MAX_ERROR - 3] + "..."
 
 
 def init_worker() -> None:

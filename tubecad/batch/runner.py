@@ -36,7 +36,9 @@ def progress_line(result: JobResult, done: int, total: int, rate: float | None =
     tries = f" (attempt {result.attempts})" if result.attempts > 1 else ""
     if result.status != "ok":
         error = result.error or result.status
-        return head + "FAILED" + tries + ": " + (error if len(error) <= 300 else error[:297] + "...") + pace
+        # whole: the end of a message often holds the fix ("... or set allow_irregular = true");
+        # messages are one line and bounded where they are made (tubecad.batch.jobs.one_line)
+        return head + "FAILED" + tries + ": " + error + pace
     built = result.built or f"{result.kind} {result.faces} faces {'valid' if result.valid else 'NOT VALID'}"
     files = len(result.outputs)
     return head + f"{built}, {files} file{'s' * (files != 1)}, {result.seconds:.1f} s{tries}{pace}"
@@ -232,9 +234,11 @@ class BatchOutcome:
                 f"interrupted: {self.cancelled} of {len(self.jobs)} jobs cancelled, {self.ok} done, "
                 f"no partial files; {self.manifest}"
             )
+        # each job counted once: a skipped job (built before, unchanged) is not also "ok"
         skipped = f", {self.skipped} skipped (unchanged)" if self.skipped else ""
+        built = self.ok - self.skipped
         return (
-            f"{len(self.jobs)} jobs: {self.ok} ok{skipped}, {self.failed} failed, {self.seconds:.1f} s; {self.manifest}"
+            f"{len(self.jobs)} jobs: {built} ok{skipped}, {self.failed} failed, {self.seconds:.1f} s; {self.manifest}"
         )
 
 

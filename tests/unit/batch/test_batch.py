@@ -223,3 +223,14 @@ def test_ctrl_c_cancels_the_rest_without_partial_files(tmp_path, monkeypatch):
     assert sorted(p.name for p in out.iterdir()) == ["batch.json", "p_radius-1.report.json", "p_radius-1.step"]
     record = json.loads((out / "batch.json").read_text())
     assert record["interrupted"] and [j["status"] for j in record["jobs"]] == ["ok", "cancelled", "cancelled"]
+
+
+def test_a_failed_jobs_line_holds_its_whole_message():
+    """The end of a message often holds the fix (allow_irregular): the line is never cut."""
+    from tubecad.batch.jobs import JobResult
+    from tubecad.batch.runner import progress_line
+
+    error = "[tube] radius 40: the tube is irregular: " + "the circle at s = 1 crosses the axis; " * 12
+    error += "set allow_irregular = true to build it anyway"
+    line = progress_line(JobResult("t_radius-40", "failed", error), 3, 6)
+    assert len(error) > 400 and line == f"[3/6] t_radius-40: FAILED: {error}"

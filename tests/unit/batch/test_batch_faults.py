@@ -73,6 +73,7 @@ def test_a_rerun_builds_only_what_is_missing_or_changed(first_batch, tmp_path):
     again = run("build", spec, "--sweep", SWEEP, "-d", out, "-j", 1)
     assert again.exit_code == 0 and "(6 of 6 already built and unchanged: skipped)" in again.stderr
     assert manifest(out)["skipped"] == 6
+    assert "6 jobs: 0 ok, 6 skipped (unchanged), 0 failed" in again.stderr.splitlines()[-1]  # each job once
     (out / f"{names[1]}.step").unlink()  # a deleted output
     with open(out / f"{names[2]}.step", "ab") as fh:  # a damaged one
         fh.write(b"\n")
@@ -84,6 +85,7 @@ def test_a_rerun_builds_only_what_is_missing_or_changed(first_batch, tmp_path):
         if line.startswith("[2/2]") or line.startswith("[1/2]")
     )
     assert built == sorted(names[1:3])
+    assert "6 jobs: 2 ok, 4 skipped (unchanged), 0 failed" in third.stderr.splitlines()[-1]
     assert all(
         file_hash(out / f"{n}.step") == manifest(out)["jobs"][i]["hashes"][f"{n}.step"] for i, n in enumerate(names)
     )
