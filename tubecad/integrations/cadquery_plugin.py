@@ -52,7 +52,15 @@ def curvature_tube(
 ) -> cq.Workplane:
     """The solid tube of ``radius`` about ``axis`` (arguments: tubecad.CurvatureTube's)."""
     args = PartArguments(
-        axis, radius, None, "centered", rings, stringers, tolerance, bend_radius, normal, closed, allow_irregular
+        axis,
+        radius,
+        rings=rings,
+        stringers=stringers,
+        tolerance=tolerance,
+        bend_radius=bend_radius,
+        normal=normal,
+        closed=closed,
+        allow_irregular=allow_irregular,
     )
     return _pushed(self, args, combine)
 
@@ -75,7 +83,17 @@ def curvature_wall(
     """The wall of ``thickness`` round the tube of ``radius`` about ``axis`` (arguments:
     tubecad.CurvatureWall's)."""
     args = PartArguments(
-        axis, radius, thickness, side, rings, stringers, tolerance, bend_radius, normal, closed, allow_irregular
+        axis,
+        radius,
+        thickness,
+        side,
+        rings=rings,
+        stringers=stringers,
+        tolerance=tolerance,
+        bend_radius=bend_radius,
+        normal=normal,
+        closed=closed,
+        allow_irregular=allow_irregular,
     )
     return _pushed(self, args, combine)
 

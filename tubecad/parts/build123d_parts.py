@@ -152,7 +152,15 @@ class CurvatureTube(_CurvatureNetPart):
         mode: bd.Mode = bd.Mode.ADD,
     ) -> None:
         args = PartArguments(
-            axis, radius, None, "centered", rings, stringers, tolerance, bend_radius, normal, closed, allow_irregular
+            axis,
+            radius,
+            rings=rings,
+            stringers=stringers,
+            tolerance=tolerance,
+            bend_radius=bend_radius,
+            normal=normal,
+            closed=closed,
+            allow_irregular=allow_irregular,
         )
         super().__init__(args, rotation, align, mode)
 
@@ -184,7 +192,17 @@ class CurvatureWall(_CurvatureNetPart):
         mode: bd.Mode = bd.Mode.ADD,
     ) -> None:
         args = PartArguments(
-            axis, radius, thickness, side, rings, stringers, tolerance, bend_radius, normal, closed, allow_irregular
+            axis,
+            radius,
+            thickness,
+            side,
+            rings=rings,
+            stringers=stringers,
+            tolerance=tolerance,
+            bend_radius=bend_radius,
+            normal=normal,
+            closed=closed,
+            allow_irregular=allow_irregular,
         )
         super().__init__(args, rotation, align, mode)
 

@@ -78,9 +78,6 @@ class NetEdges:
     inner_rings: dict[str, list[int]]
     inner_stringers: dict[str, list[int]]
 
-    def __deepcopy__(self, memo: dict) -> NetEdges:  # plain numbers, never changed: shared by copies
-        return self
-
 
 def net_edges(build: TubeBuild) -> NetEdges:
     """The ring and stringer edges of ``build``'s solid, by name. On a closed axis the closing
