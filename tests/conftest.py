@@ -195,6 +195,21 @@ def pytest_runtest_makereport(item, call):
         report.longrepr = f"CI={os.environ['CI']}: {call.excinfo.value.msg} (CI must install it: .ci/run)"
 
 
+@pytest.fixture(autouse=True)
+def _signal_handlers_kept():
+    """A test leaves this process's Ctrl-C and SIGTERM handlers as it found them: a handler
+    left behind (one that ends the process at once, say) would end the test worker in a later
+    test, and pytest-xdist reports only "node down"."""
+    import signal
+
+    before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    yield
+    after = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    signal.signal(signal.SIGINT, before[0])
+    signal.signal(signal.SIGTERM, before[1])
+    assert after == before, f"the test changed the SIGINT/SIGTERM handlers {before} -> {after}"
+
+
 # ---------------------------------------------------------------------------------------------
 # builds made once per test run, shared by every test (and every xdist worker) that needs them
 #

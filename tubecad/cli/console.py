@@ -12,11 +12,13 @@ from __future__ import annotations
 
 import signal
 
+from tubecad.cli import signals
 from tubecad.cli.signals import _exit_now
 
 
 def main() -> None:
     """Entry point of the ``tubecad`` console script."""
+    signals._console_process = True
     signal.signal(signal.SIGINT, _exit_now)
     signal.signal(signal.SIGTERM, _exit_now)
     from tubecad.cli.app import main as run  # the heavy imports

@@ -11,6 +11,10 @@ from collections.abc import Iterator
 
 INTERRUPTED_EXIT_CODE = 130  # 128 + SIGINT, as shells report Ctrl-C
 
+#: set by the console script (:mod:`tubecad.cli.console`) only: a script or a test that calls
+#: the commands in its own process keeps its own Ctrl-C handling, never an ``os._exit``
+_console_process = False
+
 
 def _exit_now(signum, frame) -> None:  # pragma: no cover - runs in a subprocess
     try:
@@ -24,7 +28,11 @@ def _exit_now(signum, frame) -> None:  # pragma: no cover - runs in a subprocess
 def interrupts_end_at_once() -> Iterator[None]:
     """Around imports that load extension modules, before anything is written: Ctrl-C or
     SIGTERM end the process at once (one line, exit 130), never a half-initialised import's
-    traceback. Outside the main thread (embedded use) it changes nothing."""
+    traceback. Only in the ``tubecad`` console script's process: called from a script or a
+    test (``CliRunner``), or outside the main thread, it changes nothing."""
+    if not _console_process:
+        yield
+        return
     try:
         previous = signal.signal(signal.SIGINT, _exit_now), signal.signal(signal.SIGTERM, _exit_now)
     except ValueError:  # pragma: no cover - not the main thread
