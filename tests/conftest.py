@@ -1,5 +1,6 @@
 """Shared fixtures: one tube per axis family, each regular over its span."""
 
+import contextlib
 import os
 import shutil
 from pathlib import Path
@@ -195,19 +196,51 @@ def pytest_runtest_makereport(item, call):
         report.longrepr = f"CI={os.environ['CI']}: {call.excinfo.value.msg} (CI must install it: .ci/run)"
 
 
+def _sigpipe_ignored() -> bool:
+    """Whether the kernel ignores SIGPIPE for this process (Python sets it so at start, and
+    reports its own record of that, not what a C library later changed: read /proc)."""
+    status = Path(f"/proc/{os.getpid()}/status")
+    if not status.exists():  # not Linux: nothing to read
+        return True
+    ignored = int(status.read_text().split("SigIgn:")[1].split()[0], 16)
+    return bool(ignored >> (13 - 1) & 1)  # SIGPIPE is signal 13
+
+
 @pytest.fixture(autouse=True)
 def _signal_handlers_kept():
-    """A test leaves this process's Ctrl-C and SIGTERM handlers as it found them: a handler
-    left behind (one that ends the process at once, say) would end the test worker in a later
-    test, and pytest-xdist reports only "node down"."""
+    """A test leaves this process's Ctrl-C, SIGTERM and SIGPIPE handling as it found them: a
+    handler left behind (one that ends the process at once, say, or SIGPIPE back at its default,
+    which gmsh.initialize() does) would end the test worker in a later test, silently, and
+    pytest-xdist reports only "node down"."""
     import signal
 
     before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
     yield
     after = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    pipe_ignored = _sigpipe_ignored()
     signal.signal(signal.SIGINT, before[0])
     signal.signal(signal.SIGTERM, before[1])
+    signal.signal(signal.SIGPIPE, signal.SIG_IGN)
     assert after == before, f"the test changed the SIGINT/SIGTERM handlers {before} -> {after}"
+    assert pipe_ignored, "the test left SIGPIPE at its default (a write to a closed pipe ends the process): restore it"
+
+
+@contextlib.contextmanager
+def gmsh_initialized():
+    """A gmsh session, quiet, finalized afterwards. gmsh.initialize() sets SIGPIPE back to its
+    default, which ends the process at the next write to a closed pipe (a worker's, say):
+    Python's SIG_IGN is restored at once."""
+    import signal
+
+    import gmsh
+
+    gmsh.initialize(readConfigFiles=False, interruptible=False)
+    signal.signal(signal.SIGPIPE, signal.SIG_IGN)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        yield gmsh
+    finally:
+        gmsh.finalize()
 
 
 # ---------------------------------------------------------------------------------------------

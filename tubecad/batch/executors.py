@@ -211,6 +211,8 @@ class ProcessExecutor:
 
     def close(self) -> None:
         for worker in self._workers:
+            if not worker.process.is_alive():  # a stopped worker's pipe is closed: no write to it
+                continue
             with contextlib.suppress(Exception):
                 worker.conn.send(None)
         for worker in self._workers:

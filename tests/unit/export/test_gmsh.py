@@ -22,14 +22,10 @@ pytestmark = pytest.mark.requires("gmsh")
 
 @pytest.fixture
 def gmsh_session():
-    import gmsh
+    from conftest import gmsh_initialized
 
-    gmsh.initialize(readConfigFiles=False, interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
+    with gmsh_initialized() as gmsh:
         yield gmsh
-    finally:
-        gmsh.finalize()
 
 
 @pytest.mark.slow

@@ -137,11 +137,9 @@ def _expected_cells(block) -> np.ndarray:
 def _gmsh_read(path):
     """(node tags, coordinates (n, 3), {(dim, tag): name}, {(dim, tag): entities},
     {entity (dim, tag): [(type, element tags, node tags (m, k))]}) from a fresh gmsh session."""
-    import gmsh
+    from conftest import gmsh_initialized
 
-    gmsh.initialize(readConfigFiles=False, interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
+    with gmsh_initialized() as gmsh:
         gmsh.open(str(path))
         tags, xyz, _ = gmsh.model.mesh.getNodes()
         groups = gmsh.model.getPhysicalGroups()
@@ -154,8 +152,6 @@ def _gmsh_read(path):
                 (int(t), np.asarray(e), np.asarray(n).reshape(len(e), -1)) for t, e, n in zip(types, etags, ntags)
             ]
         return np.asarray(tags), np.asarray(xyz).reshape(-1, 3), names, members, elements
-    finally:
-        gmsh.finalize()
 
 
 @pytest.mark.parametrize("name", MESHES)
