@@ -1,7 +1,7 @@
 """Run the benchmarks: ``python benchmarks/run.py [--quick] [--only compare|axes|canal|scaling|stiffened|startup] [--out DIR]``.
 
 Prints the tables and writes DIR/benchmarks.json (every number) and DIR/benchmarks.md
-(the tables, as pasted into README.md). Default DIR: benchmarks/results (the published
+(the tables, as pasted into docs/benchmarks.md). Default DIR: benchmarks/results (the published
 numbers); with ``--quick`` (smaller sizes, well under a minute on 2 cores) the default is
 benchmarks/results/quick (git-ignored), and a quick run never writes the published files.
 """
@@ -27,7 +27,7 @@ import stiffened  # noqa: E402
 
 from tubecad.core.atomic import write_text  # noqa: E402
 
-#: the published results (README.md quotes them); --quick never writes here
+#: the published results (docs/benchmarks.md quotes them); --quick never writes here
 PUBLISHED = Path(__file__).resolve().parent / "results"
 
 

@@ -1,5 +1,5 @@
 """The benchmark's measurements are themselves checked: they must see the twist of a Frenet
-sweep, and hold tubecad to the product targets (README, "Benchmarks")."""
+sweep, and hold tubecad to the product targets (docs/benchmarks.md)."""
 
 from __future__ import annotations
 

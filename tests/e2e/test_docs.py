@@ -1,6 +1,7 @@
 """The maths belongs to the repository (issue 9): every citation of a docs/MATH.md section
 points at a section that exists there, and nothing points outside the repository."""
 
+import os
 import re
 from pathlib import Path
 
@@ -10,7 +11,7 @@ from conftest import ROOT
 MATH = ROOT / "docs" / "MATH.md"
 
 #: where sections are cited: the package, benchmarks, samples, tests and the README
-CITING = [ROOT / "tubecad", ROOT / "benchmarks", ROOT / "samples", ROOT / "tests", ROOT / "README.md"]
+CITING = [ROOT / "tubecad", ROOT / "benchmarks", ROOT / "samples", ROOT / "tests", ROOT / "README.md", ROOT / "docs"]
 TEXT_SUFFIXES = {".py", ".md", ".toml", ".txt", ".rst", ".cfg", ".ini", ".json", ".csv"}
 
 #: never scanned: version control, the virtual environment, and generated files that
@@ -93,8 +94,10 @@ def test_citations_exist():
 def test_citations_name_the_file_in_the_repository():
     bad = []
     for p, text in _citing_texts():
-        for m in re.finditer(r"\S*MATH\.md", text):
-            if not m.group(0).lstrip("`(\"'[").startswith("docs/MATH.md"):
+        beside = p.parent == ROOT / "docs"  # the site's own pages link to it by its name there
+        for m in re.finditer(r"[^\s(\[]*MATH\.md", text):
+            cited = m.group(0).lstrip("`(\"'[")
+            if not (cited.startswith("docs/MATH.md") or (beside and cited == "MATH.md")):
                 line = text.count("\n", 0, m.start()) + 1
                 bad.append(f"{p.relative_to(ROOT)}:{line}: {m.group(0)}")
     assert not bad, "MATH.md must be cited as docs/MATH.md:\n" + "\n".join(bad)
@@ -104,3 +107,44 @@ def test_citations_name_the_file_in_the_repository():
 def test_nothing_points_outside_the_repository(needle):
     bad = [str(p.relative_to(ROOT)) for p in _files([ROOT]) if needle.encode() in p.read_bytes()]
     assert not bad, f"{needle!r} is not part of the repository, but these files mention it: {bad}"
+
+
+# ---------------------------------------------------------------------------------------------
+# the documentation site (mkdocs.yml)
+
+
+def test_the_site_lists_every_page_and_builds_without_a_warning(tmp_path):
+    """Every docs/*.md page is in the site's navigation, and `mkdocs build --strict` (broken
+    links and anchors, API pages whose objects do not exist: all warnings, all fatal) passes."""
+    import subprocess
+    import sys
+
+    import yaml
+
+    config = yaml.safe_load((ROOT / "mkdocs.yml").read_text())
+    listed = {next(iter(entry.values())) for entry in config["nav"]}
+    pages = {p.name for p in (ROOT / "docs").glob("*.md")}
+    assert listed == pages, f"not in mkdocs.yml's nav: {sorted(pages - listed)}; no such page: {sorted(listed - pages)}"
+    done = subprocess.run(
+        [sys.executable, "-m", "mkdocs", "build", "--strict", "-q", "-d", str(tmp_path / "site")],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, "NO_MKDOCS_2_WARNING": "1"},
+    )
+    assert done.returncode == 0, done.stderr
+    assert "WARNING" not in done.stderr, done.stderr
+    api = (tmp_path / "site" / "api" / "index.html").read_text()
+    assert "CurvatureWall" in api and "RouteAxis" in api and "NetLayout" in api
+    for picture in (ROOT / "docs" / "gallery").glob("*.png"):
+        assert (tmp_path / "site" / "gallery" / picture.name).is_file()
+
+
+def test_the_gallery_shows_every_sample():
+    """Each samples/*.toml has its section, its command and its picture (a PNG) in docs/gallery.md."""
+    text = (ROOT / "docs" / "gallery.md").read_text()
+    for spec in sorted((ROOT / "samples").glob("*.toml")):
+        picture = ROOT / "docs" / "gallery" / f"{spec.stem}.png"
+        assert f"## {spec.stem}\n" in text and f"tubecad build samples/{spec.name} -o {spec.stem}.png" in text
+        assert f"](gallery/{spec.stem}.png)" in text and picture.read_bytes().startswith(b"\x89PNG"), spec.name

@@ -210,6 +210,8 @@ def test_registry_lists_every_format_once_and_the_error_names_them_all(tmp_path)
         ".glb",
         ".csv",
         ".json",
+        ".png",
+        ".svg",
     }
     assert FORMAT_NAMES == tuple(e[1:] for e in EXTENSIONS)
     assert output_format("A.STP").name == "step" and output_format("x.glb").kind == "mesh"
@@ -219,8 +221,8 @@ def test_registry_lists_every_format_once_and_the_error_names_them_all(tmp_path)
     assert all(ext in message for ext in EXTENSIONS) and allowed() in message
     result = run("build", SAMPLES / "helix.toml", "-d", tmp_path / "b", "-f", "obj")
     assert result.exit_code == 2 and all(name in result.output for name in FORMAT_NAMES)
-    readme = (ROOT / "README.md").read_text()
-    assert markdown_table() in readme and all(f"`{ext}`" in markdown_table() for ext in EXTENSIONS)
+    page = (ROOT / "docs" / "command-line.md").read_text()  # the docs' table of formats is the registry's
+    assert markdown_table() in page and all(f"`{ext}`" in markdown_table() for ext in EXTENSIONS)
 
 
 def test_batch_plans_every_registry_format(tmp_path):
@@ -387,3 +389,36 @@ def test_quick_benchmark_run_never_touches_the_published_results(tmp_path, monke
     with pytest.raises(SystemExit):
         bench.main(["--quick", "--out", str(published)])
     assert (published / "benchmarks.json").read_text() == "published"
+
+
+# ---------------------------------------------------------------- pictures of any spec (issue 23)
+
+
+@pytest.mark.slow
+def test_build_draws_the_projections_of_any_spec_with_its_own_net(tmp_path):
+    """`tubecad build SPEC -o x.png -o x.svg`: a PNG that decodes (matplotlib) and an SVG that
+    parses (ElementTree), with the spec's net: on the closed trefoil `rings = 12` draws 12
+    distinct ring frames, the closing one not twice."""
+    from xml.etree import ElementTree
+
+    from matplotlib.image import imread
+
+    result = run("build", SAMPLES / "trefoil_closed.toml", "-o", tmp_path / "t.png", "-o", tmp_path / "t.svg")
+    assert result.exit_code == 0, result.output
+    assert result.output.count("projections with 12 ring frames and 8 stringers") == 2, result.output
+    pixels = imread(tmp_path / "t.png")
+    assert pixels.shape[:2] == (1050, 2100) and np.ptp(pixels[..., :3]) > 0.5  # not blank
+    svg = ElementTree.parse(tmp_path / "t.svg").getroot()
+    assert svg.tag.endswith("svg")
+    assert len(svg.findall(".//{http://www.w3.org/2000/svg}path")) >= 2 * 12 * 8  # 12 x 8 cells, in both views
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.png", "t.svg"]  # no temporary file left
+
+
+def test_a_picture_needs_a_build_and_says_so(tmp_path):
+    from tubecad.core.errors import ParameterError
+
+    with pytest.raises(ParameterError, match="picture is drawn from a built tube or wall"):
+        export_shape(
+            build_wall_solid(paper_tube(), 2.0, layout=NetLayout.equal(paper_tube(), 3, 2)).shape, tmp_path / "w.png"
+        )
+    assert list(tmp_path.iterdir()) == []

@@ -1,13 +1,15 @@
-"""Every code block of README.md runs (or is checked) here, so a snippet cannot silently break.
+"""Every code block of README.md and of every page of the documentation site (docs/*.md)
+runs (or is checked) here, so a snippet cannot silently break.
 
-The blocks are read from README.md when the tests are collected, so an edit of the README
-is picked up by the next run. One test per block, named by its index, language and first
-line (``-k python`` or ``-k 05`` picks blocks):
+The blocks are read from the pages when the tests are collected, so an edit is picked up by
+the next run. One test per block, named by its page, index, language and first line
+(``-k python``, ``-k fem`` or ``-k README-05`` picks blocks):
 
-- ```python blocks run in README order in one namespace (later blocks use names from earlier
-  ones), in a temporary working directory with README_ENVIRONMENT (MPLBACKEND=Agg, and
-  OCP_VSCODE_PYTEST=1 so that tubecad.show needs no viewer). Tracebacks point at the README's
-  own lines. Files a snippet names (``"wall.step"``) must exist afterwards and read back;
+- ```python blocks run each on its own, as a user pastes one: in a fresh namespace and an
+  empty working directory, with README_ENVIRONMENT (MPLBACKEND=Agg, and OCP_VSCODE_PYTEST=1
+  so that tubecad.show needs no viewer). Tracebacks point at the page's own lines. A block
+  that imports CadQuery is skipped where the extra is not installed (CI runs it in the
+  CadQuery environment). Files a snippet names (``"wall.step"``) must exist afterwards and read back;
   ``# ~3e-16`` and ``# (64, 1001, 3)`` comments are checked against the value printed or
   assigned on that line; other comments that state something are checked by CLAIMS below, and
   a comment stating a number that no rule checks fails the test.
@@ -50,6 +52,11 @@ import pytest
 from conftest import ROOT, requires
 
 README = ROOT / "README.md"
+DOCS = ROOT / "docs"
+#: every page whose blocks run: the README, then the site's pages
+PAGES = [README, *sorted(DOCS.glob("*.md"))]
+#: pages whose indented blocks are equations, not code (tests/unit/surface/test_symbolic.py proves them)
+EQUATION_PAGES = {ROOT / "docs/MATH.md"}
 CI_RUN = ROOT / ".ci" / "run"
 PACKAGE = ROOT / "tubecad"
 QUICKSTART_BEGIN, QUICKSTART_END = "<!-- ci:quickstart:begin -->", "<!-- ci:quickstart:end -->"
@@ -72,10 +79,11 @@ NEEDS_PROGRAM = {"tubecad.fem.analysis": "ccx", "tubecad.fem.calculix": "ccx", "
 
 @dataclass(frozen=True)
 class Block:
-    index: int  # 1-based, in README order
+    index: int  # 1-based, in page order
     lang: str  # the fence's language ("" if none), or "indented"
-    line: int  # README line number of the block's first line of code
+    line: int  # the page's line number of the block's first line of code
     text: str
+    page: Path = README
 
     @property
     def first_line(self) -> str:
@@ -84,15 +92,19 @@ class Block:
     @property
     def id(self) -> str:
         slug = re.sub(r"\W+", "_", self.first_line).strip("_")[:40]
-        return f"{self.index:02d}-{self.lang or 'plain'}-{slug}"
+        return f"{self.page.stem}-{self.index:02d}-{self.lang or 'plain'}-{slug}"
+
+    @property
+    def name(self) -> str:
+        return str(self.page.relative_to(ROOT))
 
     def where(self) -> str:
         return (
-            f"README.md block {self.index} ({self.lang or 'no language'}, line {self.line}: {self.first_line[:60]!r})"
+            f"{self.name} block {self.index} ({self.lang or 'no language'}, line {self.line}: {self.first_line[:60]!r})"
         )
 
 
-def readme_blocks(text: str) -> list[Block]:
+def readme_blocks(text: str, page: Path = README) -> list[Block]:
     """Fenced blocks (``` or ~~~) and indented (4 spaces, after a blank line) blocks, in order."""
     lines = text.splitlines()
     found: list[tuple[str, int, str]] = []
@@ -105,7 +117,7 @@ def readme_blocks(text: str) -> list[Block]:
             i += 1
             while i < len(lines) and not lines[i].startswith(mark):
                 i += 1
-            assert i < len(lines), f"README.md line {start}: the fence {mark}{lang} is never closed"
+            assert i < len(lines), f"{page.name} line {start}: the fence {mark}{lang} is never closed"
             found.append((lang, start + 1, "\n".join(lines[start:i]) + "\n"))
             i += 1
             continue
@@ -119,10 +131,11 @@ def readme_blocks(text: str) -> list[Block]:
             found.append(("indented", start + 1, "\n".join(body) + "\n"))
             continue
         i += 1
-    return [Block(n, lang, line, body) for n, (lang, line, body) in enumerate(found, start=1)]
+    return [Block(n, lang, line, body, page) for n, (lang, line, body) in enumerate(found, start=1)]
 
 
-BLOCKS = readme_blocks(README.read_text(encoding="utf-8"))
+BLOCKS = [b for page in PAGES for b in readme_blocks(page.read_text(encoding="utf-8"), page)]
+README_BLOCKS = [b for b in BLOCKS if b.page == README]
 PYTHON_BLOCKS = [b for b in BLOCKS if b.lang == "python"]
 
 
@@ -160,74 +173,48 @@ def readme_environment(workdir: Path):
 
 
 # ---------------------------------------------------------------------------------------------
-# python blocks: one namespace, README order
+# python blocks: each on its own
 
 
 @dataclass
 class PythonRun:
     block: Block
     tree: ast.Module
-    prints: dict[int, list[tuple]] = field(default_factory=dict)  # README line -> args of each print there
+    ns: dict[str, Any] = field(default_factory=dict)
+    prints: dict[int, list[tuple]] = field(default_factory=dict)  # page line -> args of each print there
     warnings: list[warnings.WarningMessage] = field(default_factory=list)
     error: BaseException | None = None
     traceback: str = ""
 
 
-class PythonSession:
-    """The README's python blocks, run lazily in order in one namespace and one folder, so that
-    selecting a single block (``-k``) still runs the blocks before it first."""
+def run_python_block(block: Block, workdir: Path) -> PythonRun:
+    """Run ``block`` as a user who pastes it alone: a fresh namespace, ``workdir`` (empty) as
+    the working directory; what it prints is recorded by line, its errors and warnings kept."""
+    tree = ast.parse(block.text, filename=str(block.page))
+    ast.increment_lineno(tree, block.line - 1)  # tracebacks name the page's own lines
+    result = PythonRun(block, tree)
 
-    def __init__(self, workdir: Path):
-        self.workdir = workdir
-        self.ns: dict[str, Any] = {"__name__": "__readme__", "print": self._print}
-        self.runs: dict[int, PythonRun] = {}
-        self._current: PythonRun | None = None
-
-    def _print(self, *args, **kwargs) -> None:
+    def record_print(*args, **kwargs) -> None:
         frame = sys._getframe(1)
-        if self._current is not None and frame.f_code.co_filename == str(README):
-            self._current.prints.setdefault(frame.f_lineno, []).append(args)
+        if frame.f_code.co_filename == str(block.page):
+            result.prints.setdefault(frame.f_lineno, []).append(args)
         builtins.print(*args, **kwargs)
 
-    def run(self, block: Block) -> PythonRun:
-        for earlier in PYTHON_BLOCKS:
-            if earlier.index >= block.index:
-                break
-            if earlier.index not in self.runs:
-                self._run(earlier)
-        if block.index not in self.runs:
-            self._run(block)
-        return self.runs[block.index]
-
-    def _run(self, block: Block) -> None:
-        tree = ast.parse(block.text, filename=str(README))
-        ast.increment_lineno(tree, block.line - 1)  # tracebacks name the README's own lines
-        result = self.runs[block.index] = PythonRun(block, tree)
-        self._current = result
+    result.ns = {"__name__": "__main__", "print": record_print}
+    with readme_environment(workdir), warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         try:
-            with readme_environment(self.workdir), warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
-                try:
-                    exec(compile(tree, str(README), "exec"), self.ns)
-                except Exception as exc:  # noqa: BLE001 - reported by the block's test
-                    result.error = exc  # the traceback from the README's line on (this file's frame left out)
-                    result.traceback = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__.tb_next))
-            result.warnings = [w for w in caught if _ours(w.filename)]
-        finally:
-            self._current = None
-
-    def failed_before(self, block: Block) -> list[int]:
-        return [i for i, r in self.runs.items() if i < block.index and r.error is not None]
+            exec(compile(tree, str(block.page), "exec"), result.ns)
+        except Exception as exc:  # noqa: BLE001 - reported by the block's test
+            result.error = exc  # the traceback from the page's line on (this file's frame left out)
+            result.traceback = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__.tb_next))
+    result.warnings = [w for w in caught if _ours(w.filename)]
+    return result
 
 
 def _ours(filename: str) -> bool:
     """A warning raised by the snippet itself or by tubecad's code (not a third-party library's)."""
-    return filename == str(README) or Path(filename).resolve().is_relative_to(PACKAGE)
-
-
-@pytest.fixture(scope="module")
-def python_session(tmp_path_factory) -> PythonSession:
-    return PythonSession(tmp_path_factory.mktemp("readme"))
+    return filename in {str(page) for page in PAGES} or Path(filename).resolve().is_relative_to(PACKAGE)
 
 
 # what the python comments state ----------------------------------------------------------------
@@ -244,7 +231,7 @@ def _statement_at(tree: ast.Module, line: int) -> ast.stmt | None:
 
 
 def _comments(block: Block) -> list[tuple[int, str]]:
-    """(README line, comment text) of every comment in the block."""
+    """(page line, comment text) of every comment in the block."""
     tokens = tokenize.generate_tokens(io.StringIO(block.text).readline)
     return [(block.line - 1 + t.start[0], t.string.lstrip("#").strip()) for t in tokens if t.type == tokenize.COMMENT]
 
@@ -260,7 +247,7 @@ def _subject(run: PythonRun, ns: dict[str, Any], line: int) -> tuple[bool, Any]:
         and stmt.value.func.id == "print"
     ):
         printed = run.prints.get(stmt.lineno)
-        assert printed, f"README.md line {line}: the print there printed nothing"
+        assert printed, f"line {line}: the print there printed nothing"
         return True, printed[-1][0]
     if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1 and isinstance(stmt.targets[0], ast.Name):
         return True, ns[stmt.targets[0].id]
@@ -274,18 +261,18 @@ def check_comment(run: PythonRun, ns: dict[str, Any], line: int, comment: str) -
         return False
     found, value = _subject(run, ns, line)
     assert found, (
-        f"README.md line {line}: the comment {comment!r} states a value, but the line neither prints "
+        f"{run.block.name} line {line}: the comment {comment!r} states a value, but the line neither prints "
         f"nor assigns one name; add a rule for it to CLAIMS in tests/e2e/test_readme.py"
     )
     if approx:
         stated, actual = float(approx.group(1)), abs(float(np.max(value)))
         assert stated != 0 and actual != 0 and abs(math.log10(actual / abs(stated))) <= 1, (
-            f"README.md line {line}: the comment says ~{approx.group(1)}, the snippet gives {actual:.3g}"
+            f"{run.block.name} line {line}: the comment says ~{approx.group(1)}, the snippet gives {actual:.3g}"
         )
     if shape:
         stated_shape = tuple(int(n) for n in shape.group(1).split(","))
         assert np.shape(value) == stated_shape, (
-            f"README.md line {line}: the comment says shape {stated_shape}, the snippet gives {np.shape(value)}"
+            f"{run.block.name} line {line}: the comment says shape {stated_shape}, the snippet gives {np.shape(value)}"
         )
     return True
 
@@ -417,7 +404,7 @@ CLAIMS: list[tuple[str, str, Callable[[dict, Path], None]]] = [
     ("NetLayout.equal(tube", "or NetLayout.explicit(tube, s_rings, angles_deg)", _layout_explicit),
     ("wall = wall_solid(", "a build123d Solid", _is_build123d_solid),
     ('export_shape(wall, "wall.step")', ".step/.stp (AP214 or AP242), .iges/.igs, .brep", _export_formats),
-    ("build = build_wall_solid(", "the solid and what it was built from", _build_parts),
+    ("build = build_wall_solid(tube, 2.0, layout=layout)", "the solid and what it was built from", _build_parts),
     ("build.ring_wires(0)", "build123d Wires and Faces", _wires_and_faces),
     ("lines = net_lines(build.surfaces[1]", "rings and stringers on the inner wall", _inner_lines),
     ('polylines_csv(lines, "lines.csv")', "per point: position, unit tangent, unit normal", _csv_points),
@@ -453,16 +440,14 @@ def _read_back(path: Path) -> None:
         assert "<svg" in path.read_text()[:2000]
 
 
-def check_python_block(session: PythonSession, block: Block) -> None:
-    run = session.run(block)
+def check_python_block(block: Block, workdir: Path) -> None:
+    run = run_python_block(block, workdir)
     if run.error is not None:
-        earlier = session.failed_before(block)
-        hint = f"\n(README python block(s) {earlier} failed before this one)" if earlier else ""
-        pytest.fail(f"{block.where()} raised:\n{run.traceback}{hint}", pytrace=False)
+        pytest.fail(f"{block.where()} raised (run on its own, as pasted):\n{run.traceback}", pytrace=False)
     assert not run.warnings, f"{block.where()} warns: " + "; ".join(
         f"{w.category.__name__}: {w.message} ({Path(w.filename).name}:{w.lineno})" for w in run.warnings
     )
-    ns, workdir = session.ns, session.workdir
+    ns = run.ns
     # files the snippet names
     for node in ast.walk(run.tree):
         if isinstance(node, ast.Constant) and isinstance(node.value, str) and FILE_NAME.match(node.value):
@@ -478,7 +463,7 @@ def check_python_block(session: PythonSession, block: Block) -> None:
         checked = check_comment(run, ns, line, comment)
         if not (checked or claims) and STATES_A_NUMBER.search(comment):
             pytest.fail(
-                f"README.md line {line}: the comment {comment!r} states a number no rule checks; "
+                f"{block.name} line {line}: the comment {comment!r} states a number no rule checks; "
                 f"make it ~VALUE or (shape), or add a rule to CLAIMS in tests/e2e/test_readme.py"
             )
     # claims on lines without a comment
@@ -494,7 +479,7 @@ def check_python_block(session: PythonSession, block: Block) -> None:
 def test_every_claim_rule_matches_a_readme_line():
     code = "".join(b.text for b in PYTHON_BLOCKS)
     stale = [key for key, _, _ in CLAIMS if key not in code]
-    assert not stale, f"CLAIMS rules whose code is no longer in the README: {stale}"
+    assert not stale, f"CLAIMS rules whose code is no longer on any page: {stale}"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -794,7 +779,7 @@ def check_commands(block: Block, described: bool) -> int:
 
 def check_bash_block(block: Block) -> None:
     begin, end = quickstart_lines()
-    if not begin < block.line < end:
+    if block.page != README or not begin < block.line < end:
         assert block.first_line in NOT_RUNNABLE, (
             f"{block.where()}: a bash block outside the quick start, which nothing runs; list it in NOT_RUNNABLE"
         )
@@ -838,16 +823,20 @@ def check_indented_block(block: Block) -> None:
     # python and spec blocks build solids: slow (`-m "not slow"` still checks the others)
     [pytest.param(b, id=b.id, marks=[pytest.mark.slow] if b.lang in ("python", "toml") else []) for b in BLOCKS],
 )
-def test_readme_block(block: Block, python_session: PythonSession, tmp_path: Path) -> None:
+def test_readme_block(block: Block, tmp_path: Path) -> None:
     if block.lang == "python":
         assert block.first_line not in NOT_RUNNABLE, f"{block.where()}: python blocks must run"
         requires(*sorted({program for code, program in NEEDS_PROGRAM.items() if code in block.text}))
-        check_python_block(python_session, block)
+        if re.search(r"^import cadquery|^from cadquery", block.text, re.M):
+            pytest.importorskip("cadquery", reason="CadQuery is the extra tubecad[cadquery]")
+        check_python_block(block, tmp_path)
     elif block.lang == "toml":
         assert block.first_line not in NOT_RUNNABLE, f"{block.where()}: spec blocks must load"
         check_toml_block(block, tmp_path)
     elif block.lang == "bash":
         check_bash_block(block)
+    elif block.lang == "indented" and block.page in EQUATION_PAGES:
+        assert not re.match(r"^(tubecad|\S*python\S*|\S*pip) ", block.first_line), f"{block.where()}: a command"
     elif block.lang == "indented":
         check_indented_block(block)
     else:
@@ -860,23 +849,28 @@ def test_readme_block(block: Block, python_session: PythonSession, tmp_path: Pat
 def test_readme_has_the_blocks_it_should():
     langs = [b.lang for b in BLOCKS]
     assert langs.count("python") >= 3 and "toml" in langs and "bash" in langs
+    assert [b.lang for b in README_BLOCKS].count("python") >= 2, "the README shows build123d and CadQuery"
+    assert len(README.read_text(encoding="utf-8").splitlines()) <= 300, "the README is the front door: 300 lines"
     begin, end = quickstart_lines()
-    inside = [b for b in BLOCKS if begin < b.line < end]
+    inside = [b for b in README_BLOCKS if begin < b.line < end]
     assert len(inside) == 1 and inside[0].lang == "bash", "the quick start must be one ```bash block"
     stale = set(NOT_RUNNABLE) - {b.first_line for b in BLOCKS}
-    assert not stale, f"NOT_RUNNABLE lists blocks no longer in the README: {stale}"
+    assert not stale, f"NOT_RUNNABLE lists blocks no longer on any page: {stale}"
 
 
-def _inline_spans() -> list[tuple[int, str]]:
-    """(line, text) of inline `code` outside the blocks."""
-    in_block = set()
-    for b in BLOCKS:
-        first = b.line - (0 if b.lang == "indented" else 1)
-        in_block.update(range(first, b.line + len(b.text.splitlines()) + 1))
+def _inline_spans() -> list[tuple[str, int, str]]:
+    """(page name, line, text) of inline `code` outside the blocks, on every page."""
     spans = []
-    for n, line in enumerate(README.read_text(encoding="utf-8").splitlines(), start=1):
-        if n not in in_block:
-            spans += [(n, m.group(1)) for m in re.finditer(r"`([^`]+)`", line)]
+    for page in PAGES:
+        in_block = set()
+        for b in BLOCKS:
+            if b.page == page:
+                first = b.line - (0 if b.lang == "indented" else 1)
+                in_block.update(range(first, b.line + len(b.text.splitlines()) + 1))
+        name = str(page.relative_to(ROOT))
+        for n, line in enumerate(page.read_text(encoding="utf-8").splitlines(), start=1):
+            if n not in in_block:
+                spans += [(name, n, m.group(1)) for m in re.finditer(r"`([^`]+)`", line)]
     return spans
 
 
@@ -886,8 +880,8 @@ def test_inline_commands_and_options_exist():
     for sub in subcommands():
         options.update(help_options(sub)[0])
     checked = 0
-    for line, span in _inline_spans():
-        where = f"README.md line {line}: `{span}`"
+    for page, line, span in _inline_spans():
+        where = f"{page} line {line}: `{span}`"
         if span.startswith("tubecad "):
             check_command_line(span, where)
             checked += 1
@@ -913,12 +907,16 @@ def test_files_and_names_the_text_points_at_exist():
     """Pictures, repository paths and Python names quoted in the text (outside the blocks)."""
     import importlib
 
-    text = README.read_text(encoding="utf-8")
-    for picture in re.findall(r"!\[[^\]]*\]\(([^)\s]+)\)", text):
-        assert (ROOT / picture).is_file(), f"README.md shows {picture}, which does not exist"
+    for page in PAGES:
+        text = page.read_text(encoding="utf-8")
+        for picture in re.findall(r"!\[[^\]]*\]\(([^)\s]+)\)", text):
+            assert (page.parent / picture).is_file(), f"{page.name} shows {picture}, which does not exist"
+        for link in re.findall(r"(?<!!)\[[^\]]*\]\(([^)\s#]+)(?:#[^)]*)?\)", text):
+            if not re.match(r"https?://", link):
+                assert (page.parent / link).exists(), f"{page.name} links to {link}, which does not exist"
     checked = 0
-    for line, span in _inline_spans():
-        where = f"README.md line {line}: `{span}`"
+    for page, line, span in _inline_spans():
+        where = f"{page} line {line}: `{span}`"
         if re.fullmatch(r"(samples|tests|docs|benchmarks|tubecad)/[\w./-]*", span):
             assert (ROOT / span).exists(), f"{where}: no such file or folder"
         elif m := re.fullmatch(r"import ([\w.]+)", span):

@@ -3,6 +3,7 @@
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -86,6 +87,21 @@ def test_paper_command_writes_report_and_pictures(paper_run):
     mask = os.umask(0)
     os.umask(mask)
     assert (out / "report.json").stat().st_mode & 0o777 == 0o666 & ~mask
+
+
+@pytest.mark.slow
+def test_paper_command_says_which_flat_patterns_cross_themselves(paper_run):
+    """The webs whose flat outline crosses itself (read back from webs.dxf with ezdxf, judged
+    by shapely) are each named on the terminal: the paper's stringer_02 and stringer_06."""
+    import ezdxf
+    from shapely.geometry import Polygon
+
+    outlines: dict[str, list] = {}
+    for entity in ezdxf.readfile(paper_run.folder / "flat" / "webs.dxf").modelspace().query("LWPOLYLINE"):
+        outlines.setdefault(entity.dxf.layer, []).extend((x, y) for x, y, *_ in entity.get_points())
+    crossing = sorted(name for name, points in outlines.items() if not Polygon(points).is_valid)
+    said = re.findall(r"warning: (\w+): its flat pattern crosses itself", paper_run.output)
+    assert crossing == ["stringer_02", "stringer_06"] and sorted(said) == crossing, paper_run.output
 
 
 def write(tmp_path, text, name="spec.toml"):

@@ -1,4 +1,4 @@
-"""``tubecad build`` over many specs or a parameter sweep, on all cores (README, "Command line").
+"""``tubecad build`` over many specs or a parameter sweep, on all cores (docs/command-line.md).
 
     tubecad build a.toml b.toml -d OUT [-f step -f iges] [-j N]
     tubecad build paper.toml --sweep tube.radius=10,12,15 --sweep axis.beta_deg=0:30:4 -d OUT

@@ -166,7 +166,7 @@ MANIFEST_INTERVAL = 0.5
 
 @dataclass(frozen=True)
 class BatchOptions:
-    """How :func:`build_batch` runs (``tubecad build``'s batch options, README "Command line").
+    """How :func:`build_batch` runs (``tubecad build``'s batch options, docs/command-line.md).
 
     ``formats``: the outputs per job, by extension without the dot (default step);
     ``sweeps``: ``SECTION.KEY=VALUES`` texts (:func:`~tubecad.batch.jobs.parse_sweep`);

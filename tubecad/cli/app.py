@@ -138,6 +138,7 @@ def paper(output: Path, nu: int, ns: int) -> None:
         raise UserError(str(exc)) from None
     for path in written:
         click.echo(str(path))
+    _say_warnings(written)
 
 
 @cli.command()
@@ -190,8 +191,8 @@ def schema(output: Path | None) -> None:
     multiple=True,
     type=click.Path(dir_okay=False, path_type=Path),
     help="One SPEC: output file, repeatable; the format follows the extension: .step/.stp, .iges/.igs, "
-    ".brep (exact B-rep), .stl, .3mf, .gltf/.glb (meshes for visual use), or .csv/.json for the "
-    "curvature lines as polylines (position, tangent, normal).",
+    ".brep (exact B-rep), .stl, .3mf, .gltf/.glb (meshes for visual use), .csv/.json for the "
+    "curvature lines as polylines (position, tangent, normal), or .png/.svg for the projections with the net.",
 )
 @click.option("--step-schema", type=click.Choice(["AP214", "AP242"]), default="AP214", show_default=True)
 @click.option(
@@ -420,6 +421,15 @@ def flat(spec: Path, output: Path) -> None:
         raise UserError(str(exc)) from None
     for path in written:
         click.echo(str(path))
+    _say_warnings(written)
+
+
+def _say_warnings(written: list[Path]) -> None:
+    """Every warning the written files record, one 'warning: ...' line each on stderr."""
+    from tubecad.spec.outputs import written_warnings
+
+    for warning in written_warnings(written):
+        click.echo(f"warning: {warning}", err=True)
 
 
 @cli.command()

@@ -1,5 +1,5 @@
 """Length units: the one table of what a spec's ``[units] length`` may be and how each
-file format writes it (README, "Spec files").
+file format writes it (docs/spec-files.md).
 
 The model's coordinates are always in the spec's own unit (a tube of radius 15 in a spec
 with ``length = "m"`` is 15 m): nothing is rescaled. Each writer states that unit in its

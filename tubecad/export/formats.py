@@ -4,7 +4,8 @@ manifest, the error messages and the docs' list come from. Pure data: it loads n
 
 - ``cad``: exact B-rep (STEP, IGES, BREP), read back and measured against the exact tube;
 - ``mesh``: triangles for visual use (STL, 3MF, glTF), read back and their vertices checked;
-- ``polylines``: the curvature lines as points with unit tangents and normals (CSV, JSON).
+- ``polylines``: the curvature lines as points with unit tangents and normals (CSV, JSON);
+- ``picture``: the frontal and horizontal projections with the curvature-line net (PNG, SVG).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from tubecad.core.errors import ParameterError
 class OutputFormat:
     name: str
     extensions: tuple[str, ...]
-    kind: str  # cad | mesh | polylines
+    kind: str  # cad | mesh | polylines | picture
     description: str
 
 
@@ -48,6 +49,13 @@ FORMATS: tuple[OutputFormat, ...] = (
         "the curvature lines on every wall surface: points, unit tangents and normals, a row per point",
     ),
     OutputFormat("json", (".json",), "polylines", "the same, a list of lines"),
+    OutputFormat(
+        "png",
+        (".png",),
+        "picture",
+        "the frontal and horizontal projections of the outer surface with its ring frames and stringers",
+    ),
+    OutputFormat("svg", (".svg",), "picture", "the same, as vector graphics"),
 )
 
 #: every extension (with the dot, lower case) -> its format
@@ -81,7 +89,7 @@ def cad_format(path: str | Path) -> str:
     return fmt.name
 
 
-KIND_NAMES = {"cad": "exact B-rep", "mesh": "mesh (visual)", "polylines": "polylines"}
+KIND_NAMES = {"cad": "exact B-rep", "mesh": "mesh (visual)", "polylines": "polylines", "picture": "picture"}
 
 
 def markdown_table() -> str:

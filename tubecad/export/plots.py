@@ -7,14 +7,16 @@ its borders, the ring frames (s = const) and stringers (u = const), drawn over i
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 
 from tubecad.core.atomic import save_figure
-from tubecad.surface import CurvatureLineTube
+from tubecad.surface import CurvatureLineSurface
 
 #: (title, horizontal axis, vertical axis, viewing direction)
 VIEWS = {
@@ -24,11 +26,32 @@ VIEWS = {
 LIGHT = np.array([-0.4, -0.6, 0.7]) / np.linalg.norm([-0.4, -0.6, 0.7])
 
 
-def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int = 24, subdivisions: int = 6) -> Figure:
-    """A matplotlib Figure with the frontal and horizontal projections side by side."""
-    nu, ns = stringers * subdivisions, (rings - 1) * subdivisions
-    u = np.linspace(0.0, 2.0 * math.pi, nu + 1)
-    s = np.linspace(*tube.span, ns + 1)
+def projection_figure(
+    tube: CurvatureLineSurface,
+    rings: int = 41,
+    stringers: int = 24,
+    subdivisions: int = 6,
+    s_rings: Sequence[float] | None = None,
+    stringers_deg: Sequence[float] | None = None,
+) -> Figure:
+    """A matplotlib Figure with the frontal and horizontal projections side by side, of any
+    curvature-line surface (a tube or a canal surface): the net of ``rings`` equal ring frames
+    and ``stringers`` equal stringers, or of a layout's own ``s_rings`` (arc lengths) and
+    ``stringers_deg`` (angles chi from r1, u = chi); the span's ends close the net (a closed
+    axis' rings do not repeat its start)."""
+    if s_rings is None:
+        s_lines = np.linspace(*tube.span, rings)
+    else:
+        s_lines = np.unique(np.concatenate([np.asarray(s_rings, dtype=float), tube.span]))
+    if stringers_deg is None:
+        u_lines = np.linspace(0.0, 2.0 * math.pi, stringers + 1)
+    else:
+        angles = np.sort(np.radians(np.asarray(stringers_deg, dtype=float)) % (2.0 * math.pi))
+        u_lines = np.append(angles, angles[0] + 2.0 * math.pi)
+    stringers, rings = len(u_lines) - 1, len(s_lines)
+    closed = int(bool(tube.axis.closed))  # the last ring is the first one again
+    u = _subdivided(u_lines, subdivisions)
+    s = _subdivided(s_lines, subdivisions)
     pts = tube.grid(u, s)
     normals = tube.normal(u[:, None], s[None, :])
     cells = _cell_outlines(pts, stringers, rings - 1, subdivisions)
@@ -59,12 +82,15 @@ def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int =
         ax.set_ylabel("XYZ"[j])
         ax.legend(loc="upper left", fontsize=8)
     a = tube.axis
+    law = tube.radius_law
+    ends = law.r(np.array(tube.span))
+    radius = f"rho = {ends[0]:g}" if tube.constant_radius else f"r from {ends[0]:g} to {ends[1]:g}"
     parameters, beta_deg = getattr(a, "parameters", None), getattr(a, "beta_deg", None)  # a slope curve's
     kind = a.family if parameters is None or beta_deg is None else f"{a.family} {parameters()}, beta = {beta_deg:g} deg"
     fig.suptitle(
         f"Tube referred to lines of curvature: {kind}, "
-        f"rho = {tube.radius:g}, s in [{a.span[0]:g}, {a.span[1]:g}]\n"
-        f"{rings} ring frames (s = const) x {stringers} stringers (u = const)",
+        f"{radius}, s in [{tube.span[0]:g}, {tube.span[1]:g}]\n"
+        f"{rings - closed} ring frames (s = const) x {stringers} stringers (u = const)",
         fontsize=10,
     )
     fig.tight_layout()
@@ -72,10 +98,17 @@ def projection_figure(tube: CurvatureLineTube, rings: int = 41, stringers: int =
 
 
 def write_projections(
-    tube: CurvatureLineTube, folder: str | Path, stem: str = "projections", **kwargs: int
+    tube: CurvatureLineSurface, folder: str | Path, stem: str = "projections", **kwargs: Any
 ) -> list[Path]:
     """Write ``stem``.png and ``stem``.svg into ``folder`` (atomically); return their paths."""
     return save_figure(projection_figure(tube, **kwargs), folder, stem)
+
+
+def _subdivided(lines: np.ndarray, sub: int) -> np.ndarray:
+    """``sub`` equal steps between consecutive values of ``lines``: (len - 1) * sub + 1 values."""
+    steps = np.linspace(0.0, 1.0, sub, endpoint=False)
+    inner = lines[:-1, None] + np.diff(lines)[:, None] * steps[None, :]
+    return np.append(inner.ravel(), lines[-1])
 
 
 def _cell_outlines(pts: np.ndarray, nu_cells: int, ns_cells: int, sub: int) -> np.ndarray:

@@ -212,3 +212,28 @@ def _first_solids(shape: TopoDS_Shape, n: int) -> TopoDS_Compound:
         n -= 1
         explorer.Next()
     return compound
+
+
+def picture_report(path: Path, fmt: str, build: Any) -> dict[str, Any]:
+    """A just-written picture read back: a PNG decoded to its pixels (width x height), an SVG
+    parsed as XML with an <svg> root; raises if it is neither, so it is never moved into place."""
+    path = Path(path)
+    if fmt == "png":
+        from matplotlib.image import imread
+
+        height, width = imread(path, format="png").shape[:2]
+        picture = f"PNG {width} x {height}"
+    else:
+        from xml.etree import ElementTree
+
+        root = ElementTree.parse(path).getroot()
+        if not root.tag.endswith("svg"):
+            raise ExportError(f"{path.name}: not an SVG picture (root <{root.tag}>)")
+        picture = f"SVG {root.get('width')} x {root.get('height')}"
+    layout, closed = build.layout, int(bool(build.surfaces[0].tube.axis.closed))  # a loop's last ring is its first
+    return {
+        "bytes": path.stat().st_size,
+        "picture": picture,
+        "rings": len(layout.s_rings) - closed,
+        "stringers": len(layout.stringers_deg),
+    }

@@ -99,6 +99,22 @@ def _polylines(fmt: str) -> Writer:
     return write
 
 
+def _picture(fmt: str) -> Writer:
+    def write(item: Exportable, path: Path, name: str) -> None:
+        from tubecad.export.plots import projection_figure
+
+        if item.build is None:
+            raise ParameterError(f"output {path.name!r}: a {fmt.upper()} picture is drawn from a built tube or wall")
+        layout = item.build.layout
+        fig = projection_figure(item.build.surfaces[0].tube, s_rings=layout.s_rings, stringers_deg=layout.stringers_deg)
+        try:
+            fig.savefig(path, format=fmt, dpi=150)
+        finally:
+            fig.clear()
+
+    return write
+
+
 def _shape(item: Exportable, path: Path) -> Any:
     if item.shape is None:
         raise ParameterError(f"output {path.name!r}: this output has no shape to write")
@@ -106,7 +122,12 @@ def _shape(item: Exportable, path: Path) -> Any:
 
 
 #: a format's kind (tubecad.export.formats) -> the writer of a format of that kind
-_WRITER_OF_KIND: dict[str, Callable[[str], Writer]] = {"cad": _cad, "mesh": _mesh, "polylines": _polylines}
+_WRITER_OF_KIND: dict[str, Callable[[str], Writer]] = {
+    "cad": _cad,
+    "mesh": _mesh,
+    "polylines": _polylines,
+    "picture": _picture,
+}
 
 #: format name -> its writer, for every format of the table (no format is named here)
 WRITERS: dict[str, Writer] = {f.name: _WRITER_OF_KIND[f.kind](f.name) for f in FORMATS}

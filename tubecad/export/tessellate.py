@@ -5,7 +5,7 @@ grid cell du x ds the surface leaves the plane of a triangle by at most, to seco
 
     (|L| du^2 + |N| ds^2) / 8,   L = -rho,   N = kappa (1 - rho kappa),  |kappa| <= k(s)
 
-(README, "What is computed"). Each term gets :data:`SHARE` of the tolerance: around the tube
+(docs/index.md, "What is computed"). Each term gets :data:`SHARE` of the tolerance: around the tube
 the exact circle's sag rho (1 - cos(du / 2)), along it k (1 + rho k) ds^2 / 8, with k the
 largest axis curvature over the ring bay; the rest covers higher-order terms. The angular
 tolerance bounds the turn of the normal between neighbouring triangles: du, and k ds.

@@ -19,6 +19,7 @@ from __future__ import annotations
 import contextlib
 import os
 import socket
+import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -43,6 +44,14 @@ RECORD_VARIABLES = ("OCP_VSCODE_PYTEST", "OCP_VIEWER_PYTEST")  # ocp_vscode's sw
 
 class ViewerUnreachable(TubecadError, ConnectionError):
     """No viewer listens on the port: the message says how to start one."""
+
+
+class NothingShown(TubecadError):
+    """The viewer took the model but no browser page showed it: the message says how to open one."""
+
+
+#: how long a browser page has, after a show, to report that it shows the model (s)
+SHOWN_WITHIN = 10.0
 
 
 @dataclass(frozen=True)
@@ -263,4 +272,24 @@ def show(
     ocp_vscode.set_port(port, host)  # pinned: no discovery, no prompt when several viewers run
     with _recorded() if record else contextlib.nullcontext():
         sent = ocp_vscode.show(*trees, names=[t.label for t in trees], port=port, **viewer_options)
+    if not record:
+        _check_shown(ocp_vscode, port, host, [t.label for t in trees])
     return Shown(trees, host, port, sent if record else None)
+
+
+def _check_shown(ocp_vscode: Any, port: int, host: str, labels: list[str], within: float = SHOWN_WITHIN) -> None:
+    """Wait until the viewer's page reports the tree it shows (its status holds a state per
+    object, keyed by path: /paper/wall/...) and that tree is ours; else :class:`NothingShown`.
+    The standalone viewer takes a model with no page open and only logs "No browser
+    registered", so what was sent is not what was shown until the page says so."""
+    deadline = time.monotonic() + within
+    while True:
+        states = (ocp_vscode.status(port=port) or {}).get("states") or {}
+        if any(label in path.split("/") for path in states for label in labels):
+            return
+        if time.monotonic() > deadline:
+            raise NothingShown(
+                f"the viewer on {host}:{port} took the model, but no browser page shows it: open "
+                f"http://{host}:{port}/viewer (or reload it), then run this again"
+            )
+        time.sleep(0.2)

@@ -1,5 +1,5 @@
-"""The [axis] section of a spec: which kind of axis, built from its checked keys (README,
-"Spec files"; the keys are in :mod:`.spec_keys`).
+"""The [axis] section of a spec: which kind of axis, built from its checked keys
+(docs/spec-files.md; the keys are in :mod:`.spec_keys`).
 
 Files named in the section (``points`` CSV, ``edge`` STEP/BREP) are found relative to the
 spec's folder. Only the ``edge`` kind loads OCCT, to read its file.

@@ -1,4 +1,4 @@
-"""From a checked spec to B-rep: layout, wall and fit sections (README, "Spec files"),
+"""From a checked spec to B-rep: layout, wall and fit sections (docs/spec-files.md),
 and :func:`build_and_export`, the body of ``tubecad build`` for one spec."""
 
 from __future__ import annotations
@@ -211,6 +211,10 @@ def check_output(
         return readback_report(tmp, shape, build, target, wall_solids, length_unit)
     if fmt.kind == "mesh":
         return mesh_report(tmp, fmt.name, build, deflection, target, wall_solids, length_unit, angular)
+    if fmt.kind == "picture":
+        from tubecad.export.readback import picture_report
+
+        return picture_report(tmp, fmt.name, build)
     return {"bytes": tmp.stat().st_size, "lines": len(wall_lines(build))}
 
 

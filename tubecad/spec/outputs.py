@@ -76,24 +76,43 @@ def write_patterns(patterns, folder: Path, length_unit: str = DEFAULT_LENGTH_UNI
     written = [write_dxf(patterns, folder / "webs.dxf", length_unit=length_unit)]
     for pattern in patterns:
         written += write_picture(pattern, folder)
+    webs: list[dict[str, Any]] = [
+        {
+            "name": p.name,
+            "kind": p.kind,
+            "area": p.area,
+            "base_length": p.base_length,
+            "top_length": p.top_length,
+            "crosses_itself": not Polygon(p.outline).is_valid,
+        }
+        for p in patterns
+    ]
     summary = {
         "units": {"length": length_unit},
-        "webs": [
-            {
-                "name": p.name,
-                "kind": p.kind,
-                "area": p.area,
-                "base_length": p.base_length,
-                "top_length": p.top_length,
-                "crosses_itself": not Polygon(p.outline).is_valid,
-            }
-            for p in patterns
-        ],
+        "webs": webs,
         "note": "a web that crosses itself cannot be cut as drawn: `tubecad shop` splits it into cuttable "
         "pieces at butt joints and nests them on plates",
+        "warnings": [
+            f"{web['name']}: its flat pattern crosses itself and cannot be cut as drawn "
+            "(`tubecad shop` splits it into cuttable pieces at butt joints)"
+            for web in webs
+            if web["crosses_itself"]
+        ],
     }
     written.append(write_text(folder / "flat.json", to_json(summary)))
     return written
+
+
+def written_warnings(paths) -> list[str]:
+    """The warnings the written measures hold (each flat.json's self-crossing webs), for the
+    terminal: nothing a file records as a warning goes unsaid."""
+    import json
+
+    found: list[str] = []
+    for path in map(Path, paths):
+        if path.name == "flat.json":
+            found += json.loads(path.read_text(encoding="utf-8")).get("warnings", [])
+    return found
 
 
 def render_step_picture(step: Path, png: Path) -> Path:
@@ -108,6 +127,11 @@ def export_summary(info: dict[str, Any]) -> str:
     """One line on a written file, from what was measured on it as read back."""
     if "lines" in info:
         return f"{info['bytes']} bytes, {info['lines']} curvature lines as polylines"
+    if "picture" in info:
+        return (
+            f"{info['bytes']} bytes, {info['picture']}: projections with {info['rings']} ring frames "
+            f"and {info['stringers']} stringers"
+        )
     if "triangles" in info:
         checked = (
             f", within {info['max_triangle_deviation']:.1e} of the tube (vertices {info['max_vertex_deviation']:.1e})"

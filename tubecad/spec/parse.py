@@ -1,4 +1,4 @@
-"""Spec files: a tube described in TOML (see README, "Spec files").
+"""Spec files: a tube described in TOML (see docs/spec-files.md).
 
     [axis]
     curve = "log_spiral"      # log_spiral | helix | clothoid | involute | custom

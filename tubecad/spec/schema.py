@@ -134,8 +134,8 @@ def spec_schema() -> dict[str, Any]:
     return {
         "$schema": SCHEMA_DIALECT,
         "title": "tubecad spec",
-        "description": "A tube parameterised by its lines of curvature (tubecad's spec files, README "
-        '"Spec files"). Made by `tubecad schema` from the spec checker\'s key tables.',
+        "description": "A tube parameterised by its lines of curvature (tubecad's spec files, "
+        "docs/spec-files.md). Made by `tubecad schema` from the spec checker's key tables.",
         "type": "object",
         "properties": sections,
         "required": ["axis", "tube"],

@@ -174,7 +174,7 @@ def test_solids_work_in_build123d_and_cadquery():
     assert len(wall.Faces()) == 2 * 2 * 4 + 2
     tube_wp = cq.Workplane().curvatureTube(tube.axis, 15.0, rings=2, stringers=1)
     # (cq's Volume() uses OCCT's fixed Gauss rule, ~1e-4 off on faces wider than a quarter
-    # turn; the adaptive integration is exact: see README, "Measuring mass properties")
+    # turn; the adaptive integration is exact: see docs/python-api.md, "Measuring mass properties")
     assert props.volume(tube_wp.val()) == pytest.approx(math.pi * 15**2 * 200.0, rel=1e-9)
 
 

@@ -447,3 +447,40 @@ def test_view_paper_in_the_standalone_viewer(tmp_path):
     finally:
         for process in reversed(processes):
             stop(process)
+
+
+@pytest.mark.slow
+def test_a_viewer_with_no_browser_page_is_told_not_sent(tmp_path):
+    """`python -m ocp_viewer` running with no page open takes a model and only logs "No
+    browser registered": `tubecad view` must not say "sent", but exit 2 saying how to open one."""
+    pytest.importorskip("websockets")
+    port = free_port()
+    env = clean_env(tmp_path)
+    viewer_log = tmp_path / "viewer.log"
+    spec = tmp_path / "small.toml"
+    spec.write_text('[axis]\ncurve = "helix"\nk = 0.01\nbeta_deg = 10.0\ns = [0.0, 200.0]\n\n[tube]\nradius = 5.0\n')
+    with open(viewer_log, "w") as log:
+        viewer = subprocess.Popen(
+            [sys.executable, "-m", "ocp_viewer", "--host", "127.0.0.1", "--port", str(port)],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            env=env,
+            start_new_session=True,
+        )
+    try:
+        wait_for(lambda: "OCP Viewer runs at" in viewer_log.read_text(), "the viewer starts", process=viewer)
+        done = subprocess.run(
+            [*tubecad_command(), "view", str(spec), "--port", str(port)],
+            capture_output=True,
+            text=True,
+            timeout=300,
+            env=env,
+        )
+        assert done.returncode == 2 and "sent" not in done.stdout, (done.stdout, done.stderr)
+        assert done.stderr.strip().splitlines()[-1] == (
+            f"Error: the viewer on 127.0.0.1:{port} took the model, but no browser page shows it: open "
+            f"http://127.0.0.1:{port}/viewer (or reload it), then run this again"
+        )
+        assert "No browser registered" in viewer_log.read_text()  # the viewer's own word for it
+    finally:
+        stop(viewer)

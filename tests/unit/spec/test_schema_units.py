@@ -45,7 +45,9 @@ def schema_errors(data: dict) -> list[str]:
 
 
 def readme_specs() -> list[dict]:
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    """The spec blocks of the README and of the docs' pages."""
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    text = "\n".join(page.read_text(encoding="utf-8") for page in pages)
     return [tomllib.loads(block) for block in re.findall(r"^```toml\n(.*?)^```", text, re.S | re.M)]
 
 
@@ -126,7 +128,7 @@ def sample_data(curve: str) -> dict:
     raise AssertionError(f"no sample of {curve}")
 
 
-#: the README's full spec: every section and key
+#: the docs' full spec (docs/spec-files.md): every section and key
 FULL = next(s for s in readme_specs() if set(s) >= {"wall", "stiffeners", "panels", "units"})
 
 FAKE_BUILD = SimpleNamespace(layout=SimpleNamespace(s_rings=list(range(11)), stringers_deg=list(range(8))))

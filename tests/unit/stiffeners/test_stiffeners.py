@@ -265,6 +265,7 @@ def test_build_and_flat_commands_with_stiffeners(tmp_path):
     assert [w["name"] for w in webs] == ["ring_01", "ring_02", "stringer_00", "stringer_02"]
     assert webs[0]["area"] == pytest.approx(math.pi * (14**2 - 11**2))
     assert (tmp_path / "flat" / "webs.dxf").exists() and (tmp_path / "flat" / "stringer_02.svg").exists()
+    assert "crosses itself" not in result.output  # these webs do not: no warning (the paper's do: tests/e2e)
 
 
 @pytest.mark.parametrize(
