@@ -41,7 +41,13 @@ def main() -> None:
         f"wall: valid={build.shape.is_valid}, {len(build.shape.faces())} faces, "
         f"fit deviation {build.frame.position_bound:.1e}, poles along the axis {build.frame.poles}"
     )
-    stiffeners = build_stiffeners(build, [1, 3, 5, 7], [], Profile("T", 4.0, 0.8, 3.0, 0.8), "outside")
+    stiffeners = build_stiffeners(
+        build,
+        [1, 3, 5, 7],
+        [],
+        Profile("T", height=4.0, thickness=0.8, flange_width=3.0, flange_thickness=0.8),
+        "outside",
+    )
     lines = net_lines(build.surfaces[0], build.layout)
     assembly = named_assembly(build, stiffeners, lines)
     print(

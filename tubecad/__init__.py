@@ -11,7 +11,8 @@ The pipeline, one folder per stage:
 - :mod:`tubecad.export`: CAD files, meshes and pictures;
 - :mod:`tubecad.fem` and :mod:`tubecad.shop`: analysis meshes and shop-floor outputs;
 - :mod:`tubecad.spec` and :mod:`tubecad.batch`: spec files, their builds and reports, batches;
-- :mod:`tubecad.parts`: the build123d objects ``CurvatureTube`` and ``CurvatureWall``;
+- :mod:`tubecad.parts`: the build123d objects ``CurvatureTube``, ``CurvatureWall`` and
+  ``StiffenedCurvatureWall``;
 - :mod:`tubecad.cli` and :mod:`tubecad.integrations`: the ``tubecad`` command line, the viewer
   and the CadQuery plugin (``curvatureTube``, ``curvatureWall``);
 - :mod:`tubecad.core`: errors, units, validation, the tolerance policy, atomic writes.
@@ -38,6 +39,7 @@ _PUBLIC = {
     "RouteAxis": "tubecad.curves.route",
     "CurvatureTube": "tubecad.parts",
     "CurvatureWall": "tubecad.parts",
+    "StiffenedCurvatureWall": "tubecad.parts",
     "NetLayout": "tubecad.brep.layout",
     "Profile": "tubecad.stiffeners.profiles",
     "CurvatureLineTube": "tubecad.surface",

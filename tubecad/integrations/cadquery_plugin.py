@@ -1,5 +1,5 @@
-"""CadQuery Workplane plugin: ``curvatureTube`` and ``curvatureWall``, the build123d objects'
-twins (the same arguments, the same engine: :mod:`tubecad.parts.engine`).
+"""CadQuery Workplane plugin: ``curvatureTube``, ``curvatureWall`` and
+``stiffenedCurvatureWall``, the build123d objects' twins (the same arguments, the same engine: :mod:`tubecad.parts.engine`).
 
     import cadquery as cq
     import tubecad.integrations.cadquery_plugin  # registers the methods
@@ -34,7 +34,7 @@ except ImportError as exc:  # CadQuery is an extra: it pins OCP 7.9, build123d 0
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
 from tubecad.occ_compat import as_edge
-from tubecad.parts.engine import PartArguments, build_part, edge_map_of, net_edges
+from tubecad.parts.engine import PartArguments, build_part, edge_map_of, net_edges, stiffener_solids
 
 
 def curvature_tube(
@@ -98,7 +98,49 @@ def curvature_wall(
     return _pushed(self, args, combine)
 
 
-def _pushed(workplane: cq.Workplane, args: PartArguments, combine: bool) -> cq.Workplane:
+def stiffened_curvature_wall(
+    self: cq.Workplane,
+    axis: Any,
+    radius: Any,
+    thickness: float,
+    ring_frames: Sequence[int] | str = "all",
+    stringer_stiffeners: Sequence[int] | str = (),
+    profile: Any = None,
+    stiffener_side: str = "outside",
+    side: str = "centered",
+    rings: int | Sequence[float] = DEFAULT_RINGS,
+    stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+    tolerance: float = DEFAULT_TOLERANCE,
+    bend_radius: float | Sequence[float] | None = None,
+    normal: Sequence[float] | None = None,
+    closed: bool | None = None,
+    allow_irregular: bool = False,
+    combine: bool = True,
+) -> cq.Workplane:
+    """The wall with ring frames and stringer stiffeners on its curvature lines (arguments:
+    tubecad.StiffenedCurvatureWall's). Pushes a ``cq.Compound`` of the wall solid and the
+    stiffener solids, carrying the wall's ``rings`` and ``stringers`` and ``stiffeners``
+    (labelled ``cq.Solid``: ``ring_03``, ``stringer_05``); with ``combine`` and a solid on
+    the stack, all of them are fused into it."""
+    args = PartArguments(
+        axis,
+        radius,
+        thickness,
+        side,
+        rings=rings,
+        stringers=stringers,
+        tolerance=tolerance,
+        bend_radius=bend_radius,
+        normal=normal,
+        closed=closed,
+        allow_irregular=allow_irregular,
+    )
+    return _pushed(self, args, combine, (ring_frames, stringer_stiffeners, profile, stiffener_side))
+
+
+def _pushed(
+    workplane: cq.Workplane, args: PartArguments, combine: bool, stiffened: tuple | None = None
+) -> cq.Workplane:
     _, build = build_part(args)
     solid = cq.Solid(build.shape.wrapped)
     net = net_edges(build)
@@ -111,13 +153,26 @@ def _pushed(workplane: cq.Workplane, args: PartArguments, combine: bool) -> cq.W
     ):
         if lines or name in ("rings", "stringers"):
             setattr(solid, name, [_wire(label, [edge_map.FindKey(i) for i in found]) for label, found in lines.items()])
+    pushed: cq.Shape = solid
+    stiffeners: list[cq.Solid] = []
+    if stiffened is not None:
+        for label, shape in stiffener_solids(build, *stiffened):
+            stiffener = cq.Solid(shape)
+            stiffener.label = label
+            stiffeners.append(stiffener)
+        pushed = cq.Compound.makeCompound([solid, *stiffeners])
+        for name in ("rings", "stringers", "inner_rings", "inner_stringers"):
+            if hasattr(solid, name):
+                setattr(pushed, name, getattr(solid, name))
+        pushed.stiffeners = stiffeners  # type: ignore[attr-defined,unused-ignore]
     try:
         base = workplane.findSolid()
     except ValueError:  # nothing solid on the stack or its parents
         base = None
     if not combine or base is None:
-        return workplane.newObject([solid])
-    return workplane.union(solid)
+        return workplane.newObject([pushed])
+    # the solids one by one, so the stiffeners fuse with the wall too (not only with the base)
+    return workplane.union(cq.Workplane().newObject([solid, *stiffeners]))
 
 
 def _wire(label: str, edges: list) -> cq.Wire:
@@ -159,5 +214,6 @@ def curvature_line_wall(
 # the plugin's methods, patched onto Workplane (CadQuery's plugin convention; its class does not declare them)
 cq.Workplane.curvatureTube = curvature_tube  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureWall = curvature_wall  # type: ignore[attr-defined,unused-ignore]
+cq.Workplane.stiffenedCurvatureWall = stiffened_curvature_wall  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureLineTube = curvature_line_tube  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureLineWall = curvature_line_wall  # type: ignore[attr-defined,unused-ignore]

@@ -1,4 +1,5 @@
-"""CAD-native objects over the library: build123d parts (``CurvatureTube``, ``CurvatureWall``)
+"""CAD-native objects over the library: build123d parts (``CurvatureTube``, ``CurvatureWall``,
+``StiffenedCurvatureWall``)
 and the engine the CadQuery plugin shares with them.
 
 Exports are lazy (tubecad.core.lazy): importing the package loads no OCCT."""
@@ -10,6 +11,7 @@ from tubecad.core.lazy import lazy_exports
 _PUBLIC = {
     "CurvatureTube": "tubecad.parts.build123d_parts",
     "CurvatureWall": "tubecad.parts.build123d_parts",
+    "StiffenedCurvatureWall": "tubecad.parts.build123d_parts",
     "as_axis": "tubecad.parts.axis_input",
 }
 
@@ -21,3 +23,4 @@ if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported her
     from tubecad.parts.axis_input import as_axis as as_axis
     from tubecad.parts.build123d_parts import CurvatureTube as CurvatureTube
     from tubecad.parts.build123d_parts import CurvatureWall as CurvatureWall
+    from tubecad.parts.build123d_parts import StiffenedCurvatureWall as StiffenedCurvatureWall

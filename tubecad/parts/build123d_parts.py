@@ -1,4 +1,4 @@
-"""build123d objects: ``CurvatureTube`` and ``CurvatureWall``.
+"""build123d objects: ``CurvatureTube``, ``CurvatureWall`` and ``StiffenedCurvatureWall``.
 
 Part objects as build123d's own (``Box``, ``Cylinder``) and bd_warehouse's: usable in
 builder mode (``mode``, ``rotation``, ``align``, inside ``Locations``) and in algebra mode
@@ -54,8 +54,18 @@ class _CurvatureNetPart(bd.BasePartObject):
     def __init__(self, args: PartArguments, rotation: bd.RotationLike, align: Any, mode: bd.Mode) -> None:
         surface, build = build_part(args)
         self._tubecad = _Engine(surface, build, net_edges(build))
-        solid = bd.Solid(build.shape.wrapped)
-        super().__init__(part=solid, rotation=rotation, align=align, mode=mode)
+        super().__init__(part=self._part(build), rotation=rotation, align=align, mode=mode)
+
+    #: how many solids one placed copy of the part holds (the wall first)
+    _solids_per_copy = 1
+
+    def _part(self, build: Any) -> bd.Part | bd.Solid:
+        """What is placed: the build's solid (a stiffened wall adds its stiffeners)."""
+        return bd.Solid(build.shape.wrapped)
+
+    def _copies(self) -> list[bd.Solid]:
+        """The wall's solid in each placed copy of the part."""
+        return list(self.solids())[:: self._solids_per_copy]
 
     @property
     def surface(self):
@@ -104,7 +114,7 @@ class _CurvatureNetPart(bd.BasePartObject):
         from tubecad.parts.engine import edge_map_of
 
         out = []
-        for copy in self.solids():
+        for copy in self._copies():
             edge_map = edge_map_of(copy.wrapped)
             for name, indices in lines.items():
                 wire = bd.Wire([bd.Edge(as_edge(edge_map.FindKey(i))) for i in indices])
@@ -215,3 +225,86 @@ class CurvatureWall(_CurvatureNetPart):
     def inner_stringers(self) -> bd.ShapeList[bd.Wire]:
         """The stringers on the inner surface (``stringer_00``, ...)."""
         return self._wires(self._net.inner_stringers)
+
+
+class StiffenedCurvatureWall(CurvatureWall):
+    """A :class:`CurvatureWall` with stiffeners standing on its lines of curvature: ring
+    frames on the layout's rings ``ring_frames`` (indices, or ``"all"``) and stringer
+    stiffeners on its stringers ``stringer_stiffeners`` (indices, or ``"all"``), of
+    ``profile`` (:class:`~tubecad.stiffeners.profiles.Profile`: flat bar, T or L), on the
+    wall's ``stiffener_side`` (``outside`` or ``inside``). Ring frames are solids of
+    revolution whose base is the wall surface itself, stringers are swept with the
+    rotation-minimising frame and start exactly on the wall; each passes BRepCheck and
+    OCCT's pre-boolean check.
+
+    The part holds the wall solid, then one solid per stiffener (they overlap the wall and
+    each other where they cross, as separate parts of an assembly do; ``Mode.ADD`` in a
+    ``BuildPart`` fuses them). ``stiffeners`` gives them, labelled ``ring_03``,
+    ``stringer_05``, for every placed copy; ``rings`` and ``stringers`` stay the wall's.
+    The other arguments are :class:`CurvatureWall`'s."""
+
+    def __init__(
+        self,
+        axis: Any,
+        radius: Any,
+        thickness: float,
+        *,
+        ring_frames: Sequence[int] | str = "all",
+        stringer_stiffeners: Sequence[int] | str = (),
+        profile: Any = None,
+        stiffener_side: str = "outside",
+        side: str = "centered",
+        rings: int | Sequence[float] = DEFAULT_RINGS,
+        stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+        tolerance: float = DEFAULT_TOLERANCE,
+        bend_radius: float | Sequence[float] | None = None,
+        normal: Sequence[float] | None = None,
+        closed: bool | None = None,
+        allow_irregular: bool = False,
+        rotation: bd.RotationLike = (0, 0, 0),
+        align: bd.Align | tuple[bd.Align, bd.Align, bd.Align] | None = None,
+        mode: bd.Mode = bd.Mode.ADD,
+    ) -> None:
+        self._choice = (ring_frames, stringer_stiffeners, profile, stiffener_side)
+        super().__init__(
+            axis,
+            radius,
+            thickness,
+            side=side,
+            rings=rings,
+            stringers=stringers,
+            tolerance=tolerance,
+            bend_radius=bend_radius,
+            normal=normal,
+            closed=closed,
+            allow_irregular=allow_irregular,
+            rotation=rotation,
+            align=align,
+            mode=mode,
+        )
+
+    def _part(self, build: Any) -> bd.Part | bd.Solid:
+        from tubecad.parts.engine import stiffener_solids
+
+        made = stiffener_solids(build, *self._choice)
+        self._names = [name for name, _ in made]
+        self._solids_per_copy = 1 + len(made)
+        wall = bd.Solid(build.shape.wrapped)
+        wall.label = "wall"
+        parts = [wall]
+        for name, shape in made:
+            solid = bd.Solid(shape)
+            solid.label = name
+            parts.append(solid)
+        return bd.Part(bd.Compound(parts).wrapped)
+
+    @property
+    def stiffeners(self) -> bd.ShapeList[bd.Solid]:
+        """The stiffener solids of every placed copy, labelled ``ring_03``, ``stringer_05``."""
+        out = []
+        solids = list(self.solids())
+        for start in range(0, len(solids), self._solids_per_copy):
+            for name, solid in zip(self._names, solids[start + 1 : start + self._solids_per_copy]):
+                solid.label = name
+                out.append(solid)
+        return bd.ShapeList(out)

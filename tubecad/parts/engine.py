@@ -59,6 +59,34 @@ def layout_of(surface: CurvatureLineSurface, rings: Any, stringers: Any) -> NetL
     return NetLayout.explicit(surface, s_rings, angles)
 
 
+def chosen_indices(name: str, chosen: Any, count: int) -> list[int]:
+    """``"all"`` as every index below ``count``, else the whole-number indices as given, each in
+    [0, count - 1]; anything else is refused naming ``name``."""
+    if isinstance(chosen, str) and chosen == "all":
+        return list(range(count))
+    refusal = ParameterError(f'{name} must be "all" or a list of indices in [0, {count - 1}], got {chosen!r}')
+    if isinstance(chosen, str) or not isinstance(chosen, Sequence):
+        raise refusal
+    if not all(isinstance(i, int) and not isinstance(i, bool) and 0 <= i < count for i in chosen):
+        raise refusal
+    return list(chosen)
+
+
+def stiffener_solids(
+    build: TubeBuild, ring_frames: Any, stringer_stiffeners: Any, profile: Any, side: str
+) -> list[tuple[str, Any]]:
+    """(name, OCCT solid) of each stiffener a stiffened part carries: ring frames on the
+    layout's rings ``ring_frames`` and stringer stiffeners on ``stringer_stiffeners``
+    (indices or ``"all"``), of ``profile`` (a flat bar when None) on the wall's ``side``."""
+    from tubecad.stiffeners.assembly import build_stiffeners
+    from tubecad.stiffeners.profiles import Profile
+
+    rings = chosen_indices("ring_frames", ring_frames, len(build.layout.s_rings))
+    stringers = chosen_indices("stringer_stiffeners", stringer_stiffeners, len(build.layout.stringers_deg))
+    made = build_stiffeners(build, rings, stringers, profile if profile is not None else Profile(), side)
+    return [(st.name, st.solid.wrapped) for st in made]
+
+
 def _is_count(value: Any, name: str) -> bool:
     if isinstance(value, bool):
         raise ParameterError(f"{name} must be a whole number or a list of positions, got {value!r}")

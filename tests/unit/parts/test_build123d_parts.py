@@ -164,3 +164,55 @@ def test_what_is_not_an_axis_is_refused_by_name():
     corner = bd.Polyline((0, 0, 0), (100, 0, 0), (100, 100, 0))
     with pytest.raises(ParameterError, match=r"kink .* RouteAxis \(curve = \"route\""):
         CurvatureTube(corner, radius=5)
+
+
+# ------------------------------------------------------------- the stiffened wall
+
+
+def test_a_stiffened_wall_holds_its_named_stiffeners_each_valid_and_of_exact_volume():
+    """Flat-bar ring frames on a straight wall: each is an annulus of radii R and R + h and
+    width w, of volume pi ((R + h)^2 - R^2) w (R the outer wall radius); stringers stand on
+    the wall; every stiffener passes BRepCheck and OCCT's pre-boolean check."""
+    from tubecad import Profile, StiffenedCurvatureWall
+
+    radius, thickness, h, w = 20.0, 2.0, 5.0, 1.5
+    wall = StiffenedCurvatureWall(
+        bd.Edge.make_line((0, 0, 0), (0, 0, 300)),
+        radius=radius,
+        thickness=thickness,
+        rings=4,
+        stringers=4,
+        ring_frames=[1, 2],
+        stringer_stiffeners="all",
+        profile=Profile("flat", height=h, thickness=w),
+    )
+    names = [s.label for s in wall.stiffeners]
+    assert names == ["ring_01", "ring_02", "stringer_00", "stringer_01", "stringer_02", "stringer_03"]
+    assert len(wall.rings) == 4 and len(wall.solids()) == 7
+    assert all(valid(s) and props.analyzer_findings(s) == {} for s in wall.solids())
+    r = radius + thickness / 2  # the outer wall surface: centered
+    for ring in wall.stiffeners[:2]:
+        assert props.volume(ring) == pytest.approx(math.pi * ((r + h) ** 2 - r**2) * w, rel=1e-9)
+    wall_solid = wall.solids()[0]
+    for stringer in wall.stiffeners[2:]:  # on the wall: touching it, not apart
+        assert wall_solid.distance_to(stringer) < 1e-7
+
+
+def test_a_stiffened_wall_in_builder_mode_carries_its_stiffeners_to_each_location():
+    from tubecad import Profile, StiffenedCurvatureWall
+
+    path = bd.Spline(*SPLINE_POINTS)
+    with bd.BuildPart() as p:
+        with bd.Locations((0, 0, 50), (0, 0, -50)):
+            wall = StiffenedCurvatureWall(
+                path, radius=12, thickness=1.5, rings=5, stringers=4, profile=Profile("flat", height=4, thickness=1)
+            )
+    assert p.part.is_valid and len(wall.stiffeners) == 10 and len(wall.rings) == 10
+    first, second = wall.stiffeners[:5], wall.stiffeners[5:]
+    for a, b in zip(first, second):  # the same ring frame, 100 apart in z
+        assert a.label == b.label
+        assert np.allclose(np.array(tuple(a.center())) - np.array(tuple(b.center())), (0, 0, 100), atol=1e-7)
+    with pytest.raises(ParameterError, match='ring_frames must be "all" or a list of indices'):
+        StiffenedCurvatureWall(path, radius=12, thickness=1.5, ring_frames="some")
+    with pytest.raises(ParameterError, match=r"stringer_stiffeners must be .* indices in \[0, 3\], got \[4\]"):
+        StiffenedCurvatureWall(path, radius=12, thickness=1.5, rings=5, stringers=4, stringer_stiffeners=[4])

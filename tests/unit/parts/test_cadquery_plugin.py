@@ -79,3 +79,33 @@ def test_the_old_names_still_work_and_say_so():
 def test_a_bad_axis_is_refused_by_name():
     with pytest.raises(ParameterError, match="axis must be a tubecad Axis"):
         cq.Workplane().curvatureTube(42, radius=5)
+
+
+def test_the_stiffened_wall_carries_labelled_stiffeners_of_exact_volume():
+    """Flat-bar ring frames on a straight wall: annuli of radii R and R + h, width w (R the
+    outer wall radius), as the build123d object's; fused into the stack with combine."""
+    from tubecad import Profile
+
+    axis = cq.Edge.makeLine(cq.Vector(0, 0, 0), cq.Vector(0, 0, 300))
+    radius, thickness, h, w = 20.0, 2.0, 5.0, 1.5
+    made = cq.Workplane().stiffenedCurvatureWall(
+        axis,
+        radius=radius,
+        thickness=thickness,
+        rings=4,
+        stringers=4,
+        ring_frames=[1, 2],
+        stringer_stiffeners=[0],
+        profile=Profile("flat", height=h, thickness=w),
+    )
+    compound = made.val()
+    assert [s.label for s in compound.stiffeners] == ["ring_01", "ring_02", "stringer_00"]
+    assert len(compound.rings) == 4 and len(compound.Solids()) == 4
+    assert all(s.isValid() and props.analyzer_findings(s.wrapped) == {} for s in compound.Solids())
+    r = radius + thickness / 2
+    for ring in compound.stiffeners[:2]:
+        assert props.volume(ring.wrapped) == pytest.approx(math.pi * ((r + h) ** 2 - r**2) * w, rel=1e-9)
+    fused = cq.Workplane().box(100, 100, 10).stiffenedCurvatureWall(axis, radius=radius, thickness=thickness, rings=4)
+    assert len(fused.solids().vals()) == 1 and fused.val().isValid()
+    with pytest.raises(ParameterError, match="ring_frames must be"):
+        cq.Workplane().stiffenedCurvatureWall(axis, radius=radius, thickness=thickness, ring_frames=[99])
