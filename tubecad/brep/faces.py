@@ -89,7 +89,7 @@ def patch_faces(
     own = len(s_rings) - (closing is not None)  # rings with edges of their own
 
     canal = tube_surface.canal
-    vertices = [[_vertex(builder, surface.Value(u_cuts[j], s)) for j in range(n_stringers)] for s in s_rings[:own]]
+    vertices = []
     rings = []
     bounds = []  # bounds[i][j]: the (edge, pcurve, tolerance) of ring i along face column j, in +u order
     if not canal:
@@ -102,6 +102,9 @@ def patch_faces(
             circle, gap = ring_circle(tube_surface, s)
             tolerance = max(TOLERANCE, 2.0 * gap)
             cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
+        # a vertex is the surface's point; the exact circle passes within the ring's gap of it,
+        # so the vertex tolerance covers the gap as the edge's does (a coarse fit: up to ~1e-7)
+        vertices.append([_vertex(builder, surface.Value(u_cuts[j], s), tolerance) for j in range(n_stringers)])
         rings.append(
             [
                 _edge(circle, vertices[i][j], vertices[i][(j + 1) % n_stringers], cuts[j], cuts[j + 1])
@@ -533,9 +536,9 @@ def canal_arc_pcurve(
     return pcurve, gap
 
 
-def _vertex(builder: BRep_Builder, point: gp_Pnt) -> TopoDS_Vertex:
+def _vertex(builder: BRep_Builder, point: gp_Pnt, tolerance: float = TOLERANCE) -> TopoDS_Vertex:
     vertex = TopoDS_Vertex()
-    builder.MakeVertex(vertex, point, TOLERANCE)
+    builder.MakeVertex(vertex, point, tolerance)
     return vertex
 
 
