@@ -67,20 +67,19 @@ def test_failed_write_leaves_no_file(tmp_path, wall, monkeypatch):
     assert target.read_text() == "previous good file" and len(list(tmp_path.iterdir())) == 1
 
 
-@pytest.mark.skipif(os.name != "posix", reason="needs POSIX signals")
 def test_interrupt_as_the_temporary_is_created_leaves_no_file(tmp_path, monkeypatch):
-    """SIGINT lands after the temporary file exists but before its name is returned (the
-    window that left a ``.part`` file in CI, then inside ``mkstemp``): the file is removed."""
-    import signal
-
+    """Ctrl-C lands after the temporary file exists but before its name is returned (the
+    window that left a ``.part`` file in CI, then inside ``mkstemp``): the file is removed.
+    The KeyboardInterrupt is raised where Python's SIGINT handler would raise it, not sent as
+    a signal: whether a raised signal is handled at once depends on what earlier tests in
+    the worker left in the process (it once reached the test's body in a full run)."""
     from tubecad.core.atomic import atomic_path
 
     real_open = os.open
 
     def open_interrupted(*args, **kwargs):
-        made = real_open(*args, **kwargs)
-        signal.raise_signal(signal.SIGINT)  # to this thread: handled before it returns
-        return made
+        real_open(*args, **kwargs)  # the file now exists
+        raise KeyboardInterrupt
 
     monkeypatch.setattr(os, "open", open_interrupted)
     with pytest.raises(KeyboardInterrupt):
