@@ -36,9 +36,9 @@ from tubecad.core.tolerance import EDGE_TOLERANCE
 TOLERANCE = EDGE_TOLERANCE
 
 
-def vertex(point: gp_Pnt) -> TopoDS_Vertex:
+def vertex(point: gp_Pnt, tolerance: float = TOLERANCE) -> TopoDS_Vertex:
     out = TopoDS_Vertex()
-    BRep_Builder().MakeVertex(out, point, TOLERANCE)
+    BRep_Builder().MakeVertex(out, point, tolerance)
     return out
 
 

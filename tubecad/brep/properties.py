@@ -57,6 +57,19 @@ def free_edges(shape: object) -> int:
     return sum(1 for i in range(1, edge_faces.Extent() + 1) if edge_faces.FindFromIndex(i).Extent() < 2)
 
 
+def largest_coordinate(shape: object) -> float:
+    """max |x|, |y|, |z| over the shape's bounding box (BRepBndLib, OCCT's optimal box)."""
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    box = Bnd_Box()
+    BRepBndLib.Add_s(topods(shape), box)
+    if box.IsVoid():
+        return 0.0
+    low, high = box.CornerMin(), box.CornerMax()  # Get() returns a struct in OCP 8, a tuple in 7.9
+    return max(abs(v) for v in (*low.Coord(), *high.Coord()))
+
+
 def volume(shape: object, eps: float = EPS) -> float:
     props = GProp_GProps()
     BRepGProp.VolumeProperties_s(topods(shape), props, eps)

@@ -27,6 +27,24 @@ EDGE_TOLERANCE = 1e-7
 #: below it edges and faces collapse within tolerance
 MIN_SIZE = 100 * EDGE_TOLERANCE
 
+#: significant digits OCCT's STEP and IGES writers give a coordinate (e.g. -18.39692620785)
+WRITTEN_DIGITS = 13
+
+
+def written_resolution(size: float, digits: int = WRITTEN_DIGITS) -> float:
+    """How finely a file holds coordinates up to ``size``: half a unit in the last of
+    ``digits`` significant digits, size * 0.5 * 10^(1 - digits)."""
+    return abs(size) * 0.5 * 10.0 ** (1 - digits)
+
+
+def file_uncertainty(size: float) -> float | None:
+    """The uncertainty a STEP or IGES file of coordinates up to ``size`` declares, which its
+    reader heals the B-rep to: 10 x :func:`written_resolution` where that exceeds the edge
+    tolerance (from coordinates of about 2e4), so the vertices and edges read back cover
+    the rounding of their coordinates; None below (the writer's own default)."""
+    value = 10.0 * written_resolution(size)
+    return value if value > EDGE_TOLERANCE else None
+
 
 def check_tolerance(name: str, value: object) -> float:
     """A fit tolerance in (0, 1) model units, or a ParameterError naming ``name``."""

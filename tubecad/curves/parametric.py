@@ -106,6 +106,7 @@ class ParametricAxis(Axis):
             0.0,
             L,
             breaks=s_breaks,
+            tol=self._frame_floor(t0, t1),
             name=f"the frame of {name} in arc length",
         )
         self._development_s = PiecewiseChebyshev.fit(
@@ -132,6 +133,15 @@ class ParametricAxis(Axis):
         speed = np.linalg.norm(d1, axis=-1, keepdims=True)
         T = d1 / speed
         return T, (d2 - T * np.sum(T * d2, axis=-1, keepdims=True)) / speed
+
+    def _frame_floor(self, t0: float, t1: float) -> float:
+        """The frame's tolerance in s: 1e-15, or the round-off it carries where that is more.
+        s is known to an ulp, ~1.1e-16 L, and T turns at the rate k, so T(s) is known only to
+        ~1.1e-16 L k: a long axis of tight bends (k L ~ 1e3) cannot be resolved to 1e-15."""
+        t = np.linspace(t0, t1, 4097)
+        T, T_t = self._tangent_and_rate(t)
+        k = float((np.linalg.norm(T_t, axis=-1) / self._speed(t)).max())
+        return max(1e-15, 4 * np.finfo(float).eps * self.span[1] * k)
 
     def _frame_in_t(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         T, _ = self._tangent_and_rate(t)
@@ -185,7 +195,7 @@ class ParametricAxis(Axis):
         if normal is not None:
             n = unit_vector("normal", normal)
         elif np.linalg.norm(T_t) > 1e-9 * self._speed(t0)[0] / max(self.span[1], 1e-300):
-            n = T_t
+            n = T_t / np.linalg.norm(T_t)  # its length k |x'| scales as 1 / size: only its direction counts
         else:  # starts straight: the coordinate axis least along T
             n = np.eye(3)[int(np.argmin(np.abs(T)))]
         n = n - float(n @ T) * T

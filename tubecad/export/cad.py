@@ -147,7 +147,7 @@ def write_step(
     shape_tool.GetFreeShapes(roots)
     for i in range(1, roots.Length() + 1):
         TDataStd_Name.Set_s(roots.Value(i), TCollection_ExtendedString(name))
-    with step_settings(schema, unit.name):
+    with step_settings(schema, unit.name), _declared_uncertainty(node.wrapped):
         writer = STEPCAFControl_Writer(XSControl_WorkSession(), False)
         writer.SetColorMode(True)
         writer.SetLayerMode(True)
@@ -248,7 +248,27 @@ def _static(key: str, value: str) -> Iterator[None]:
         Interface_Static.SetCVal_s(key, saved)
 
 
+@contextlib.contextmanager
+def _declared_uncertainty(shape: TopoDS_Shape) -> Iterator[None]:
+    """The uncertainty the file declares, for the writes inside the block: the policy's
+    :func:`~tubecad.core.tolerance.file_uncertainty` for the shape's largest coordinate
+    where it asks for one (OCCT's reader heals the B-rep to the file's uncertainty; at the
+    default 1e-7 a solid with coordinates of 1e6, held to 6e-7, reads back invalid)."""
+    from tubecad.brep.properties import largest_coordinate
+    from tubecad.core.tolerance import file_uncertainty
+
+    value = file_uncertainty(largest_coordinate(shape))
+    if value is None:
+        yield
+        return
+    with _static("write.precision.mode", "2"), _static("write.precision.val", repr(value)):  # 2: the given value
+        yield
+
+
 def _write_iges(shape: TopoDS_Shape, path: Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> None:
+    from tubecad.brep.properties import largest_coordinate
+    from tubecad.core.tolerance import file_uncertainty
+
     IGESControl_Controller.Init_s()
     unit = unit_of(length_unit)
     writer = IGESControl_Writer(unit.step, 1)  # the file's unit; 1: B-rep entities (solids and shells survive)
@@ -256,6 +276,9 @@ def _write_iges(shape: TopoDS_Shape, path: Path, length_unit: str = DEFAULT_LENG
     # document's length unit), so nothing is scaled
     section = writer.Model().GlobalSection()
     section.SetCascadeUnit(unit.mm)
+    uncertainty = file_uncertainty(largest_coordinate(shape))
+    if uncertainty is not None:  # as for STEP: the resolution the reader heals the B-rep to
+        section.SetResolution(uncertainty)
     writer.Model().SetGlobalSection(section)
     if not writer.AddShape(shape):
         raise ExportError("OCCT could not translate the shape to IGES")

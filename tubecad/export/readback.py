@@ -91,12 +91,30 @@ def readback_report(
         out["volume_relative_error"] = abs(props.volume(shape) / reference.volume() - 1.0)
         if not out["valid"]:  # no command writes a solid that fails the validity check
             name = Path(target if target is not None else path).name
-            raise FileAccuracyError(
-                f"{name}: the solid read back fails OCCT's validity check (BRepCheck_Analyzer); nothing was written"
-            )
+            raise _invalid_file(name, Path(target if target is not None else path), shape)
     if build is not None:
         out.update(measure_file(shape, build, Path(target if target is not None else path), wall_solids))
     return out
+
+
+def _invalid_file(name: str, target: Path, shape: object) -> FileAccuracyError:
+    """The refusal of a file whose solid reads back invalid. Where the format's digits hold
+    coordinates this large only to about a tenth of the B-rep's edge tolerance or worse, the
+    size is the cause, and a larger length unit (or BREP's full doubles) the cure."""
+    from tubecad.core.tolerance import EDGE_TOLERANCE, WRITTEN_DIGITS, written_resolution
+    from tubecad.export.registry import cad_format
+
+    message = f"{name}: the solid read back fails OCCT's validity check (BRepCheck_Analyzer); nothing was written"
+    fmt = cad_format(target)
+    size = props.largest_coordinate(shape)
+    held = written_resolution(size)
+    if fmt in ("step", "iges") and held > EDGE_TOLERANCE / 10:
+        return FileAccuracyError(
+            f"{message}: {fmt.upper()}'s {WRITTEN_DIGITS} digits hold coordinates up to {size:.3g} only to {held:.1g}, "
+            f"near the edge tolerance {EDGE_TOLERANCE:g}; {ALTERNATIVES[fmt]}, or a larger [units] length",
+            key="units.length",
+        )
+    return FileAccuracyError(message)
 
 
 def measure_file(shape: TopoDS_Shape, build: TubeBuild, target: Path, wall_solids: int | None = None) -> dict[str, Any]:
@@ -137,12 +155,14 @@ def measure_file(shape: TopoDS_Shape, build: TubeBuild, target: Path, wall_solid
     if m.max_deviation > limit_dev:
         raise FileAccuracyError(
             f"{name}: {what} holds the surface only to {m.max_deviation:.2g} at this size, above [fit] tolerance "
-            f"{limit_dev:g}; {better}"
+            f"{limit_dev:g}; {better}",
+            key="fit.tolerance",
         )
     if m.max_orthogonality > limit_orth:
         raise FileAccuracyError(
             f"{name}: {what} holds the isolines orthogonal only to |cos| {m.max_orthogonality:.2g} at this size, above "
-            f"the fitted {limit_orth:g} (from [fit] tolerance {limit_dev:g}); {better}"
+            f"the fitted {limit_orth:g} (from [fit] tolerance {limit_dev:g}); {better}",
+            key="fit.tolerance",
         )
     return out
 

@@ -277,7 +277,11 @@ def _circle(arcs: _Arcs, s: float) -> _Circle:
         ts.tube.radius_law.constant_value,  # a tube's radius
     )
     m = len(arcs.cuts) - 1
-    vertices = [vertex(surface.Value(u, s)) for u in arcs.cuts[:-1]]
+    points = [surface.Value(u, s) for u in arcs.cuts[:-1]]
+    # a vertex is the surface's point; the exact circle passes within the fit's gap of it, so
+    # the vertex tolerance covers the gap (a coarse fit far from the origin: above 1e-7)
+    gap = max(circle.Value(arcs.angles[j]).Distance(points[j]) for j in range(m))
+    vertices = [vertex(p, max(TOLERANCE, 2.0 * gap)) for p in points]
     edges = [edge(circle, vertices[j], vertices[(j + 1) % m], arcs.angles[j], arcs.angles[j + 1]) for j in range(m)]
     return _Circle(vertices, edges, s, CapPlane(centre, t, x_dir))
 

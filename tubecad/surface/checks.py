@@ -102,24 +102,36 @@ def envelope_distance(
     the s* where the minimum is (near the surface: the sphere the point's normal comes from).
 
     Newton on g(s) = |P - c| - r: g' = -(P - c).t / D - r', g'' = (1 - (P - c).k) / D -
-    ((P - c).t)^2 / D^3 - r'' (D = |P - c|, k the curvature vector), from the best of 2001
-    samples of g (not the closest axis point: a large sphere's points may lie nearer another
-    part of the axis) or ``s_guess``, kept inside the span.
+    ((P - c).t)^2 / D^3 - r'' (D = |P - c|, k the curvature vector), from the best sample of
+    g (not the closest axis point: a large sphere's points may lie nearer another part of the
+    axis) or ``s_guess``. The samples are at most a quarter of the smallest radius apart (at
+    least 2001), so the best one lies in the minimum's basin, and no Newton step goes further
+    than one sample spacing; round a closed axis s runs on across the closing (mod the
+    length), on an open one it is kept inside the span.
     """
     p = np.asarray(points, dtype=float)
     axis, law = surface.axis, surface.radius_law
     lo, hi = axis.span
+    coarse = np.linspace(lo, hi, 2001)
+    r_min = float(np.min(law.r(coarse)))
+    n = int(min(max(2001, math.ceil(4.0 * (hi - lo) / r_min) + 1), 200_001))
+    spacing = (hi - lo) / (n - 1)
+
+    def inside(x: np.ndarray) -> np.ndarray:
+        return lo + np.mod(x - lo, hi - lo) if axis.closed else np.clip(x, lo, hi)
+
     if s_guess is None:
-        samples = np.linspace(lo, hi, 2001)
+        samples = np.linspace(lo, hi, n)
         centres, radii = axis.position(samples), law.r(samples)
         flat = p.reshape(-1, 3)
         best = np.empty(len(flat), dtype=int)
-        for rows in np.array_split(np.arange(len(flat)), max(1, math.ceil(len(flat) / 256))):
+        rows_per_block = max(1, 2_000_000 // n)  # about 50 MB of differences at a time
+        for rows in np.array_split(np.arange(len(flat)), max(1, math.ceil(len(flat) / rows_per_block))):
             g = np.linalg.norm(flat[rows, None, :] - centres[None, :, :], axis=-1) - radii[None, :]
             best[rows] = np.argmin(g, axis=1)
         s_guess = samples[best].reshape(p.shape[:-1])
     flat_p = p.reshape(-1, 3)
-    flat_x = (np.clip(np.asarray(s_guess, dtype=float), lo, hi) * np.ones(p.shape[:-1])).ravel().copy()
+    flat_x = (inside(np.asarray(s_guess, dtype=float)) * np.ones(p.shape[:-1])).ravel().copy()
     active = np.arange(len(flat_x))  # the points still moving
     for _ in range(iters):
         xa = flat_x[active]
@@ -130,8 +142,8 @@ def envelope_distance(
         slope = -along / d - law.dr(xa)
         bend = (1.0 - np.einsum("...i,...i", r, a.curvature_vector)) / d - along**2 / d**3 - law.ddr(xa)
         with np.errstate(divide="ignore", invalid="ignore"):
-            step = np.where(bend > 0.0, slope / bend, 0.0)
-        flat_x[active] = np.clip(xa - step, lo, hi)
+            step = np.clip(np.where(bend > 0.0, slope / bend, 0.0), -spacing, spacing)
+        flat_x[active] = inside(xa - step)
         active = active[np.abs(step) > CONVERGED * (hi - lo)]
         if not len(active):
             break

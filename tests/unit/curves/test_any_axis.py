@@ -177,3 +177,35 @@ def test_walls_on_new_axes_are_valid_and_within_tolerance(name):
     assert volume(build.shape) == pytest.approx(
         math.pi * (build.radii[0] ** 2 - build.radii[1] ** 2) * axis.length, rel=1e-9
     )
+
+
+def test_an_axis_starting_at_a_near_inflection_gets_a_start_normal():
+    """x = (t, 1e-7 t^2 + 1e-3 t^3, 0): at t = 0 the curvature is 2e-7, its Frenet normal
+    (0, 1, 0) up to round-off. The start normal once failed the parallel check against an
+    unnormalised tangent derivative and the axis was refused (random-spec run, issue 24)."""
+    axis = ParametricAxis(lambda t: np.stack([t, 1e-7 * t**2 + 1e-3 * t**3, 0 * t], axis=-1), (0.0, 10.0))
+    t, r1, r2 = (v[0] for v in axis.rotation_minimising_frame(np.array([axis.span[0]])))
+    assert np.allclose(t, [1.0, 0.0, 0.0], atol=1e-12)
+    assert abs(np.dot(t, r1)) < 1e-12 and abs(np.dot(r1, r2)) < 1e-12
+    assert abs(np.dot(r1, [0.0, 1.0, 0.0])) > 1 - 1e-9  # the plane's normal: r2 is +-z
+
+
+def test_a_long_closed_curve_far_out_resolves_its_frame():
+    """Random-spec case 31: a closed sum of sines, ~1e6 across with k L ~ 1e3. Its frame in s
+    once had to be resolved to 1e-15 absolute, below what 2048 panels of doubles can hold
+    there, and the axis was refused; the floor is now 4 eps L k_max (round-off of the
+    frame's integral). The frame must come out orthonormal and closing on itself."""
+    x = [(306795.316321, 3.0, 2.48680202677), (113443.624595, 2.0, 4.96514152053), (107667.696276, 2.0, 4.79474462484)]
+    y = [(539048.255848, 1.0, 2.06944083329), (167174.43602, 1.0, 1.61344030209), (82991.7960451, 1.0, 4.50498537396)]
+    z = [(492206.849562, 1.0, 1.86110375891), (291136.95743, 3.0, 2.43071948788), (53482.3679879, 3.0, 5.42671168095)]
+
+    def curve(t):
+        return np.stack([sum(a * np.sin(f * t + p) for a, f, p in c) for c in (x, y, z)], axis=-1)
+
+    axis = ParametricAxis(curve, (0.0, 2 * math.pi), closed=True)
+    s = np.linspace(*axis.span, 2001)
+    t, r1, r2 = axis.rotation_minimising_frame(s)
+    frame = np.stack([t, r1, r2], axis=-2)
+    assert np.abs(frame @ frame.transpose(0, 2, 1) - np.eye(3)).max() < 1e-12
+    assert np.linalg.norm(axis.position(s[-1:]) - axis.position(s[:1])) < 1e-9 * axis.length
+    assert np.linalg.norm(t[-1] - t[0]) < 1e-10

@@ -310,3 +310,37 @@ def test_stringer_speed_is_the_fold_formula(twisted):
     # 24 stringers come within an angle pi/24 of the lowest one at every s
     gap = np.sqrt(forms.G).min(axis=0) - lowest[0]
     assert gap.max() <= (r * np.hypot(k1, k2)).max() * (1 - math.cos(math.pi / 24)) + 1e-11
+
+
+# --- the envelope distance round a long closed loop (random-spec cases 163, 715, 727, 967) -----
+def test_envelope_distance_round_a_long_loop():
+    """Points on a closed canal surface whose loop is ~6000 radii long lie at distance 0 from
+    it, also on both sides of the closing ring. The points are the characteristic circles'
+    by hand: centre c - r r' t, radius r sqrt(1 - r'^2), in the plane of n and b (a circle
+    axis of radius R: t, n, b are closed forms). The read-back measure once sampled such a
+    loop more than a radius apart, and kept s inside [0, L] instead of running on across the
+    closing, and refused the files of regular tubes."""
+    from tubecad.surface.checks import envelope_distance
+
+    R, r0, a = 2.0e4, 20.0, 2.0
+    L = 2 * math.pi * R
+    axis = ParametricAxis(
+        lambda t: np.stack([R * np.cos(t), R * np.sin(t), 0.0 * t], axis=-1), (0.0, 2 * math.pi), closed=True
+    )
+    canal = CanalSurface(axis, f"{r0!r} + {a!r} * cos(2 * pi * s / {axis.length!r})")
+    s = np.concatenate([np.linspace(0.0, L, 97), [0.3, 1.0, L - 0.3, L - 1.0]])
+    phi = np.linspace(0.0, 2 * math.pi, 7)[:, None]
+    w = s / R
+    c = np.stack([R * np.cos(w), R * np.sin(w), 0 * w], axis=-1)
+    t = np.stack([-np.sin(w), np.cos(w), 0 * w], axis=-1)
+    n = -c / R
+    b = np.array([0.0, 0.0, 1.0])
+    r = r0 + a * np.cos(2 * math.pi * s / L)
+    dr = -a * 2 * math.pi / L * np.sin(2 * math.pi * s / L)
+    centre = c - (r * dr)[:, None] * t
+    size = (r * np.sqrt(1 - dr**2))[None, :, None]
+    points = centre[None] + size * (np.cos(phi)[..., None] * n[None] + np.sin(phi)[..., None] * b)
+    distance, found = envelope_distance(canal, points)
+    assert np.abs(distance).max() < 1e-9 * R
+    ring = np.minimum(np.abs(found - s[None]), L - np.abs(found - s[None]))  # the sphere each point is on
+    assert ring.max() < 1e-6 * r0
