@@ -1,0 +1,183 @@
+"""Where the time of OCCT's pre-boolean check goes on a tubecad wall (issue 24).
+
+``python benchmarks/analyzer.py [--json FILE]`` builds the paper's wall (samples/paper_log_spiral.toml:
+11 rings x 8 stringers, 162 faces) and times, in one process:
+
+1. ``BOPAlgo_ArgumentAnalyzer`` with each check on alone (``tubecad.brep.properties.analyzer_findings``);
+2. its self-intersection part as ``BOPAlgo_CheckerSI`` stopped at each level (3: up to vertex/face,
+   4: edge/face, 5: face/face, the whole check), in parallel and serial, and with OCCT's oriented
+   boxes as the pair prefilter (``SetUseOBB``, which the analyzer does not pass on);
+3. the self-intersection check against the fit tolerance (1e-4 .. 1e-10: the v knots per face)
+   and against the layout (the number of faces, so of face pairs whose boxes overlap);
+4. the same check on the peer: the tube as one swept solid (MakePipeShell, CorrectedFrenet, the
+   paper's spine) beside tubecad's capped tube with the fewest faces (2 rings x 1 stringer).
+
+Every shape checked is valid with no finding; only the times differ.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+import tomllib
+from pathlib import Path
+
+from OCP.Bnd import Bnd_Box
+from OCP.BOPAlgo import BOPAlgo_CheckerSI
+from OCP.BRep import BRep_Tool
+from OCP.BRepBndLib import BRepBndLib
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopExp import TopExp_Explorer
+
+from tubecad.brep.properties import ANALYZER_MODES, analyzer_findings, is_valid, topods
+from tubecad.occ_compat import as_face
+from tubecad.spec.build import build_from_spec
+from tubecad.spec.parse import parse_spec
+
+ROOT = Path(__file__).resolve().parent.parent
+SPEC = ROOT / "samples" / "paper_log_spiral.toml"
+
+
+def _list_of_shape(shape):
+    try:
+        from OCP.TopTools import TopTools_ListOfShape as ListOfShape  # OCP 7.9
+    except ImportError:
+        from OCP.collections import List_TopoDS_Shape as ListOfShape  # OCP 8
+    shapes = ListOfShape()
+    shapes.Append(shape)
+    return shapes
+
+
+def faces_of(shape) -> list:
+    explorer, faces = TopExp_Explorer(topods(shape), TopAbs_FACE), []
+    while explorer.More():
+        faces.append(explorer.Current())
+        explorer.Next()
+    return faces
+
+
+def overlapping_pairs(shape) -> int:
+    """Face pairs whose bounding boxes (BRepBndLib, as BOPDS makes them) overlap."""
+    boxes = []
+    for face in faces_of(shape):
+        box = Bnd_Box()
+        BRepBndLib.Add_s(face, box)
+        boxes.append(box)
+    return sum(1 for i, a in enumerate(boxes) for b in boxes[i + 1 :] if not a.IsOut(b))
+
+
+def v_knots(shape) -> int:
+    """Knot spans in v summed over the B-spline faces (what OCCT's samplers scale with)."""
+    total = 0
+    for face in faces_of(shape):
+        surface = BRep_Tool.Surface_s(as_face(face))
+        if surface.DynamicType().Name() == "Geom_BSplineSurface":
+            total += surface.NbVKnots() - 1
+    return total
+
+
+def timed(call) -> tuple[float, object]:
+    start = time.perf_counter()
+    result = call()
+    return time.perf_counter() - start, result
+
+
+def checker_si(shape, level: int = 5, parallel: bool = True, obb: bool = False) -> float:
+    checker = BOPAlgo_CheckerSI()
+    checker.SetArguments(_list_of_shape(topods(shape)))
+    checker.SetLevelOfCheck(level)
+    checker.SetRunParallel(parallel)
+    checker.SetUseOBB(obb)
+    seconds, _ = timed(checker.Perform)
+    assert not checker.HasErrors()
+    return seconds
+
+
+def wall(tolerance: float = 1e-8, rings: int = 11, stringers: int = 8):
+    data = tomllib.loads(SPEC.read_text())
+    data["fit"]["tolerance"] = tolerance
+    data["layout"] = {"rings": rings, "stringers": stringers}
+    return build_from_spec(parse_spec(data, str(SPEC))).shape
+
+
+def self_inter(shape) -> float:
+    seconds, findings = timed(lambda: analyzer_findings(shape, ("SelfInterMode",)))
+    assert findings == {}, findings
+    return seconds
+
+
+def peer_sweep():
+    """The paper tube as MakePipeShell (CorrectedFrenet) sweeps it along the 1001-point spine."""
+    from peers import occt_pipe_shell, spine
+
+    from tubecad import paper_tube
+
+    tube = paper_tube()
+    return occt_pipe_shell("CorrectedFrenet")(tube, spine(tube))[0].wrapped
+
+
+def capped_tube():
+    from tubecad import paper_tube
+    from tubecad.brep import NetLayout, build_tube_solid
+
+    tube = paper_tube()
+    return build_tube_solid(tube, NetLayout.equal(tube, 2, 1)).shape
+
+
+def run() -> dict:
+    paper = wall()
+    assert is_valid(paper)
+    result: dict = {"faces": len(faces_of(paper)), "face_pairs_overlapping": overlapping_pairs(paper)}
+    result["modes_s"] = {}
+    for mode in ANALYZER_MODES:
+        seconds, findings = timed(lambda mode=mode: analyzer_findings(paper, (mode,)))
+        assert findings == {}, (mode, findings)
+        result["modes_s"][mode] = round(seconds, 2)
+    result["all_modes_s"] = round(timed(lambda: analyzer_findings(paper))[0], 2)
+    result["checker_levels_s"] = {level: round(checker_si(paper, level), 2) for level in (3, 4, 5)}
+    result["checker_serial_s"] = round(checker_si(paper, parallel=False), 2)
+    result["checker_obb_s"] = round(checker_si(paper, obb=True), 2)
+    result["by_tolerance"] = []
+    for tolerance in (1e-4, 1e-6, 1e-8, 1e-10):
+        shape = wall(tolerance)
+        result["by_tolerance"].append(
+            {"tolerance": tolerance, "v_knot_spans": v_knots(shape), "self_inter_s": round(self_inter(shape), 2)}
+        )
+    result["by_layout"] = []
+    for rings, stringers in ((2, 1), (3, 2), (6, 4), (11, 8)):
+        shape = wall(1e-8, rings, stringers)
+        result["by_layout"].append(
+            {
+                "rings": rings,
+                "stringers": stringers,
+                "faces": len(faces_of(shape)),
+                "pairs": overlapping_pairs(shape),
+                "self_inter_s": round(self_inter(shape), 2),
+            }
+        )
+    peer, tube = peer_sweep(), capped_tube()
+    result["peer"] = {
+        "makepipeshell_faces": len(faces_of(peer)),
+        "makepipeshell_v_knot_spans": v_knots(peer),
+        "makepipeshell_self_inter_s": round(self_inter(peer), 2),
+        "tubecad_tube_faces": len(faces_of(tube)),
+        "tubecad_tube_v_knot_spans": v_knots(tube),
+        "tubecad_tube_self_inter_s": round(self_inter(tube), 2),
+    }
+    return result
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--json", type=Path, help="write the results there")
+    args = parser.parse_args()
+    result = run()
+    text = json.dumps(result, indent=2)
+    print(text)
+    if args.json:
+        args.json.write_text(text + "\n")
+
+
+if __name__ == "__main__":
+    main()
