@@ -42,6 +42,8 @@ _PUBLIC = {
     "StiffenedCurvatureWall": "tubecad.parts",
     "NetLayout": "tubecad.brep.layout",
     "Profile": "tubecad.stiffeners.profiles",
+    "saddle_curve": "tubecad.junctions",
+    "fit_saddle": "tubecad.junctions",
     "CurvatureLineTube": "tubecad.surface",
     "FundamentalForms": "tubecad.surface",
     "paper_tube": "tubecad.spec.paper",

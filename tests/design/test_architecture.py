@@ -19,6 +19,7 @@ LAYERS = [
     {"surface"},
     {"fitting"},
     {"brep"},
+    {"junctions"},
     {"stiffeners"},
     {"export"},
     {"fem", "shop"},

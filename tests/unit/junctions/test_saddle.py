@@ -1,0 +1,150 @@
+"""The saddle curve of a branch on a main surface (issue 25) against closed forms: unequal
+perpendicular cylinders, an oblique and an offset (hillside) branch, a branch on a torus, a
+conical (canal) branch; and the refusals (tangent surfaces, a branch that never leaves)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from tubecad import NaturalAxis, ParameterError
+from tubecad.junctions import saddle_curve
+from tubecad.surface.canal import tube_or_canal
+
+R, r = 50.0, 20.0
+#: Newton stops at |X_A - X_B| <= 1e-13 x the size (~150 here); measured 8e-14 on the closed forms
+ROUND_OFF = 5e-13
+
+
+def line(origin, tangent, normal, length, radius):
+    """A straight tube (k = tau = 0) of ``radius`` from ``origin`` along ``tangent``; its r1 = ``normal``."""
+    return tube_or_canal(NaturalAxis("0", "0", (0.0, length), origin=origin, tangent=tangent, normal=normal), radius)
+
+
+MAIN = line((-100.0, 0.0, 0.0), (1, 0, 0), (0, 1, 0), 200.0, R)  # y^2 + z^2 = R^2
+
+
+def test_perpendicular_cylinders_meet_on_the_closed_form_saddle():
+    """Branch x^2 + y^2 = r^2 up z: the point at u is (r cos u, r sin u, sqrt(R^2 - r^2 sin^2 u)),
+    so s_B = z, s_A = x + 100 and the main's angle from its r1 = y is atan2(z, y)."""
+    branch = line((0.0, 0.0, 0.0), (0, 0, 1), (1, 0, 0), 120.0, r)
+    c = saddle_curve(MAIN, branch, 129)
+    u = c.branch_u
+    z = np.sqrt(R**2 - r**2 * np.sin(u) ** 2)
+    assert np.abs(c.branch_s - z).max() < ROUND_OFF
+    assert np.abs(c.main_s - (r * np.cos(u) + 100.0)).max() < ROUND_OFF
+    chi = np.arctan2(z, r * np.sin(u))
+    assert np.abs(np.angle(np.exp(1j * (c.main_u - chi)))).max() < ROUND_OFF / R
+    assert np.abs(c.points - np.column_stack([r * np.cos(u), r * np.sin(u), z])).max() < ROUND_OFF
+    assert c.residual < ROUND_OFF and u[0] == 0.0 and u[-1] == pytest.approx(2 * math.pi)
+
+
+def test_an_oblique_branch_meets_where_the_quadratic_says():
+    """Branch along d = (cos a, 0, sin a): P = s d + r (cos u (0,1,0) + sin u (-sin a, 0, cos a)),
+    on the main where (s sin a + r sin u cos a)^2 = R^2 - r^2 cos^2 u."""
+    a = math.radians(60.0)
+    branch = line((0.0, 0.0, 0.0), (math.cos(a), 0, math.sin(a)), (0, 1, 0), 120.0, r)
+    c = saddle_curve(MAIN, branch, 97)
+    u = c.branch_u
+    s = (np.sqrt(R**2 - r**2 * np.cos(u) ** 2) - r * np.sin(u) * math.cos(a)) / math.sin(a)
+    assert np.abs(c.branch_s - s).max() < ROUND_OFF
+
+
+def test_a_hillside_branch_offset_sideways():
+    """Branch up z, its axis e = 22 off the main's: z = sqrt(R^2 - (e + r sin u)^2)."""
+    e = 22.0
+    branch = line((0.0, e, 0.0), (0, 0, 1), (1, 0, 0), 120.0, r)
+    c = saddle_curve(MAIN, branch, 97)
+    z = np.sqrt(R**2 - (e + r * np.sin(c.branch_u)) ** 2)
+    assert np.abs(c.branch_s - z).max() < ROUND_OFF
+
+
+def test_a_branch_on_a_torus_lies_on_both_surfaces():
+    """Main: the torus (sqrt(x^2 + y^2) - 150)^2 + z^2 = 40^2 (axis a half circle of radius 150);
+    branch: r = 15 up z from the axis point at 45 deg. Every point on both, by their equations."""
+    bend = 150.0
+    main = tube_or_canal(
+        NaturalAxis(f"1/{bend}", "0", (0.0, math.pi * bend), origin=(bend, 0, 0), tangent=(0, 1, 0), normal=(-1, 0, 0)),
+        40.0,
+    )
+    foot = bend * np.array([math.cos(math.pi / 4), math.sin(math.pi / 4), 0.0])
+    branch = line(tuple(foot), (0, 0, 1), (1, 0, 0), 100.0, 15.0)
+    c = saddle_curve(main, branch, 97)
+    x, y, z = c.points.T
+    assert np.abs(np.hypot(np.hypot(x, y) - bend, z) - 40.0).max() < ROUND_OFF
+    assert np.abs(np.hypot(x - foot[0], y - foot[1]) - 15.0).max() < ROUND_OFF
+    assert (z > 0).all() and abs(np.mean(c.main_s) - math.pi * bend / 4) < 15.0
+
+
+def test_a_conical_branch_a_canal_surface():
+    """Branch radius law r(s) = 20 - 0.1 s up z: the cone whose points at height z lie
+    rho = (20 + b s) sqrt(1 - b^2) from its axis, s = (z + 20 b) / (1 - b^2), b = -0.1
+    (the characteristic circles' centres sit r r' ahead of c(s))."""
+    b = -0.1
+    branch = tube_or_canal(
+        NaturalAxis("0", "0", (0.0, 100.0), origin=(0, 0, 0), tangent=(0, 0, 1), normal=(1, 0, 0)), "20 - 0.1 * s"
+    )
+    c = saddle_curve(MAIN, branch, 97)
+    x, y, z = c.points.T
+    s = (z + 20.0 * b) / (1.0 - b * b)
+    assert np.abs(np.hypot(x, y) - (20.0 + b * s) * math.sqrt(1.0 - b * b)).max() < ROUND_OFF
+    assert np.abs(np.hypot(y, z) - R).max() < ROUND_OFF
+
+
+def test_an_equal_radius_tee_is_refused_naming_the_radius():
+    branch = line((0.0, 0.0, 0.0), (0, 0, 1), (1, 0, 0), 120.0, R)
+    with pytest.raises(ParameterError, match="tangent") as info:
+        saddle_curve(MAIN, branch)
+    assert info.value.key == "branches.radius" and "\n" not in str(info.value)
+
+
+def test_a_branch_that_never_leaves_the_main_tube_is_refused():
+    branch = line((0.0, 0.0, 0.0), (0, 0, 1), (1, 0, 0), 30.0, r)  # ends at z = 30 < 41.2
+    with pytest.raises(ParameterError, match="never leaves") as info:
+        saddle_curve(MAIN, branch)
+    assert info.value.key == "branches"
+
+
+@pytest.mark.parametrize("tolerance", [1e-6, 1e-8, 1e-10])
+def test_the_saddle_edge_lies_on_both_cylinders_within_the_tolerance(tolerance):
+    """The fitted edge sampled by OCCT's own evaluator 5,000 times round the branch: each point
+    within ``tolerance`` of both cylinders (their equations, not the saddle's samples); one
+    periodic, closed, valid, at least C2 edge named ``saddle_outer``; each halving of the
+    knot spacing gains the h^6 of a quintic (64x: at most 2 doublings per factor 100)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.GeomAbs import GeomAbs_C2
+
+    from tubecad.junctions import fit_saddle
+
+    branch = line((0.0, 0.0, 0.0), (0, 0, 1), (1, 0, 0), 120.0, r)
+    saddle = fit_saddle(MAIN, branch, tolerance)
+    curve = BRepAdaptor_Curve(saddle.edge)
+    t = np.linspace(curve.FirstParameter(), curve.LastParameter(), 5001)
+    p = np.array([curve.Value(float(x)).Coord() for x in t])
+    assert np.abs(np.hypot(p[:, 0], p[:, 1]) - r).max() <= tolerance
+    assert np.abs(np.hypot(p[:, 1], p[:, 2]) - R).max() <= tolerance
+    assert saddle.name == "saddle_outer" and saddle.deviation <= tolerance
+    assert saddle.curve.IsPeriodic() and saddle.curve.IsClosed() and saddle.curve.Continuity().value >= GeomAbs_C2.value
+    assert BRepCheck_Analyzer(saddle.edge).IsValid()
+    # measured: 64 poles at 1e-6, 128 at 1e-8, 256 at 1e-10
+    assert saddle.poles <= {1e-6: 64, 1e-8: 128, 1e-10: 256}[tolerance]
+
+
+def test_a_periodic_bspline_through_samples_reproduces_them():
+    """periodic_bspline's OCCT curve passes through its samples and is the scipy interpolant
+    between them (a trigonometric curve, period 2 pi)."""
+    from scipy.interpolate import make_interp_spline
+
+    from tubecad.junctions import periodic_bspline
+
+    u = np.linspace(0.0, 2 * np.pi, 17)
+    p = np.column_stack([np.cos(u) + 0.3 * np.cos(3 * u), np.sin(2 * u), np.sin(u)])
+    p[-1] = p[0]
+    curve = periodic_bspline(u, p)
+    at = lambda x: np.array([curve.Value(float(v)).Coord() for v in x])  # noqa: E731
+    assert np.abs(at(u) - p).max() < 1e-14
+    x = np.linspace(0.0, 2 * np.pi, 101)
+    assert np.abs(at(x) - make_interp_spline(u, p, k=5, bc_type="periodic")(x)).max() < 1e-14

@@ -1,0 +1,11 @@
+"""Branches and nozzles: where a branch tube meets a main tube or wall (issue 25).
+
+:mod:`~tubecad.junctions.saddle` computes the saddle curve in the curvature-line parameters
+of both surfaces; :mod:`~tubecad.junctions.edges` fits it into the B-spline edge that the
+junction's faces share (``saddle_outer``, ``saddle_inner``).
+"""
+
+from tubecad.junctions.edges import SaddleEdge, fit_saddle, periodic_bspline
+from tubecad.junctions.saddle import SaddleCurve, saddle_curve
+
+__all__ = ["SaddleCurve", "SaddleEdge", "fit_saddle", "periodic_bspline", "saddle_curve"]

@@ -1,0 +1,108 @@
+"""The saddle curve fitted into the B-spline edge the junction's faces share.
+
+The saddle is smooth and periodic in the branch's stringer angle u_B, so it is interpolated
+at N evenly spaced u_B by a periodic B-spline of degree 5 (knots at the samples, C^4 round
+the whole turn: no seam for OCCT's continuity check to find; The NURBS Book, section 9.2.1,
+global interpolation, with scipy's periodic solver), and measured against the exact saddle
+(Newton's points, :mod:`~tubecad.junctions.saddle`) at the N midpoints. N doubles from 32
+until the largest distance is within the fit tolerance: the error of a degree-5 interpolant
+falls as h^6, so each doubling gains about 64x.
+
+The edge lies within that distance of both exact surfaces, and so within it plus the faces'
+own fit tolerance of both fitted faces.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.Geom import Geom_BSplineCurve
+from OCP.gp import gp_Pnt
+from OCP.TopoDS import TopoDS_Edge
+from scipy.interpolate import make_interp_spline
+
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, check_tolerance
+from tubecad.fitting.occ_arrays import integers, reals
+from tubecad.junctions.saddle import SaddleCurve, saddle_curve
+from tubecad.occ_compat import Array1OfPnt
+from tubecad.surface.protocol import CurvatureLineSurface
+
+#: the interpolant's degree (odd: scipy's periodic knots are then the samples themselves)
+DEGREE = 5
+#: the first and the largest number of intervals round the branch
+FIRST_INTERVALS, MOST_INTERVALS = 32, 4096
+
+
+@dataclass(frozen=True)
+class SaddleEdge:
+    """A saddle curve as an OCCT edge: ``name`` (``saddle_outer``, ``saddle_inner``), the
+    periodic B-spline ``curve`` (parameter u_B), its ``edge``, the exact ``saddle`` at its
+    knots, and the largest distance ``deviation`` from the exact saddle measured at the
+    midpoints between them."""
+
+    name: str
+    curve: Geom_BSplineCurve
+    edge: TopoDS_Edge
+    saddle: SaddleCurve
+    deviation: float
+    tolerance: float
+
+    @property
+    def poles(self) -> int:
+        return self.curve.NbPoles()
+
+
+def periodic_bspline(u: np.ndarray, points: np.ndarray, degree: int = DEGREE) -> Geom_BSplineCurve:
+    """The periodic B-spline of ``degree`` through ``points`` at ``u`` (the last point the
+    first, at u[0] + period): knots at u, each of multiplicity 1. scipy's periodic
+    interpolant's first len(u) - 1 coefficients are OCCT's periodic poles (same knots)."""
+    spline = make_interp_spline(u, points, k=degree, bc_type="periodic")
+    n = len(u) - 1
+    poles = Array1OfPnt(1, n)
+    for i in range(n):
+        poles.SetValue(i + 1, gp_Pnt(*map(float, spline.c[i])))
+    return Geom_BSplineCurve(poles, reals(u), integers([1] * len(u)), degree, True)
+
+
+def fit_saddle(
+    main: CurvatureLineSurface,
+    branch: CurvatureLineSurface,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
+    *,
+    name: str = "saddle_outer",
+    key: str = "branches",
+) -> SaddleEdge:
+    """The saddle where ``branch`` leaves ``main`` as a periodic B-spline edge within
+    ``tolerance`` of the exact saddle (measured at the midpoints between its knots)."""
+    tolerance = check_tolerance("tolerance", tolerance)
+    intervals = FIRST_INTERVALS
+    while True:
+        exact = saddle_curve(main, branch, 2 * intervals + 1, key=key)
+        nodes = exact.points[::2].copy()
+        nodes[-1] = nodes[0]
+        curve = periodic_bspline(exact.branch_u[::2], nodes)
+        mids = exact.branch_u[1::2]
+        fitted = np.array([curve.Value(float(u)).Coord() for u in mids])
+        deviation = float(np.linalg.norm(fitted - exact.points[1::2], axis=1).max())
+        if deviation <= tolerance:
+            break
+        if intervals >= MOST_INTERVALS:
+            raise ParameterError(
+                f"fit.tolerance: the saddle curve holds only {deviation:.1e} with {intervals} poles "
+                f"round the branch (tolerance {tolerance:.1e})",
+                key="fit.tolerance",
+            )
+        intervals *= 2
+    knots = SaddleCurve(
+        exact.branch_u[::2],
+        exact.branch_s[::2],
+        exact.main_u[::2],
+        exact.main_s[::2],
+        exact.points[::2],
+        exact.residual,
+    )
+    edge = BRepBuilderAPI_MakeEdge(curve).Edge()
+    return SaddleEdge(name, curve, edge, knots, deviation, tolerance)

@@ -1,0 +1,199 @@
+"""The saddle curve: where a branch surface meets a main surface, in the curvature-line
+parameters of both (docs/MATH.md section 13).
+
+Both surfaces are curvature-line surfaces X_A(u_A, s_A) (the main tube or wall) and
+X_B(u_B, s_B) (the branch). The saddle is the closed curve of points with
+
+    F(u_A, s_A, s_B; u_B) = X_A(u_A, s_A) - X_B(u_B, s_B) = 0,
+
+three equations in four unknowns: one curve, parameterised by the branch's stringer angle
+u_B, which runs once round the branch. For each u_B Newton's method solves F = 0 for
+(u_A, s_A, s_B) with the Jacobian J = [dX_A/du_A, dX_A/ds_A, -dX_B/ds_B], to round-off.
+The curve is marched in u_B with the tangent as predictor,
+
+    d(u_A, s_A, s_B)/du_B = J^-1 dX_B/du_B,
+
+and corrected by Newton at every sample (Allgower & Georg, *Introduction to Numerical
+Continuation Methods*, 2003, ch. 2: predictor-corrector continuation). J is singular where the
+surfaces are tangent (an equal-radius tee's two crossing points, a branch grazing the main
+tube): there the saddle is no longer one smooth closed curve round the branch, and it is
+refused naming the branch's radius.
+
+The start: along the branch's stringer u_B from the branch's first ring, the first point
+outside the main surface, found from the main surface's rings (the ring through a point P
+is the one whose plane holds P; P is outside when farther from that ring's centre than its
+radius), then Newton.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from tubecad.core.errors import ParameterError
+from tubecad.surface.protocol import CurvatureLineSurface
+
+FloatArray = np.ndarray
+
+#: Newton stops when |F| is below this times the surfaces' size (round-off of the coordinates)
+RESIDUAL = 1e-13
+#: at most this many Newton steps per sample
+NEWTON_STEPS = 40
+#: samples of the first, sequential march round the branch
+COARSE = 24
+#: |J|'s reciprocal condition number below which the surfaces are taken as tangent
+TANGENCY = 1e-6
+
+
+@dataclass(frozen=True)
+class SaddleCurve:
+    """The saddle sampled at ``branch_u`` (u_B, increasing over one turn, the last sample
+    the first plus 2 pi): the branch's (u_B, s_B), the main surface's (u_A, s_A) of the same
+    points (u_A unwrapped along the curve), the points and the largest |X_A - X_B| left."""
+
+    branch_u: FloatArray
+    branch_s: FloatArray
+    main_u: FloatArray
+    main_s: FloatArray
+    points: FloatArray
+    residual: float
+
+    def __len__(self) -> int:
+        return len(self.branch_u)
+
+
+def _ring_coordinates(main: CurvatureLineSurface, points: FloatArray, samples: int = 2001):
+    """For each point P: the main ring whose plane holds P (s_A), the angle chi of P round
+    it from r1, and P's distance from the ring's centre minus the ring's radius (> 0:
+    outside the main surface). Rings whose plane holds P several times: the nearest."""
+    s = np.linspace(*main.span, samples)
+    centre, radius, normal = main.circle(s)
+    d = points[:, None, :] - centre[None, :, :]
+    h = np.einsum("psk,sk->ps", d, normal)
+    change = np.signbit(h[:, :-1]) != np.signbit(h[:, 1:])
+    dist = np.linalg.norm(d, axis=-1)
+    score = np.where(change, dist[:, :-1], np.inf)
+    j = np.argmin(score, axis=1)
+    found = np.isfinite(score[np.arange(len(points)), j])
+    h0, h1 = h[np.arange(len(points)), j], h[np.arange(len(points)), j + 1]
+    w = np.where(found, h0 / np.where(h0 != h1, h0 - h1, 1.0), 0.0)
+    s_a = s[j] + w * (s[j + 1] - s[j])
+    c, r, _ = main.circle(s_a)
+    _, r1, r2 = main.axis.rotation_minimising_frame(s_a)
+    e = points - c
+    chi = np.arctan2(np.einsum("pk,pk->p", e, r2), np.einsum("pk,pk->p", e, r1))
+    gap = np.where(found, np.linalg.norm(e, axis=-1) - r, -np.inf)
+    return s_a, chi, gap
+
+
+def _u_of_chi(main: CurvatureLineSurface, chi: FloatArray, s: FloatArray) -> FloatArray:
+    """The stringer u whose angle at s is chi: (sin u/2, cos u/2) ~ Mb(s)^-1 (sin chi/2, cos chi/2)."""
+    half = np.stack([np.sin(chi / 2), np.cos(chi / 2)], axis=-1)
+    back = np.linalg.solve(main.moebius_matrix(s), half[..., None])[..., 0]
+    return 2.0 * np.arctan2(back[..., 0], back[..., 1])
+
+
+def _solve(main: CurvatureLineSurface, branch: CurvatureLineSurface, u_b: FloatArray, x: FloatArray, scale: float):
+    """Newton on X_A(x[:, 0], x[:, 1]) = X_B(u_b, x[:, 2]) for every sample at once, from x
+    (shape (n, 3)); returns (x, |F| per sample, J per sample (n, 3, 3), dX_B/du_B (n, 3))."""
+    for _ in range(NEWTON_STEPS):
+        a = main.derivatives(x[:, 0], x[:, 1])
+        b = branch.derivatives(u_b, x[:, 2])
+        f = a.S - b.S
+        jac = np.stack([a.S_u, a.S_s, -b.S_s], axis=-1)
+        size = np.linalg.norm(f, axis=-1)
+        if size.max() <= RESIDUAL * scale:
+            break
+        x = x - np.linalg.solve(jac, f[..., None])[..., 0]
+    return x, size, jac, b.S_u
+
+
+def _tangency(jac: FloatArray) -> FloatArray:
+    """1 / cond(J) with the columns scaled to unit length, per sample: 0 where the surfaces are tangent."""
+    j = jac / np.linalg.norm(jac, axis=-2, keepdims=True)
+    return 1.0 / np.linalg.cond(j)
+
+
+def _start(main: CurvatureLineSurface, branch: CurvatureLineSurface, u_b: float, key: str) -> FloatArray:
+    """(u_A, s_A, s_B) of the first point of the branch's stringer u_b outside the main surface."""
+    s = np.linspace(*branch.span, 801)
+    points = branch.points(np.full_like(s, u_b), s)
+    s_a, chi, gap = _ring_coordinates(main, points)
+    outside = gap > 0
+    if outside[0] or not outside.any():
+        raise ParameterError(
+            f"{key}: the branch must start inside the main surface and leave it through its wall "
+            f"(its stringer {u_b:.3g} rad {'starts outside' if outside[0] else 'never leaves'})",
+            key=key,
+        )
+    i = int(np.argmax(outside))
+    w = -gap[i - 1] / (gap[i] - gap[i - 1])
+    s_b = s[i - 1] + w * (s[i] - s[i - 1])
+    s_main = s_a[i - 1] + w * (s_a[i] - s_a[i - 1])
+    return np.array([float(_u_of_chi(main, chi[i : i + 1], s_a[i : i + 1])[0]), s_main, s_b])
+
+
+def saddle_curve(
+    main: CurvatureLineSurface,
+    branch: CurvatureLineSurface,
+    samples: int = 257,
+    *,
+    key: str = "branches",
+) -> SaddleCurve:
+    """The saddle where ``branch`` leaves ``main``, at ``samples`` stringer angles u_B evenly
+    spaced over one turn (the last the first plus 2 pi), each point solved by Newton to
+    |X_A - X_B| <= 1e-13 times the surfaces' size.
+
+    Refused (a ParameterError naming ``key``) where the branch does not start inside the main
+    surface and leave it through its wall, or where the surfaces are tangent on the curve."""
+    if samples < 8:
+        raise ParameterError(f"samples must be at least 8, got {samples}", key="samples")
+    u_b = np.linspace(0.0, 2.0 * np.pi, samples)
+    corners = np.concatenate(
+        [main.points(np.zeros(2), np.array(main.span)), branch.points(np.zeros(2), np.array(branch.span))]
+    )
+    scale = float(np.abs(corners).max() + main.radius_law.r(np.array(main.span)).max())
+    # march a coarse turn one sample at a time (the tangent predicts the next), then solve
+    # every sample at once from the coarse curve's periodic interpolation
+    coarse = np.linspace(0.0, 2.0 * np.pi, COARSE + 1)
+    x = _start(main, branch, 0.0, key)[None, :]
+    marched = np.empty((COARSE + 1, 3))
+    for i, u in enumerate(coarse):
+        x, size, jac, b_u = _solve(main, branch, coarse[i : i + 1], x, scale)
+        _check(size, jac, u, scale, key)
+        marched[i] = x[0]
+        x = x + np.linalg.solve(jac, b_u[..., None])[..., 0] * (2.0 * np.pi / COARSE)
+    marched[:, 0] = np.unwrap(marched[:, 0])
+    turns = np.round((marched[-1, 0] - marched[0, 0]) / (2.0 * np.pi))  # how often u_A winds round
+    marched[:, 0] -= turns * coarse
+    marched[-1] = marched[0]  # the same point, to Newton's round-off
+    guess = CubicSpline(coarse, marched, bc_type="periodic")(u_b)
+    guess[:, 0] += turns * u_b
+    x, size, jac, _ = _solve(main, branch, u_b, guess, scale)
+    _check(size, jac, u_b, scale, key)
+    points = main.points(x[:, 0], x[:, 1])
+    return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], points, float(size.max()))
+
+
+def _check(size: FloatArray, jac: FloatArray, u_b: FloatArray, scale: float, key: str) -> None:
+    """Refuse a sample Newton left off the curve, or where the surfaces are tangent."""
+    u_b = np.broadcast_to(u_b, size.shape)
+    bad = size > RESIDUAL * scale
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ParameterError(
+            f"{key}: the saddle curve did not converge at the branch's stringer {u_b[i]:.4g} rad "
+            f"(|X_A - X_B| = {size[i]:.2e})",
+            key=key,
+        )
+    flat = _tangency(jac) < TANGENCY
+    if flat.any():
+        raise ParameterError(
+            f"{key}.radius: the branch and the main surface are tangent at the branch's stringer "
+            f"{u_b[int(np.argmax(flat))]:.4g} rad (an equal-radius tee, or a branch grazing the main "
+            "tube): the saddle is not one smooth curve round the branch; make the branch's radius "
+            "smaller than the main's",
+            key=f"{key}.radius",
+        )
