@@ -5,7 +5,7 @@ of both surfaces; :mod:`~tubecad.junctions.edges` fits it into the B-spline edge
 junction's faces share (``saddle_outer``, ``saddle_inner``).
 """
 
-from tubecad.junctions.edges import SaddleEdge, fit_saddle, periodic_bspline
+from tubecad.junctions.edges import SaddleEdge, fit_saddle, periodic_bspline, wall_saddles
 from tubecad.junctions.saddle import SaddleCurve, saddle_curve
 
-__all__ = ["SaddleCurve", "SaddleEdge", "fit_saddle", "periodic_bspline", "saddle_curve"]
+__all__ = ["SaddleCurve", "SaddleEdge", "fit_saddle", "periodic_bspline", "saddle_curve", "wall_saddles"]

@@ -23,6 +23,7 @@ from OCP.gp import gp_Pnt
 from OCP.TopoDS import TopoDS_Edge
 from scipy.interpolate import make_interp_spline
 
+from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, check_tolerance
 from tubecad.fitting.occ_arrays import integers, reals
@@ -106,3 +107,26 @@ def fit_saddle(
     )
     edge = BRepBuilderAPI_MakeEdge(curve).Edge()
     return SaddleEdge(name, curve, edge, knots, deviation, tolerance)
+
+
+def wall_saddles(
+    main: CurvatureLineSurface,
+    branch: CurvatureLineSurface,
+    main_thickness: float,
+    branch_thickness: float,
+    *,
+    main_side: str = "centered",
+    branch_side: str = "centered",
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
+    key: str = "branches",
+) -> tuple[SaddleEdge, SaddleEdge]:
+    """The two saddles of a branch wall on a main wall: ``saddle_outer``, where the branch's
+    outer surface leaves the main's outer surface (the joint's outer skin), and
+    ``saddle_inner``, where the branch's bore leaves the main's inner surface (the bore's
+    opening). Each wall lies ``side`` of its surface (centered, inside, outside: the
+    offsets of :func:`tubecad.brep.wall.wall_offsets`); both edges within ``tolerance``."""
+    main_in, main_out = wall_offsets(main_thickness, main_side)
+    branch_in, branch_out = wall_offsets(branch_thickness, branch_side)
+    outer = fit_saddle(main.offset(main_out), branch.offset(branch_out), tolerance, name="saddle_outer", key=key)
+    inner = fit_saddle(main.offset(main_in), branch.offset(branch_in), tolerance, name="saddle_inner", key=key)
+    return outer, inner
