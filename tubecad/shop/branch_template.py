@@ -1,0 +1,89 @@
+"""The branch's cutting template: the saddle unrolled onto the branch pipe's development.
+
+On the branch tube X_B(u, s) = c(s) + rho e(u, s) the rings and stringers are the curvature
+lines, with E = rho^2, F = 0, G = (1 - rho k cos(u - theta))^2 (docs/MATH.md section 2). The
+map (u, s) -> (x, y) = (rho u, s - s_0) is the development of the pipe when its axis is
+straight (k = 0: G = 1, an isometry) and the template is then exact: wrapped round the pipe
+with its bottom edge on the ring s_0 and x = 0 on the stringer u = 0, its saddle line is the
+cut. Where the axis is curved the map stretches the stringers by sqrt(G) - 1; the template
+reports that largest strain along the saddle (0 on a straight branch), and a branch whose
+radius varies (a cone) is refused: its development is a sector, not this strip.
+
+The drawing (1:1, the model's unit, :class:`tubecad.core.dxf.Drawing`): the saddle line on
+layer ``saddle`` (one polyline over the girth 0 .. 2 pi rho), the strip's outline on
+``outline``, and a girth mark with its stringer's name at every stringer on ``girth_marks``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from tubecad.core.dxf import Drawing
+from tubecad.core.errors import ParameterError
+from tubecad.junctions.saddle import SaddleCurve
+from tubecad.surface.protocol import CurvatureLineSurface
+
+#: the girth marks' length, as a share of the strip's height
+MARK_SHARE = 0.05
+
+
+@dataclass(frozen=True)
+class BranchTemplate:
+    """The developed saddle: ``points`` (n, 2) = (rho u_B, s_B - s_0) over one girth, the
+    strip's ``girth`` 2 pi rho and ``height``, the stringers' marks ``marks`` {name: x} and
+    the largest stretch ``strain`` of the development along the saddle (0: exact)."""
+
+    points: np.ndarray
+    girth: float
+    height: float
+    marks: dict[str, float]
+    strain: float
+
+    def save_dxf(self, path: str | Path, unit: str = "mm") -> Path:
+        """The template at 1:1 as a DXF drawing (layers saddle, outline, girth_marks)."""
+        drawing = Drawing(unit, {"saddle": 1, "outline": 7, "girth_marks": 3})
+        drawing.polyline(self.points, "saddle", closed=False)
+        corners = [(0.0, 0.0), (self.girth, 0.0), (self.girth, self.height), (0.0, self.height)]
+        drawing.polyline(corners, "outline", closed=True)
+        mark = MARK_SHARE * self.height
+        for name, x in self.marks.items():
+            drawing.line((x, 0.0), (x, mark), "girth_marks")
+            drawing.text(name, (x, mark), mark / 2, "girth_marks")
+        return drawing.save(path)
+
+
+def branch_template(
+    branch: CurvatureLineSurface, saddle: SaddleCurve, stringers: int = 8, *, key: str = "branches"
+) -> BranchTemplate:
+    """The saddle ``saddle`` (on ``branch``) unrolled onto the branch's development, with
+    ``stringers`` girth marks (stringer_00 at u = 0, evenly round); the strip runs from the
+    branch's first ring to its last."""
+    if not branch.constant_radius:
+        raise ParameterError(
+            f"{key}.radius: a branch whose radius varies develops to a sector, not a strip; "
+            "its cutting template is not made yet",
+            key=f"{key}.radius",
+        )
+    if not isinstance(stringers, int) or not 1 <= stringers <= 360:
+        raise ParameterError(f"stringers must be an integer in 1..360, got {stringers!r:.40}", key="stringers")
+    rho = float(branch.radius_law.r(np.array([branch.span[0]]))[0])
+    s0, s1 = branch.span
+    u = np.mod(saddle.branch_u, 2 * math.pi)
+    u[-1] = 2 * math.pi  # the turn's last sample closes the girth
+    k = branch.axis.curvature(saddle.branch_s)
+    theta = _curvature_angle(branch, saddle.branch_s)
+    strain = float(np.abs(rho * k * np.cos(saddle.branch_u - theta)).max())  # |sqrt(G) - 1|
+    points = np.column_stack([rho * u, saddle.branch_s - s0])
+    girth = 2 * math.pi * rho
+    marks = {f"stringer_{j:02d}": girth * j / stringers for j in range(stringers)}
+    return BranchTemplate(points, girth, s1 - s0, marks, strain)
+
+
+def _curvature_angle(branch: CurvatureLineSurface, s: np.ndarray) -> np.ndarray:
+    """theta(s), the angle of the curvature vector from r1: (k1, k2) = k (cos theta, sin theta)."""
+    k1, k2 = branch.axis.normal_development(s)
+    return np.arctan2(k2, k1)
