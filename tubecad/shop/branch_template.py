@@ -72,12 +72,10 @@ def branch_template(
         raise ParameterError(f"stringers must be an integer in 1..360, got {stringers!r:.40}", key="stringers")
     rho = float(branch.radius_law.r(np.array([branch.span[0]]))[0])
     s0, s1 = branch.span
-    u = np.mod(saddle.branch_u, 2 * math.pi)
-    u[-1] = 2 * math.pi  # the turn's last sample closes the girth
     k = branch.axis.curvature(saddle.branch_s)
     theta = _curvature_angle(branch, saddle.branch_s)
     strain = float(np.abs(rho * k * np.cos(saddle.branch_u - theta)).max())  # |sqrt(G) - 1|
-    points = np.column_stack([rho * u, saddle.branch_s - s0])
+    points = np.column_stack([rho * saddle.branch_u, saddle.branch_s - s0])  # u_B runs 0 .. 2 pi
     girth = 2 * math.pi * rho
     marks = {f"stringer_{j:02d}": girth * j / stringers for j in range(stringers)}
     return BranchTemplate(points, girth, s1 - s0, marks, strain)
