@@ -6,6 +6,14 @@ junction's faces share (``saddle_outer``, ``saddle_inner``).
 """
 
 from tubecad.junctions.edges import SaddleEdge, fit_saddle, periodic_bspline, wall_saddles
-from tubecad.junctions.saddle import SaddleCurve, saddle_curve
+from tubecad.junctions.saddle import SaddleCurve, dihedral_angles, saddle_curve
 
-__all__ = ["SaddleCurve", "SaddleEdge", "fit_saddle", "periodic_bspline", "saddle_curve", "wall_saddles"]
+__all__ = [
+    "SaddleCurve",
+    "SaddleEdge",
+    "dihedral_angles",
+    "fit_saddle",
+    "periodic_bspline",
+    "saddle_curve",
+    "wall_saddles",
+]

@@ -197,3 +197,12 @@ def _check(size: FloatArray, jac: FloatArray, u_b: FloatArray, scale: float, key
             "smaller than the main's",
             key=f"{key}.radius",
         )
+
+
+def dihedral_angles(main: CurvatureLineSurface, branch: CurvatureLineSurface, saddle: SaddleCurve) -> FloatArray:
+    """The angle between the two surfaces along the saddle, in degrees, at each sample:
+    phi = arccos(n_A . n_B) of the outward normals (90 where the branch stands square on the
+    main wall; the bevel a cut edge needs to sit on the other wall follows from it)."""
+    n_a = main.normal(np.mod(saddle.main_u, 2 * np.pi), saddle.main_s)
+    n_b = branch.normal(saddle.branch_u, saddle.branch_s)
+    return np.degrees(np.arccos(np.clip(np.einsum("pk,pk->p", n_a, n_b), -1.0, 1.0)))

@@ -1,4 +1,5 @@
-"""The branch's cutting template: the saddle unrolled onto the branch pipe's development.
+"""Cutting templates: the saddle unrolled onto the branch pipe's development, and the
+opening on the main tube's.
 
 On the branch tube X_B(u, s) = c(s) + rho e(u, s) the rings and stringers are the curvature
 lines, with E = rho^2, F = 0, G = (1 - rho k cos(u - theta))^2 (docs/MATH.md section 2). The
@@ -9,8 +10,11 @@ cut. Where the axis is curved the map stretches the stringers by sqrt(G) - 1; th
 reports that largest strain along the saddle (0 on a straight branch), and a branch whose
 radius varies (a cone) is refused: its development is a sector, not this strip.
 
+The main tube's opening is the bore's saddle on the main surface, (R u_A, s_A - s_0): a
+closed line on the main tube's strip, exact where the main axis is straight.
+
 The drawing (1:1, the model's unit, :class:`tubecad.core.dxf.Drawing`): the saddle line on
-layer ``saddle`` (one polyline over the girth 0 .. 2 pi rho), the strip's outline on
+layer ``saddle`` (one polyline: across the girth 0 .. 2 pi rho, or closed round a hole), the strip's outline on
 ``outline``, and a girth mark with its stringer's name at every stringer on ``girth_marks``.
 """
 
@@ -46,7 +50,8 @@ class BranchTemplate:
     def save_dxf(self, path: str | Path, unit: str = "mm") -> Path:
         """The template at 1:1 as a DXF drawing (layers saddle, outline, girth_marks)."""
         drawing = Drawing(unit, {"saddle": 1, "outline": 7, "girth_marks": 3})
-        drawing.polyline(self.points, "saddle", closed=False)
+        closed = bool(np.allclose(self.points[0], self.points[-1], rtol=0, atol=1e-9 * self.girth))
+        drawing.polyline(self.points[:-1] if closed else self.points, "saddle", closed=closed)
         corners = [(0.0, 0.0), (self.girth, 0.0), (self.girth, self.height), (0.0, self.height)]
         drawing.polyline(corners, "outline", closed=True)
         mark = MARK_SHARE * self.height
@@ -61,27 +66,43 @@ def branch_template(
 ) -> BranchTemplate:
     """The saddle ``saddle`` (on ``branch``) unrolled onto the branch's development, with
     ``stringers`` girth marks (stringer_00 at u = 0, evenly round); the strip runs from the
-    branch's first ring to its last."""
-    if not branch.constant_radius:
+    branch's first ring to its last. The saddle's u_B runs 0 .. 2 pi: one open line across."""
+    return _developed(branch, saddle.branch_u, saddle.branch_s, stringers, f"{key}.radius", "a branch")
+
+
+def hole_template(
+    main: CurvatureLineSurface, saddle: SaddleCurve, stringers: int = 8, *, key: str = "branches"
+) -> BranchTemplate:
+    """The opening the branch's bore cuts in the main tube (``saddle`` the bore's saddle on
+    ``main``, e.g. ``saddle_inner``), unrolled onto the main tube's development as one closed
+    line (R u_A, s_A - s_0), placed on the strip's girth 0 .. 2 pi R; girth marks at the
+    main tube's ``stringers``."""
+    u = saddle.main_u - 2 * math.pi * np.floor(np.mean(saddle.main_u) / (2 * math.pi))
+    return _developed(main, u, saddle.main_s, stringers, "tube.radius", "a main tube")
+
+
+def _developed(
+    surface: CurvatureLineSurface, u: np.ndarray, s: np.ndarray, stringers: int, key: str, what: str
+) -> BranchTemplate:
+    """(rho u, s - s_0) on ``surface``'s strip, with the largest |sqrt(G) - 1| along it."""
+    if not surface.constant_radius:
         raise ParameterError(
-            f"{key}.radius: a branch whose radius varies develops to a sector, not a strip; "
-            "its cutting template is not made yet",
-            key=f"{key}.radius",
+            f"{key}: {what} whose radius varies develops to a sector, not a strip; its template is not made yet",
+            key=key,
         )
     if not isinstance(stringers, int) or not 1 <= stringers <= 360:
         raise ParameterError(f"stringers must be an integer in 1..360, got {stringers!r:.40}", key="stringers")
-    rho = float(branch.radius_law.r(np.array([branch.span[0]]))[0])
-    s0, s1 = branch.span
-    k = branch.axis.curvature(saddle.branch_s)
-    theta = _curvature_angle(branch, saddle.branch_s)
-    strain = float(np.abs(rho * k * np.cos(saddle.branch_u - theta)).max())  # |sqrt(G) - 1|
-    points = np.column_stack([rho * saddle.branch_u, saddle.branch_s - s0])  # u_B runs 0 .. 2 pi
+    rho = float(surface.radius_law.r(np.array([surface.span[0]]))[0])
+    s0, s1 = surface.span
+    k = surface.axis.curvature(s)
+    theta = _curvature_angle(surface, s)
+    strain = float(np.abs(rho * k * np.cos(u - theta)).max())  # |sqrt(G) - 1|
     girth = 2 * math.pi * rho
     marks = {f"stringer_{j:02d}": girth * j / stringers for j in range(stringers)}
-    return BranchTemplate(points, girth, s1 - s0, marks, strain)
+    return BranchTemplate(np.column_stack([rho * u, s - s0]), girth, s1 - s0, marks, strain)
 
 
-def _curvature_angle(branch: CurvatureLineSurface, s: np.ndarray) -> np.ndarray:
+def _curvature_angle(surface: CurvatureLineSurface, s: np.ndarray) -> np.ndarray:
     """theta(s), the angle of the curvature vector from r1: (k1, k2) = k (cos theta, sin theta)."""
-    k1, k2 = branch.axis.normal_development(s)
+    k1, k2 = surface.axis.normal_development(s)
     return np.arctan2(k2, k1)

@@ -63,3 +63,41 @@ def test_a_conical_branch_is_refused_naming_its_radius():
     with pytest.raises(ParameterError, match="sector") as info:
         branch_template(cone, saddle_curve(MAIN, cone, 65))
     assert info.value.key == "branches.radius"
+
+
+def test_the_main_tubes_hole_template_is_the_closed_form_and_its_area(tmp_path):
+    """The opening on the main tube unrolled to (R chi, s_A): chi = atan2(z, y) with
+    y = r sin u, z = sqrt(R^2 - r^2 sin^2 u), s_A = 100 + r cos u; one closed line, whose
+    area (shapely, read back from the DXF) is the developed hole's
+    int R 2 sqrt(r^2 - R^2 cos^2 chi) dchi (scipy's quadrature)."""
+    import ezdxf
+    from scipy.integrate import quad
+    from shapely.geometry import Polygon
+
+    from tubecad.shop.branch_template import hole_template
+
+    saddle = saddle_curve(MAIN, BRANCH, 721)
+    template = hole_template(MAIN, saddle)
+    u = saddle.branch_u
+    chi = np.arctan2(np.sqrt(R**2 - r**2 * np.sin(u) ** 2), r * np.sin(u))
+    assert np.abs(template.points - np.column_stack([R * chi, r * np.cos(u) + 100.0])).max() < 1e-11
+    assert template.strain == 0.0 and template.girth == pytest.approx(2 * math.pi * R, rel=1e-15)
+
+    doc = ezdxf.readfile(template.save_dxf(tmp_path / "hole.dxf"))
+    (hole,) = doc.modelspace().query('LWPOLYLINE[layer=="saddle"]')
+    assert hole.closed
+    a = math.acos(r / R)
+    exact, _ = quad(lambda c: R * 2 * math.sqrt(max(r**2 - R**2 * math.cos(c) ** 2, 0.0)), a, math.pi - a, limit=200)
+    area = Polygon([(x, y) for x, y, *_ in hole.get_points()]).area
+    assert area == pytest.approx(exact, rel=3e-5)  # the 720-sided polygon's chords: measured 1.3e-5
+
+
+def test_the_dihedral_angle_of_a_tee_is_the_closed_form():
+    """n_A = (0, y, z) / R, n_B = (x, y, 0) / r on the saddle: cos phi = y^2 / (R r) = r sin^2 u / R."""
+    from tubecad.junctions import dihedral_angles
+
+    saddle = saddle_curve(MAIN, BRANCH, 97)
+    phi = dihedral_angles(MAIN, BRANCH, saddle)
+    expected = np.degrees(np.arccos(r * np.sin(saddle.branch_u) ** 2 / R))
+    assert np.abs(phi - expected).max() < 1e-12  # degrees; measured 1.3e-13
+    assert phi.min() == pytest.approx(np.degrees(np.arccos(r / R)), abs=1e-10) and phi.max() == pytest.approx(90.0)
