@@ -79,9 +79,9 @@ def fit_saddle(
     """The saddle where ``branch`` leaves ``main`` as a periodic B-spline edge within
     ``tolerance`` of the exact saddle (measured at the midpoints between its knots)."""
     tolerance = check_tolerance("tolerance", tolerance)
-    intervals = FIRST_INTERVALS
+    intervals, exact = FIRST_INTERVALS, None
     while True:
-        exact = saddle_curve(main, branch, 2 * intervals + 1, key=key)
+        exact = saddle_curve(main, branch, 2 * intervals + 1, key=key, near=exact)
         nodes = exact.points[::2].copy()
         nodes[-1] = nodes[0]
         curve = periodic_bspline(exact.branch_u[::2], nodes)

@@ -42,7 +42,7 @@ RESIDUAL = 1e-13
 #: at most this many Newton steps per sample
 NEWTON_STEPS = 40
 #: samples of the first, sequential march round the branch
-COARSE = 24
+COARSE = 12
 #: |J|'s reciprocal condition number below which the surfaces are taken as tangent
 TANGENCY = 1e-6
 
@@ -98,14 +98,17 @@ def _u_of_chi(main: CurvatureLineSurface, chi: FloatArray, s: FloatArray) -> Flo
 def _solve(main: CurvatureLineSurface, branch: CurvatureLineSurface, u_b: FloatArray, x: FloatArray, scale: float):
     """Newton on X_A(x[:, 0], x[:, 1]) = X_B(u_b, x[:, 2]) for every sample at once, from x
     (shape (n, 3)); returns (x, |F| per sample, J per sample (n, 3, 3), dX_B/du_B (n, 3))."""
+    converged = False
     for _ in range(NEWTON_STEPS):
         a = main.derivatives(x[:, 0], x[:, 1])
         b = branch.derivatives(u_b, x[:, 2])
         f = a.S - b.S
         jac = np.stack([a.S_u, a.S_s, -b.S_s], axis=-1)
         size = np.linalg.norm(f, axis=-1)
-        if size.max() <= RESIDUAL * scale:
+        if converged:
             break
+        # one step more once within RESIDUAL: quadratic convergence takes it to round-off
+        converged = bool(size.max() <= RESIDUAL * scale)
         x = x - np.linalg.solve(jac, f[..., None])[..., 0]
     return x, size, jac, b.S_u
 
@@ -141,10 +144,14 @@ def saddle_curve(
     samples: int = 257,
     *,
     key: str = "branches",
+    near: SaddleCurve | None = None,
 ) -> SaddleCurve:
     """The saddle where ``branch`` leaves ``main``, at ``samples`` stringer angles u_B evenly
     spaced over one turn (the last the first plus 2 pi), each point solved by Newton to
     |X_A - X_B| <= 1e-13 times the surfaces' size.
+
+    ``near``: the same saddle at other samples (a coarser solve), whose interpolation starts
+    Newton instead of a new march.
 
     Refused (a ParameterError naming ``key``) where the branch does not start inside the main
     surface and leave it through its wall, or where the surfaces are tangent on the curve."""
@@ -155,26 +162,39 @@ def saddle_curve(
         [main.points(np.zeros(2), np.array(main.span)), branch.points(np.zeros(2), np.array(branch.span))]
     )
     scale = float(np.abs(corners).max() + main.radius_law.r(np.array(main.span)).max())
-    # march a coarse turn one sample at a time (the tangent predicts the next), then solve
-    # every sample at once from the coarse curve's periodic interpolation
-    coarse = np.linspace(0.0, 2.0 * np.pi, COARSE + 1)
-    x = _start(main, branch, 0.0, key)[None, :]
-    marched = np.empty((COARSE + 1, 3))
-    for i, u in enumerate(coarse):
-        x, size, jac, b_u = _solve(main, branch, coarse[i : i + 1], x, scale)
-        _check(size, jac, u, scale, key)
-        marched[i] = x[0]
-        x = x + np.linalg.solve(jac, b_u[..., None])[..., 0] * (2.0 * np.pi / COARSE)
-    marched[:, 0] = np.unwrap(marched[:, 0])
-    turns = np.round((marched[-1, 0] - marched[0, 0]) / (2.0 * np.pi))  # how often u_A winds round
-    marched[:, 0] -= turns * coarse
-    marched[-1] = marched[0]  # the same point, to Newton's round-off
-    guess = CubicSpline(coarse, marched, bc_type="periodic")(u_b)
-    guess[:, 0] += turns * u_b
+    if near is None:
+        near = _march(main, branch, scale, key)
+    guess = _interpolated(near, u_b)
     x, size, jac, _ = _solve(main, branch, u_b, guess, scale)
     _check(size, jac, u_b, scale, key)
     points = main.points(x[:, 0], x[:, 1])
     return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], points, float(size.max()))
+
+
+def _march(main: CurvatureLineSurface, branch: CurvatureLineSurface, scale: float, key: str) -> SaddleCurve:
+    """The saddle at COARSE + 1 samples, marched one at a time from the start (the tangent
+    J^-1 dX_B/du_B predicts the next sample, Newton corrects it)."""
+    coarse = np.linspace(0.0, 2.0 * np.pi, COARSE + 1)
+    x = _start(main, branch, 0.0, key)[None, :]
+    marched, residual = np.empty((COARSE + 1, 3)), 0.0
+    for i, u in enumerate(coarse):
+        x, size, jac, b_u = _solve(main, branch, coarse[i : i + 1], x, scale)
+        _check(size, jac, u, scale, key)
+        marched[i], residual = x[0], max(residual, float(size[0]))
+        x = x + np.linalg.solve(jac, b_u[..., None])[..., 0] * (2.0 * np.pi / COARSE)
+    points = main.points(marched[:, 0], marched[:, 1])
+    return SaddleCurve(coarse, marched[:, 2], np.unwrap(marched[:, 0]), marched[:, 1], points, residual)
+
+
+def _interpolated(curve: SaddleCurve, u_b: FloatArray) -> FloatArray:
+    """(u_A, s_A, s_B) at ``u_b`` from ``curve``'s samples: periodic cubic splines, u_A's
+    winding (how often it turns round the main tube per turn of the branch) taken out first."""
+    turns = np.round((curve.main_u[-1] - curve.main_u[0]) / (2.0 * np.pi))
+    values = np.column_stack([curve.main_u - turns * curve.branch_u, curve.main_s, curve.branch_s])
+    values[-1] = values[0]  # the same point, to Newton's round-off
+    guess = CubicSpline(curve.branch_u, values, bc_type="periodic")(u_b)
+    guess[:, 0] += turns * u_b
+    return guess
 
 
 def _check(size: FloatArray, jac: FloatArray, u_b: FloatArray, scale: float, key: str) -> None:
