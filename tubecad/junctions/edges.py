@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import build123d as bd
 import numpy as np
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.Geom import Geom_BSplineCurve
@@ -54,6 +55,12 @@ class SaddleEdge:
     @property
     def poles(self) -> int:
         return self.curve.NbPoles()
+
+    def to_build123d(self) -> bd.Edge:
+        """The edge as a build123d Edge labelled with its name (``saddle_outer``...)."""
+        edge = bd.Edge(self.edge)
+        edge.label = self.name
+        return edge
 
 
 def periodic_bspline(u: np.ndarray, points: np.ndarray, degree: int = DEGREE) -> Geom_BSplineCurve:

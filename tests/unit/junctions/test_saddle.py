@@ -166,6 +166,11 @@ def test_a_branch_wall_on_a_main_wall_has_an_outer_and_an_inner_saddle():
         assert np.abs(np.hypot(p[:, 0], p[:, 1]) - rb).max() <= 1e-8
         assert np.abs(np.hypot(p[:, 1], p[:, 2]) - rm).max() <= 1e-8
     assert (outer.name, inner.name) == ("saddle_outer", "saddle_inner")
+    # as build123d edges: labelled, closed, the same OCCT edge; the outer saddle is the longer
+    edges = [saddle.to_build123d() for saddle in (outer, inner)]
+    assert [e.label for e in edges] == ["saddle_outer", "saddle_inner"]
+    assert all(e.is_closed and e.wrapped.IsSame(s.edge) for e, s in zip(edges, (outer, inner)))
+    assert edges[0].length > edges[1].length
 
 
 def test_the_saddle_edge_lies_on_both_fitted_tubes():
