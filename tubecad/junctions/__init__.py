@@ -6,11 +6,14 @@ junction's faces share (``saddle_outer``, ``saddle_inner``).
 """
 
 from tubecad.junctions.edges import SaddleEdge, fit_saddle, periodic_bspline, wall_saddles
+from tubecad.junctions.reinforcement import AreaReplacement, area_replacement
 from tubecad.junctions.saddle import SaddleCurve, dihedral_angles, saddle_curve
 
 __all__ = [
+    "AreaReplacement",
     "SaddleCurve",
     "SaddleEdge",
+    "area_replacement",
     "dihedral_angles",
     "fit_saddle",
     "periodic_bspline",
