@@ -167,8 +167,7 @@ def saddle_curve(
     guess = _interpolated(near, u_b)
     x, size, jac, _ = _solve(main, branch, u_b, guess, scale)
     _check(size, jac, u_b, scale, key)
-    points = main.points(x[:, 0], x[:, 1])
-    return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], points, float(size.max()))
+    return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], main.points(x[:, 0], x[:, 1]), float(size.max()))
 
 
 def _march(main: CurvatureLineSurface, branch: CurvatureLineSurface, scale: float, key: str) -> SaddleCurve:

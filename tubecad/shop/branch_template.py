@@ -94,15 +94,8 @@ def _developed(
         raise ParameterError(f"stringers must be an integer in 1..360, got {stringers!r:.40}", key="stringers")
     rho = float(surface.radius_law.r(np.array([surface.span[0]]))[0])
     s0, s1 = surface.span
-    k = surface.axis.curvature(s)
-    theta = _curvature_angle(surface, s)
-    strain = float(np.abs(rho * k * np.cos(u - theta)).max())  # |sqrt(G) - 1|
+    k1, k2 = surface.axis.normal_development(s)
+    strain = float(np.abs(rho * (k1 * np.cos(u) + k2 * np.sin(u))).max())  # |sqrt(G) - 1| = rho k |cos(u - theta)|
     girth = 2 * math.pi * rho
     marks = {f"stringer_{j:02d}": girth * j / stringers for j in range(stringers)}
     return BranchTemplate(np.column_stack([rho * u, s - s0]), girth, s1 - s0, marks, strain)
-
-
-def _curvature_angle(surface: CurvatureLineSurface, s: np.ndarray) -> np.ndarray:
-    """theta(s), the angle of the curvature vector from r1: (k1, k2) = k (cos theta, sin theta)."""
-    k1, k2 = surface.axis.normal_development(s)
-    return np.arctan2(k2, k1)
