@@ -36,6 +36,9 @@ try:  # OCP 8
         IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedMapOfShape,
     )
     from OCP.collections import (
+        List_TopoDS_Shape as ListOfShape,
+    )
+    from OCP.collections import (
         Sequence_TDF_Label as LabelSequence,
     )
 
@@ -50,6 +53,7 @@ except ImportError:  # OCP 7.9
     from OCP.TDF import TDF_LabelSequence as LabelSequence
     from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape as IndexedDataMapOfShapeListOfShape
     from OCP.TopTools import TopTools_IndexedMapOfShape as IndexedMapOfShape
+    from OCP.TopTools import TopTools_ListOfShape as ListOfShape
 
     OCP_GENERATION = 7
 
@@ -94,6 +98,7 @@ __all__ = [
     "IndexedDataMapOfShapeListOfShape",
     "IndexedMapOfShape",
     "LabelSequence",
+    "ListOfShape",
     "as_edge",
     "as_face",
     "as_solid",

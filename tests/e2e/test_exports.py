@@ -4,6 +4,7 @@ import json
 import math
 import os
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 from conftest import PAPER_SPEC, ROOT, sample_build_outputs
@@ -136,6 +137,17 @@ def test_build_command_for_every_family(sample_build, spec):
     folder, second = result.folder, sample_build_outputs(spec.stem)[1]
     assert result.exit_code == 0, result.output
     report = result.report()
+    if "junction" in report:  # [[branches]]: the junction wall, its saddles named edges
+        junction = report["junction"]
+        assert junction["valid"] and junction["solids"] == 1
+        for saddle in junction["saddles"].values():
+            # measured 7e-8 .. 2.1e-7 (OCCT's section curves) and coverage 1 to 2e-10
+            assert saddle["edges_deviation"] < 1e-6 and abs(saddle["coverage"] - 1) < 1e-8
+        for name in ("a.step", second):
+            back = report["exports"][str(folder / name)]
+            assert back["valid"] and back["solids"] == 1 and back["volume_relative_error"] < 1e-9
+        assert report["exports"][str(folder / "a.step")]["edge_names"] == len(junction["named_edge_sets"])
+        return
     assert report["brep"]["valid"] and report["brep"]["volume_relative_error"] < 1e-6
     assert report["brep"]["fit"]["max_deviation"] < 1e-8
     assert report["brep"]["fit"]["max_orthogonality_error"] < 1e-9
@@ -180,3 +192,29 @@ def test_build_refuses_unknown_extension_before_building(tmp_path):
     result = CliRunner().invoke(cli, ["build", str(SAMPLES / "paper_log_spiral.toml"), "-o", str(tmp_path / "x.obj")])
     assert result.exit_code == 2 and "unknown extension" in result.output
     assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.slow
+def test_a_lateral_s_saddles_read_back_from_step_by_name_on_both_cylinders(sample_build):
+    """samples/lateral.toml (main y^2 + z^2 = R^2 along x, branch at 45 deg from (150, 0, 0)
+    along (cos 45, 0, sin 45)): the STEP file's ``junction_edges`` holds ``saddle_outer`` and
+    ``saddle_inner`` by name, each edge on both cylinders of its radii (outer 52 / 31.5, bore
+    48 / 28.5), and the wall is one valid solid."""
+    import build123d as bd
+
+    from tubecad.brep.properties import is_valid
+
+    result = sample_build("lateral")
+    assert result.exit_code == 0, result.output
+    parts = {c.label: c for c in bd.import_step(result.folder / "a.step").children}
+    assert set(parts) == {"wall", "junction_edges"} and is_valid(parts["wall"].wrapped)
+    named = {c.label: c for c in parts["junction_edges"].children}
+    direction = np.array([math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4)])
+    for name, big, small in (("saddle_outer", 52.0, 31.5), ("saddle_inner", 48.0, 28.5)):
+        points = np.array([tuple(e.position_at(t)) for e in named[name].edges() for t in np.linspace(0, 1, 11)])
+        from_main = np.hypot(points[:, 1], points[:, 2])
+        along = (points - [150.0, 0.0, 0.0]) @ direction
+        from_branch = np.linalg.norm(points - [150.0, 0.0, 0.0] - along[:, None] * direction, axis=1)
+        # measured 2e-7 (OCCT's intersection curves; 13 digits in the file)
+        assert np.abs(from_main - big).max() < 1e-6 and np.abs(from_branch - small).max() < 1e-6, name
+    assert {"main_ring_00", "branch_stringer_07_inner"} <= set(named)

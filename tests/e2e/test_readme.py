@@ -544,13 +544,27 @@ def check_toml_block(block: Block, workdir: Path) -> None:
                 changed[section][key] = tomllib.loads(f"v = {value}")["v"]
                 changed[section].pop(REPLACES.get(key, ""), None)
                 parse_spec(changed, f"{block.where()} with [{section}] {key} = {value}")
-    if "axis" in data and "tube" in data and len(data) > 2:  # the full example documents every key
+    if "axis" in data and "tube" in data and set(spec_sections()) <= set(data):  # the full example: every key
         for section in data:
             text = "\n".join(sections[section])
             missing = [k for k in keys[section] if not re.search(rf"\b{re.escape(k)}\b", text)]
             assert not missing, f"{block.where()}: [{section}] does not mention the loader's keys {missing}"
     if "axis" in data and "tube" in data:
         run_spec_through_cli(block, data, workdir)
+
+    if "branches" in data:  # a [[branches]] example documents every key of a branch table
+        from tubecad.spec.keys import BRANCH_KEYS
+
+        text = "\n".join(line for lines in sections.values() for line in lines)
+        missing = [k for k in BRANCH_KEYS if not re.search(rf"^\s*{k}\s*=", text, re.M)]
+        assert not missing, f"{block.where()}: [[branches]] does not mention the loader's keys {missing}"
+
+
+def spec_sections() -> list[str]:
+    """The optional sections ([layout], [wall], ...): the full example holds them all."""
+    from tubecad.spec.keys import EXTRA_SECTIONS
+
+    return list(EXTRA_SECTIONS)
 
 
 def tubecad_command() -> list[str]:

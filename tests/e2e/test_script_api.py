@@ -14,8 +14,8 @@ import pytest
 from conftest import ROOT
 
 from tubecad.core.errors import ParameterError, SpecError, TubecadError
-from tubecad.spec.keys import EXTRA_SECTIONS, TUBE_KEYS
-from tubecad.spec.model import SECTION_TYPES, SpecModel, StiffenersSection
+from tubecad.spec.keys import ARRAY_SECTIONS, EXTRA_SECTIONS, TUBE_KEYS
+from tubecad.spec.model import SECTION_TYPES, BranchSection, SpecModel, StiffenersSection
 from tubecad.spec.parse import parse_spec
 
 SAMPLES = ROOT / "samples"
@@ -130,7 +130,9 @@ def test_every_section_has_its_dataclass_with_the_spec_keys_as_fields():
     assert set(SECTION_TYPES) == set(tables)
     for name, keys in tables.items():
         assert {f.name for f in dataclasses.fields(SECTION_TYPES[name])} == set(keys), name
-    assert {f.name for f in dataclasses.fields(SpecModel)} == {"axis", *tables}
+    assert {f.name for f in dataclasses.fields(SpecModel)} == {"axis", *tables, *ARRAY_SECTIONS}
+    # [[branches]]: a table each, of BranchSection's fields
+    assert {f.name for f in dataclasses.fields(BranchSection)} == set(ARRAY_SECTIONS["branches"])
 
 
 def test_the_model_is_typed_and_defaults_the_absent_keys():

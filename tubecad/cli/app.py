@@ -145,12 +145,17 @@ def paper(output: Path, nu: int, ns: int) -> None:
 @click.argument("spec", type=click.Path(dir_okay=False, path_type=Path))
 @with_grid_options
 def report(spec: Path, nu: int, ns: int) -> None:
-    """Print the JSON report of the tube described by SPEC (a TOML file)."""
+    """Print the JSON report of the tube described by SPEC (a TOML file); with [[branches]],
+    the main tube's, and the branches as given (tubecad build --report measures the junction)."""
     checked = _checked_spec(spec)
     with interrupts_end_at_once():  # numpy/scipy, never OCCT
         from tubecad.spec.report import to_json, tube_report
     try:
-        click.echo(to_json(tube_report(checked.tube, nu, ns, checked.length_unit)), nl=False)
+        measured = tube_report(checked.tube, nu, ns, checked.length_unit)
+        if checked.branches:
+            measured["branches"] = checked.sections["branches"]
+            measured["junction"] = "not built here: tubecad build SPEC -o x.step --report r.json measures it"
+        click.echo(to_json(measured), nl=False)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
 

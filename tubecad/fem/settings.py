@@ -126,7 +126,8 @@ def analysis_settings(section: dict | None, length_unit: str = "mm", closed: boo
     from tubecad.core.units import length_unit as unit_of
 
     values = dict(section or {})
-    known = {"pressure", "ends", "youngs_modulus", "poisson_ratio"}
+    # allowable_stress is the junctions' (tubecad.spec.junction), not the solver's
+    known = {"pressure", "ends", "youngs_modulus", "poisson_ratio", "allowable_stress"}
     unknown = sorted(set(values) - known)
     if unknown:
         raise ParameterError(f"[analysis] has unknown key {unknown[0]!r}; allowed: {', '.join(sorted(known))}")
@@ -149,6 +150,8 @@ def analysis_settings(section: dict | None, length_unit: str = "mm", closed: boo
 
     steel = float(f"{STEEL_YOUNGS_MODULUS_PA * unit_of(length_unit).metres ** 2:.12g}")
     pressure = real("pressure", 0.0, -1e15, 1e15)
+    if "allowable_stress" in values:
+        real("allowable_stress", 1.0, 0.0, 1e15)
     modulus = real("youngs_modulus", steel, 0.0, 1e20)
     nu = real("poisson_ratio", 0.3, -1.0, 0.5)
     ends = values.get("ends", "free" if closed else "fixed")

@@ -1,5 +1,5 @@
 """CAD-native objects over the library: build123d parts (``CurvatureTube``, ``CurvatureWall``,
-``StiffenedCurvatureWall``)
+``StiffenedCurvatureWall``, ``CurvatureJunction`` with its ``Branch``)
 and the engine the CadQuery plugin shares with them.
 
 Exports are lazy (tubecad.core.lazy): importing the package loads no OCCT."""
@@ -12,6 +12,8 @@ _PUBLIC = {
     "CurvatureTube": "tubecad.parts.build123d_parts",
     "CurvatureWall": "tubecad.parts.build123d_parts",
     "StiffenedCurvatureWall": "tubecad.parts.build123d_parts",
+    "CurvatureJunction": "tubecad.parts.junction",
+    "Branch": "tubecad.parts.junction",
     "as_axis": "tubecad.parts.axis_input",
 }
 
@@ -24,3 +26,5 @@ if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported her
     from tubecad.parts.build123d_parts import CurvatureTube as CurvatureTube
     from tubecad.parts.build123d_parts import CurvatureWall as CurvatureWall
     from tubecad.parts.build123d_parts import StiffenedCurvatureWall as StiffenedCurvatureWall
+    from tubecad.parts.junction import Branch as Branch
+    from tubecad.parts.junction import CurvatureJunction as CurvatureJunction

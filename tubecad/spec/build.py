@@ -41,6 +41,7 @@ def build_from_spec(spec: TubeSpec, progress: ProgressCallback | None = None) ->
     done, total)`` is called as it is built."""
     from tubecad.core.tolerance import check_tolerance
 
+    refuse_branches(spec)
     tube = spec.tube
     try:
         layout = spec.layout.net(tube)
@@ -64,6 +65,17 @@ def build_from_spec(spec: TubeSpec, progress: ProgressCallback | None = None) ->
     except ParameterError as exc:
         section = "fit" if exc.key in FIT_KEYS else "wall"
         raise SpecError(f"{spec.source}: [{section}] {exc}", key=_within(section, exc)) from None
+
+
+def refuse_branches(spec: TubeSpec) -> None:
+    """Refuse a spec with [[branches]] where only the main tube would be made (shop, flat,
+    mesh, the viewer): nothing of a spec is dropped without a word."""
+    if spec.branches:
+        raise SpecError(
+            f"{spec.source}: [[branches]]: this command does not make junctions yet (tubecad build writes them "
+            "as STEP, IGES or BREP); remove [[branches]] for the main tube alone",
+            key="branches",
+        )
 
 
 #: the keys of a ParameterError about the fit's tolerances (a [fit] error, not [wall]'s)
@@ -369,6 +381,10 @@ def build_and_export(
     progress = progress if progress is not None else Progress(enabled=False)
     outputs = [Path(p) for p in outputs]
     split_outputs(outputs)  # an unknown extension is refused, listing them all, before anything is built
+    if spec.branches:  # a junction: its own build, assembly and read-back
+        from tubecad.spec.junction import build_and_export_junction
+
+        return build_and_export_junction(spec, outputs, step_schema, report_path, written, progress)
     for path in (*outputs, *([report_path] if report_path is not None else [])):
         check_writable(path)  # a bad output is refused before anything is built or written
     deflection, angular = mesh_tolerance_for(spec, mesh_tolerance, mesh_angle)

@@ -31,7 +31,7 @@ class Key:
 
     kind: str  # "number", "string", "bool", "pair", "triple", "numbers", "number_or_numbers", "integer", "selection",
     #            "points", "radius" (a number, an expression or a table of [s, r] rows), "joints" (a table of
-    #            name = [numbers])
+    #            name = [numbers]), "table" (an inline table of the keys ``keys``)
     required: bool = True
     help: str = ""
     choices: tuple[str, ...] = ()
@@ -40,6 +40,7 @@ class Key:
     low_open: bool = True
     high_open: bool = True
     default: Any = None
+    keys: Any = None  # a "table" key's own keys (dict[str, Key])
 
 
 #: the keys every slope-curve family shares
@@ -321,6 +322,13 @@ ANALYSIS_KEYS = {
         "number", required=False, low=0.0, help="N per square [units] length (default steel, 210 GPa: 210000 in mm)"
     ),
     "poisson_ratio": Key("number", required=False, low=-1.0, high=0.5, default=0.3, help="in (-1, 0.5)"),
+    "allowable_stress": Key(
+        "number",
+        required=False,
+        low=0.0,
+        help="the allowable stress S of shell and branches, N per square [units] length, > 0: with pressure, "
+        "the [[branches]]' area-replacement figures (UG-37 style, a geometric aid) in the report",
+    ),
 }
 
 BATCH_KEYS = {
@@ -340,6 +348,52 @@ UNITS_KEYS = {
         default=DEFAULT_LENGTH_UNIT,
         help=f"{' | '.join(LENGTH_UNITS)}: the unit of every length in the spec, written into STEP, "
         f"IGES, DXF, 3MF and glTF (default {DEFAULT_LENGTH_UNIT})",
+    ),
+}
+
+#: one [[branches]] table: a straight branch tube whose wall joins the main tube's wall
+BRANCH_KEYS = {
+    "at": Key("number", help="arc length s on the main axis where the branch's axis leaves it, inside the span"),
+    "length": Key(
+        "number", help="the branch's length along its axis, from where it leaves the main axis, > 0", low=0.0
+    ),
+    "radius": Key(
+        "radius",
+        help="the branch's radius rho > 0, its wall inside the main tube's bore; or a radius law r(s) along the branch",
+    ),
+    "angle": Key(
+        "number",
+        required=False,
+        default=90.0,
+        low=0.0,
+        high=180.0,
+        help="degrees from the main axis' tangent at `at` to the branch's axis, 0 < angle < 180 "
+        "(default 90: a square tee; 45: a lateral)",
+    ),
+    "around": Key(
+        "number",
+        required=False,
+        default=90.0,
+        help="degrees round the main axis from its first stringer (u = 0) to the side the branch leaves on (default 90)",
+    ),
+    "offset": Key(
+        "number",
+        required=False,
+        default=0.0,
+        help="the branch axis' sideways offset from the main axis (a hillside nozzle); the branch's wall must stay "
+        "inside the main tube's bore where it starts (default 0)",
+    ),
+    "wall": Key(
+        "table",
+        required=False,
+        keys=WALL_KEYS,
+        help="the branch's wall, { thickness = ..., side = ... } (default the main [wall])",
+    ),
+    "layout": Key(
+        "table",
+        required=False,
+        keys=LAYOUT_KEYS,
+        help="the branch's rings and stringers, as [layout] (default 3 rings and the main tube's stringers)",
     ),
 }
 
@@ -372,4 +426,9 @@ SECTION_HELP = {
     "mesh": "the finite-element mesh of tubecad mesh: shell and beam elements, sizes, surface, element cap",
     "analysis": "the pressure analysis of tubecad analyse (CalculiX): pressure, ends, material",
     "batch": "where tubecad build runs a batch of this spec: a Dask cluster",
+    "branches": "branch tubes on the main tube's wall ([[branches]], one table each; needs [wall]): tubecad build "
+    "makes the junction one solid with the saddles as named edges",
 }
+
+#: sections that are arrays of tables ([[name]]), each table of these keys
+ARRAY_SECTIONS: dict[str, dict[str, Key]] = {"branches": BRANCH_KEYS}

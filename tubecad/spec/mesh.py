@@ -32,8 +32,10 @@ def mesh_from_spec(spec: TubeSpec, **overrides: Any):
     """The spec's wall (or tube) as an :class:`tubecad.fem.FEMesh` with its [mesh] settings
     (``overrides`` win: element, size, ...), [stiffeners] as beams and [panels] as sets."""
     from tubecad.fem import StiffenerPlan, shell_mesh
+    from tubecad.spec.build import refuse_branches
     from tubecad.spec.model import MeshSection
 
+    refuse_branches(spec)
     source = spec.source
     try:
         settings = (spec.mesh or MeshSection()).settings(**overrides)

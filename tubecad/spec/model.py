@@ -119,6 +119,38 @@ class WallSection:
 
 
 @dataclass(frozen=True)
+class BranchSection:
+    """One [[branches]] table: a straight branch tube of ``radius`` and ``length`` leaving
+    the main axis at arc length ``at``, ``angle`` degrees from its tangent, on the side
+    ``around`` degrees round it from its first stringer, its axis ``offset`` sideways; its
+    own ``wall`` and ``layout`` (None: the main [wall], 3 rings and the main's stringers)."""
+
+    at: float
+    length: float
+    radius: Any
+    angle: float = 90.0
+    around: float = 90.0
+    offset: float = 0.0
+    wall: WallSection | None = None
+    layout: LayoutSection | None = None
+
+    def __post_init__(self) -> None:
+        for name, kind in (("wall", WallSection), ("layout", LayoutSection)):
+            value = getattr(self, name)
+            if isinstance(value, dict):  # the checked inline table, typed
+                object.__setattr__(self, name, kind(**value))
+
+    def surface(self, main: CurvatureLineSurface) -> CurvatureLineSurface:
+        """The branch's tube (or canal surface) placed on ``main``
+        (:func:`tubecad.junctions.placement.branch_surface`); a ParameterError names the key."""
+        from tubecad.junctions.placement import branch_surface
+
+        return branch_surface(
+            main, self.at, self.length, self.radius, angle=self.angle, around=self.around, offset=self.offset
+        )
+
+
+@dataclass(frozen=True)
 class FitSection:
     """[fit]: the largest deviation of the B-spline surfaces from the exact tube."""
 
@@ -287,6 +319,7 @@ class AnalysisSection(_Table):
     ends: str | None = None
     youngs_modulus: float | None = None
     poisson_ratio: float | None = None
+    allowable_stress: float | None = None
 
     def settings(self, length_unit: str = DEFAULT_LENGTH_UNIT, closed: bool = False) -> AnalysisSettings:
         from tubecad.fem.settings import analysis_settings
@@ -334,13 +367,17 @@ class SpecModel:
     mesh: MeshSection | None = None
     analysis: AnalysisSection | None = None
     batch: BatchSection | None = None
+    branches: tuple[BranchSection, ...] = ()
 
     @classmethod
-    def from_sections(cls, sections: dict[str, dict[str, Any]]) -> SpecModel:
+    def from_sections(cls, sections: dict[str, Any]) -> SpecModel:
         """The model of checked tables (every key known and of its type: parse_spec checks them)."""
         axis = AxisSection(sections["axis"]["curve"], dict(sections["axis"]))
-        typed = {name: SECTION_TYPES[name](**values) for name, values in sections.items() if name != "axis"}
-        return cls(axis, **typed)
+        typed = {
+            name: SECTION_TYPES[name](**values) for name, values in sections.items() if name not in ("axis", "branches")
+        }
+        branches = tuple(BranchSection(**table) for table in sections.get("branches", ()))
+        return cls(axis, **typed, branches=branches)
 
 
 def _keyed(key: str, build: Any) -> Any:

@@ -127,6 +127,8 @@ def export_summary(info: dict[str, Any]) -> str:
     """One line on a written file, from what was measured on it as read back."""
     if "lines" in info:
         return f"{info['bytes']} bytes, {info['lines']} curvature lines as polylines"
+    if "picture" in info and "rings" not in info:  # a junction's picture: the solid with its edges
+        return f"{info['bytes']} bytes, {info['picture']}: the solid with its named edges"
     if "picture" in info:
         return (
             f"{info['bytes']} bytes, {info['picture']}: projections with {info['rings']} ring frames "
@@ -153,10 +155,39 @@ def export_summary(info: dict[str, Any]) -> str:
 
 
 def build_summary(report: dict[str, Any]) -> list[str]:
-    """The lines ``tubecad build`` prints for one spec: the B-rep, then each file written."""
+    """The lines ``tubecad build`` prints for one spec: the B-rep (or the junction: its solid,
+    each saddle, each opening's area replacement), then each file written."""
+    if "junction" in report:
+        return junction_summary(report["junction"]) + [
+            f"{path}: {export_summary(info)}" for path, info in report["exports"].items()
+        ]
     brep = report["brep"]
     lines = [
         f"{brep['kind']}: {brep['faces']} faces, {brep['edges']} edges, valid={brep['valid']}, "
         f"fit deviation {brep['fit']['max_deviation']:.2e}, orthogonality {brep['fit']['max_orthogonality_error']:.2e}"
     ]
     return lines + [f"{path}: {export_summary(info)}" for path, info in report["exports"].items()]
+
+
+def junction_summary(junction: dict[str, Any]) -> list[str]:
+    """The junction's lines: the solid, each saddle (its edges in the solid, how far from
+    the exact saddle), each opening's area replacement with its disclaimer."""
+    lines = [
+        f"junction wall: {junction['faces']} faces, {junction['edges']} edges, valid={junction['valid']}, "
+        f"{len(junction['named_edge_sets'])} named edge sets"
+    ]
+    for name, saddle in junction["saddles"].items():
+        lines.append(
+            f"{name}: {saddle['edges_in_solid']} edges in the solid, {saddle['edges_deviation']:.1e} from the exact "
+            f"saddle (fitted edge: {saddle['poles']} poles, {saddle['fit_deviation']:.1e})"
+        )
+    for row in junction.get("reinforcement", []):
+        if "skipped" in row:
+            lines.append(f"branch {row['branch']}: area replacement skipped ({row['skipped']})")
+            continue
+        verdict = "adequate" if row["adequate"] else "NOT adequate"
+        lines.append(
+            f"branch {row['branch']}: area replacement A = {row['required']:.4g}, available {row['available']:.4g} "
+            f"(shell {row['shell']:.4g}, nozzle {row['nozzle']:.4g}, pad {row['pad']:.4g}): {verdict} - {row['note']}"
+        )
+    return lines

@@ -35,10 +35,19 @@ from typing import TYPE_CHECKING, Any, cast
 from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
 
 # the key tables live in a light module (no numpy, no OCCT) that ``tubecad schema`` reads too
-from tubecad.spec.keys import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS, UNITS_KEYS, Key  # noqa: F401
+from tubecad.spec.keys import (  # noqa: F401
+    ARRAY_SECTIONS,
+    AXIS_COMMON,
+    EXTRA_SECTIONS,
+    FAMILY_KEYS,
+    TUBE_KEYS,
+    UNITS_KEYS,
+    Key,
+)
 from tubecad.spec.model import (
     AnalysisSection,
     BatchSection,
+    BranchSection,
     FabricationSection,
     FitSection,
     LayoutSection,
@@ -124,6 +133,10 @@ class TubeSpec:
         return self.model.batch
 
     @property
+    def branches(self) -> tuple[BranchSection, ...]:
+        return self.model.branches
+
+    @property
     def canal(self) -> bool:
         """Whether the tube is a canal surface (a radius law), not a constant radius."""
         return not self.tube.constant_radius
@@ -172,11 +185,13 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
 
     allowed_sections = {"axis": None, "tube": TUBE_KEYS, **EXTRA_SECTIONS}
     for name, value in data.items():
+        if name in ARRAY_SECTIONS:
+            if not (isinstance(value, list) and value and all(isinstance(v, dict) for v in value)):
+                raise fail(f"[[{name}]] must be tables (one [[{name}]] section each), got {_toml_type(value)}", name)
+            continue
         if name not in allowed_sections:
-            raise fail(
-                f"unknown section [{_short(name)}]; allowed sections are {', '.join(f'[{s}]' for s in allowed_sections)}",
-                _short(name),
-            )
+            known = [f"[{s}]" for s in allowed_sections] + [f"[[{s}]]" for s in ARRAY_SECTIONS]
+            raise fail(f"unknown section [{_short(name)}]; allowed sections are {', '.join(known)}", _short(name))
         if not isinstance(value, dict):
             raise fail(f"[{name}] must be a table (a [{name}] section), got {_toml_type(value)}", name)
     for name in ("axis", "tube"):
@@ -194,7 +209,13 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
     for name, keys in allowed_sections.items():
         if name != "axis" and name in data:
             sections[name] = _check_keys(name, data[name], keys, fail)  # type: ignore[arg-type]
-    model = SpecModel.from_sections(sections)
+    checked: dict[str, Any] = dict(sections)
+    for name, keys in ARRAY_SECTIONS.items():
+        if name in data:
+            checked[name] = [
+                _check_keys(name, table, keys, _numbered(fail, name, i)) for i, table in enumerate(data[name])
+            ]
+    model = SpecModel.from_sections(checked)
 
     # the keys and their values are checked: now the maths (numpy, scipy), never before, so a
     # mistake in the file is refused in a fraction of a second
@@ -216,7 +237,75 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
         if getattr(layout, count) is not None and getattr(layout, listed) is not None:
             raise fail(f"[layout] give either {count} or {listed}, not both", f"layout.{count}")
     _check_build_sections(tube, model, fail)
-    return TubeSpec(tube, sections, source, model)
+    if model.branches:
+        _check_branches(tube, model, fail)
+    return TubeSpec(tube, checked, source, model)
+
+
+def _numbered(fail: Callable[..., SpecError], name: str, index: int) -> Callable[..., SpecError]:
+    """``fail`` for the table ``index`` of [[name]]: its messages say which one (from 1)."""
+
+    def numbered(msg: str, key: str | None = None) -> SpecError:
+        number = f"[[{name}]] #{index + 1}"
+        return fail(msg.replace(f"[{name}.", f"{number} [", 1).replace(f"[{name}]", number, 1), key)
+
+    return numbered
+
+
+def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
+    """[[branches]]: a main [wall] to join (and no [stiffeners] or [panels]: not built on a
+    junction yet); each branch placed inside the main axis' span, its tube regular, its wall
+    inside the main tube's bore where it starts (so it leaves through the main wall)."""
+    import numpy as np
+
+    from tubecad.core.tolerance import MIN_SIZE
+
+    if model.wall is None:
+        raise fail("[[branches]] join the branch's wall to the main tube's: the spec needs a [wall] section", "wall")
+    for section in ("stiffeners", "panels"):
+        if getattr(model, section) is not None:
+            raise fail(
+                f"[{section}] on a wall with [[branches]] is not built yet (stiffeners stopping on the saddle "
+                "are planned): remove one of them",
+                section,
+            )
+    main_in = model.wall.offsets()[0]
+    for i, branch in enumerate(model.branches):
+        where = f"[[branches]] #{i + 1}"
+        try:
+            surface = branch.surface(tube)
+        except ParameterError as exc:
+            raise fail(f"{where} {exc}", f"branches.{exc.key or 'radius'}") from None
+        except RegularityError as exc:
+            raise fail(f"{where} radius: {_irregular(exc)}", "branches.radius") from None
+        if branch.layout is not None:
+            try:
+                branch.layout.net(surface)
+            except ParameterError as exc:
+                raise fail(f"{where} layout {exc}", f"branches.{_key('layout', exc)}") from None
+        wall = branch.wall or model.wall
+        try:
+            b_in, b_out = wall.offsets()
+        except ParameterError as exc:
+            raise fail(f"{where} wall {exc}", "branches.wall.thickness") from None
+        if surface.radius_law.min_radius + b_in < MIN_SIZE:
+            raise fail(
+                f"{where} wall: thickness {wall.thickness:g} leaves no bore in the branch", "branches.wall.thickness"
+            )
+        # the branch's first ring, on its outer surface, must lie inside the main tube's bore
+        u = np.linspace(0.0, 2.0 * np.pi, 73)
+        start = surface.offset(b_out).points(u, np.full_like(u, surface.span[0]))
+        s_main = np.clip(np.array([branch.at]), *tube.span)
+        centre = tube.axis.position(s_main)[0]
+        reach = float(np.linalg.norm(start - centre, axis=1).max())
+        inner = float(tube.radius_law.r(s_main)[0]) + main_in
+        if reach >= inner:
+            raise fail(
+                f"{where} the branch's wall must start inside the main tube's bore: its outer surface reaches "
+                f"{reach:.6g} from the main axis there, the bore's radius is {inner:.6g} (a smaller radius or "
+                "offset, or a thinner wall)",
+                "branches.radius" if abs(branch.offset) == 0 else "branches.offset",
+            )
 
 
 def _check_build_sections(tube: CurvatureLineSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
@@ -391,6 +480,7 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[..
         and all(isinstance(p, list) and len(p) == 3 and all(number(v) for v in p) for p in value),
         "joints": isinstance(value, dict)
         and all(isinstance(v, list) and v and all(number(x) for x in v) for v in value.values()),
+        "table": isinstance(value, dict),
         "radius": number(value)
         or isinstance(value, str)
         or (
@@ -413,6 +503,7 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[..
             "points": "a list of three or more [x, y, z] points",
             "joints": "a table of stiffener name = [positions]",
             "radius": "a number, an expression in s or a table of two or more [s, r] rows",
+            "table": "an inline table { key = value, ... }",
         }[spec.kind]
         raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}", f"{section}.{key}")
     if spec.kind in ("number", "radius") and number(value) and not math.isfinite(value):
@@ -423,6 +514,8 @@ def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[..
         raise fail(f"{where} must be finite ({spec.help}), got {_short(repr(value))}", f"{section}.{key}")
     if spec.choices and value not in spec.choices:
         raise fail(f"{where} must be one of {', '.join(spec.choices)}, got {_short(repr(value))}", f"{section}.{key}")
+    if spec.kind == "table":
+        return _check_keys(f"{section}.{key}", value, spec.keys, fail)
     return value
 
 

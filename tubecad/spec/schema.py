@@ -19,7 +19,7 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from tubecad.spec.keys import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, SECTION_HELP, TUBE_KEYS, Key
+from tubecad.spec.keys import ARRAY_SECTIONS, AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, SECTION_HELP, TUBE_KEYS, Key
 
 SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"
 
@@ -40,6 +40,7 @@ _KINDS: dict[str, dict[str, Any]] = {
         "minItems": 3,
     },
     "joints": {"type": "object", "additionalProperties": {"type": "array", "items": _NUMBER, "minItems": 1}},
+    "table": {"type": "object"},
     "radius": {
         "anyOf": [
             _NUMBER,
@@ -57,6 +58,9 @@ _KINDS: dict[str, dict[str, Any]] = {
 def key_schema(key: Key) -> dict[str, Any]:
     """One key: its type, choices, range and default, described by its help."""
     out: dict[str, Any] = {"description": key.help, **json.loads(json.dumps(_KINDS[key.kind]))}
+    if key.kind == "table":  # an inline table: exactly its own keys
+        out.update(section_schema("", key.keys))
+        out["description"] = key.help
     if key.choices:
         out["enum"] = list(key.choices)
     if key.low is not None:
@@ -131,6 +135,13 @@ def spec_schema() -> dict[str, Any]:
     """The JSON Schema of a spec file (as TOML parses it)."""
     sections = {"axis": axis_schema(), "tube": section_schema("tube", TUBE_KEYS)}
     sections.update({name: section_schema(name, keys) for name, keys in EXTRA_SECTIONS.items()})
+    for name, keys in ARRAY_SECTIONS.items():  # [[name]]: an array of tables of these keys
+        sections[name] = {
+            "description": SECTION_HELP.get(name, ""),
+            "type": "array",
+            "items": section_schema(name, keys),
+            "minItems": 1,
+        }
     return {
         "$schema": SCHEMA_DIALECT,
         "title": "tubecad spec",

@@ -28,7 +28,7 @@ from jsonschema import Draft202012Validator
 from tubecad import SpecError
 from tubecad.cli.app import cli
 from tubecad.core.units import LENGTH_UNITS, steel_density
-from tubecad.spec.parse import AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS, parse_spec
+from tubecad.spec.parse import ARRAY_SECTIONS, AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, TUBE_KEYS, parse_spec
 from tubecad.spec.schema import SCHEMA_DIALECT, schema_text, spec_schema
 
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
@@ -61,8 +61,14 @@ def test_schema_is_valid_draft_2020_12():
     assert schema["$schema"] == SCHEMA_DIALECT == "https://json-schema.org/draft/2020-12/schema"
     assert schema["additionalProperties"] is False and schema["required"] == ["axis", "tube"]
     sections = schema["properties"]
-    assert set(sections) == {"axis", "tube", *EXTRA_SECTIONS}
-    assert all(s["additionalProperties"] is False for s in sections.values())
+    assert set(sections) == {"axis", "tube", *EXTRA_SECTIONS, *ARRAY_SECTIONS}
+    # an array section ([[branches]]) is an array of such tables
+    assert all((s.get("items") or s)["additionalProperties"] is False for s in sections.values())
+    assert sections["branches"]["type"] == "array" and sections["branches"]["items"]["required"] == [
+        "at",
+        "length",
+        "radius",
+    ]
     # descriptions are the checker's help; the units key names its choices and default
     assert sections["tube"]["properties"]["radius"]["description"] == TUBE_KEYS["radius"].help
     assert sections["units"]["properties"]["length"]["enum"] == ["mm", "cm", "m", "in", "ft"]

@@ -1,0 +1,71 @@
+"""The build123d object CurvatureJunction (issue 25): a part in builder and algebra mode whose
+named edges (the saddles, both tubes' nets) follow every placed copy, checked on the closed
+form of the perpendicular tee: main y^2 + z^2 = R^2 along x, branch (x - 150)^2 + y^2 = r^2."""
+
+from __future__ import annotations
+
+import build123d as bd
+import numpy as np
+import pytest
+
+from tubecad import Branch, CurvatureJunction, ParameterError
+from tubecad.brep.properties import is_valid
+
+R_OUT, r_OUT, R_IN, r_IN = 52.0, 31.5, 48.0, 28.5
+
+
+def tee(**placement) -> CurvatureJunction:
+    return CurvatureJunction(
+        bd.Edge.make_line((0, 0, 0), (300, 0, 0)),
+        radius=50.0,
+        thickness=4.0,
+        normal=(0, 1, 0),  # r1 = y, r2 = z: the branch (around 90 deg) stands up z
+        rings=5,
+        branches=[Branch(at=150.0, length=120.0, radius=30.0, thickness=3.0)],
+        **placement,
+    )
+
+
+@pytest.fixture(scope="module")
+def part() -> CurvatureJunction:
+    return tee()
+
+
+def on_tee(edges, offset=(0.0, 0.0, 0.0), big=R_OUT, small=r_OUT) -> float:
+    """The largest distance of the edges' points from the two cylinders (moved by offset)."""
+    p = np.array([tuple(e.position_at(t)) for e in edges for t in np.linspace(0, 1, 9)]) - offset
+    return max(np.abs(np.hypot(p[:, 1], p[:, 2]) - big).max(), np.abs(np.hypot(p[:, 0] - 150, p[:, 1]) - small).max())
+
+
+def test_the_part_is_one_valid_solid_with_named_saddles(part):
+    assert is_valid(part.wrapped) and len(part.solids()) == 1
+    named = part.named_edges
+    assert {"saddle_outer", "saddle_inner", "main_ring_00", "branch_stringer_03_inner"} <= set(named)
+    assert all(e.label == "saddle_outer" for e in part.saddle_outer)
+    # measured 2e-7 (OCCT's intersection curves)
+    assert on_tee(part.saddle_outer) < 1e-6 and on_tee(part.saddle_inner, big=R_IN, small=r_IN) < 1e-6
+    assert part.junction.coverage["saddle_outer"] == pytest.approx(1.0, abs=1e-8)
+
+
+def test_the_names_follow_the_copies_in_builder_and_algebra_mode(part):
+    with bd.BuildPart() as builder:
+        with bd.Locations((0, 0, 0), (0, 400, 0)):
+            placed = tee(mode=bd.Mode.ADD)
+    assert is_valid(builder.part.wrapped) and len(builder.part.solids()) == 2
+    saddles = placed.saddle_outer
+    assert len(saddles) == 2 * len(part.saddle_outer)
+    first, second = saddles[: len(saddles) // 2], saddles[len(saddles) // 2 :]
+    assert on_tee(first) < 1e-6 and on_tee(second, (0, 400, 0)) < 1e-6
+    moved = bd.Pos(0, 0, 100) * part
+    assert on_tee(moved.saddle_outer, (0, 0, 100)) < 1e-6 and on_tee(part.saddle_outer) < 1e-6
+
+
+def test_a_branch_along_the_main_axis_is_refused_naming_its_key():
+    with pytest.raises(ParameterError) as info:
+        CurvatureJunction(
+            bd.Edge.make_line((0, 0, 0), (300, 0, 0)),
+            radius=50.0,
+            thickness=4.0,
+            branches=[Branch(at=150.0, length=120.0, radius=30.0, angle=0.0)],
+        )
+    assert info.value.key == "angle" and "\n" not in str(info.value)

@@ -1,0 +1,124 @@
+"""[[branches]] in a spec (issue 25): each bad value refused in one line naming its key, before
+anything is built; the branch placed where its keys say; the commands that would drop the
+branches refuse the spec; a junction's outputs other than CAD files and PNG refused."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from tubecad import SpecError
+from tubecad.cli.app import cli
+from tubecad.spec.parse import parse_spec
+
+MAIN = """
+[axis]
+curve = "natural"
+k = "0"
+tau = "0"
+s = [0.0, 400.0]
+
+[tube]
+radius = 50.0
+
+[wall]
+thickness = 4.0
+"""
+BRANCH = """
+[[branches]]
+at = 150.0
+length = 150.0
+radius = 30.0
+"""
+
+
+def spec_text(branch: str = BRANCH, main: str = MAIN) -> str:
+    return main + branch
+
+
+def parsed(text: str):
+    import tomllib
+
+    return parse_spec(tomllib.loads(text), "tee.toml")
+
+
+def test_a_branch_is_placed_where_its_keys_say():
+    """The main axis runs along x with r1 = y, r2 = z: angle 60, around 90, offset 10 put the
+    branch's axis through (150, -10, 0) along (cos 60, 0, sin 60), its first stringer towards +x."""
+    spec = parsed(spec_text(BRANCH + "angle = 60.0\naround = 90.0\noffset = 10.0\n"))
+    branch = spec.branches[0].surface(spec.tube)
+    a = math.radians(60.0)
+    ends = branch.axis.position(np.array([0.0, 150.0]))
+    assert np.allclose(ends[0], [150.0, -10.0, 0.0], atol=1e-12)
+    assert np.allclose(ends[1] - ends[0], 150.0 * np.array([math.cos(a), 0.0, math.sin(a)]), atol=1e-9)
+    t, r1, _ = (v[0] for v in branch.axis.rotation_minimising_frame(np.array([0.0])))
+    assert np.allclose(r1, [math.sin(a), 0.0, -math.cos(a)], atol=1e-12) and abs(t @ r1) < 1e-15
+    assert branch.radius == 30.0 and spec.branches[0].wall is None  # the main [wall] by default
+
+
+@pytest.mark.parametrize(
+    ("branch", "main", "key", "says"),
+    [
+        (BRANCH, MAIN.replace("[wall]\nthickness = 4.0\n", ""), "wall", "needs a [wall] section"),
+        (BRANCH.replace("at = 150.0", "at = 400.0"), MAIN, "branches.at", "at must be inside the main axis' span"),
+        (BRANCH + "angle = 0.0\n", MAIN, "branches.angle", "angle must be in (0, 180)"),
+        (BRANCH + "angle = 180.0\n", MAIN, "branches.angle", "angle must be in (0, 180)"),
+        (BRANCH.replace("length = 150.0", "length = -1.0"), MAIN, "branches.length", "length must be > 0"),
+        (BRANCH.replace("radius = 30.0", "radius = 47.0"), MAIN, "branches.radius", "must start inside the main"),
+        (BRANCH + "offset = 20.0\n", MAIN, "branches.offset", "must start inside the main tube's bore"),
+        (BRANCH.replace("radius = 30.0", "radius = 0.0"), MAIN, "branches.radius", "radius"),
+        (BRANCH + "pad = 1.0\n", MAIN, "branches", "unknown key [[branches]] #1 pad"),
+        (BRANCH + 'wall = { thickness = 3.0, side = "middle" }\n', MAIN, "branches.wall.side", "side must be one of"),
+        (BRANCH + "wall = 3.0\n", MAIN, "branches.wall", "must be an inline table"),
+        (BRANCH + "layout = { rings = 1 }\n", MAIN, "branches.layout.rings", "rings"),
+        (BRANCH.replace("length = 150.0\n", ""), MAIN, "branches.length", "length is missing"),
+        (BRANCH, MAIN + "[stiffeners]\nrings = [1]\nheight = 3.0\nthickness = 1.0\n", "stiffeners", "not built yet"),
+    ],
+)
+def test_bad_branches_are_refused_in_one_line_naming_the_key(branch, main, key, says):
+    with pytest.raises(SpecError) as info:
+        parsed(spec_text(branch, main))
+    message = str(info.value)
+    assert info.value.key == key and says in message and "\n" not in message, (info.value.key, message)
+
+
+def test_the_second_branch_is_named_in_the_message():
+    with pytest.raises(SpecError, match=r"\[\[branches\]\] #2 .*angle must be in \(0, 180\)"):
+        parsed(spec_text(BRANCH + BRANCH.replace("150.0\nlength", "300.0\nlength") + "angle = 200.0\n"))
+
+
+def test_branches_must_be_tables():
+    with pytest.raises(SpecError, match=r"\[\[branches\]\] must be tables") as info:
+        parsed("branches = 3\n" + MAIN)
+    assert info.value.key == "branches"
+
+
+@pytest.mark.parametrize(
+    ("command", "says"),
+    [
+        (["mesh", "{spec}", "-o", "{out}/m.inp"], "[[branches]]: this command does not make junctions yet"),
+        (["build", "{spec}", "-o", "{out}/x.stl"], "output 'x.stl': a spec with [[branches]] is written as CAD"),
+        (["build", "{spec}", "-o", "{out}/x.svg"], "output 'x.svg': a spec with [[branches]] is written as CAD"),
+    ],
+)
+def test_what_a_junction_cannot_be_yet_is_refused_with_exit_2_and_no_file(tmp_path, command, says):
+    spec = tmp_path / "tee.toml"
+    spec.write_text(spec_text())
+    out = tmp_path / "out"
+    out.mkdir()
+    result = CliRunner().invoke(cli, [a.format(spec=spec, out=out) for a in command])
+    assert result.exit_code == 2, result.output
+    assert says in result.output and "Traceback" not in result.output
+    assert list(out.iterdir()) == []
+
+
+def test_the_library_calls_that_make_the_main_tube_alone_refuse_branches():
+    """shop, flat and the viewer build through build_from_spec: it refuses rather than drop them."""
+    from tubecad.spec.build import build_from_spec
+
+    with pytest.raises(SpecError, match=r"this command does not make junctions yet") as info:
+        build_from_spec(parsed(spec_text()))
+    assert info.value.key == "branches"

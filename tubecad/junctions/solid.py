@@ -1,0 +1,271 @@
+"""A branch wall on a main wall as one solid, its saddles named edges (issue 25).
+
+With A_o, A_i the main's outer and inner tubes as capped solids (the main wall lies between
+them), B_o, B_i the branch's, the junction's wall is
+
+    W = (A_o u B_o) - (A_i u B_i),
+
+three OCCT booleans: the two fuses each meet along one saddle (``saddle_outer``: B_o's surface
+leaving A_o's; ``saddle_inner``: the bore B_i leaving A_i), the cut meets no curved surface
+(the tubes of one axis are concentric) and only coplanar end discs, which become the wall's
+annular caps. No face of one argument lies on a curved face of another, which is what makes
+the booleans slow and fragile (a wall fused with a wall and then bored would put the bore's
+tool on the wall's own inner face). The branch starts inside the main bore (where
+:func:`~tubecad.junctions.saddle.saddle_curve` requires it) so its start discs vanish in the
+fuse.
+
+Every ring and stringer of the four tubes stays an edge of W where it lies on W, split where
+it crosses an opening: the faces round the opening are the net's faces cut by the saddle.
+The booleans' history (BRepAlgoAPI's Modified / IsDeleted) follows each net edge into W,
+where its pieces are labelled ``main_ring_03``, ``main_stringer_05``, ``branch_ring_01``
+(``..._inner`` on the inner surfaces). The saddle edges in W are OCCT's intersection curves, not the fitted
+:class:`~tubecad.junctions.edges.SaddleEdge`: each edge of W whose points all lie on the
+exact saddle (within the boolean's own edge tolerance) is labelled with the saddle's name,
+and the largest distance of their points from the exact saddle is measured and reported.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import build123d as bd
+import numpy as np
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.BRepAlgoAPI import BRepAlgoAPI_BooleanOperation, BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
+from OCP.GCPnts import GCPnts_AbscissaPoint
+from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
+from OCP.gp import gp_Pnt
+from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
+
+from tubecad.brep.layout import NetLayout
+from tubecad.brep.properties import is_valid
+from tubecad.brep.solids import build_tube_solid
+from tubecad.brep.wall import wall_offsets
+from tubecad.core.errors import ParameterError, TubecadError
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE
+from tubecad.junctions.edges import SaddleEdge, wall_saddles
+from tubecad.occ_compat import ListOfShape
+from tubecad.surface.protocol import CurvatureLineSurface
+
+#: points sampled on each edge of W to tell whether it lies on a saddle
+EDGE_SAMPLES = 17
+#: an edge is on a saddle where its points are within this many times its own tolerance of it
+ON_SADDLE = 10.0
+
+
+@dataclass
+class JunctionWall:
+    """The junction's wall ``shape`` (one valid solid), its named edges: the saddles
+    (``edges['saddle_outer']``, ``edges['saddle_inner']``) and the pieces of each ring and
+    stringer of both tubes (``edges['main_ring_03']``, ``edges['branch_stringer_05_inner']``),
+    labelled build123d Edges of the shape; the fitted exact saddles ``saddles`` and, per saddle, the largest distance of
+    the shape's saddle edges from the exact saddle (``deviation``) and their length over the
+    exact saddle's (``coverage``, 1 when the edges make the whole closed curve)."""
+
+    shape: bd.Solid
+    edges: dict[str, list[bd.Edge]]
+    saddles: dict[str, SaddleEdge]
+    deviation: dict[str, float]
+    coverage: dict[str, float]
+
+    @property
+    def saddle_outer(self) -> list[bd.Edge]:
+        return self.edges["saddle_outer"]
+
+    @property
+    def saddle_inner(self) -> list[bd.Edge]:
+        return self.edges["saddle_inner"]
+
+
+@dataclass(frozen=True)
+class BranchWall:
+    """A branch for :func:`build_branched_wall`: its surface, its wall and its net."""
+
+    surface: CurvatureLineSurface
+    thickness: float
+    side: str = "centered"
+    layout: NetLayout | None = None
+
+
+def build_junction_wall(
+    main: CurvatureLineSurface,
+    branch: CurvatureLineSurface,
+    main_thickness: float,
+    branch_thickness: float,
+    *,
+    main_side: str = "centered",
+    branch_side: str = "centered",
+    main_layout: NetLayout | None = None,
+    branch_layout: NetLayout | None = None,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
+    key: str = "branches",
+) -> JunctionWall:
+    """The wall of ``branch`` (thickness, side) joined to the wall of ``main`` as one solid
+    whose edges are both tubes' rings and stringers (``main_layout``, ``branch_layout``:
+    default NetLayout.equal) and the two saddles, named. Refused naming ``key`` where the
+    branch does not start inside the main bore and leave through its wall, where the
+    surfaces are tangent on a saddle, or where OCCT's booleans give no single valid solid."""
+    return build_branched_wall(
+        main,
+        main_thickness,
+        [BranchWall(branch, branch_thickness, branch_side, branch_layout)],
+        main_side=main_side,
+        main_layout=main_layout,
+        tolerance=tolerance,
+        key=key,
+    )
+
+
+def build_branched_wall(
+    main: CurvatureLineSurface,
+    main_thickness: float,
+    branches: list[BranchWall],
+    *,
+    main_side: str = "centered",
+    main_layout: NetLayout | None = None,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
+    key: str = "branches",
+) -> JunctionWall:
+    """:func:`build_junction_wall` with any number of branches, each with its own wall and
+    net: W = (A_o u B1_o u B2_o ...) - (A_i u B1_i u B2_i ...). With one branch its edges are
+    named ``branch_ring_01``, ``saddle_outer``...; with several ``branch1_ring_01``,
+    ``saddle_outer_1``... (numbered from 0). Branches must not meet each other."""
+    if not branches:
+        raise ParameterError(f"{key}: at least one branch is needed", key=key)
+    main_in, main_out = wall_offsets(main_thickness, main_side)
+    main_layout = main_layout or NetLayout.equal(main)
+    # name -> (its edges, True where they are on the outside's tubes (A_o, B_o), False the bore's)
+    net: dict[str, tuple[list[TopoDS_Edge], bool]] = {}
+
+    def solid(
+        surface: CurvatureLineSurface, offset: float, rings: list[float], stringers: list[float], name: str, side: str
+    ) -> TopoDS_Shape:
+        """The capped tube of ``surface`` offset by ``offset``, its net edges registered."""
+        tube = surface.offset(offset) if offset else surface
+        built = build_tube_solid(tube, NetLayout.explicit(tube, rings, stringers), tolerance)
+        patches, outside = built.patches[0], side == ""
+        for i, ring in enumerate(patches.rings):
+            net.setdefault(f"{name}_ring_{i:02d}{side}", ([], outside))[0].extend(ring)
+        for j, stringer in enumerate(patches.stringers):
+            net.setdefault(f"{name}_stringer_{j:02d}{side}", ([], outside))[0].extend(stringer)
+        return built.shape.wrapped
+
+    saddles: list[SaddleEdge] = []
+    outers, inners = [], []
+    for k, branch in enumerate(branches):
+        tag = "" if len(branches) == 1 else str(k)
+        outer, inner = wall_saddles(
+            main,
+            branch.surface,
+            main_thickness,
+            branch.thickness,
+            main_side=main_side,
+            branch_side=branch.side,
+            tolerance=tolerance,
+            key=key,
+        )
+        saddles += [replace(e, name=f"{e.name}_{tag}" if tag else e.name) for e in (outer, inner)]
+        b_in, b_out = wall_offsets(branch.thickness, branch.side)
+        layout = branch.layout or NetLayout.equal(branch.surface)
+        rings, stringers = list(layout.s_rings), list(layout.stringers_deg)
+        outers.append(solid(branch.surface, b_out, rings, stringers, f"branch{tag}", ""))
+        inners.append(solid(branch.surface, b_in, rings, stringers, f"branch{tag}", "_inner"))
+    rings, stringers = list(main_layout.s_rings), list(main_layout.stringers_deg)
+    a_o = solid(main, main_out, rings, stringers, "main", "")
+    a_i = solid(main, main_in, rings, stringers, "main", "_inner")
+    outside, history_o = _boolean(BRepAlgoAPI_Fuse(), a_o, outers, key)
+    bore, history_i = _boolean(BRepAlgoAPI_Fuse(), a_i, inners, key)
+    result, history_w = _boolean(BRepAlgoAPI_Cut(), outside, [bore], key)
+    solids = bd.Shape.cast(result).solids()
+    if len(solids) != 1 or not is_valid(solids[0].wrapped):
+        raise TubecadError(
+            f"{key}: OCCT's booleans gave {len(solids)} solids{'' if len(solids) != 1 else ', not valid'} "
+            "for the branches on the main wall (do two branches meet, or one end outside the main wall?)",
+            key=key,
+        )
+    shape = solids[0]
+    edges = shape.edges()
+    # each piece in W of a net edge -> its name; OCP's hash of a shape is its TShape's and
+    # location's (either orientation), its == the Python object's, so IsSame decides
+    labels: dict[int, list[tuple[TopoDS_Shape, str]]] = {}
+    for name, (net_edges, in_outside) in net.items():
+        first = history_o if in_outside else history_i
+        for piece in history_w(*first(*net_edges)):
+            labels.setdefault(hash(piece), []).append((piece, name))
+    named: dict[str, list[bd.Edge]] = {}
+    for edge in edges:
+        label = next((n for piece, n in labels.get(hash(edge.wrapped), []) if piece.IsSame(edge.wrapped)), None)
+        if label is not None:
+            edge.label = label
+            named.setdefault(label, []).append(edge)
+    on_saddles, deviation, coverage = _name_saddle_edges([e for e in edges if not e.label], saddles)
+    return JunctionWall(shape, {**on_saddles, **named}, {e.name: e for e in saddles}, deviation, coverage)
+
+
+def _boolean(operation: BRepAlgoAPI_BooleanOperation, argument: TopoDS_Shape, tools: list[TopoDS_Shape], key: str):
+    """``argument`` fused with or cut by ``tools`` (OCCT's booleans, in parallel), and the
+    history: a function from input edges to the list of their pieces in the result (the
+    edge itself where the operation left it as it was, none where it deleted it)."""
+    arguments, listed = ListOfShape(), ListOfShape()
+    arguments.Append(argument)
+    for tool in tools:
+        listed.Append(tool)
+    operation.SetArguments(arguments)
+    operation.SetTools(listed)
+    operation.SetRunParallel(True)
+    operation.Build()
+    if not operation.IsDone():
+        raise TubecadError(f"{key}: OCCT's boolean of the branches and the main tube failed", key=key)
+
+    def pieces(*edges: TopoDS_Shape) -> list[TopoDS_Shape]:
+        out: list[TopoDS_Shape] = []
+        for edge in edges:
+            if operation.IsDeleted(edge):
+                continue
+            modified = list(operation.Modified(edge))
+            out.extend(modified if modified else [edge])
+        return out
+
+    return operation.Shape(), pieces
+
+
+def _name_saddle_edges(
+    edges: list[bd.Edge], saddles: list[SaddleEdge]
+) -> tuple[dict[str, list[bd.Edge]], dict[str, float], dict[str, float]]:
+    """Label those of ``edges`` that lie on each saddle; their largest distance from it and
+    their total length over the saddle's."""
+    named: dict[str, list[bd.Edge]] = {s.name: [] for s in saddles}
+    deviation = {s.name: 0.0 for s in saddles}
+    length = {s.name: 0.0 for s in saddles}
+    projectors = {s.name: GeomAPI_ProjectPointOnCurve() for s in saddles}
+    for saddle in saddles:
+        projectors[saddle.name].Init(saddle.curve, saddle.curve.FirstParameter(), saddle.curve.LastParameter())
+    for edge in edges:
+        curve = BRepAdaptor_Curve(edge.wrapped)
+        t = np.linspace(curve.FirstParameter(), curve.LastParameter(), EDGE_SAMPLES)
+        order = np.argsort(np.abs(np.arange(EDGE_SAMPLES) - EDGE_SAMPLES // 2), kind="stable")  # middle first
+        points = [curve.Value(float(t[i])) for i in order]
+        limit = ON_SADDLE * max(BRep_Tool.Tolerance_s(edge.wrapped), 1e-7)
+        for saddle in saddles:
+            far = _distance(projectors[saddle.name], points, limit)
+            if far <= limit:
+                edge.label = saddle.name
+                named[saddle.name].append(edge)
+                deviation[saddle.name] = max(deviation[saddle.name], far)
+                length[saddle.name] += GCPnts_AbscissaPoint.Length_s(curve)
+                break
+    coverage = {s.name: length[s.name] / GCPnts_AbscissaPoint.Length_s(BRepAdaptor_Curve(s.edge)) for s in saddles}
+    return named, deviation, coverage
+
+
+def _distance(projector: GeomAPI_ProjectPointOnCurve, points: list[gp_Pnt], limit: float) -> float:
+    """The largest distance of ``points`` from the projector's curve; inf as soon as one is
+    farther than ``limit`` or does not project (most edges: at the first point)."""
+    far = 0.0
+    for point in points:
+        projector.Perform(point)
+        if projector.NbPoints() == 0 or projector.LowerDistance() > limit:
+            return float("inf")
+        far = max(far, projector.LowerDistance())
+    return far

@@ -1,0 +1,155 @@
+"""The build123d object ``CurvatureJunction``: a main wall with branch walls joined on, one solid.
+
+A part object as ``CurvatureWall`` is (builder and algebra mode, ``rotation``, ``align``,
+``Locations``), over :func:`tubecad.junctions.build_branched_wall`. Each ``Branch`` says where
+a straight branch leaves the main axis (:func:`tubecad.junctions.branch_surface`) and its
+tube, wall and net. The part's named edges (both tubes' rings and stringers, the saddles
+``saddle_outer`` and ``saddle_inner``) are kept as indices into the solid's edge map, so
+every placed copy finds them::
+
+    from build123d import Edge
+    from tubecad import Branch, CurvatureJunction
+
+    tee = CurvatureJunction(Edge.make_line((0, 0, 0), (300, 0, 0)), radius=50, thickness=4,
+                            branches=[Branch(at=150, length=120, radius=30, thickness=3)])
+    tee.saddle_outer  # the saddle's edges, labelled "saddle_outer"
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import build123d as bd
+
+from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
+from tubecad.core.tolerance import DEFAULT_TOLERANCE
+from tubecad.parts.axis_input import as_axis
+from tubecad.parts.engine import edge_map_of, layout_of
+
+
+class _Shared:
+    """What the part was built from, shared, not copied, by the part's copies (OCCT objects
+    do not deep-copy): the JunctionWall and the named edges' indices in its edge map."""
+
+    def __init__(self, junction: Any, named: dict[str, list[int]]) -> None:
+        self.junction, self.named = junction, named
+
+    def __deepcopy__(self, memo: dict) -> _Shared:
+        return self
+
+
+@dataclass(frozen=True)
+class Branch:
+    """A straight branch of ``radius`` (a number or a radius law along it) and ``length``,
+    leaving the main axis at arc length ``at``, ``angle`` degrees from its tangent, on the
+    side ``around`` degrees round it from its first stringer, ``offset`` sideways (a hillside
+    nozzle); its wall ``thickness`` (None: the main's) placed ``side``; ``rings`` and
+    ``stringers`` its net (counts, or arc lengths and angles; None: the main's stringers)."""
+
+    at: float
+    length: float
+    radius: Any
+    thickness: float | None = None
+    angle: float = 90.0
+    around: float = 90.0
+    offset: float = 0.0
+    side: str = "centered"
+    rings: int | Sequence[float] = 3
+    stringers: int | Sequence[float] | None = None
+
+
+class CurvatureJunction(bd.BasePartObject):
+    """The wall of ``thickness`` round the tube of ``radius`` about ``axis`` (any axis
+    :class:`~tubecad.parts.build123d_parts.CurvatureWall` takes) with every branch of
+    ``branches`` (:class:`Branch`) joined on: one solid, W = (A_o u B_o) - (A_i u B_i).
+    ``named_edges`` gives its named edges (``main_ring_03``, ``branch_stringer_05_inner``,
+    ``saddle_outer``, ...; with several branches ``branch1_...`` and ``saddle_outer_1``) for
+    every placed copy; ``saddle_outer`` and ``saddle_inner`` the saddles (one branch), and
+    ``junction`` what was built and measured (:class:`~tubecad.junctions.JunctionWall`).
+    The other arguments are ``CurvatureWall``'s."""
+
+    _applies_to = [bd.BuildPart._tag]
+
+    def __init__(
+        self,
+        axis: Any,
+        radius: Any,
+        thickness: float,
+        branches: Sequence[Branch],
+        *,
+        side: str = "centered",
+        rings: int | Sequence[float] = DEFAULT_RINGS,
+        stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+        tolerance: float = DEFAULT_TOLERANCE,
+        bend_radius: float | Sequence[float] | None = None,
+        normal: Sequence[float] | None = None,
+        closed: bool | None = None,
+        rotation: bd.RotationLike = (0, 0, 0),
+        align: bd.Align | tuple[bd.Align, bd.Align, bd.Align] | None = None,
+        mode: bd.Mode = bd.Mode.ADD,
+    ) -> None:
+        from tubecad.junctions import BranchWall, branch_surface, build_branched_wall
+        from tubecad.surface.canal import tube_or_canal
+
+        main = tube_or_canal(as_axis(axis, bend_radius=bend_radius, normal=normal, closed=closed), radius)
+        main_layout = layout_of(main, rings, stringers)
+        walls = []
+        for branch in branches:
+            surface = branch_surface(
+                main,
+                branch.at,
+                branch.length,
+                branch.radius,
+                angle=branch.angle,
+                around=branch.around,
+                offset=branch.offset,
+            )
+            branch_stringers = branch.stringers if branch.stringers is not None else len(main_layout.stringers_deg)
+            walls.append(
+                BranchWall(
+                    surface,
+                    thickness if branch.thickness is None else branch.thickness,
+                    branch.side,
+                    layout_of(surface, branch.rings, branch_stringers),
+                )
+            )
+        junction = build_branched_wall(
+            main, thickness, walls, main_side=side, main_layout=main_layout, tolerance=tolerance
+        )
+        edge_map = edge_map_of(junction.shape.wrapped)
+        named = {name: [edge_map.FindIndex(e.wrapped) for e in edges] for name, edges in junction.edges.items()}
+        self._tubecad = _Shared(junction, named)
+        super().__init__(part=bd.Solid(junction.shape.wrapped), rotation=rotation, align=align, mode=mode)
+
+    @property
+    def junction(self) -> Any:
+        """The :class:`~tubecad.junctions.JunctionWall` built (unplaced): saddles, deviations."""
+        return self._tubecad.junction
+
+    @property
+    def named_edges(self) -> dict[str, bd.ShapeList[bd.Edge]]:
+        """Each name's edges on every placed copy of the part, labelled with the name."""
+        from tubecad.occ_compat import as_edge
+
+        named = self._tubecad.named
+        out: dict[str, list[bd.Edge]] = {name: [] for name in sorted(named)}
+        for copy in self.solids():
+            edge_map = edge_map_of(copy.wrapped)
+            for name in out:
+                for index in named[name]:
+                    edge = bd.Edge(as_edge(edge_map.FindKey(index)))
+                    edge.label = name
+                    out[name].append(edge)
+        return {name: bd.ShapeList(edges) for name, edges in out.items()}
+
+    @property
+    def saddle_outer(self) -> bd.ShapeList[bd.Edge]:
+        """Where the branch's outer surface leaves the main's (one branch; else ``saddle_outer_0``...)."""
+        return self.named_edges["saddle_outer"]
+
+    @property
+    def saddle_inner(self) -> bd.ShapeList[bd.Edge]:
+        """Where the branch's bore leaves the main's (one branch; else ``saddle_inner_0``...)."""
+        return self.named_edges["saddle_inner"]

@@ -1,0 +1,224 @@
+"""A spec with [[branches]]: the junction wall, its named assembly and its report (issue 25).
+
+``tubecad build`` on such a spec makes the main [wall] with every branch's wall joined to it
+(:func:`tubecad.junctions.build_branched_wall`) and writes it as a named assembly: the solid
+``wall`` and ``junction_edges``, one compound per named edge set (``saddle_outer``,
+``saddle_inner``, ``main_ring_03``, ``branch_stringer_05_inner``, ...), so the names read back
+from STEP. The report holds each saddle's fit and its edges in the solid, measured, and,
+with [analysis] pressure and allowable_stress, each opening's area-replacement figures
+(:func:`tubecad.junctions.area_replacement`: a geometric aid, not a code certification).
+"""
+
+from __future__ import annotations
+
+from functools import partial
+from pathlib import Path
+from typing import Any
+
+import build123d as bd
+
+from tubecad.brep.layout import NetLayout
+from tubecad.brep.properties import count, is_valid, volume
+from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
+from tubecad.core.progress import Progress
+from tubecad.fitting import FitError
+from tubecad.junctions import BranchWall, JunctionWall, area_replacement, build_branched_wall
+from tubecad.spec.parse import TubeSpec
+
+#: the branch's rings when its [[branches]] table has no layout
+DEFAULT_BRANCH_RINGS = 3
+
+
+def branch_walls(spec: TubeSpec) -> list[BranchWall]:
+    """The spec's [[branches]] as :class:`~tubecad.junctions.BranchWall` (parse_spec checked them)."""
+    assert spec.wall is not None  # parse_spec refuses [[branches]] without [wall]
+    main_stringers = len(spec.layout.net(spec.tube).stringers_deg)
+    out = []
+    for branch in spec.branches:
+        surface = branch.surface(spec.tube)
+        wall = branch.wall or spec.wall
+        layout = (
+            branch.layout.net(surface)
+            if branch.layout is not None
+            else NetLayout.equal(surface, DEFAULT_BRANCH_RINGS, main_stringers)
+        )
+        out.append(BranchWall(surface, wall.thickness, wall.side, layout))
+    return out
+
+
+def build_junction(spec: TubeSpec) -> JunctionWall:
+    """The junction wall of ``spec`` (its [wall] and [[branches]]); a SpecError naming the key
+    (``branches``, ``branches.radius``, ``fit.tolerance``) where it cannot be built."""
+    assert spec.wall is not None
+    try:
+        return build_branched_wall(
+            spec.tube,
+            spec.wall.thickness,
+            branch_walls(spec),
+            main_side=spec.wall.side,
+            main_layout=spec.layout.net(spec.tube),
+            tolerance=spec.fit.tolerance,
+        )
+    except FitError as exc:
+        raise SpecError(f"{spec.source}: [fit] {exc}", key="fit.tolerance") from None
+    except (ParameterError, RegularityError) as exc:
+        key = exc.key if exc.key and (exc.key.startswith("branches") or exc.key.startswith("fit")) else "branches"
+        raise SpecError(f"{spec.source}: [[branches]] {exc}", key=key) from None
+    except TubecadError as exc:
+        raise SpecError(f"{spec.source}: [[branches]] {exc}", key="branches") from None
+
+
+def junction_assembly(junction: JunctionWall) -> bd.Compound:
+    """``wall`` (the junction solid) and ``junction_edges``: a compound per edge name."""
+    wall = bd.Solid(junction.shape.wrapped)
+    wall.label = "wall"
+    groups = []
+    for name in sorted(junction.edges):
+        group = bd.Compound(children=[bd.Edge(e.wrapped) for e in junction.edges[name]])
+        group.label = name
+        groups.append(group)
+    edges = bd.Compound(children=groups)
+    edges.label = "junction_edges"
+    return bd.Compound(label="tubecad", children=[wall, edges])
+
+
+def junction_report(spec: TubeSpec, junction: JunctionWall) -> dict[str, Any]:
+    """What was measured on the junction: the solid (valid, counts, volume), per saddle its
+    fitted edge (poles, distance from the exact saddle) and its edges in the solid (how many,
+    their largest distance from the exact saddle, their length over the saddle's), and per
+    branch the area-replacement figures when [analysis] gives pressure and allowable_stress."""
+    shape = junction.shape.wrapped
+    report: dict[str, Any] = {
+        "valid": is_valid(shape),
+        "solids": count(shape, "solid"),
+        "faces": count(shape, "face"),
+        "edges": count(shape, "edge"),
+        "volume": volume(shape),
+        "named_edge_sets": sorted(junction.edges),
+        "saddles": {
+            name: {
+                "poles": saddle.poles,
+                "fit_deviation": saddle.deviation,
+                "edges_in_solid": len(junction.edges.get(name, [])),
+                "edges_deviation": junction.deviation[name],
+                "coverage": junction.coverage[name],
+            }
+            for name, saddle in junction.saddles.items()
+        },
+    }
+    analysis = spec.analysis
+    if analysis is not None and analysis.pressure and analysis.allowable_stress:
+        report["reinforcement"] = reinforcement(spec, junction, analysis.pressure, analysis.allowable_stress)
+    return report
+
+
+def reinforcement(spec: TubeSpec, junction: JunctionWall, pressure: float, stress: float) -> list[dict[str, Any]]:
+    """Each branch's area-replacement figures from its bore saddle (constant radii only: the
+    rule takes one inside radius per shell)."""
+    assert spec.wall is not None
+    out = []
+    main_in = spec.wall.offsets()[0]
+    for k, (branch, walls) in enumerate(zip(spec.branches, branch_walls(spec))):
+        name = "saddle_inner" if len(spec.branches) == 1 else f"saddle_inner_{k}"
+        if not (spec.tube.constant_radius and walls.surface.constant_radius):
+            out.append({"branch": k, "skipped": "a radius law: the rule takes one inside radius per shell"})
+            continue
+        b_in = (branch.wall or spec.wall).offsets()[0]
+        figures = area_replacement(
+            junction.saddles[name].saddle,
+            shell_radius=spec.tube.radius_law.constant_value + main_in,
+            shell_thickness=spec.wall.thickness,
+            nozzle_radius=walls.surface.radius_law.constant_value + b_in,
+            nozzle_thickness=walls.thickness,
+            pressure=pressure,
+            stress=stress,
+            key="branches",
+        )
+        out.append({"branch": k, **figures.as_dict()})
+    return out
+
+
+def build_and_export_junction(
+    spec: TubeSpec,
+    outputs: list[Path],
+    step_schema: str = "AP214",
+    report_path: Path | None = None,
+    written: list[Path] | None = None,
+    progress: Progress | None = None,
+) -> dict[str, Any]:
+    """:func:`tubecad.spec.build.build_and_export` for a spec with [[branches]]: the junction
+    wall as a named assembly in each CAD output (STEP, IGES, BREP), each read back before it
+    is moved into place (one valid solid, its volume and area those written; a STEP file's
+    edge names all there), a PNG output the solid rendered with its edges, and the report.
+    Meshes, SVG pictures and polylines of a junction are refused before anything is built
+    (not made yet)."""
+    from tubecad.core.atomic import check_writable, write_text
+    from tubecad.export.cad import step_names
+    from tubecad.export.readback import FileAccuracyError, WrittenShape, readback_report
+    from tubecad.export.registry import Exportable, output_format, write_output
+    from tubecad.spec.report import to_json, tube_report
+
+    written = [] if written is None else written
+    progress = progress if progress is not None else Progress(enabled=False)
+    for path in outputs:
+        if output_format(path).kind != "cad" and output_format(path).name != "png":
+            raise SpecError(
+                f"{spec.source}: output {path.name!r}: a spec with [[branches]] is written as CAD files "
+                "(.step, .iges, .brep) or a .png picture; meshes, SVG pictures and polylines of a junction "
+                "are not made yet",
+                key="output",
+            )
+    for path in (*outputs, *([report_path] if report_path is not None else [])):
+        check_writable(path)
+    unit = spec.length_unit
+    progress.step("building the junction", 1)
+    junction = build_junction(spec)
+    progress.advance(1, "junction")
+    report = tube_report(spec.tube, 64, 501, length_unit=unit)
+    report["junction"] = junction_report(spec, junction)
+    shape = junction_assembly(junction)
+    reference = WrittenShape(shape, {"volume": report["junction"]["volume"]})
+    item = Exportable(shape, None, step_schema, length_unit=unit)
+    exports = report["exports"] = {}
+
+    def check(tmp: Path, fmt: Any, target: Path) -> dict[str, Any]:
+        if fmt.name == "png":
+            from matplotlib.image import imread
+
+            height, width = imread(tmp, format="png").shape[:2]
+            return {"bytes": tmp.stat().st_size, "picture": f"PNG {width} x {height}"}
+        info = readback_report(tmp, reference, None, target, None, unit)
+        if info["solids"] != 1:
+            raise FileAccuracyError(f"{target.name}: reads back as {info['solids']} solids, not the junction's one")
+        if fmt.name == "step":
+            names = {name for _, name in step_names(tmp)}
+            missing = sorted(set(junction.edges) - names)
+            if missing:
+                raise FileAccuracyError(f"{target.name}: the edge names {', '.join(missing[:4])} did not read back")
+            info["edge_names"] = len(junction.edges)
+        return info
+
+    progress.step("writing and reading back files", len(outputs))
+    for path in outputs:
+        if output_format(path).name == "png":
+            done, info = path, render_junction(junction, path, spec.source, check)
+        else:
+            done, info = write_output(item, path, partial(check, target=path))
+        written.append(done)
+        exports[str(path)] = info
+        progress.advance(1, f"checked {path.name}")
+    if report_path is not None:
+        written.append(write_text(report_path, to_json(report)))
+    return report
+
+
+def render_junction(junction: JunctionWall, path: Path, title: str, check: Any) -> dict[str, Any]:
+    """The junction solid shaded with its edges (the nets and the saddles) into the PNG
+    ``path``, atomically; ``check(tmp, fmt, path)`` reads it back before it is kept."""
+    from tubecad.core.atomic import atomic_path
+    from tubecad.export.registry import output_format
+    from tubecad.export.render import render_shape_png
+
+    with atomic_path(path) as tmp:
+        render_shape_png(junction.shape, tmp, title=Path(title).name)
+        return check(tmp, output_format(path), path)
