@@ -451,7 +451,8 @@ def _say_warnings(written: list[Path]) -> None:
 @click.option("-q", "--quiet", is_flag=True, help="No stage lines on stderr (shown on a terminal only).")
 def shop(spec: Path, output: Path, quiet: bool) -> None:
     """Shop-floor outputs of SPEC's stiffened wall, with its [fabrication] settings (plate_size, kerf,
-    joint_gap, max_strain, pin_spacing, pin_clearance, joints):
+    joint_gap, max_strain, pin_spacing, pin_clearance, joints); with [[branches]], each branch's
+    cutting template, its opening's template and its bevel angles (branches/, index.json):
 
     webs split at butt joints into cuttable pieces and nested 1:1 on plates (DXF, SVG) with the STEP
     solids split the same way; stringer flanges developed and nested; bending tables and inverse
@@ -470,6 +471,18 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
         index = shop_from_spec(checked, output, say)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
+    if "branches" in index:  # a junction: its templates and bevels
+        for row in index["branches"]:
+            dihedral = row["dihedral_deg"]
+            click.echo(
+                f"branch {row['branch']}: cutting template {row['template']['girth']:.6g} x "
+                f"{row['template']['height']:.6g} (strain {row['template']['strain']:.2g}), the opening's template, "
+                f"bevel basis: dihedral angle {dihedral['min']:.2f} to {dihedral['max']:.2f} deg"
+            )
+            for path in row["files"]:
+                click.echo(str(output / path))
+        click.echo(str(output / "index.json"))
+        return
     webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
     click.echo(
         f"webs: {webs['pieces']} pieces on {webs['plates']} plates, utilisation {100 * webs['utilisation']:.1f} %; "

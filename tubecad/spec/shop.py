@@ -29,6 +29,10 @@ def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None]
             f"{spec.source}: has no [wall] section; the shop package is made of a wall's stiffeners and panels",
             key="wall",
         )
+    if spec.branches:  # a junction: the branches' cutting templates, openings and bevels
+        from tubecad.spec.junction import junction_shop
+
+        return junction_shop(spec, output, progress)
     if spec.stiffeners is None and spec.panels is None:
         raise SpecError(
             f"{spec.source}: has neither [stiffeners] nor [panels]; there is nothing for the shop", key="stiffeners"
