@@ -25,6 +25,7 @@ from tubecad.core.progress import Progress
 from tubecad.fitting import FitError
 from tubecad.junctions import BranchWall, JunctionWall, area_replacement, build_branched_wall
 from tubecad.spec.parse import TubeSpec
+from tubecad.stiffeners.pad import Pad
 
 #: the branch's rings when its [[branches]] table has no layout
 DEFAULT_BRANCH_RINGS = 3
@@ -71,10 +72,48 @@ def build_junction(spec: TubeSpec) -> JunctionWall:
         raise SpecError(f"{spec.source}: [[branches]] {exc}", key="branches") from None
 
 
-def junction_assembly(junction: JunctionWall) -> bd.Compound:
-    """``wall`` (the junction solid) and ``junction_edges``: a compound per edge name."""
+def build_pads(spec: TubeSpec, junction: JunctionWall) -> dict[int, Pad]:
+    """The reinforcement pads of the branches that ask for one (``pad`` in their table), by
+    branch index: each on the main wall's outer surface round the branch's outer saddle."""
+    from tubecad.stiffeners.pad import reinforcement_pad
+
+    assert spec.wall is not None
+    pads = {}
+    main_out = spec.wall.offsets()[1]
+    for k, (branch, walls) in enumerate(zip(spec.branches, branch_walls(spec))):
+        if branch.pad is None:
+            continue
+        name = "saddle_outer" if len(spec.branches) == 1 else f"saddle_outer_{k}"
+        b_out = (branch.wall or spec.wall).offsets()[1]
+        try:
+            pads[k] = reinforcement_pad(
+                spec.tube.offset(main_out),
+                walls.surface.offset(b_out),
+                junction.saddles[name].saddle,
+                branch.pad.thickness,
+                branch.pad.width,
+                spec.fit.tolerance,
+            )
+        except ParameterError as exc:
+            raise SpecError(f"{spec.source}: [[branches]] #{k + 1} {exc}", key=exc.key or "branches.pad") from None
+    return pads
+
+
+def pad_name(k: int, branches: int) -> str:
+    """``pad`` with one branch, ``pad_k`` with several."""
+    return "pad" if branches == 1 else f"pad_{k}"
+
+
+def junction_assembly(junction: JunctionWall, pads: dict[int, Pad] | None = None, branches: int = 1) -> bd.Compound:
+    """``wall`` (the junction solid), each pad (``pad``, ``pad_1``...) and ``junction_edges``:
+    a compound per edge name."""
     wall = bd.Solid(junction.shape.wrapped)
     wall.label = "wall"
+    plates = []
+    for k, pad in (pads or {}).items():
+        plate = bd.Solid(pad.solid.wrapped)
+        plate.label = pad_name(k, branches)
+        plates.append(plate)
     groups = []
     for name in sorted(junction.edges):
         group = bd.Compound(children=[bd.Edge(e.wrapped) for e in junction.edges[name]])
@@ -82,10 +121,10 @@ def junction_assembly(junction: JunctionWall) -> bd.Compound:
         groups.append(group)
     edges = bd.Compound(children=groups)
     edges.label = "junction_edges"
-    return bd.Compound(label="tubecad", children=[wall, edges])
+    return bd.Compound(label="tubecad", children=[wall, *plates, edges])
 
 
-def junction_report(spec: TubeSpec, junction: JunctionWall) -> dict[str, Any]:
+def junction_report(spec: TubeSpec, junction: JunctionWall, pads: dict[int, Pad] | None = None) -> dict[str, Any]:
     """What was measured on the junction: the solid (valid, counts, volume), per saddle its
     fitted edge (poles, distance from the exact saddle) and its edges in the solid (how many,
     their largest distance from the exact saddle, their length over the saddle's), and per
@@ -109,13 +148,30 @@ def junction_report(spec: TubeSpec, junction: JunctionWall) -> dict[str, Any]:
             for name, saddle in junction.saddles.items()
         },
     }
+    pads = pads or {}
+    if pads:
+        from tubecad.shop.panel_development import develop_panel
+
+        report["pads"] = {}
+        for k, pad in pads.items():
+            development = develop_panel(pad.surface, pad.s_range, pad.angles_deg, pad_name(k, len(spec.branches)))
+            report["pads"][pad_name(k, len(spec.branches))] = {
+                "valid": is_valid(pad.solid.wrapped),
+                "volume": volume(pad.solid.wrapped),
+                "thickness": pad.thickness,
+                "s_range": list(pad.s_range),
+                "angles_deg": list(pad.angles_deg),
+                "development_max_strain": development.max_strain,
+            }
     analysis = spec.analysis
     if analysis is not None and analysis.pressure and analysis.allowable_stress:
-        report["reinforcement"] = reinforcement(spec, junction, analysis.pressure, analysis.allowable_stress)
+        report["reinforcement"] = reinforcement(spec, junction, analysis.pressure, analysis.allowable_stress, pads)
     return report
 
 
-def reinforcement(spec: TubeSpec, junction: JunctionWall, pressure: float, stress: float) -> list[dict[str, Any]]:
+def reinforcement(
+    spec: TubeSpec, junction: JunctionWall, pressure: float, stress: float, pads: dict[int, Pad] | None = None
+) -> list[dict[str, Any]]:
     """Each branch's area-replacement figures from its bore saddle (constant radii only: the
     rule takes one inside radius per shell)."""
     assert spec.wall is not None
@@ -135,6 +191,8 @@ def reinforcement(spec: TubeSpec, junction: JunctionWall, pressure: float, stres
             nozzle_thickness=walls.thickness,
             pressure=pressure,
             stress=stress,
+            pad_diameter=pads[k].diameter if pads and k in pads else 0.0,
+            pad_thickness=pads[k].thickness if pads and k in pads else 0.0,
             key="branches",
         )
         out.append({"branch": k, **figures.as_dict()})
@@ -176,11 +234,13 @@ def build_and_export_junction(
     unit = spec.length_unit
     progress.step("building the junction", 1)
     junction = build_junction(spec)
+    pads = build_pads(spec, junction)
     progress.advance(1, "junction")
     report = tube_report(spec.tube, 64, 501, length_unit=unit)
-    report["junction"] = junction_report(spec, junction)
-    shape = junction_assembly(junction)
-    reference = WrittenShape(shape, {"volume": report["junction"]["volume"]})
+    report["junction"] = junction_report(spec, junction, pads)
+    shape = junction_assembly(junction, pads, len(spec.branches))
+    pad_volume = sum(p["volume"] for p in report["junction"].get("pads", {}).values())
+    reference = WrittenShape(shape, {"volume": report["junction"]["volume"] + pad_volume})
     item = Exportable(shape, None, step_schema, length_unit=unit)
     exports = report["exports"] = {}
 
@@ -191,11 +251,13 @@ def build_and_export_junction(
             height, width = imread(tmp, format="png").shape[:2]
             return {"bytes": tmp.stat().st_size, "picture": f"PNG {width} x {height}"}
         info = readback_report(tmp, reference, None, target, None, unit)
-        if info["solids"] != 1:
-            raise FileAccuracyError(f"{target.name}: reads back as {info['solids']} solids, not the junction's one")
+        if info["solids"] != 1 + len(pads):
+            raise FileAccuracyError(
+                f"{target.name}: reads back as {info['solids']} solids, not the junction's and its {len(pads)} pads"
+            )
         if fmt.name == "step":
             names = {name for _, name in step_names(tmp)}
-            missing = sorted(set(junction.edges) - names)
+            missing = sorted(set(junction.edges) - names | {pad_name(k, len(spec.branches)) for k in pads} - names)
             if missing:
                 raise FileAccuracyError(f"{target.name}: the edge names {', '.join(missing[:4])} did not read back")
             info["edge_names"] = len(junction.edges)
@@ -204,7 +266,8 @@ def build_and_export_junction(
     progress.step("writing and reading back files", len(outputs))
     for path in outputs:
         if output_format(path).name == "png":
-            done, info = path, render_junction(junction, path, spec.source, check)
+            solids = bd.Compound([junction.shape, *(pad.solid for pad in pads.values())])
+            done, info = path, render_junction(solids, path, spec.source, check)
         else:
             done, info = write_output(item, path, partial(check, target=path))
         written.append(done)
@@ -215,15 +278,15 @@ def build_and_export_junction(
     return report
 
 
-def render_junction(junction: JunctionWall, path: Path, title: str, check: Any) -> dict[str, Any]:
-    """The junction solid shaded with its edges (the nets and the saddles) into the PNG
+def render_junction(solids: bd.Shape, path: Path, title: str, check: Any) -> dict[str, Any]:
+    """The junction's solids (the wall, its pads) shaded with their edges (the nets, the saddles) into the PNG
     ``path``, atomically; ``check(tmp, fmt, path)`` reads it back before it is kept."""
     from tubecad.core.atomic import atomic_path
     from tubecad.export.registry import output_format
     from tubecad.export.render import render_shape_png
 
     with atomic_path(path) as tmp:
-        render_shape_png(junction.shape, tmp, title=Path(title).name)
+        render_shape_png(solids, tmp, title=Path(title).name)
         return check(tmp, output_format(path), path)
 
 

@@ -351,6 +351,12 @@ UNITS_KEYS = {
     ),
 }
 
+#: a branch's reinforcement pad: a plate on the main wall bounded by two rings and two stringers
+PAD_KEYS = {
+    "thickness": Key("number", help="the pad's thickness > 0, on the main wall's outer surface", low=0.0),
+    "width": Key("number", help="how far the pad reaches beyond the branch's outer saddle every way, > 0", low=0.0),
+}
+
 #: one [[branches]] table: a straight branch tube whose wall joins the main tube's wall
 BRANCH_KEYS = {
     "at": Key("number", help="arc length s on the main axis where the branch's axis leaves it, inside the span"),
@@ -394,6 +400,13 @@ BRANCH_KEYS = {
         required=False,
         keys=LAYOUT_KEYS,
         help="the branch's rings and stringers, as [layout] (default 3 rings and the main tube's stringers)",
+    ),
+    "pad": Key(
+        "table",
+        required=False,
+        keys=PAD_KEYS,
+        help="a reinforcement pad round the branch, { thickness = ..., width = ... }: its own solid `pad`, "
+        "bounded by two rings and two stringers of the main wall (no pad by default)",
     ),
 }
 

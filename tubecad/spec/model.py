@@ -119,6 +119,14 @@ class WallSection:
 
 
 @dataclass(frozen=True)
+class PadSection:
+    """A [[branches]] table's pad: its ``thickness`` and its ``width`` beyond the saddle."""
+
+    thickness: float
+    width: float
+
+
+@dataclass(frozen=True)
 class BranchSection:
     """One [[branches]] table: a straight branch tube of ``radius`` and ``length`` leaving
     the main axis at arc length ``at``, ``angle`` degrees from its tangent, on the side
@@ -133,9 +141,10 @@ class BranchSection:
     offset: float = 0.0
     wall: WallSection | None = None
     layout: LayoutSection | None = None
+    pad: PadSection | None = None
 
     def __post_init__(self) -> None:
-        for name, kind in (("wall", WallSection), ("layout", LayoutSection)):
+        for name, kind in (("wall", WallSection), ("layout", LayoutSection), ("pad", PadSection)):
             value = getattr(self, name)
             if isinstance(value, dict):  # the checked inline table, typed
                 object.__setattr__(self, name, kind(**value))

@@ -181,6 +181,11 @@ def junction_summary(junction: dict[str, Any]) -> list[str]:
             f"{name}: {saddle['edges_in_solid']} edges in the solid, {saddle['edges_deviation']:.1e} from the exact "
             f"saddle (fitted edge: {saddle['poles']} poles, {saddle['fit_deviation']:.1e})"
         )
+    for name, pad in junction.get("pads", {}).items():
+        lines.append(
+            f"{name}: thickness {pad['thickness']:g}, volume {pad['volume']:.6g}, valid={pad['valid']}, "
+            f"development strain {pad['development_max_strain']:.2g}"
+        )
     for row in junction.get("reinforcement", []):
         if "skipped" in row:
             lines.append(f"branch {row['branch']}: area replacement skipped ({row['skipped']})")

@@ -1,0 +1,105 @@
+"""A reinforcement pad: a plate on the main wall round a branch, bounded by lines of curvature
+(issue 25; here beside the panels it is made as, above :mod:`tubecad.junctions`).
+
+The pad lies on the main tube's outer wall surface X(u, s) (radius R_o) and reaches ``width``
+beyond the branch's outer saddle every way: it is the panel of the wall between the radii R_o
+and R_o + thickness over the rings s_a = min s_A - width, s_b = max s_A + width and the
+stringers u_a = min u_A - width / R_o, u_b = max u_A + width / R_o (the saddle's (u_A, s_A) on
+the main, :mod:`~tubecad.junctions.saddle`), with the branch's outer tube cut out of it. Its
+four edges are curvature lines of the main wall (two rings, two stringers), so it develops
+like any panel of the wall: exactly (strain 0) where the main axis is straight.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import build123d as bd
+import numpy as np
+
+from tubecad.brep.layout import NetLayout
+from tubecad.brep.properties import is_valid
+from tubecad.brep.solids import build_tube_solid, build_wall_solid
+from tubecad.core.errors import ParameterError
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE
+from tubecad.junctions.saddle import SaddleCurve
+from tubecad.stiffeners.panels import panel
+from tubecad.surface.protocol import CurvatureLineSurface
+
+
+@dataclass(frozen=True)
+class Pad:
+    """The pad's ``solid`` (the branch's hole cut out), the rings ``s_range`` and stringer
+    angles ``angles_deg`` that bound it on ``surface`` (the main's outer wall surface), its
+    ``thickness`` and ``width`` beyond the saddle."""
+
+    solid: bd.Solid
+    surface: CurvatureLineSurface
+    s_range: tuple[float, float]
+    angles_deg: tuple[float, float]
+    thickness: float
+    width: float
+
+    @property
+    def diameter(self) -> float:
+        """D_p of the area-replacement rule: the pad's extent along the main axis, s_b - s_a."""
+        return self.s_range[1] - self.s_range[0]
+
+
+def reinforcement_pad(
+    outer: CurvatureLineSurface,
+    branch_outer: CurvatureLineSurface,
+    saddle: SaddleCurve,
+    thickness: float,
+    width: float,
+    tolerance: float = DEFAULT_FIT_TOLERANCE,
+    *,
+    key: str = "branches.pad",
+) -> Pad:
+    """The pad on ``outer`` (the main wall's outer surface) round the saddle ``saddle`` where
+    ``branch_outer`` leaves it (see the module). A ParameterError names ``key.thickness`` or
+    ``key.width`` where the pad would reach past the main tube's ends or round it, or where
+    the main has a radius law (a pad of a canal wall is not made yet)."""
+    if not (thickness > 0 and math.isfinite(thickness)):
+        raise ParameterError(f"{key}.thickness must be > 0, got {thickness!r:.40}", key=f"{key}.thickness")
+    if not (width > 0 and math.isfinite(width)):
+        raise ParameterError(f"{key}.width must be > 0, got {width!r:.40}", key=f"{key}.width")
+    if not outer.constant_radius:
+        raise ParameterError(f"{key}: a pad on a main tube with a radius law is not made yet", key=key)
+    radius = outer.radius_law.constant_value
+    s0, s1 = outer.span
+    s_a, s_b = float(saddle.main_s.min()) - width, float(saddle.main_s.max()) + width
+    u_a = math.degrees(float(saddle.main_u.min()) - width / radius)
+    u_b = math.degrees(float(saddle.main_u.max()) + width / radius)
+    if not (s0 < s_a and s_b < s1):
+        raise ParameterError(
+            f"{key}.width: the pad reaches s = {s_a:.6g} .. {s_b:.6g}, past the main tube's span ({s0:g}, {s1:g})",
+            key=f"{key}.width",
+        )
+    if u_b - u_a >= 360.0:
+        widest = radius * (math.pi - 0.5 * float(np.ptp(saddle.main_u)))
+        raise ParameterError(
+            f"{key}.width: the pad would reach all round the main tube ({u_b - u_a:.4g} deg); "
+            f"width must be < {widest:.6g} here",
+            key=f"{key}.width",
+        )
+    piece = outer.restricted((s_a, s_b))
+    layout = NetLayout.explicit(piece, [s_a, s_b], [u_a % 360.0])
+    wall = build_wall_solid(piece, thickness, "outside", layout, tolerance)
+    plate = panel(wall, piece.axis, radius, radius + thickness, u_a, u_b, "pad").solid
+    hole = build_tube_solid(branch_outer, NetLayout.equal(branch_outer, 2, 1), tolerance).shape
+    solids = plate.cut(hole).solids()
+    if len(solids) != 1 or not is_valid(solids[0].wrapped):
+        raise ParameterError(f"{key}: OCCT's cut of the branch from the pad gave {len(solids)} solids", key=key)
+    return Pad(solids[0], outer, (s_a, s_b), (u_a, u_b), thickness, width)
+
+
+def pad_outline(pad: Pad, points: int = 65) -> np.ndarray:
+    """The pad's outer boundary on its surface, (4 (points - 1), 3): ring s_a, stringer u_b,
+    ring s_b, stringer u_a (before the hole)."""
+    u = np.radians(np.linspace(*pad.angles_deg, points))
+    s = np.linspace(*pad.s_range, points)
+    sides = [(u, np.full(points, s[0])), (np.full(points, u[-1]), s), (u[::-1], np.full(points, s[-1]))]
+    sides.append((np.full(points, u[0]), s[::-1]))
+    return np.concatenate([pad.surface.points(a[:-1], b[:-1]) for a, b in sides])
