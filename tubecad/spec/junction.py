@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 import build123d as bd
+import numpy as np
 
 from tubecad.brep.layout import NetLayout
 from tubecad.brep.properties import count, is_valid, volume
@@ -337,10 +338,27 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
                 for u, (x, y), a in zip(outer.branch_u, cut.points, angles)
             ]
             base.with_name(f"branch_{k}_bevel.csv").write_text("\n".join(rows) + "\n")
+            files = [f"branches/branch_{k}_{part}" for part in ("template.dxf", "hole.dxf", "bevel.csv")]
+            pad = spec.branches[k].pad
+            pad_info = None
+            if pad is not None:  # the pad's development with the branch's hole marked on it
+                from tubecad.shop.panel_development import develop_panel, write_panel_dxf
+                from tubecad.stiffeners.pad import pad_bounds
+
+                try:
+                    pad_s, pad_angles = pad_bounds(main_o, outer, pad.width)
+                except ParameterError as exc:
+                    raise SpecError(f"{spec.source}: [[branches]] #{k + 1} {exc}", key=exc.key) from None
+                development = develop_panel(main_o, pad_s, pad_angles, f"branch_{k}_pad")
+                hole_line = development.map(np.degrees(outer.main_u), outer.main_s)
+                write_panel_dxf([development], {development.name: [("branch", hole_line)]}, staging / "branches", unit)
+                files.append(f"branches/branch_{k}_pad_development.dxf")
+                pad_info = {"thickness": pad.thickness, "max_strain": development.max_strain}
             index["branches"].append(
                 {
                     "branch": k,
-                    "files": [f"branches/branch_{k}_{part}" for part in ("template.dxf", "hole.dxf", "bevel.csv")],
+                    "files": files,
+                    "pad": pad_info,
                     "template": {"girth": cut.girth, "height": cut.height, "strain": cut.strain},
                     "hole": {"girth": hole.girth, "strain": hole.strain},
                     "dihedral_deg": {"min": float(angles.min()), "max": float(angles.max())},

@@ -63,10 +63,29 @@ def reinforcement_pad(
     the main has a radius law (a pad of a canal wall is not made yet)."""
     if not (thickness > 0 and math.isfinite(thickness)):
         raise ParameterError(f"{key}.thickness must be > 0, got {thickness!r:.40}", key=f"{key}.thickness")
-    if not (width > 0 and math.isfinite(width)):
-        raise ParameterError(f"{key}.width must be > 0, got {width!r:.40}", key=f"{key}.width")
+    (s_a, s_b), (u_a, u_b) = pad_bounds(outer, saddle, width, key=key)
+    radius = outer.radius_law.constant_value
+    piece = outer.restricted((s_a, s_b))
+    layout = NetLayout.explicit(piece, [s_a, s_b], [u_a % 360.0])
+    wall = build_wall_solid(piece, thickness, "outside", layout, tolerance)
+    plate = panel(wall, piece.axis, radius, radius + thickness, u_a, u_b, "pad").solid
+    hole = build_tube_solid(branch_outer, NetLayout.equal(branch_outer, 2, 1), tolerance).shape
+    solids = plate.cut(hole).solids()
+    if len(solids) != 1 or not is_valid(solids[0].wrapped):
+        raise ParameterError(f"{key}: OCCT's cut of the branch from the pad gave {len(solids)} solids", key=key)
+    return Pad(solids[0], outer, (s_a, s_b), (u_a, u_b), thickness, width)
+
+
+def pad_bounds(
+    outer: CurvatureLineSurface, saddle: SaddleCurve, width: float, *, key: str = "branches.pad"
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """((s_a, s_b), (u_a, u_b) in degrees): the rings and stringers that bound the pad
+    ``width`` beyond ``saddle`` on ``outer`` (see the module); refused as
+    :func:`reinforcement_pad` says."""
     if not outer.constant_radius:
         raise ParameterError(f"{key}: a pad on a main tube with a radius law is not made yet", key=key)
+    if not (width > 0 and math.isfinite(width)):
+        raise ParameterError(f"{key}.width must be > 0, got {width!r:.40}", key=f"{key}.width")
     radius = outer.radius_law.constant_value
     s0, s1 = outer.span
     s_a, s_b = float(saddle.main_s.min()) - width, float(saddle.main_s.max()) + width
@@ -84,15 +103,7 @@ def reinforcement_pad(
             f"width must be < {widest:.6g} here",
             key=f"{key}.width",
         )
-    piece = outer.restricted((s_a, s_b))
-    layout = NetLayout.explicit(piece, [s_a, s_b], [u_a % 360.0])
-    wall = build_wall_solid(piece, thickness, "outside", layout, tolerance)
-    plate = panel(wall, piece.axis, radius, radius + thickness, u_a, u_b, "pad").solid
-    hole = build_tube_solid(branch_outer, NetLayout.equal(branch_outer, 2, 1), tolerance).shape
-    solids = plate.cut(hole).solids()
-    if len(solids) != 1 or not is_valid(solids[0].wrapped):
-        raise ParameterError(f"{key}: OCCT's cut of the branch from the pad gave {len(solids)} solids", key=key)
-    return Pad(solids[0], outer, (s_a, s_b), (u_a, u_b), thickness, width)
+    return (s_a, s_b), (u_a, u_b)
 
 
 def pad_outline(pad: Pad, points: int = 65) -> np.ndarray:

@@ -138,7 +138,7 @@ def test_shop_on_a_tee_writes_the_templates_and_bevels_of_the_closed_forms(tmp_p
     from shapely.geometry import Polygon
 
     spec = tmp_path / "tee.toml"
-    spec.write_text(spec_text())
+    spec.write_text(spec_text(BRANCH + "pad = { thickness = 6.0, width = 20.0 }\n"))
     result = CliRunner().invoke(cli, ["shop", str(spec), "-o", str(tmp_path / "shop")])
     assert result.exit_code == 0, result.output
     folder = tmp_path / "shop" / "branches"
@@ -161,5 +161,12 @@ def test_shop_on_a_tee_writes_the_templates_and_bevels_of_the_closed_forms(tmp_p
         epsabs=1e-10,
         limit=200,
     )
+    # the pad's development: the rectangle R (u_b - u_a) x (s_b - s_a) of its rings and stringers,
+    # 20 beyond the saddle (x = 150 +- 32, angle 90 deg +- asin(32 / 52)), the branch's line inside
+    pad = {e.dxf.layer: e for e in ezdxf.readfile(folder / "branch_0_pad_development.dxf").modelspace()}
+    outline = Polygon([p[:2] for p in pad["OUTLINE"].get_points()])
+    width_u = 2 * (np.arcsin(32.0 / 52.0) + 20.0 / 52.0)
+    assert outline.area == pytest.approx(52.0 * width_u * (2 * 32.0 + 40.0), rel=1e-9)
+    assert outline.contains(Polygon([p[:2] for p in pad["MARKING"].get_points()]))
     # the developed hole as a polygon of 720 sides: measured 1.3e-5 relative (the chords' loss)
     assert polygon.is_valid and abs(polygon.area / exact - 1) < 3e-5, polygon.area / exact - 1
