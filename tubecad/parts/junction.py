@@ -46,7 +46,9 @@ class Branch:
     leaving the main axis at arc length ``at``, ``angle`` degrees from its tangent, on the
     side ``around`` degrees round it from its first stringer, ``offset`` sideways (a hillside
     nozzle); its wall ``thickness`` (None: the main's) placed ``side``; ``rings`` and
-    ``stringers`` its net (counts, or arc lengths and angles; None: the main's stringers)."""
+    ``stringers`` its net (counts, or arc lengths and angles; None: the main's stringers);
+    with ``pad_thickness`` and ``pad_width`` a reinforcement pad round it
+    (:func:`tubecad.stiffeners.pad.reinforcement_pad`), its own solid ``pad``."""
 
     at: float
     length: float
@@ -58,6 +60,8 @@ class Branch:
     side: str = "centered"
     rings: int | Sequence[float] = 3
     stringers: int | Sequence[float] | None = None
+    pad_thickness: float | None = None
+    pad_width: float | None = None
 
 
 class CurvatureJunction(bd.BasePartObject):
@@ -120,8 +124,54 @@ class CurvatureJunction(bd.BasePartObject):
         )
         edge_map = edge_map_of(junction.shape.wrapped)
         named = {name: [edge_map.FindIndex(e.wrapped) for e in edges] for name, edges in junction.edges.items()}
+        pads = self._pads(main, thickness, side, branches, walls, junction, tolerance)
         self._tubecad = _Shared(junction, named)
-        super().__init__(part=bd.Solid(junction.shape.wrapped), rotation=rotation, align=align, mode=mode)
+        wall = bd.Solid(junction.shape.wrapped)
+        wall.label = "wall"
+        self._pad_names = [name for name, _ in pads]
+        part = bd.Part(bd.Compound([wall, *(solid for _, solid in pads)]).wrapped) if pads else wall
+        super().__init__(part=part, rotation=rotation, align=align, mode=mode)
+
+    @staticmethod
+    def _pads(
+        main: Any, thickness: float, side: str, branches: Sequence[Branch], walls: list, junction: Any, tolerance: float
+    ) -> list[tuple[str, bd.Solid]]:
+        """(name, solid) of each branch's pad: ``pad`` with one branch, ``pad_k`` with several."""
+        from tubecad.brep.wall import wall_offsets
+        from tubecad.stiffeners.pad import reinforcement_pad
+
+        out = []
+        main_out = wall_offsets(thickness, side)[1]
+        for k, (branch, wall) in enumerate(zip(branches, walls)):
+            if branch.pad_thickness is None and branch.pad_width is None:
+                continue
+            one = len(branches) == 1
+            saddle = junction.saddles["saddle_outer" if one else f"saddle_outer_{k}"].saddle
+            pad = reinforcement_pad(
+                main.offset(main_out),
+                wall.surface.offset(wall_offsets(wall.thickness, wall.side)[1]),
+                saddle,
+                branch.pad_thickness if branch.pad_thickness is not None else float("nan"),
+                branch.pad_width if branch.pad_width is not None else float("nan"),
+                tolerance,
+                key="pad",
+            )
+            solid = bd.Solid(pad.solid.wrapped)
+            solid.label = "pad" if one else f"pad_{k}"
+            out.append((solid.label, solid))
+        return out
+
+    @property
+    def pads(self) -> bd.ShapeList[bd.Solid]:
+        """The pads of every placed copy, labelled ``pad`` (``pad_0``, ... with several branches)."""
+        per_copy = 1 + len(self._pad_names)
+        solids = list(self.solids())
+        out = []
+        for start in range(0, len(solids), per_copy):
+            for name, solid in zip(self._pad_names, solids[start + 1 : start + per_copy]):
+                solid.label = name
+                out.append(solid)
+        return bd.ShapeList(out)
 
     @property
     def junction(self) -> Any:
@@ -135,7 +185,7 @@ class CurvatureJunction(bd.BasePartObject):
 
         named = self._tubecad.named
         out: dict[str, list[bd.Edge]] = {name: [] for name in sorted(named)}
-        for copy in self.solids():
+        for copy in list(self.solids())[:: 1 + len(self._pad_names)]:  # each copy's wall, its pads after it
             edge_map = edge_map_of(copy.wrapped)
             for name in out:
                 for index in named[name]:

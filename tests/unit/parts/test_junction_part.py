@@ -69,3 +69,24 @@ def test_a_branch_along_the_main_axis_is_refused_naming_its_key():
             branches=[Branch(at=150.0, length=120.0, radius=30.0, angle=0.0)],
         )
     assert info.value.key == "angle" and "\n" not in str(info.value)
+
+
+def test_a_branch_with_a_pad_gives_the_part_a_pad_solid_in_every_copy():
+    with bd.BuildPart() as builder:
+        with bd.Locations((0, 0, 0), (0, 400, 0)):
+            placed = CurvatureJunction(
+                bd.Edge.make_line((0, 0, 0), (300, 0, 0)),
+                radius=50.0,
+                thickness=4.0,
+                normal=(0, 1, 0),
+                rings=5,
+                branches=[
+                    Branch(at=150.0, length=120.0, radius=30.0, thickness=3.0, pad_thickness=6.0, pad_width=20.0)
+                ],
+                mode=bd.Mode.PRIVATE,
+            )
+    pads = placed.pads
+    assert [p.label for p in pads] == ["pad", "pad"] and all(is_valid(p.wrapped) for p in pads)
+    assert pads[1].center().Y - pads[0].center().Y == pytest.approx(400.0)
+    assert on_tee(placed.saddle_outer[: len(placed.saddle_outer) // 2]) < 1e-6
+    del builder
