@@ -16,6 +16,11 @@ against the closed form (the walls less the cylinders' overlap by quadrature), w
 saddle is a set of edges and whether they carry a name, how many named curvature lines the
 solid has, and a 1 mm fillet along the outer saddle (build123d's ``fillet`` on the edges
 that lie on both outer cylinders): made, valid, and its time.
+
+A second case puts a nozzle on a bend (samples/nozzle_on_torus.toml: a quarter torus of axis
+radius 300, R 60 wall 5, a nozzle r 15 wall 3 on its crown): the build123d user sweeps the
+circles along the arc and fuses a cylinder on (no closed-form volume: the tubecad and
+build123d volumes are compared with each other); tubecad builds the spec's junction.
 """
 
 from __future__ import annotations
@@ -121,14 +126,66 @@ def fillet(shape: bd.Shape, edges: list[bd.Edge]) -> dict:
         }
 
 
+def bend_sweeps() -> bd.Shape:
+    """The nozzle on the bend as a build123d user makes it: circles swept along the arc, cylinders fused."""
+    arc = bd.Edge.make_circle(300.0, bd.Plane.XY, start_angle=0.0, end_angle=90.0)
+    start, tangent = arc.position_at(0), arc.tangent_at(0)
+
+    def swept(radius: float) -> bd.Solid:
+        circle = bd.Wire([bd.Edge.make_circle(radius, bd.Plane(origin=start, z_dir=tangent))])
+        return bd.Solid(bd.sweep(bd.Face(circle), arc).wrapped)
+
+    crown = arc.position_at(0.5)
+    nozzle = [
+        bd.Pos(crown.X, crown.Y, 0) * bd.Cylinder(radius, 100.0, align=(bd.Align.CENTER, bd.Align.CENTER, bd.Align.MIN))
+        for radius in (16.5, 13.5)
+    ]
+    return (swept(62.5) + nozzle[0]) - (swept(57.5) + nozzle[1])
+
+
+def bend_tubecad():
+    from tubecad.spec import load_spec
+    from tubecad.spec.junction import build_junction
+
+    return build_junction(load_spec(Path(__file__).resolve().parent.parent / "samples" / "nozzle_on_torus.toml"))
+
+
+def bend_saddle(shape: bd.Shape) -> list[bd.Edge]:
+    """The edges on the bend's outer torus (distance 62.5 from its axis circle) and the nozzle's cylinder."""
+    found = []
+    centre = np.array([300.0 * math.cos(math.pi / 4), 300.0 * math.sin(math.pi / 4)])
+    for edge in shape.edges():
+        p = np.array([tuple(edge.position_at(t)) for t in np.linspace(0, 1, 9)])
+        torus = np.abs(np.hypot(np.hypot(p[:, 0], p[:, 1]) - 300.0, p[:, 2]) - 62.5).max()
+        cylinder = np.abs(np.hypot(p[:, 0] - centre[0], p[:, 1] - centre[1]) - 16.5).max()
+        if torus < 1e-5 and cylinder < 1e-5:
+            found.append(edge)
+    return found
+
+
+CASES = {
+    "tee": (
+        [("build123d, primitives", primitives), ("build123d, sweeps", sweeps), ("tubecad", tubecad_tee)],
+        outer_saddle,
+    ),
+    "nozzle on a bend": ([("build123d, sweeps", bend_sweeps), ("tubecad", bend_tubecad)], bend_saddle),
+}
+
+
 def run() -> dict:
-    expected = exact_volume()
+    return {case: run_case(makers, saddle_of, case == "tee") for case, (makers, saddle_of) in CASES.items()}
+
+
+def run_case(makers, saddle_of, closed_form: bool) -> dict:
+    expected = exact_volume() if closed_form else None
     rows = {}
-    for name, make in (("build123d, primitives", primitives), ("build123d, sweeps", sweeps), ("tubecad", tubecad_tee)):
+    for name, make in makers:
         built, seconds = timed(make)
         shape = built.shape if name == "tubecad" else built
+        if expected is None:
+            expected = volume(shape.wrapped)  # the first way's: the others are compared with it
         solids = shape.solids()
-        saddle = built.edges["saddle_outer"] if name == "tubecad" else outer_saddle(shape)
+        saddle = built.edges["saddle_outer"] if name == "tubecad" else saddle_of(shape)
         row = {
             "seconds": round(seconds, 2),
             "solids": len(solids),
