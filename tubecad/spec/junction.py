@@ -239,6 +239,9 @@ def build_and_export_junction(
     progress.advance(1, "junction")
     report = tube_report(spec.tube, 64, 501, length_unit=unit)
     report["junction"] = junction_report(spec, junction, pads)
+    # what a batch's summary reads of any build (tubecad.batch.jobs)
+    report["brep"] = {key: report["junction"][key] for key in ("valid", "faces", "edges", "volume")}
+    report["brep"]["kind"] = "junction_wall"
     shape = junction_assembly(junction, pads, len(spec.branches))
     pad_volume = sum(p["volume"] for p in report["junction"].get("pads", {}).values())
     reference = WrittenShape(shape, {"volume": report["junction"]["volume"] + pad_volume})

@@ -172,3 +172,20 @@ def test_shop_on_a_tee_writes_the_templates_and_bevels_of_the_closed_forms(tmp_p
     assert outline.contains(Polygon([p[:2] for p in pad["MARKING"].get_points()]))
     # the developed hole as a polygon of 720 sides: measured 1.3e-5 relative (the chords' loss)
     assert polygon.is_valid and abs(polygon.area / exact - 1) < 3e-5, polygon.area / exact - 1
+
+
+@pytest.mark.slow
+def test_a_batch_of_a_branched_spec_builds_its_junctions(tmp_path):
+    """`tubecad build SPEC -d DIR --sweep ...` runs each job through the junction's build."""
+    import json
+
+    spec = tmp_path / "tee.toml"
+    spec.write_text(spec_text())
+    result = CliRunner().invoke(
+        cli, ["build", str(spec), "-d", str(tmp_path / "out"), "--sweep", "wall.thickness=4.0", "-j", "1"]
+    )
+    assert result.exit_code == 0, result.output
+    jobs = json.loads((tmp_path / "out" / "batch.json").read_text())["jobs"]
+    assert [job["status"] for job in jobs] == ["ok"] and "junction_wall" in result.output
+    report = json.loads(next((tmp_path / "out").glob("*.report.json")).read_text())
+    assert report["junction"]["valid"] and report["junction"]["solids"] == 1
