@@ -30,7 +30,7 @@ def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None]
             key="wall",
         )
     if spec.branches:  # a junction: the branches' cutting templates, openings and bevels
-        from tubecad.spec.junction import junction_shop
+        from tubecad.spec.junction_shop import junction_shop
 
         return junction_shop(spec, output, progress)
     if spec.stiffeners is None and spec.panels is None:

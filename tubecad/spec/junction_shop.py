@@ -1,0 +1,101 @@
+"""``tubecad shop`` on a spec with [[branches]]: each branch's cutting template, its opening's
+template, its bevel basis and its pad's development (issue 25; the templates'
+geometry is :mod:`tubecad.shop.branch_template`, the pad's :mod:`tubecad.stiffeners.pad`)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from tubecad.core.errors import ParameterError, RegularityError, SpecError
+from tubecad.spec.junction import branch_walls
+from tubecad.spec.parse import TubeSpec
+
+#: points of the templates round the saddle (every 0.5 deg of the branch's girth)
+TEMPLATE_SAMPLES = 721
+
+
+def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, Any]:
+    """``tubecad shop`` on a spec with [[branches]]: per branch k, into ``output/branches``:
+    ``branch_k_template.dxf`` (the outer saddle unrolled onto the branch's outer surface, its
+    cutting template, girth marks at its stringers), ``branch_k_hole.dxf`` (the bore's saddle
+    on the main's inner surface: the opening), ``branch_k_bevel.csv`` (the dihedral angle
+    between the outer surfaces along the saddle, the bevel's basis, at each girth position),
+    and ``index.json``. No booleans are needed: the saddles are solved on the exact surfaces.
+    Written into a staging folder and moved into place once complete."""
+    import json
+    import shutil
+    import tempfile
+
+    from tubecad.junctions import dihedral_angles, saddle_curve
+    from tubecad.shop.branch_template import branch_template, hole_template
+
+    assert spec.wall is not None
+    say = say or (lambda stage: None)
+    unit = spec.length_unit
+    main_in, main_out = spec.wall.offsets()
+    output = Path(output)
+    output.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{output.name}.", dir=output.parent))
+    index: dict[str, Any] = {"name": Path(str(spec.source)).stem, "units": {"length": unit}, "branches": []}
+    try:
+        (staging / "branches").mkdir()
+        for k, walls in enumerate(branch_walls(spec)):
+            say(f"branch {k}: saddles and templates")
+            b_in, b_out = (spec.branches[k].wall or spec.wall).offsets()
+            main_o, main_i = spec.tube.offset(main_out), spec.tube.offset(main_in)
+            branch_o, branch_i = walls.surface.offset(b_out), walls.surface.offset(b_in)
+            try:  # the exact saddles, densely: each polyline point on both surfaces to round-off
+                outer = saddle_curve(main_o, branch_o, TEMPLATE_SAMPLES)
+                inner = saddle_curve(main_i, branch_i, TEMPLATE_SAMPLES)
+                stringers = len(walls.layout.stringers_deg) if walls.layout else 8
+                cut = branch_template(branch_o, outer, stringers)
+                hole = hole_template(main_i, inner, len(spec.layout.net(spec.tube).stringers_deg))
+            except (ParameterError, RegularityError) as exc:
+                raise SpecError(f"{spec.source}: [[branches]] #{k + 1} {exc}", key=exc.key or "branches") from None
+            angles = dihedral_angles(main_o, branch_o, outer)
+            base = staging / "branches" / f"branch_{k}"
+            cut.save_dxf(base.with_name(f"branch_{k}_template.dxf"), unit)
+            hole.save_dxf(base.with_name(f"branch_{k}_hole.dxf"), unit)
+            rows = ["u_deg,girth_position,height,dihedral_deg"] + [
+                f"{math.degrees(u):.15g},{x:.15g},{y:.15g},{a:.15g}"
+                for u, (x, y), a in zip(outer.branch_u, cut.points, angles)
+            ]
+            base.with_name(f"branch_{k}_bevel.csv").write_text("\n".join(rows) + "\n")
+            files = [f"branches/branch_{k}_{part}" for part in ("template.dxf", "hole.dxf", "bevel.csv")]
+            pad = spec.branches[k].pad
+            pad_info = None
+            if pad is not None:  # the pad's development with the branch's hole marked on it
+                from tubecad.shop.panel_development import develop_panel, write_panel_dxf
+                from tubecad.stiffeners.pad import pad_bounds
+
+                try:
+                    pad_s, pad_angles = pad_bounds(main_o, outer, pad.width)
+                except ParameterError as exc:
+                    raise SpecError(f"{spec.source}: [[branches]] #{k + 1} {exc}", key=exc.key) from None
+                development = develop_panel(main_o, pad_s, pad_angles, f"branch_{k}_pad")
+                hole_line = development.map(np.degrees(outer.main_u), outer.main_s)
+                write_panel_dxf([development], {development.name: [("branch", hole_line)]}, staging / "branches", unit)
+                files.append(f"branches/branch_{k}_pad_development.dxf")
+                pad_info = {"thickness": pad.thickness, "max_strain": development.max_strain}
+            index["branches"].append(
+                {
+                    "branch": k,
+                    "files": files,
+                    "pad": pad_info,
+                    "template": {"girth": cut.girth, "height": cut.height, "strain": cut.strain},
+                    "hole": {"girth": hole.girth, "strain": hole.strain},
+                    "dihedral_deg": {"min": float(angles.min()), "max": float(angles.max())},
+                }
+            )
+        (staging / "index.json").write_text(json.dumps(index, indent=2) + "\n")
+        for path in [*(staging / "branches").iterdir(), staging / "index.json"]:
+            target = output / path.relative_to(staging)
+            target.parent.mkdir(parents=True, exist_ok=True)
+            path.replace(target)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return index
