@@ -3,28 +3,40 @@
 :mod:`~tubecad.junctions.saddle` computes the saddle curve in the curvature-line parameters
 of both surfaces; :mod:`~tubecad.junctions.edges` fits it into the B-spline edge that the
 junction's faces share (``saddle_outer``, ``saddle_inner``); :mod:`~tubecad.junctions.solid`
-joins a branch wall to a main wall as one solid with the saddles as named edges.
+joins a branch wall to a main wall as one solid with the saddles as named edges;
+:mod:`~tubecad.junctions.placement` places a straight branch on the main axis.
+
+Exports are lazy (tubecad.core.lazy): the spec checker places a branch without loading OCCT.
 """
 
-from tubecad.junctions.edges import SaddleEdge, fit_saddle, periodic_bspline, wall_saddles
-from tubecad.junctions.placement import branch_surface
-from tubecad.junctions.reinforcement import AreaReplacement, area_replacement
-from tubecad.junctions.saddle import SaddleCurve, dihedral_angles, saddle_curve
-from tubecad.junctions.solid import BranchWall, JunctionWall, build_branched_wall, build_junction_wall
+from typing import TYPE_CHECKING
 
-__all__ = [
-    "AreaReplacement",
-    "BranchWall",
-    "JunctionWall",
-    "SaddleCurve",
-    "SaddleEdge",
-    "area_replacement",
-    "branch_surface",
-    "build_branched_wall",
-    "build_junction_wall",
-    "dihedral_angles",
-    "fit_saddle",
-    "periodic_bspline",
-    "saddle_curve",
-    "wall_saddles",
-]
+from tubecad.core.lazy import lazy_exports
+
+_PUBLIC = {
+    **{name: ".edges" for name in ("SaddleEdge", "fit_saddle", "periodic_bspline", "wall_saddles")},
+    "branch_surface": ".placement",
+    **{name: ".reinforcement" for name in ("AreaReplacement", "area_replacement")},
+    **{name: ".saddle" for name in ("SaddleCurve", "dihedral_angles", "saddle_curve")},
+    **{name: ".solid" for name in ("BranchWall", "JunctionWall", "build_branched_wall", "build_junction_wall")},
+}
+
+__all__ = list(_PUBLIC)
+__getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())
+
+
+if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported here at run time)
+    from tubecad.junctions.edges import SaddleEdge as SaddleEdge
+    from tubecad.junctions.edges import fit_saddle as fit_saddle
+    from tubecad.junctions.edges import periodic_bspline as periodic_bspline
+    from tubecad.junctions.edges import wall_saddles as wall_saddles
+    from tubecad.junctions.placement import branch_surface as branch_surface
+    from tubecad.junctions.reinforcement import AreaReplacement as AreaReplacement
+    from tubecad.junctions.reinforcement import area_replacement as area_replacement
+    from tubecad.junctions.saddle import SaddleCurve as SaddleCurve
+    from tubecad.junctions.saddle import dihedral_angles as dihedral_angles
+    from tubecad.junctions.saddle import saddle_curve as saddle_curve
+    from tubecad.junctions.solid import BranchWall as BranchWall
+    from tubecad.junctions.solid import JunctionWall as JunctionWall
+    from tubecad.junctions.solid import build_branched_wall as build_branched_wall
+    from tubecad.junctions.solid import build_junction_wall as build_junction_wall

@@ -189,3 +189,20 @@ def test_a_batch_of_a_branched_spec_builds_its_junctions(tmp_path):
     assert [job["status"] for job in jobs] == ["ok"] and "junction_wall" in result.output
     report = json.loads(next((tmp_path / "out").glob("*.report.json")).read_text())
     assert report["junction"]["valid"] and report["junction"]["solids"] == 1
+
+
+def test_a_bad_branch_is_refused_before_occt_loads(tmp_path):
+    """The spec checker places the branch with numpy alone: a mistake costs no OCCT start-up."""
+    import subprocess
+    import sys
+
+    spec = tmp_path / "tee.toml"
+    spec.write_text(spec_text(BRANCH + "angle = 200.0\n"))
+    code = (
+        "import sys, tomllib\nfrom tubecad.spec.parse import parse_spec\n"
+        f"try:\n    parse_spec(tomllib.loads(open({str(spec)!r}).read()))\nexcept Exception as exc:\n    print(exc.key)\n"
+        "print(sorted(m for m in ('OCP', 'build123d') if m in sys.modules))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["branches.angle", "[]"]
