@@ -5,9 +5,11 @@ towards the side ``around`` degrees round the axis from its first stringer r1 (t
 
     d = cos(angle) t + sin(angle) (cos(around) r1 + sin(around) r2),
 
-its axis the line c(at) + offset n + l d, 0 <= l <= length, with n = t x side / |t x side| the
-sideways direction of a hillside nozzle; its first stringer points along t's part normal to d
-(towards the main axis' forward end), so its stringer 0 lies in the plane of t and d.
+its axis leaving c(at) + offset n along d, with n = t x side / |t x side| the sideways
+direction of a hillside nozzle: the line of ``length`` (the default), or the curve of natural
+equations k(s), tau(s) (expressions in the branch's own arc length s, 0 <= s <= length) whose
+principal normal at the start is t's part normal to d. Its first stringer points along that
+normal (towards the main axis' forward end), so its stringer 0 starts in the plane of t and d.
 """
 
 from __future__ import annotations
@@ -31,6 +33,8 @@ def branch_surface(
     angle: float = 90.0,
     around: float = 90.0,
     offset: float = 0.0,
+    k: str = "0",
+    tau: str = "0",
 ) -> CurvatureLineSurface:
     """The branch's tube (a radius law: its canal surface, r along the branch) placed on
     ``main`` (see the module). A ParameterError names ``at``, ``angle``, ``length`` or
@@ -49,14 +53,19 @@ def branch_surface(
     side = math.cos(b) * r1 + math.sin(b) * r2
     direction = math.cos(a) * t + math.sin(a) * side
     along = t - (t @ direction) * direction
-    axis = NaturalAxis(
-        "0",
-        "0",
-        (0.0, float(length)),
-        origin=tuple(centre + offset * np.cross(t, side)),
-        tangent=tuple(direction),
-        normal=tuple(along / np.linalg.norm(along)),
-    )
+    try:
+        axis = NaturalAxis(
+            k,
+            tau,
+            (0.0, float(length)),
+            origin=tuple(centre + offset * np.cross(t, side)),
+            tangent=tuple(direction),
+            normal=tuple(along / np.linalg.norm(along)),
+        )
+    except ParameterError as exc:  # a bad k(s) or tau(s): the branch's axis keys
+        which = exc.key if exc.key in ("k", "tau") else ("tau" if str(exc).startswith("tau") else "k")
+        exc.key = f"axis.{which}"
+        raise
     try:
         return tube_or_canal(axis, radius)  # type: ignore[arg-type]
     except ParameterError as exc:

@@ -357,7 +357,13 @@ PAD_KEYS = {
     "width": Key("number", help="how far the pad reaches beyond the branch's outer saddle every way, > 0", low=0.0),
 }
 
-#: one [[branches]] table: a straight branch tube whose wall joins the main tube's wall
+#: a branch's own axis by its natural equations (default: a straight line)
+BRANCH_AXIS_KEYS = {
+    "k": Key("string", required=False, default="0", help="curvature k(s) >= 0 along the branch, an expression in s"),
+    "tau": Key("string", required=False, default="0", help="torsion tau(s) along the branch, an expression in s"),
+}
+
+#: one [[branches]] table: a branch tube whose wall joins the main tube's wall
 BRANCH_KEYS = {
     "at": Key("number", help="arc length s on the main axis where the branch's axis leaves it, inside the span"),
     "length": Key(
@@ -388,6 +394,13 @@ BRANCH_KEYS = {
         default=0.0,
         help="the branch axis' sideways offset from the main axis (a hillside nozzle); the branch's wall must stay "
         "inside the main tube's bore where it starts (default 0)",
+    ),
+    "axis": Key(
+        "table",
+        required=False,
+        keys=BRANCH_AXIS_KEYS,
+        help='the branch\'s axis by its natural equations, { k = "...", tau = "..." } in its own arc '
+        "length s from the main axis (default a straight line); it leaves along the angle and side given",
     ),
     "wall": Key(
         "table",

@@ -128,10 +128,11 @@ class PadSection:
 
 @dataclass(frozen=True)
 class BranchSection:
-    """One [[branches]] table: a straight branch tube of ``radius`` and ``length`` leaving
-    the main axis at arc length ``at``, ``angle`` degrees from its tangent, on the side
-    ``around`` degrees round it from its first stringer, its axis ``offset`` sideways; its
-    own ``wall`` and ``layout`` (None: the main [wall], 3 rings and the main's stringers)."""
+    """One [[branches]] table: a branch tube of ``radius`` and ``length`` leaving the main
+    axis at arc length ``at``, ``angle`` degrees from its tangent, on the side ``around``
+    degrees round it from its first stringer, its axis ``offset`` sideways and, with ``axis``,
+    curving by its natural equations k(s), tau(s) (None: straight); its own ``wall``,
+    ``layout`` and ``pad`` (None: the main [wall], 3 rings and the main's stringers, no pad)."""
 
     at: float
     length: float
@@ -139,6 +140,7 @@ class BranchSection:
     angle: float = 90.0
     around: float = 90.0
     offset: float = 0.0
+    axis: dict[str, str] | None = None
     wall: WallSection | None = None
     layout: LayoutSection | None = None
     pad: PadSection | None = None
@@ -154,8 +156,17 @@ class BranchSection:
         (:func:`tubecad.junctions.placement.branch_surface`); a ParameterError names the key."""
         from tubecad.junctions.placement import branch_surface
 
+        axis = self.axis or {}
         return branch_surface(
-            main, self.at, self.length, self.radius, angle=self.angle, around=self.around, offset=self.offset
+            main,
+            self.at,
+            self.length,
+            self.radius,
+            angle=self.angle,
+            around=self.around,
+            offset=self.offset,
+            k=axis.get("k", "0"),
+            tau=axis.get("tau", "0"),
         )
 
 

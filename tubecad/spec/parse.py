@@ -247,7 +247,9 @@ def _numbered(fail: Callable[..., SpecError], name: str, index: int) -> Callable
 
     def numbered(msg: str, key: str | None = None) -> SpecError:
         number = f"[[{name}]] #{index + 1}"
-        return fail(msg.replace(f"[{name}.", f"{number} [", 1).replace(f"[{name}]", number, 1), key)
+        if f"[{name}." in msg:  # a key of an inline table: [branches.wall] side -> [[branches]] #1 [wall] side
+            return fail(msg.replace(f"[{name}.", f"{number} [", 1), key)
+        return fail(msg.replace(f"[{name}]", number, 1), key)
 
     return numbered
 

@@ -71,6 +71,9 @@ def test_a_branch_is_placed_where_its_keys_say():
         (BRANCH + "offset = 20.0\n", MAIN, "branches.offset", "must start inside the main tube's bore"),
         (BRANCH.replace("radius = 30.0", "radius = 0.0"), MAIN, "branches.radius", "radius"),
         (BRANCH + "flange = 1.0\n", MAIN, "branches", "unknown key [[branches]] #1 flange"),
+        (BRANCH + 'axis = { k = "foo(s)" }\n', MAIN, "branches.axis.k", "function 'foo' is not allowed"),
+        (BRANCH + 'axis = { tau = "1/0" }\n', MAIN, "branches.axis.tau", "tau(s) is not finite"),
+        (BRANCH + 'axis = { q = "1" }\n', MAIN, "branches.axis", "unknown key [[branches]] #1 [axis] q"),
         (BRANCH + "pad = { thickness = 6.0 }\n", MAIN, "branches.pad.width", "width is missing"),
         (BRANCH + "pad = { thickness = -6.0, width = 20.0 }\n", MAIN, "branches.pad.thickness", "must be > 0"),
         (BRANCH + 'wall = { thickness = 3.0, side = "middle" }\n', MAIN, "branches.wall.side", "side must be one of"),
@@ -206,3 +209,29 @@ def test_a_bad_branch_is_refused_before_occt_loads(tmp_path):
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.split() == ["branches.angle", "[]"]
+
+
+def test_a_curved_branch_follows_its_natural_equations():
+    """axis = { k = "1/200" }: the branch leaves (150, 0, 0) up z and bends towards +x on the
+    circle of radius 200 in the x-z plane: c(s) = (150 + 200 (1 - cos(s/200)), 0, 200 sin(s/200))."""
+    spec = parsed(spec_text(BRANCH + 'axis = { k = "1/200" }\n'))
+    s = np.linspace(0.0, 150.0, 7)
+    got = spec.branches[0].surface(spec.tube).axis.position(s)
+    want = np.column_stack([150 + 200 * (1 - np.cos(s / 200)), np.zeros_like(s), 200 * np.sin(s / 200)])
+    assert np.abs(got - want).max() < 1e-9
+
+
+@pytest.mark.slow
+def test_a_curved_branch_builds_a_valid_junction(tmp_path):
+    spec = tmp_path / "bent.toml"
+    spec.write_text(spec_text(BRANCH + 'axis = { k = "1/200" }\n'))
+    result = CliRunner().invoke(
+        cli, ["build", str(spec), "-o", str(tmp_path / "bent.step"), "--report", str(tmp_path / "r.json")]
+    )
+    assert result.exit_code == 0, result.output
+    import json
+
+    junction = json.loads((tmp_path / "r.json").read_text())["junction"]
+    assert junction["valid"] and junction["solids"] == 1
+    for saddle in junction["saddles"].values():
+        assert saddle["edges_deviation"] < 1e-6 and abs(saddle["coverage"] - 1) < 1e-8
