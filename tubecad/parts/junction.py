@@ -42,8 +42,8 @@ class _Shared:
 
 @dataclass(frozen=True)
 class Branch:
-    """A straight branch of ``radius`` (a number or a radius law along it) and ``length``,
-    leaving the main axis at arc length ``at``, ``angle`` degrees from its tangent, on the
+    """A branch of ``radius`` (a number or a radius law along it) and ``length``, straight or
+    curving by its natural equations ``k`` and ``tau`` (expressions in its arc length s), leaving the main axis at arc length ``at``, ``angle`` degrees from its tangent, on the
     side ``around`` degrees round it from its first stringer, ``offset`` sideways (a hillside
     nozzle); its wall ``thickness`` (None: the main's) placed ``side``; ``rings`` and
     ``stringers`` its net (counts, or arc lengths and angles; None: the main's stringers);
@@ -62,6 +62,8 @@ class Branch:
     stringers: int | Sequence[float] | None = None
     pad_thickness: float | None = None
     pad_width: float | None = None
+    k: str = "0"
+    tau: str = "0"
 
 
 class CurvatureJunction(bd.BasePartObject):
@@ -109,6 +111,8 @@ class CurvatureJunction(bd.BasePartObject):
                 angle=branch.angle,
                 around=branch.around,
                 offset=branch.offset,
+                k=branch.k,
+                tau=branch.tau,
             )
             branch_stringers = branch.stringers if branch.stringers is not None else len(main_layout.stringers_deg)
             walls.append(
