@@ -34,7 +34,7 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 
 from tubecad.brep.properties import ANALYZER_MODES, analyzer_findings, is_valid, topods
-from tubecad.occ_compat import as_face
+from tubecad.occ_compat import ListOfShape, as_face
 from tubecad.spec.build import build_from_spec
 from tubecad.spec.parse import parse_spec
 
@@ -43,11 +43,7 @@ SPEC = ROOT / "samples" / "paper_log_spiral.toml"
 
 
 def _list_of_shape(shape):
-    try:
-        from OCP.TopTools import TopTools_ListOfShape as ListOfShape  # OCP 7.9
-    except ImportError:
-        from OCP.collections import List_TopoDS_Shape as ListOfShape  # OCP 8
-    shapes = ListOfShape()
+    shapes = ListOfShape()  # the OCP name that moved between generations: tubecad.occ_compat
     shapes.Append(shape)
     return shapes
 

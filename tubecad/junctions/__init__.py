@@ -18,7 +18,10 @@ _PUBLIC = {
     "branch_surface": ".placement",
     **{name: ".reinforcement" for name in ("AreaReplacement", "area_replacement")},
     **{name: ".saddle" for name in ("SaddleCurve", "dihedral_angles", "saddle_curve")},
-    **{name: ".solid" for name in ("BranchWall", "JunctionWall", "build_branched_wall", "build_junction_wall")},
+    **{
+        name: ".solid"
+        for name in ("BranchWall", "JunctionWall", "build_branched_wall", "build_junction_wall", "saddle_name")
+    },
 }
 
 __all__ = list(_PUBLIC)
@@ -40,3 +43,4 @@ if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported her
     from tubecad.junctions.solid import JunctionWall as JunctionWall
     from tubecad.junctions.solid import build_branched_wall as build_branched_wall
     from tubecad.junctions.solid import build_junction_wall as build_junction_wall
+    from tubecad.junctions.solid import saddle_name as saddle_name

@@ -88,6 +88,16 @@ class BranchWall:
     side: str = "centered"
     layout: NetLayout | None = None
 
+    def offsets(self) -> tuple[float, float]:
+        """(d_in, d_out): the branch wall's surfaces as offsets of its surface."""
+        return wall_offsets(self.thickness, self.side)
+
+
+def saddle_name(base: str, k: int, branches: int) -> str:
+    """The name of branch ``k``'s saddle ``base`` (saddle_outer, saddle_inner) among
+    ``branches``: the base alone with one branch, ``base_k`` with several."""
+    return base if branches == 1 else f"{base}_{k}"
+
 
 def build_junction_wall(
     main: CurvatureLineSurface,
@@ -166,8 +176,8 @@ def build_branched_wall(
             tolerance=tolerance,
             key=key,
         )
-        saddles += [replace(e, name=f"{e.name}_{tag}" if tag else e.name) for e in (outer, inner)]
-        b_in, b_out = wall_offsets(branch.thickness, branch.side)
+        saddles += [replace(e, name=saddle_name(e.name, k, len(branches))) for e in (outer, inner)]
+        b_in, b_out = branch.offsets()
         layout = branch.layout or NetLayout.equal(branch.surface)
         rings, stringers = list(layout.s_rings), list(layout.stringers_deg)
         outers.append(solid(branch.surface, b_out, rings, stringers, f"branch{tag}", ""))

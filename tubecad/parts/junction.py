@@ -142,18 +142,18 @@ class CurvatureJunction(bd.BasePartObject):
     ) -> list[tuple[str, bd.Solid]]:
         """(name, solid) of each branch's pad: ``pad`` with one branch, ``pad_k`` with several."""
         from tubecad.brep.wall import wall_offsets
-        from tubecad.stiffeners.pad import reinforcement_pad
+        from tubecad.junctions import saddle_name
+        from tubecad.stiffeners.pad import pad_name, reinforcement_pad
 
         out = []
         main_out = wall_offsets(thickness, side)[1]
         for k, (branch, wall) in enumerate(zip(branches, walls)):
             if branch.pad_thickness is None and branch.pad_width is None:
                 continue
-            one = len(branches) == 1
-            saddle = junction.saddles["saddle_outer" if one else f"saddle_outer_{k}"].saddle
+            saddle = junction.saddles[saddle_name("saddle_outer", k, len(branches))].saddle
             pad = reinforcement_pad(
                 main.offset(main_out),
-                wall.surface.offset(wall_offsets(wall.thickness, wall.side)[1]),
+                wall.surface.offset(wall.offsets()[1]),
                 saddle,
                 branch.pad_thickness if branch.pad_thickness is not None else float("nan"),
                 branch.pad_width if branch.pad_width is not None else float("nan"),
@@ -161,7 +161,7 @@ class CurvatureJunction(bd.BasePartObject):
                 key="pad",
             )
             solid = bd.Solid(pad.solid.wrapped)
-            solid.label = "pad" if one else f"pad_{k}"
+            solid.label = pad_name(k, len(branches))
             out.append((solid.label, solid))
         return out
 

@@ -22,9 +22,9 @@ from tubecad.brep.properties import count, is_valid, volume
 from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
 from tubecad.core.progress import Progress
 from tubecad.fitting import FitError
-from tubecad.junctions import BranchWall, JunctionWall, area_replacement, build_branched_wall
+from tubecad.junctions import BranchWall, JunctionWall, area_replacement, build_branched_wall, saddle_name
 from tubecad.spec.parse import TubeSpec
-from tubecad.stiffeners.pad import Pad
+from tubecad.stiffeners.pad import Pad, pad_name
 
 #: the branch's rings when its [[branches]] table has no layout
 DEFAULT_BRANCH_RINGS = 3
@@ -47,15 +47,16 @@ def branch_walls(spec: TubeSpec) -> list[BranchWall]:
     return out
 
 
-def build_junction(spec: TubeSpec) -> JunctionWall:
-    """The junction wall of ``spec`` (its [wall] and [[branches]]); a SpecError naming the key
-    (``branches``, ``branches.radius``, ``fit.tolerance``) where it cannot be built."""
+def build_junction(spec: TubeSpec, walls: list[BranchWall] | None = None) -> JunctionWall:
+    """The junction wall of ``spec`` (its [wall] and [[branches]], ``walls`` their
+    :func:`branch_walls` if made already); a SpecError naming the key (``branches``,
+    ``branches.radius``, ``fit.tolerance``) where it cannot be built."""
     assert spec.wall is not None
     try:
         return build_branched_wall(
             spec.tube,
             spec.wall.thickness,
-            branch_walls(spec),
+            walls if walls is not None else branch_walls(spec),
             main_side=spec.wall.side,
             main_layout=spec.layout.net(spec.tube),
             tolerance=spec.fit.tolerance,
@@ -69,24 +70,23 @@ def build_junction(spec: TubeSpec) -> JunctionWall:
         raise SpecError(f"{spec.source}: [[branches]] {exc}", key="branches") from None
 
 
-def build_pads(spec: TubeSpec, junction: JunctionWall) -> dict[int, Pad]:
+def build_pads(spec: TubeSpec, junction: JunctionWall, walls: list[BranchWall]) -> dict[int, Pad]:
     """The reinforcement pads of the branches that ask for one (``pad`` in their table), by
-    branch index: each on the main wall's outer surface round the branch's outer saddle."""
+    branch index: each on the main wall's outer surface round the branch's outer saddle
+    (``walls``: the branches' :func:`branch_walls`)."""
     from tubecad.stiffeners.pad import reinforcement_pad
 
     assert spec.wall is not None
     pads = {}
     main_out = spec.wall.offsets()[1]
-    for k, (branch, walls) in enumerate(zip(spec.branches, branch_walls(spec))):
+    for k, (branch, wall) in enumerate(zip(spec.branches, walls)):
         if branch.pad is None:
             continue
-        name = "saddle_outer" if len(spec.branches) == 1 else f"saddle_outer_{k}"
-        b_out = (branch.wall or spec.wall).offsets()[1]
         try:
             pads[k] = reinforcement_pad(
                 spec.tube.offset(main_out),
-                walls.surface.offset(b_out),
-                junction.saddles[name].saddle,
+                wall.surface.offset(wall.offsets()[1]),
+                junction.saddles[saddle_name("saddle_outer", k, len(walls))].saddle,
                 branch.pad.thickness,
                 branch.pad.width,
                 spec.fit.tolerance,
@@ -94,11 +94,6 @@ def build_pads(spec: TubeSpec, junction: JunctionWall) -> dict[int, Pad]:
         except ParameterError as exc:
             raise SpecError(f"{spec.source}: [[branches]] #{k + 1} {exc}", key=exc.key or "branches.pad") from None
     return pads
-
-
-def pad_name(k: int, branches: int) -> str:
-    """``pad`` with one branch, ``pad_k`` with several."""
-    return "pad" if branches == 1 else f"pad_{k}"
 
 
 def junction_assembly(junction: JunctionWall, pads: dict[int, Pad] | None = None, branches: int = 1) -> bd.Compound:
@@ -121,7 +116,9 @@ def junction_assembly(junction: JunctionWall, pads: dict[int, Pad] | None = None
     return bd.Compound(label="tubecad", children=[wall, *plates, edges])
 
 
-def junction_report(spec: TubeSpec, junction: JunctionWall, pads: dict[int, Pad] | None = None) -> dict[str, Any]:
+def junction_report(
+    spec: TubeSpec, junction: JunctionWall, walls: list[BranchWall], pads: dict[int, Pad] | None = None
+) -> dict[str, Any]:
     """What was measured on the junction: the solid (valid, counts, volume), per saddle its
     fitted edge (poles, distance from the exact saddle) and its edges in the solid (how many,
     their largest distance from the exact saddle, their length over the saddle's), and per
@@ -162,30 +159,35 @@ def junction_report(spec: TubeSpec, junction: JunctionWall, pads: dict[int, Pad]
             }
     analysis = spec.analysis
     if analysis is not None and analysis.pressure and analysis.allowable_stress:
-        report["reinforcement"] = reinforcement(spec, junction, analysis.pressure, analysis.allowable_stress, pads)
+        report["reinforcement"] = reinforcement(
+            spec, junction, walls, analysis.pressure, analysis.allowable_stress, pads
+        )
     return report
 
 
 def reinforcement(
-    spec: TubeSpec, junction: JunctionWall, pressure: float, stress: float, pads: dict[int, Pad] | None = None
+    spec: TubeSpec,
+    junction: JunctionWall,
+    walls: list[BranchWall],
+    pressure: float,
+    stress: float,
+    pads: dict[int, Pad] | None = None,
 ) -> list[dict[str, Any]]:
     """Each branch's area-replacement figures from its bore saddle (constant radii only: the
     rule takes one inside radius per shell)."""
     assert spec.wall is not None
     out = []
     main_in = spec.wall.offsets()[0]
-    for k, (branch, walls) in enumerate(zip(spec.branches, branch_walls(spec))):
-        name = "saddle_inner" if len(spec.branches) == 1 else f"saddle_inner_{k}"
-        if not (spec.tube.constant_radius and walls.surface.constant_radius):
+    for k, wall in enumerate(walls):
+        if not (spec.tube.constant_radius and wall.surface.constant_radius):
             out.append({"branch": k, "skipped": "a radius law: the rule takes one inside radius per shell"})
             continue
-        b_in = (branch.wall or spec.wall).offsets()[0]
         figures = area_replacement(
-            junction.saddles[name].saddle,
+            junction.saddles[saddle_name("saddle_inner", k, len(walls))].saddle,
             shell_radius=spec.tube.radius_law.constant_value + main_in,
             shell_thickness=spec.wall.thickness,
-            nozzle_radius=walls.surface.radius_law.constant_value + b_in,
-            nozzle_thickness=walls.thickness,
+            nozzle_radius=wall.surface.radius_law.constant_value + wall.offsets()[0],
+            nozzle_thickness=wall.thickness,
             pressure=pressure,
             stress=stress,
             pad_diameter=pads[k].diameter if pads and k in pads else 0.0,
@@ -230,11 +232,12 @@ def build_and_export_junction(
         check_writable(path)
     unit = spec.length_unit
     progress.step("building the junction", 1)
-    junction = build_junction(spec)
-    pads = build_pads(spec, junction)
+    walls = branch_walls(spec)
+    junction = build_junction(spec, walls)
+    pads = build_pads(spec, junction, walls)
     progress.advance(1, "junction")
     report = tube_report(spec.tube, 64, 501, length_unit=unit)
-    report["junction"] = junction_report(spec, junction, pads)
+    report["junction"] = junction_report(spec, junction, walls, pads)
     # what a batch's summary reads of any build (tubecad.batch.jobs)
     report["brep"] = {key: report["junction"][key] for key in ("valid", "faces", "edges", "volume")}
     report["brep"]["kind"] = "junction_wall"

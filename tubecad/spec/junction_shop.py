@@ -45,14 +45,14 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
         (staging / "branches").mkdir()
         for k, walls in enumerate(branch_walls(spec)):
             say(f"branch {k}: saddles and templates")
-            b_in, b_out = (spec.branches[k].wall or spec.wall).offsets()
+            b_in, b_out = walls.offsets()
             main_o, main_i = spec.tube.offset(main_out), spec.tube.offset(main_in)
             branch_o, branch_i = walls.surface.offset(b_out), walls.surface.offset(b_in)
             try:  # the exact saddles, densely: each polyline point on both surfaces to round-off
                 outer = saddle_curve(main_o, branch_o, TEMPLATE_SAMPLES)
                 inner = saddle_curve(main_i, branch_i, TEMPLATE_SAMPLES)
-                stringers = len(walls.layout.stringers_deg) if walls.layout else 8
-                cut = branch_template(branch_o, outer, stringers)
+                assert walls.layout is not None  # branch_walls gives every branch its net
+                cut = branch_template(branch_o, outer, len(walls.layout.stringers_deg))
                 hole = hole_template(main_i, inner, len(spec.layout.net(spec.tube).stringers_deg))
             except (ParameterError, RegularityError) as exc:
                 raise SpecError(f"{spec.source}: [[branches]] #{k + 1} {exc}", key=exc.key or "branches") from None

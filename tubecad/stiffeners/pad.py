@@ -106,6 +106,11 @@ def pad_bounds(
     return (s_a, s_b), (u_a, u_b)
 
 
+def pad_name(k: int, branches: int) -> str:
+    """The pad of branch ``k`` among ``branches``: ``pad`` with one branch, ``pad_k`` with several."""
+    return "pad" if branches == 1 else f"pad_{k}"
+
+
 def pad_outline(pad: Pad, points: int = 65) -> np.ndarray:
     """The pad's outer boundary on its surface, (4 (points - 1), 3): ring s_a, stringer u_b,
     ring s_b, stringer u_a (before the hole)."""
