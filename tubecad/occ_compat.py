@@ -57,7 +57,7 @@ except ImportError:  # OCP 7.9
 
     OCP_GENERATION = 7
 
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Solid, TopoDS_Wire
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Solid, TopoDS_Vertex, TopoDS_Wire
 
 
 def _downcast(name: str):
@@ -65,6 +65,7 @@ def _downcast(name: str):
 
 
 _face, _edge, _solid, _wire = _downcast("Face"), _downcast("Edge"), _downcast("Solid"), _downcast("Wire")
+_vertex = _downcast("Vertex")
 
 
 def as_face(shape: TopoDS_Shape) -> TopoDS_Face:
@@ -87,6 +88,11 @@ def as_wire(shape: TopoDS_Shape) -> TopoDS_Wire:
     return _wire(shape)
 
 
+def as_vertex(shape: TopoDS_Shape) -> TopoDS_Vertex:
+    """``shape`` as a TopoDS_Vertex."""
+    return _vertex(shape)
+
+
 __all__ = [
     "OCP_GENERATION",
     "Array1OfInteger",
@@ -102,5 +108,6 @@ __all__ = [
     "as_edge",
     "as_face",
     "as_solid",
+    "as_vertex",
     "as_wire",
 ]

@@ -16,6 +16,9 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SOLID, TopAbs_VERTEX
 from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
 
+# OCCT's pre-boolean check (BOPAlgo_ArgumentAnalyzer) lives in tubecad.brep.analyzer; its names stay here
+from tubecad.brep.analyzer import ANALYZER_MODES as ANALYZER_MODES
+from tubecad.brep.analyzer import analyzer_findings as analyzer_findings
 from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge
 
 EPS = 1e-10
@@ -89,48 +92,3 @@ def faces_area(faces: Iterable[object], eps: float = EPS) -> float:
     for face in faces:
         builder.Add(compound, topods(face))
     return area(compound, eps)
-
-
-#: BOPAlgo_ArgumentAnalyzer's checks, all switched on (FreeCAD's "Check geometry" with
-#: "BOP check" and every option): what OCCT tests before a boolean operation
-ANALYZER_MODES = (
-    "ArgumentTypeMode",
-    "SelfInterMode",
-    "SmallEdgeMode",
-    "RebuildFaceMode",
-    "TangentMode",
-    "MergeVertexMode",
-    "MergeEdgeMode",
-    "ContinuityMode",
-    "CurveOnSurfaceMode",
-)
-
-
-def analyzer_findings(shape: object, modes: tuple[str, ...] = ANALYZER_MODES) -> dict[str, int]:
-    """The findings of OCCT's BOPAlgo_ArgumentAnalyzer with the checks ``modes`` on (default
-    all), as {status name: number of faulty sub-shapes}; {} for a shape fit for booleans.
-
-    Each solid is checked on its own, as a CAD tool checks each part of an imported
-    assembly (stiffeners overlap the wall and each other by design: that is no finding);
-    a shape without solids is checked whole.
-    """
-    from OCP.BOPAlgo import BOPAlgo_ArgumentAnalyzer
-    from OCP.TopExp import TopExp_Explorer
-
-    explorer = TopExp_Explorer(topods(shape), TopAbs_SOLID)
-    parts = []
-    while explorer.More():
-        parts.append(explorer.Current())
-        explorer.Next()
-    findings: dict[str, int] = {}
-    for part in parts or [topods(shape)]:
-        analyzer = BOPAlgo_ArgumentAnalyzer()
-        analyzer.SetShape1(part)
-        for mode in modes:
-            setattr(analyzer, mode, True)
-        analyzer.SetRunParallel(True)
-        analyzer.Perform()
-        for result in analyzer.GetCheckResult() if analyzer.HasFaulty() else []:
-            name = str(result.GetCheckStatus()).rsplit(".", 1)[-1].removeprefix("BOPAlgo_")
-            findings[name] = findings.get(name, 0) + max(result.GetFaultyShapes1().Extent(), 1)
-    return findings

@@ -10,29 +10,38 @@ spline's knots), so x', x'' are exact derivatives of the series. Then
 the last solved by spectral collocation (:mod:`.bishop`), which passes through inflections
 (T_t = 0) and straight stretches with no jump: nothing divides by the curvature. The axis
 is then re-read in arc length: t(s) by Newton on s(t), k1 = T_t . r1 / |x'|,
-k2 = T_t . r2 / |x'|, and c, (T, r1) and (k1, k2) resolved once more as Chebyshev series
-in s, so that evaluating the axis costs one series evaluation, not a Newton solve.
-A zero speed |x'| = 0 anywhere (a cusp, a stop) is refused.
+k2 = T_t . r2 / |x'|, and (c, T, r1, k1, k2) resolved once more as one Chebyshev series
+in s (t(s) solved once per node for all of them; each part to its own tolerance: c to
+1e-15 of its size, the unit frame to its round-off floor, the curvatures to 1e-13 of
+theirs), so that evaluating the axis costs one series evaluation, not a Newton solve.
+Every fit evaluates a panel's nodes on that panel's series of x (and of r1): at a break
+the neighbouring panel's agrees only to its accuracy, a jump the fit would refine without
+end. A zero speed |x'| = 0 anywhere (a cusp, a stop) is refused.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from tubecad.core.errors import ParameterError
 from tubecad.core.validation import span_pair
-from tubecad.curves.axis import Axis, FloatArray, closing
+from tubecad.curves.axis import Axis, AxisFrame, FloatArray, closing
 from tubecad.curves.bishop import solve_linear_ode
 from tubecad.curves.chebyshev import PiecewiseChebyshev
 from tubecad.curves.expression import compile_expression
 from tubecad.curves.natural import unit_vector
 
+if TYPE_CHECKING:
+    from scipy.interpolate import CubicHermiteSpline
+
 #: the smallest speed |x'| accepted, relative to the largest on the curve
 MIN_RELATIVE_SPEED = 1e-6
+#: Newton steps for t(s) at most (each one series evaluation; from the inverse table's guess two reach round-off)
+NEWTON_STEPS = 8
 
 CurveFunction = Callable[[np.ndarray], np.ndarray]
 
@@ -82,41 +91,38 @@ class ParametricAxis(Axis):
             breaks=None if breaks is None else np.asarray(breaks, dtype=float),
         )
         self._dx = self._x.derivative()
-        self._ddx = self._dx.derivative()
+        self._jet = PiecewiseChebyshev.stack([self._x, self._dx, self._dx.derivative()])  # (x, x', x'')
         self._check_speed(name)
-        self._s = PiecewiseChebyshev.fit(
-            self._speed, t0, t1, name=f"the speed of {name}", breaks=self._x.breaks
-        ).antiderivative(0.0)
+        speed = PiecewiseChebyshev.fit(
+            lambda t: np.linalg.norm(self._dx.rows(t), axis=-1),
+            t0,
+            t1,
+            name=f"the speed of {name}",
+            breaks=self._x.breaks,
+        )
+        self._s = speed.antiderivative(0.0)
+        self._arc = PiecewiseChebyshev.stack([self._s, speed])  # (s, ds/dt)
         self.span = (0.0, float(self._s(np.array(t1))))
+        self._guess = self._inverse_table()
         r1_start = self._start_normal(normal)
 
         def bishop(t: np.ndarray) -> np.ndarray:  # dr1/dt = -(T_t . r1) T = A r1, A = -T T_t^T
-            T, T_t = self._tangent_and_rate(t)
+            T, T_t, _ = self._tangent_and_rate(t, rows=True)  # t: one panel's nodes
             return -T[..., :, None] * T_t[..., None, :]
 
-        self._r1 = solve_linear_ode(bishop, self._x.breaks, r1_start, name=f"the frame of {name}")
+        # from the speed's panels (x's, halved where the speed needed it): fewer collocations refused and halved
+        self._r1 = solve_linear_ode(bishop, self._s.breaks, r1_start, name=f"the frame of {name}")
         s_breaks = self._s(self._r1.breaks)
         s_breaks[0], s_breaks[-1] = self.span
-        L = self.span[1]
-        self._c_s = PiecewiseChebyshev.fit(
-            lambda x: self._x(self.parameter(x)), 0.0, L, breaks=s_breaks, name=f"{name} in arc length"
-        )
-        self._frame_s = PiecewiseChebyshev.fit(
-            lambda x: np.concatenate(self._frame_in_t(self.parameter(x))[:2], axis=-1),
-            0.0,
-            L,
+        self._axis_s = PiecewiseChebyshev.fit(
+            self._in_arc_length,
+            *self.span,
             breaks=s_breaks,
-            tol=self._frame_floor(t0, t1),
-            name=f"the frame of {name} in arc length",
+            parts=((3, 1e-15), (6, self._frame_floor(t0, t1)), (2, 1e-13)),
+            name=f"{name} in arc length",
         )
-        self._development_s = PiecewiseChebyshev.fit(
-            lambda x: self._development_in_t(self.parameter(x)),
-            0.0,
-            L,
-            breaks=s_breaks,
-            tol=1e-13,
-            name=f"the curvature of {name}",
-        )
+        self._c_s, self._frame_s = self._axis_s.part(0, 3), self._axis_s.part(3, 9)
+        self._development_s = self._axis_s.part(9, 11)
         self._development_rate_s = self._development_s.derivative()
         self._joints = tuple((float(self._s(np.array(t))), int(c)) for t, c in joints if t0 < t < t1)
         self._description = description or {"curve": self.family, "t": list(self.t_span)}
@@ -127,44 +133,56 @@ class ParametricAxis(Axis):
     def _speed(self, t: np.ndarray) -> np.ndarray:
         return np.linalg.norm(self._dx(t), axis=-1)
 
-    def _tangent_and_rate(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """T and dT/dt = (x'' - T (T . x'')) / |x'|."""
-        d1, d2 = self._dx(t), self._ddx(t)
-        speed = np.linalg.norm(d1, axis=-1, keepdims=True)
-        T = d1 / speed
-        return T, (d2 - T * np.sum(T * d2, axis=-1, keepdims=True)) / speed
+    def _tangent_and_rate(self, t: np.ndarray, rows: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """T, dT/dt = (x'' - T (T . x'')) / |x'| and the speed |x'|; ``rows``: t (..., n) holds
+        panels' nodes, each row evaluated on one panel (:meth:`PiecewiseChebyshev.rows`)."""
+        jet = self._jet.rows(t) if rows else self._jet(t)
+        return _tangent_and_rate(jet[..., 1, :], jet[..., 2, :])
 
     def _frame_floor(self, t0: float, t1: float) -> float:
         """The frame's tolerance in s: 1e-15, or the round-off it carries where that is more.
         s is known to an ulp, ~1.1e-16 L, and T turns at the rate k, so T(s) is known only to
         ~1.1e-16 L k: a long axis of tight bends (k L ~ 1e3) cannot be resolved to 1e-15."""
-        t = np.linspace(t0, t1, 4097)
-        T, T_t = self._tangent_and_rate(t)
-        k = float((np.linalg.norm(T_t, axis=-1) / self._speed(t)).max())
+        _, T_t, speed = self._tangent_and_rate(np.linspace(t0, t1, 4097))
+        k = float((np.linalg.norm(T_t, axis=-1) / speed[..., 0]).max())
         return max(1e-15, 4 * np.finfo(float).eps * self.span[1] * k)
 
-    def _frame_in_t(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        T, _ = self._tangent_and_rate(t)
-        r1 = self._r1(t)
-        r1 = r1 - T * np.sum(T * r1, axis=-1, keepdims=True)  # ~1e-15 already; keeps the frame exact
-        r1 /= np.linalg.norm(r1, axis=-1, keepdims=True)
-        return T, r1, np.cross(T, r1)
+    def _in_arc_length(self, s: np.ndarray) -> np.ndarray:
+        """The 11 values (c, T, r1, k1, k2) at the nodes s (panels, nodes) of a fit in s, at
+        t = t(s): c = x(t), T = x' / |x'|, r1 the Bishop solution made a unit normal, and
+        k1 = dT/ds . r1, k2 = dT/ds . r2 with dT/ds = T_t / |x'|, r2 = T x r1."""
+        t = self.parameter(s)
+        jet = self._jet.rows(t)
+        T, T_t, speed = _tangent_and_rate(jet[..., 1, :], jet[..., 2, :])
+        r1 = _unit_normal(T, self._r1.rows(t))
+        dT_ds = T_t / speed
+        k1 = np.sum(dT_ds * r1, axis=-1, keepdims=True)
+        k2 = np.sum(dT_ds * np.cross(T, r1), axis=-1, keepdims=True)
+        return np.concatenate([jet[..., 0, :], T, r1, k1, k2], axis=-1)
 
-    def _development_in_t(self, t: np.ndarray) -> np.ndarray:
-        """(k1, k2) = (dT/ds . r1, dT/ds . r2), dT/ds = T_t / |x'|; shape t.shape + (2,)."""
-        T, r1, r2 = self._frame_in_t(t)
-        _, T_t = self._tangent_and_rate(t)
-        dT_ds = T_t / self._speed(t)[..., None]
-        return np.stack([np.sum(dT_ds * r1, axis=-1), np.sum(dT_ds * r2, axis=-1)], axis=-1)
+    def _inverse_table(self) -> CubicHermiteSpline:
+        """t(s) interpolated from 64 samples per panel of x: the cubic Hermite interpolant
+        through (s(t_i), t_i) with slopes dt/ds = 1 / |x'(t_i)|, Newton's first guess."""
+        from scipy.interpolate import CubicHermiteSpline  # not loaded with tubecad
+
+        table_t = np.linspace(*self.t_span, 64 * len(self._x.breaks))
+        arc = self._arc(table_t)
+        return CubicHermiteSpline(arc[:, 0], table_t, 1.0 / arc[:, 1])
 
     def parameter(self, s: ArrayLike) -> FloatArray:
-        """t(s): Newton on s(t) - s = 0 from a table guess (s(t) is increasing)."""
+        """t(s): Newton on s(t) - s = 0 (s(t) is increasing) from the inverse table's guess,
+        t <- t - (s(t) - s) / |x'(t)|, until every residual is at round-off, 8 eps L (two
+        steps from the guess), or after NEWTON_STEPS."""
         s = self._inside(s)
         t0, t1 = self.t_span
-        table_t = np.linspace(t0, t1, 64 * len(self._x.breaks))
-        t = np.interp(s, self._s(table_t), table_t)
-        for _ in range(6):
-            t = np.clip(t - (self._s(t) - s) / self._speed(t), t0, t1)
+        t = np.clip(self._guess(s), t0, t1)
+        floor = 8 * np.finfo(float).eps * self.span[1]
+        for _ in range(NEWTON_STEPS):
+            arc = self._arc(t)
+            residual = arc[..., 0] - s
+            if not np.abs(residual).max(initial=0.0) > floor:
+                break
+            t = np.clip(t - residual / arc[..., 1], t0, t1)
         return t
 
     def _check_speed(self, name: str) -> None:
@@ -191,7 +209,7 @@ class ParametricAxis(Axis):
 
     def _start_normal(self, normal: Sequence[float] | None) -> np.ndarray:
         t0 = np.array([self.t_span[0]])
-        T, T_t = (v[0] for v in self._tangent_and_rate(t0))
+        T, T_t, _ = (v[0] for v in self._tangent_and_rate(t0))
         if normal is not None:
             n = unit_vector("normal", normal)
         elif np.linalg.norm(T_t) > 1e-9 * self._speed(t0)[0] / max(self.span[1], 1e-300):
@@ -208,11 +226,14 @@ class ParametricAxis(Axis):
         return self._c_s(self._inside(s))
 
     def rotation_minimising_frame(self, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
-        f = self._frame_s(self._inside(s))
-        T = f[..., :3] / np.linalg.norm(f[..., :3], axis=-1, keepdims=True)
-        r1 = f[..., 3:] - T * np.sum(T * f[..., 3:], axis=-1, keepdims=True)
-        r1 /= np.linalg.norm(r1, axis=-1, keepdims=True)
-        return T, r1, np.cross(T, r1)
+        return _frame(self._frame_s(self._inside(s)))
+
+    def at(self, s: ArrayLike) -> AxisFrame:
+        """As :meth:`Axis.at`, from one evaluation of the stacked series (c, T, r1, k1, k2)."""
+        s = np.asarray(s, dtype=float)
+        values = self._axis_s(self._inside(s))
+        T, r1, r2 = _frame(values[..., 3:9])
+        return AxisFrame(s, values[..., :3], T, r1, r2, values[..., 9], values[..., 10])
 
     def normal_development(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
         k = self._development_s(self._inside(s))
@@ -243,3 +264,24 @@ def _points(curve: CurveFunction, t: np.ndarray, name: str) -> np.ndarray:
             f"{name} must return points of shape {t.shape + (3,)} for t of shape {t.shape}, got {out.shape}"
         )
     return out
+
+
+def _tangent_and_rate(d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """From x' and x'': T = x' / |x'|, dT/dt = (x'' - T (T . x'')) / |x'| and |x'| (..., 1)."""
+    speed = np.linalg.norm(d1, axis=-1, keepdims=True)
+    T = d1 / speed
+    return T, (d2 - T * np.sum(T * d2, axis=-1, keepdims=True)) / speed, speed
+
+
+def _unit_normal(T: np.ndarray, r1: np.ndarray) -> np.ndarray:
+    """r1 - T (T . r1), normalised (~1e-15 from r1 already; keeps the frame exact)."""
+    r1 = r1 - T * np.sum(T * r1, axis=-1, keepdims=True)
+    return r1 / np.linalg.norm(r1, axis=-1, keepdims=True)
+
+
+def _frame(f: np.ndarray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """(T, r1, r2) from the fitted values f = (T, r1) (..., 6): T normalised, r1 made a unit
+    normal to it, r2 = T x r1."""
+    T = f[..., :3] / np.linalg.norm(f[..., :3], axis=-1, keepdims=True)
+    r1 = _unit_normal(T, f[..., 3:])
+    return T, r1, np.cross(T, r1)

@@ -48,8 +48,8 @@ from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, DEFAULT_ORTHOGONALITY,
 from tubecad.fitting.circle import MAX_SUB_ARC, CircleSpline
 from tubecad.fitting.exact_section import TubeSurface
 from tubecad.fitting.frame_spline import (
-    SAMPLES_PER_SPAN,
     FitError,
+    SpanSamples,
     SplineSize,
     _initial_breaks,
     _joint_multiplicities,
@@ -211,6 +211,8 @@ def fit_canal(
     breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([ring_s, list(joints)]))
     chi0 = np.linspace(0.0, 2.0 * math.pi, MEASURE_ANGLES, endpoint=False) + 0.05
 
+    samples = SpanSamples(lambda s: (canal.points(chi0[None, :], s[:, None]), canal.normal(chi0[None, :], s[:, None])))
+
     def values(s: np.ndarray) -> np.ndarray:
         F = canal_functions(canal, s)
         for b, K in singular:
@@ -231,9 +233,7 @@ def fit_canal(
 
     def _span_errors(spline: BSpline, breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         m = len(breaks) - 1
-        frac = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)
-        s = (breaks[:-1, None] + np.diff(breaks)[:, None] * frac).ravel()
-        exact, normal = canal.points(chi0[None, :], s[:, None]), canal.normal(chi0[None, :], s[:, None])
+        s, exact, normal = samples(breaks)
         F, dF = spline(s), spline.derivative()(s)
         pos = np.zeros(len(s))
         orth = np.zeros(len(s))

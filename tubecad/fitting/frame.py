@@ -16,7 +16,7 @@ import numpy as np
 from scipy.interpolate import BSpline
 
 from tubecad.core.errors import TubecadError
-from tubecad.curves.axis import Axis
+from tubecad.curves.axis import Axis, AxisFrame
 
 #: angles around the tube at which the fitted surface's orthogonality is measured
 ORTHOGONALITY_ANGLES = 16
@@ -75,7 +75,11 @@ class FrameSpline(SplineSize):
 
 def exact_frame(axis: Axis, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """F(s) and F'(s), each (len(s), 9)."""
-    a = axis.at(s)
+    return frame_values(axis.at(s))
+
+
+def frame_values(a: AxisFrame) -> tuple[np.ndarray, np.ndarray]:
+    """F = (c, r1, r2) and F' = (t, -k1 t, -k2 t) (the Bishop equations) of an evaluated axis."""
     F = np.hstack([a.position, a.r1, a.r2])
     dF = np.hstack([a.t, -a.k1[:, None] * a.t, -a.k2[:, None] * a.t])
     return F, dF
@@ -86,10 +90,11 @@ def measured_cos(fit: np.ndarray, dfit: np.ndarray, radii: Sequence[float]) -> n
     u = np.linspace(0.0, 2 * math.pi, ORTHOGONALITY_ANGLES, endpoint=False)
     cu, su = np.cos(u)[None, :, None], np.sin(u)[None, :, None]
     R1, R2, dC, dR1, dR2 = fit[:, None, 3:6], fit[:, None, 6:], dfit[:, None, :3], dfit[:, None, 3:6], dfit[:, None, 6:]
+    S_u = -su * R1 + cu * R2  # the same at every radius
+    S_u_norm = np.linalg.norm(S_u, axis=2)
     worst = np.zeros(len(fit))
     for r in radii:
-        S_u = -su * R1 + cu * R2
         S_s = dC + r * (cu * dR1 + su * dR2)
-        cos = np.abs(np.einsum("ijk,ijk->ij", S_u, S_s)) / (np.linalg.norm(S_u, axis=2) * np.linalg.norm(S_s, axis=2))
+        cos = np.abs(np.einsum("ijk,ijk->ij", S_u, S_s)) / (S_u_norm * np.linalg.norm(S_s, axis=2))
         worst = np.maximum(worst, cos.max(axis=1))
     return worst

@@ -28,7 +28,15 @@ from scipy.interpolate import BSpline, make_interp_spline
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, DEFAULT_ORTHOGONALITY, check_tolerance
 from tubecad.curves.axis import Axis
-from tubecad.fitting.frame import ORTHOGONALITY_ANGLES, FitError, FrameSpline, SplineSize, exact_frame, measured_cos
+from tubecad.fitting.frame import (
+    ORTHOGONALITY_ANGLES,
+    FitError,
+    FrameSpline,
+    SplineSize,
+    exact_frame,
+    frame_values,
+    measured_cos,
+)
 from tubecad.fitting.route_frame import route_frame
 
 if TYPE_CHECKING:
@@ -68,12 +76,13 @@ def fit_frame(
     joints = _joint_multiplicities(axis, degree)
     breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([np.asarray(rings, dtype=float), list(joints)]))
     radii = tuple(float(r) for r in radii) or (float(radius_bound),)
+    samples = SpanSamples(lambda s: _frame_and_curvature(axis, s))
     spline, pos, orth = refine_spline(
         lambda s: exact_frame(axis, s)[0],
         breaks,
         degree,
         joints,
-        lambda spline, breaks: _span_errors(axis, spline, breaks, radius_bound, radii, 0.5 * orthogonality),
+        lambda spline, breaks: _span_errors(samples, spline, breaks, radius_bound, radii, 0.5 * orthogonality),
         tolerance,
         orthogonality,
         max_spans,
@@ -169,20 +178,48 @@ def _interpolate(
     inner = [b for b in breaks[1:-1] for _ in range(joints.get(float(b), 1))]
     knots = np.concatenate([[breaks[0]] * (p + 1), inner, [breaks[-1]] * (p + 1)])
     n = len(knots) - p - 1
-    greville = np.array([knots[i + 1 : i + p + 1].mean() for i in range(n)])
+    greville = np.lib.stride_tricks.sliding_window_view(knots[1:], p)[:n].mean(axis=1)  # of knots i + 1 .. i + p
     greville = np.clip(greville, breaks[0], breaks[-1])  # a mean of equal knots can round past them
     return make_interp_spline(greville, values(greville), k=p, t=knots)
 
 
+class SpanSamples:
+    """``exact`` (s -> a tuple of arrays, one row per s) at SAMPLES_PER_SPAN points
+    s = a + (b - a) j / (SAMPLES_PER_SPAN - 1) of every span [a, b] of a refinement, each span
+    evaluated once: a span kept from one round to the next keeps its samples, and a round
+    evaluates ``exact`` (in one call) only on the spans it halved."""
+
+    def __init__(self, exact: Callable[[np.ndarray], tuple[np.ndarray, ...]]) -> None:
+        self.exact = exact
+        self._spans: dict[tuple[float, float], tuple[np.ndarray, ...]] = {}
+
+    def __call__(self, breaks: np.ndarray) -> tuple[np.ndarray, ...]:
+        """(s, *exact(s)) on all spans of ``breaks``, span after span (rows spans * samples)."""
+        spans = list(zip(breaks[:-1].tolist(), breaks[1:].tolist()))
+        new = [span for span in dict.fromkeys(spans) if span not in self._spans]
+        if new:
+            lo, hi = np.array(new).T
+            s = (lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)).ravel()
+            values = (s, *self.exact(s))
+            for i, span in enumerate(new):
+                rows = slice(i * SAMPLES_PER_SPAN, (i + 1) * SAMPLES_PER_SPAN)
+                self._spans[span] = tuple(v[rows] for v in values)
+        return tuple(np.concatenate(column) for column in zip(*(self._spans[span] for span in spans)))
+
+
+def _frame_and_curvature(axis: Axis, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """F, F' (:func:`exact_frame`) and |k| = sqrt(k1^2 + k2^2), from one evaluation of the axis."""
+    a = axis.at(s)
+    return (*frame_values(a), np.hypot(a.k1, a.k2))
+
+
 def _span_errors(
-    axis: Axis, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float], target: float
+    samples: SpanSamples, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float], target: float
 ) -> tuple[np.ndarray, np.ndarray]:
     """Per span: the position bound and the orthogonality (the bound, or where it exceeds
     ``target``, the largest |cos| measured on the fitted surface at every radius)."""
     m = len(breaks) - 1
-    frac = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)
-    s = (breaks[:-1, None] + np.diff(breaks)[:, None] * frac).ravel()
-    F, dF = exact_frame(axis, s)
+    s, F, dF, k = samples(breaks)
 
     def bound(a: np.ndarray, b: np.ndarray) -> np.ndarray:
         d = a - b
@@ -191,7 +228,7 @@ def _span_errors(
     fit, dfit = spline(s), spline.derivative()(s)
     pos = bound(fit, F)
     with np.errstate(divide="ignore"):
-        orth = bound(dfit, dF) / np.maximum(1.0 - radius * np.abs(axis.curvature(s)), 0.0)
+        orth = bound(dfit, dF) / np.maximum(1.0 - radius * k, 0.0)
     orth = orth.reshape(m, -1).max(axis=1)
     over = np.flatnonzero(orth > target)
     if over.size:
