@@ -551,6 +551,15 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     q = built.info["quality"]
+    if built.info.get("kind") == "junction":
+        click.echo(
+            f"{built.element_count} elements ({q['quads']} quads, {q['quads_on_curvature_lines']} of them on the "
+            f"curvature lines, {q['triangles']} triangles), {len(built.nodes)} nodes, "
+            f"{len(built.node_sets['saddle'])} on the saddle; aspect ratio <= {q['aspect_ratio_max']:.3g}"
+        )
+        for path in written:
+            click.echo(str(path))
+        return
     click.echo(
         f"{built.element_count} elements ({built.info['elements_along']} along x {built.info['elements_around']} "
         f"around, {len(built.beam_blocks)} beam blocks), {len(built.nodes)} nodes; aspect ratio <= "
@@ -593,8 +602,38 @@ def analyse(spec: Path, output: Path, element: str | None, size: float | None, q
         f"{ring['min']:.4g} to {ring['max']:.4g}, stringer stress {stringer['min']:.4g} to {stringer['max']:.4g}, "
         f"largest displacement {summary['max_displacement']:.4g}"
     )
+    for line in junction_lines(summary.get("junction")):
+        click.echo(line)
     for name in summary["files"]:
         click.echo(str(output / name))
+
+
+def junction_lines(checks: dict | None) -> list[str]:
+    """A junction's analysis on the terminal: the far-field hoop stress per tube against
+    membrane theory and the saddle's stress concentration."""
+    if not checks:
+        return []
+    lines = []
+    for name, entry in checks["membrane"].items():
+        if "hoop_expected_min" in entry:
+            low, high = entry["hoop_expected_min"], entry["hoop_expected_max"]
+            theory = f"{low:.4g}" if high - low <= 1e-9 * high else f"{low:.4g} to {high:.4g}"
+            ring = entry["ring_mean_max_relative_error"]
+            lines.append(
+                f"{name}: hoop stress far from the saddle {entry['hoop_min']:.4g} to {entry['hoop_max']:.4g} "
+                f"against membrane theory's {theory} ({entry['far_nodes']} nodes: within "
+                f"{100 * entry['hoop_max_relative_error']:.2g} % at a node"
+                + ("" if ring is None else f", {100 * ring:.2g} % round a ring")
+                + ")"
+            )
+        else:
+            lines.append(f"{name}: no node far enough from the saddle for the membrane check")
+    saddle = checks["saddle"]
+    lines.append(
+        f"saddle: peak von Mises {saddle['peak_von_mises']:.4g}, {saddle['stress_concentration']:.3g} x the "
+        f"main's hoop stress p R / t = {saddle['nominal_hoop']:.4g}"
+    )
+    return lines
 
 
 @cli.command()
