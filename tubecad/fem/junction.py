@@ -462,7 +462,7 @@ def _node_sets(mesh: FEMesh, tubes, pads, owner: np.ndarray, u: np.ndarray, s: n
     for block in mesh.shell_blocks:
         base = block.name.removesuffix("_tri")
         tube_of_block[block.name] = 0 if base in {p.name for p in pads} else [t.name for t in tubes].index(base)
-    users = [set() for _ in tubes]
+    users: list[set[int]] = [set() for _ in tubes]
     for block in mesh.shell_blocks:
         users[tube_of_block[block.name]].update(np.unique(block.connectivity).tolist())
     sets: dict[str, np.ndarray] = {}
@@ -520,4 +520,3 @@ def smallest_distance(points: np.ndarray, targets: np.ndarray) -> np.ndarray:
     from scipy.spatial import cKDTree
 
     return cKDTree(targets).query(points)[0]
-

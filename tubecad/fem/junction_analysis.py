@@ -2,7 +2,9 @@
 
 Loads (:func:`junction_step`), on the shell model of :mod:`.junction`: the internal pressure
 p on every shell and, with ``capped`` ends, each open end's cap resultant p pi a^2 along the
-axis' tangent out of the tube (a: the end ring's radius on the reference surface), spread
+axis' tangent out of the tube (a: the main's bore radius r - t / 2, on whose face CalculiX's
+expanded shells take the pressure; a branch's mid-surface radius, that of the hole it cuts
+in the main's shell), spread
 over the end ring as consistent nodal forces (:func:`~tubecad.fem.loads.ring_forces`), the
 six rigid-body motions held at three nodes of the main's start ring (3-2-1,
 :func:`~tubecad.fem.loads.three_two_one`): pressure and caps are in equilibrium on the
@@ -74,12 +76,14 @@ def junction_step(mesh: FEMesh, tubes: Sequence[JunctionTube], pressure: float, 
             key="analysis.ends",
         )
     if ends == "fixed":
-        held = [(int(n), d) for ring, *_ in _ends(mesh, tubes) for n in ring for d in (1, 2, 3)]
-        return Step(pressure, ends, tuple(held))
+        fixed = [(int(n), d) for ring, *_ in _ends(mesh, tubes) for n in ring for d in (1, 2, 3)]
+        return Step(pressure, ends, tuple(fixed))
     order = 2 if mesh.blocks[0].element.startswith("S8") else 1
     loads: list[tuple[int, int, float]] = []
     for ring, tube, s, sign in _ends(mesh, tubes):
         tangent = tube.surface.axis.at(np.array([s])).t[0]
+        # the main's caps balance the pressure on its bore face (r - t / 2); a branch's, the
+        # hole its mid-surface cuts in the main's shell (r): measured, they leave the support least
         a = radius_at(tube.surface, s) - (0.5 * tube.thickness if tube is tubes[0] else 0.0)
         loads += ring_forces(mesh, ring_in_order(mesh, ring), sign * tangent, pressure * math.pi * a * a, order)
     held = three_two_one(mesh, ring_in_order(mesh, mesh.node_sets["main_start"]))

@@ -102,7 +102,6 @@ def _brackets(
     intervals are searched over the whole table, in blocks."""
     from scipy.spatial import cKDTree
 
-    n = len(points)
     last = len(table) - 2
     _, near = cKDTree(centre).query(points, k=min(NEAREST, len(table)))
     starts = np.clip(np.concatenate([near - 1, near], axis=1), 0, last)  # intervals [j, j + 1]

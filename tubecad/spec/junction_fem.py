@@ -60,7 +60,12 @@ def junction_model(spec: TubeSpec, settings) -> JunctionModel:
         if len(pads) > 1:
             raise ParameterError("a shell model with more than one pad is not made yet", key="branches.pad")
         mesh = junction_shell_mesh(
-            tubes[0], tubes[1:], pads=pads, settings=settings, tolerance=spec.fit.tolerance, length_unit=spec.length_unit
+            tubes[0],
+            tubes[1:],
+            pads=pads,
+            settings=settings,
+            tolerance=spec.fit.tolerance,
+            length_unit=spec.length_unit,
         )
     except (ParameterError, RegularityError) as exc:
         key = exc.key or "branches"

@@ -104,7 +104,6 @@ def test_branches_must_be_tables():
 @pytest.mark.parametrize(
     ("command", "says"),
     [
-        (["flat", "{spec}", "-o", "{out}/flat"], "[[branches]]: this command does not make junctions yet"),
         (["build", "{spec}", "-o", "{out}/x.stl"], "output 'x.stl': a spec with [[branches]] is written as CAD"),
         (["build", "{spec}", "-o", "{out}/x.svg"], "output 'x.svg': a spec with [[branches]] is written as CAD"),
     ],
