@@ -36,10 +36,12 @@ from pathlib import Path
 import numpy as np
 
 from tubecad.brep.layout import NetLayout
+from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.fem.model import ElementBlock, FEMesh, ShellSection
 from tubecad.fem.settings import DEFAULT_SIZE_PER_RADIUS, MeshSettings
 from tubecad.junctions.coordinates import surface_coordinates
+from tubecad.junctions.solid import BranchWall
 from tubecad.surface.protocol import CurvatureLineSurface
 
 #: gmsh's element types used here -> (corner count, CalculiX element for order 1 / 2)
@@ -82,6 +84,32 @@ class PadRegion:
         u_a, u_b = self.angles_deg
         around = np.mod(np.degrees(u) - u_a, 360.0)
         return (self.s_range[0] < s) & (s < self.s_range[1]) & (around < u_b - u_a)
+
+
+def mid_surface_tubes(
+    main: CurvatureLineSurface,
+    thickness: float,
+    layout: NetLayout,
+    branches: Sequence[BranchWall],
+    *,
+    side: str = "centered",
+) -> list[JunctionTube]:
+    """The shell model's tubes of a junction wall (:func:`tubecad.junctions.build_branched_wall`'s
+    arguments): the main (``main`` with its wall ``thickness`` placed ``side``, its ``layout``)
+    and each branch wall, each at its wall's mid-surface, named ``main``, ``branch`` (or
+    ``branch_0``, ``branch_1``... with several)."""
+    d_in, d_out = wall_offsets(thickness, side)
+    tubes = [JunctionTube("main", _offset(main, 0.5 * (d_in + d_out)), thickness, layout)]
+    for k, wall in enumerate(branches):
+        b_in, b_out = wall.offsets()
+        name = "branch" if len(branches) == 1 else f"branch_{k}"
+        b_layout = wall.layout or NetLayout.equal(wall.surface)
+        tubes.append(JunctionTube(name, _offset(wall.surface, 0.5 * (b_in + b_out)), wall.thickness, b_layout))
+    return tubes
+
+
+def _offset(surface: CurvatureLineSurface, distance: float) -> CurvatureLineSurface:
+    return surface.offset(distance) if distance else surface
 
 
 def junction_shell_mesh(

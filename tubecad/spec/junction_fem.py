@@ -28,29 +28,21 @@ def junction_tubes(spec: TubeSpec) -> tuple[list[JunctionTube], list[PadRegion]]
     """The main tube and the branches as the shell model's tubes (each wall's mid-surface,
     thickness and net) and the pads' regions on the main (from the outer saddle, as the
     built pad: :func:`tubecad.stiffeners.pad.pad_bounds`)."""
+    from tubecad.fem.junction import mid_surface_tubes
     from tubecad.junctions.saddle import saddle_curve
     from tubecad.stiffeners.pad import pad_bounds, pad_name
 
     assert spec.wall is not None  # parse_spec refuses [[branches]] without [wall]
     walls = branch_walls(spec)
-    d_in, d_out = spec.wall.offsets()
-    main = JunctionTube("main", _mid(spec.tube, d_in, d_out), spec.wall.thickness, spec.layout.net(spec.tube))
-    tubes, pads = [main], []
+    tubes = mid_surface_tubes(spec.tube, spec.wall.thickness, spec.layout.net(spec.tube), walls, side=spec.wall.side)
+    outer = spec.tube.offset(spec.wall.offsets()[1])
+    pads = []
     for k, (branch, wall) in enumerate(zip(spec.branches, walls)):
-        name = "branch" if len(walls) == 1 else f"branch_{k}"
-        b_in, b_out = wall.offsets()
-        assert wall.layout is not None  # branch_walls gives every branch its layout
-        tubes.append(JunctionTube(name, _mid(wall.surface, b_in, b_out), wall.thickness, wall.layout))
         if branch.pad is not None:
-            saddle = saddle_curve(spec.tube.offset(d_out), wall.surface.offset(b_out))
-            s_range, angles = pad_bounds(spec.tube.offset(d_out), saddle, branch.pad.width)
+            saddle = saddle_curve(outer, wall.surface.offset(wall.offsets()[1]))
+            s_range, angles = pad_bounds(outer, saddle, branch.pad.width)
             pads.append(PadRegion(pad_name(k, len(walls)), s_range, angles, branch.pad.thickness))
     return tubes, pads
-
-
-def _mid(surface, d_in: float, d_out: float):
-    middle = 0.5 * (d_in + d_out)
-    return surface.offset(middle) if middle else surface
 
 
 def junction_model(spec: TubeSpec, settings) -> JunctionModel:
