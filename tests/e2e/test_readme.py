@@ -70,7 +70,13 @@ NOT_RUNNABLE = {
 #: a python block whose code names one of these needs that external program: where it is
 #: missing the block's test is skipped with a one-line reason (a failure in CI), by the
 #: ``requires`` of tests/conftest.py, so that the quick start passes on a fresh machine
-NEEDS_PROGRAM = {"tubecad.fem.analysis": "ccx", "tubecad.fem.calculix": "ccx", "import gmsh": "gmsh"}
+NEEDS_PROGRAM = {
+    "tubecad.fem.analysis": "ccx",
+    "tubecad.fem.calculix": "ccx",
+    "import gmsh": "gmsh",
+    "tubecad.fem.junction": "gmsh",
+    ".shell_model(": "gmsh",
+}
 
 
 # ---------------------------------------------------------------------------------------------

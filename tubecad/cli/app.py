@@ -539,7 +539,9 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
     shells (S4/S4R/S8/S8R) whose nodes lie on the exact surface with exact normals, element edges
     on the layout's rings and stringers, the [stiffeners] as beams (B31/B32) on the shells' nodes,
     and node and element sets named after the parts (ring_03, stringer_05, panel_r2_s1,
-    start_ring, end_ring). A .inp also gets the material and, with [analysis], its pressure step."""
+    start_ring, end_ring). A .inp also gets the material and, with [analysis], its pressure step.
+    With [[branches]]: the junction's shell model (the walls' mid-surfaces joined on their saddle,
+    meshed by gmsh; node sets saddle, pad, main_start, main_end, branch_end)."""
     checked = _checked_spec(spec)
     _load()
     with interrupts_end_at_once():
@@ -584,7 +586,9 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
 def analyse(spec: Path, output: Path, element: str | None, size: float | None, quiet: bool) -> None:
     """Solve SPEC's [analysis] (internal pressure; ends fixed, capped or free) on its mesh with
     CalculiX (ccx), and write the deck, the results, a summary (results.json: displacements,
-    stresses along the rings and stringers) and a picture of the ring stress on the deformed shell."""
+    stresses along the rings and stringers) and a picture of the ring stress on the deformed shell.
+    With [[branches]]: the junction's hoop stress far from the saddle against membrane theory and
+    the saddle's stress concentration, in results.json and on the terminal."""
     _load()
     with interrupts_end_at_once():
         from tubecad.spec.mesh import analyse_spec
