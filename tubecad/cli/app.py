@@ -481,6 +481,8 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
             )
             for path in row["files"]:
                 click.echo(str(output / path))
+        for line in index.get("not_made", []):
+            click.echo(f"not made: {line}")
         click.echo(str(output / "index.json"))
         return
     webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]

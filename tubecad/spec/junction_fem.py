@@ -47,6 +47,12 @@ def junction_tubes(spec: TubeSpec) -> tuple[list[JunctionTube], list[PadRegion]]
 
 def junction_model(spec: TubeSpec, settings) -> JunctionModel:
     """The spec's junction meshed with ``settings`` (checked [mesh] settings)."""
+    if settings.beams and (spec.stiffeners is not None or any(b.stiffeners for b in spec.branches)):
+        raise SpecError(
+            f"{spec.source}: [mesh] beams: the stiffeners of a junction are not made as beams yet; set "
+            "[mesh] beams = false to mesh the junction's shell without them",
+            key="mesh.beams",
+        )
     try:
         tubes, pads = junction_tubes(spec)
         if len(pads) > 1:
