@@ -145,8 +145,9 @@ def test_build_command_for_every_family(sample_build, spec):
             assert saddle["edges_deviation"] < 1e-6 and abs(saddle["coverage"] - 1) < 1e-8
         for name in ("a.step", second):
             back = report["exports"][str(folder / name)]
-            pads = junction.get("pads", {})  # each its own solid
-            assert back["valid"] and back["solids"] == 1 + len(pads) and back["volume_relative_error"] < 1e-9
+            parts = len(junction.get("pads", {})) + len(junction.get("stiffeners", {}))  # each its own solid
+            assert back["valid"] and back["solids"] == 1 + parts and back["volume_relative_error"] < 1e-9
+        assert all(st["valid"] for st in junction.get("stiffeners", {}).values())
         for pad in junction.get("pads", {}).values():  # the tee's pad, on the route's straight first leg
             assert pad["valid"] and pad["development_max_strain"] < 1e-12
         assert report["exports"][str(folder / "a.step")]["edge_names"] == len(junction["named_edge_sets"])

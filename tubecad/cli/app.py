@@ -481,6 +481,8 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
             )
             for path in row["files"]:
                 click.echo(str(output / path))
+        for line in index.get("not_made", []):
+            click.echo(f"not made: {line}")
         click.echo(str(output / "index.json"))
         return
     webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
@@ -539,7 +541,9 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
     shells (S4/S4R/S8/S8R) whose nodes lie on the exact surface with exact normals, element edges
     on the layout's rings and stringers, the [stiffeners] as beams (B31/B32) on the shells' nodes,
     and node and element sets named after the parts (ring_03, stringer_05, panel_r2_s1,
-    start_ring, end_ring). A .inp also gets the material and, with [analysis], its pressure step."""
+    start_ring, end_ring). A .inp also gets the material and, with [analysis], its pressure step.
+    With [[branches]]: the junction's shell model (the walls' mid-surfaces joined on their saddle,
+    meshed by gmsh; node sets saddle, pad, main_start, main_end, branch_end)."""
     checked = _checked_spec(spec)
     _load()
     with interrupts_end_at_once():
@@ -551,6 +555,15 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     q = built.info["quality"]
+    if built.info.get("kind") == "junction":
+        click.echo(
+            f"{built.element_count} elements ({q['quads']} quads, {q['quads_on_curvature_lines']} of them on the "
+            f"curvature lines, {q['triangles']} triangles), {len(built.nodes)} nodes, "
+            f"{len(built.node_sets['saddle'])} on the saddle; aspect ratio <= {q['aspect_ratio_max']:.3g}"
+        )
+        for path in written:
+            click.echo(str(path))
+        return
     click.echo(
         f"{built.element_count} elements ({built.info['elements_along']} along x {built.info['elements_around']} "
         f"around, {len(built.beam_blocks)} beam blocks), {len(built.nodes)} nodes; aspect ratio <= "
@@ -575,7 +588,9 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
 def analyse(spec: Path, output: Path, element: str | None, size: float | None, quiet: bool) -> None:
     """Solve SPEC's [analysis] (internal pressure; ends fixed, capped or free) on its mesh with
     CalculiX (ccx), and write the deck, the results, a summary (results.json: displacements,
-    stresses along the rings and stringers) and a picture of the ring stress on the deformed shell."""
+    stresses along the rings and stringers) and a picture of the ring stress on the deformed shell.
+    With [[branches]]: the junction's hoop stress far from the saddle against membrane theory and
+    the saddle's stress concentration, in results.json and on the terminal."""
     _load()
     with interrupts_end_at_once():
         from tubecad.spec.mesh import analyse_spec
@@ -593,8 +608,38 @@ def analyse(spec: Path, output: Path, element: str | None, size: float | None, q
         f"{ring['min']:.4g} to {ring['max']:.4g}, stringer stress {stringer['min']:.4g} to {stringer['max']:.4g}, "
         f"largest displacement {summary['max_displacement']:.4g}"
     )
+    for line in junction_lines(summary.get("junction")):
+        click.echo(line)
     for name in summary["files"]:
         click.echo(str(output / name))
+
+
+def junction_lines(checks: dict | None) -> list[str]:
+    """A junction's analysis on the terminal: the far-field hoop stress per tube against
+    membrane theory and the saddle's stress concentration."""
+    if not checks:
+        return []
+    lines = []
+    for name, entry in checks["membrane"].items():
+        if "hoop_expected_min" in entry:
+            low, high = entry["hoop_expected_min"], entry["hoop_expected_max"]
+            theory = f"{low:.4g}" if high - low <= 1e-9 * high else f"{low:.4g} to {high:.4g}"
+            ring = entry["ring_mean_max_relative_error"]
+            lines.append(
+                f"{name}: hoop stress far from the saddle {entry['hoop_min']:.4g} to {entry['hoop_max']:.4g} "
+                f"against membrane theory's {theory} ({entry['far_nodes']} nodes: within "
+                f"{100 * entry['hoop_max_relative_error']:.2g} % at a node"
+                + ("" if ring is None else f", {100 * ring:.2g} % round a ring")
+                + ")"
+            )
+        else:
+            lines.append(f"{name}: no node far enough from the saddle for the membrane check")
+    saddle = checks["saddle"]
+    lines.append(
+        f"saddle: peak von Mises {saddle['peak_von_mises']:.4g}, {saddle['stress_concentration']:.3g} x the "
+        f"main's hoop stress p R / t = {saddle['nominal_hoop']:.4g}"
+    )
+    return lines
 
 
 @cli.command()

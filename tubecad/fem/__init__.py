@@ -18,6 +18,8 @@ _PUBLIC = {
     **{name: "tubecad.fem.shell" for name in ("StiffenerPlan", "shell_mesh")},
     **{name: "tubecad.fem.inp" for name in ("Material", "Step", "write_inp", "inp_text")},
     **{name: "tubecad.fem.calculix" for name in ("run_ccx", "read_frd", "CalculixError")},
+    **{name: "tubecad.fem.junction" for name in ("JunctionTube", "PadRegion", "junction_shell_mesh")},
+    **{name: "tubecad.fem.junction_analysis" for name in ("junction_step", "junction_checks")},
 }
 
 __all__ = list(_PUBLIC)
@@ -32,6 +34,11 @@ if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported her
     from tubecad.fem.inp import Step as Step
     from tubecad.fem.inp import inp_text as inp_text
     from tubecad.fem.inp import write_inp as write_inp
+    from tubecad.fem.junction import JunctionTube as JunctionTube
+    from tubecad.fem.junction import PadRegion as PadRegion
+    from tubecad.fem.junction import junction_shell_mesh as junction_shell_mesh
+    from tubecad.fem.junction_analysis import junction_checks as junction_checks
+    from tubecad.fem.junction_analysis import junction_step as junction_step
     from tubecad.fem.model import BeamSection as BeamSection
     from tubecad.fem.model import ElementBlock as ElementBlock
     from tubecad.fem.model import FEMesh as FEMesh

@@ -132,7 +132,9 @@ def inp_text(
         node = block.connectivity.ravel()
         # unit vectors in fixed point: 17 decimals fit 20 characters ("-0.12345678901234567")
         # and round each component by 5e-18 at most
-        rows = zip(elem.tolist(), (node + 1).tolist(), *mesh.normals[node].T.tolist())
+        given = mesh.element_normals.get(block.name)
+        normals = mesh.normals[node] if given is None else given.reshape(-1, 3)
+        rows = zip(elem.tolist(), (node + 1).tolist(), *normals.T.tolist())
         w("".join(map("%d, %d, %.17f, %.17f, %.17f\n".__mod__, rows)))
     if material is None:
         return out.getvalue()

@@ -57,6 +57,8 @@ CELL_TYPES = {
     "S4R": ("quad", 3),
     "S8": ("quad8", 16),
     "S8R": ("quad8", 16),
+    "S3": ("triangle", 2),
+    "S6": ("triangle6", 9),
     "B31": ("line", 1),
     "B31R": ("line", 1),
     "B32": ("line3", 8),

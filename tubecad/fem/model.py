@@ -93,6 +93,10 @@ class FEMesh:
     length_unit: str = "mm"
     closed: bool = False
     info: dict[str, Any] = field(default_factory=dict)
+    #: per shell block (by name), the normal at each of its elements' nodes (m, nodes per
+    #: element, 3), where one node carries different normals in different elements (a
+    #: junction's saddle); blocks not named here take ``normals``
+    element_normals: dict[str, np.ndarray] = field(default_factory=dict)
 
     @property
     def element_count(self) -> int:

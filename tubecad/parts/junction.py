@@ -33,8 +33,9 @@ class _Shared:
     """What the part was built from, shared, not copied, by the part's copies (OCCT objects
     do not deep-copy): the JunctionWall and the named edges' indices in its edge map."""
 
-    def __init__(self, junction: Any, named: dict[str, list[int]]) -> None:
+    def __init__(self, junction: Any, named: dict[str, list[int]], tubes: list, pads: list) -> None:
         self.junction, self.named = junction, named
+        self.tubes, self.pads = tubes, pads  # the shell model's (tubecad.fem.junction)
 
     def __deepcopy__(self, memo: dict) -> _Shared:
         return self
@@ -129,18 +130,24 @@ class CurvatureJunction(bd.BasePartObject):
         edge_map = edge_map_of(junction.shape.wrapped)
         named = {name: [edge_map.FindIndex(e.wrapped) for e in edges] for name, edges in junction.edges.items()}
         pads = self._pads(main, thickness, side, branches, walls, junction, tolerance)
-        self._tubecad = _Shared(junction, named)
+        from tubecad.fem.junction import PadRegion, mid_surface_tubes
+
+        regions = [PadRegion(name, pad.s_range, pad.angles_deg, pad.thickness) for name, _, pad in pads]
+        self._tubecad = _Shared(
+            junction, named, mid_surface_tubes(main, thickness, main_layout, walls, side=side), regions
+        )
+        self._tolerance = tolerance
         wall = bd.Solid(junction.shape.wrapped)
         wall.label = "wall"
-        self._pad_names = [name for name, _ in pads]
-        part = bd.Part(bd.Compound([wall, *(solid for _, solid in pads)]).wrapped) if pads else wall
+        self._pad_names = [name for name, _, _ in pads]
+        part = bd.Part(bd.Compound([wall, *(solid for _, solid, _ in pads)]).wrapped) if pads else wall
         super().__init__(part=part, rotation=rotation, align=align, mode=mode)
 
     @staticmethod
     def _pads(
         main: Any, thickness: float, side: str, branches: Sequence[Branch], walls: list, junction: Any, tolerance: float
-    ) -> list[tuple[str, bd.Solid]]:
-        """(name, solid) of each branch's pad: ``pad`` with one branch, ``pad_k`` with several."""
+    ) -> list[tuple[str, bd.Solid, Any]]:
+        """(name, solid, Pad) of each branch's pad: ``pad`` with one branch, ``pad_k`` with several."""
         from tubecad.brep.wall import wall_offsets
         from tubecad.junctions import saddle_name
         from tubecad.stiffeners.pad import pad_name, reinforcement_pad
@@ -162,8 +169,30 @@ class CurvatureJunction(bd.BasePartObject):
             )
             solid = bd.Solid(pad.solid.wrapped)
             solid.label = pad_name(k, len(branches))
-            out.append((solid.label, solid))
+            out.append((solid.label, solid, pad))
         return out
+
+    def shell_model(self, size: float | None = None, element: str = "S8R") -> Any:
+        """The junction's shell model for a finite-element analysis
+        (:func:`tubecad.fem.junction.junction_shell_mesh`: the walls' mid-surfaces joined on
+        their saddle, meshed by gmsh, node sets ``saddle``, ``pad``, ``main_start``,
+        ``main_end``, ``branch_end``), elements of about ``size`` (default 2 pi r / 32 of
+        the smallest tube), in the junction's own coordinates (as built, before ``rotation``,
+        ``align`` and any placement). Solve it with :func:`tubecad.fem.analysis.solve` and
+        :func:`tubecad.fem.junction_analysis.junction_step` (``tubes``: :attr:`shell_tubes`)."""
+        from tubecad.fem.junction import junction_shell_mesh
+        from tubecad.fem.settings import MeshSettings
+
+        tubes, pads = self._tubecad.tubes, self._tubecad.pads
+        if len(pads) > 1:
+            raise ValueError("a shell model with more than one pad is not made yet")
+        settings = MeshSettings(element=element, size_along=size)
+        return junction_shell_mesh(tubes[0], tubes[1:], pads=pads, settings=settings, tolerance=self._tolerance)
+
+    @property
+    def shell_tubes(self) -> list[Any]:
+        """The shell model's tubes (:class:`tubecad.fem.junction.JunctionTube`: the main first)."""
+        return list(self._tubecad.tubes)
 
     @property
     def pads(self) -> bd.ShapeList[bd.Solid]:

@@ -68,12 +68,13 @@ def build_from_spec(spec: TubeSpec, progress: ProgressCallback | None = None) ->
 
 
 def refuse_branches(spec: TubeSpec) -> None:
-    """Refuse a spec with [[branches]] where only the main tube would be made (shop, flat,
-    mesh, the viewer): nothing of a spec is dropped without a word."""
+    """Refuse a spec with [[branches]] where only the main tube would be made (flat, the
+    viewer): nothing of a spec is dropped without a word."""
     if spec.branches:
         raise SpecError(
             f"{spec.source}: [[branches]]: this command does not make junctions yet (tubecad build writes them "
-            "as STEP, IGES or BREP); remove [[branches]] for the main tube alone",
+            "as STEP, IGES or BREP, tubecad mesh and analyse as shell models); remove [[branches]] for the main "
+            "tube alone",
             key="branches",
         )
 

@@ -17,7 +17,6 @@ from typing import Any
 
 import build123d as bd
 
-from tubecad.brep.layout import NetLayout
 from tubecad.brep.properties import count, is_valid, volume
 from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
 from tubecad.core.progress import Progress
@@ -25,9 +24,6 @@ from tubecad.fitting import FitError
 from tubecad.junctions import BranchWall, JunctionWall, area_replacement, build_branched_wall, saddle_name
 from tubecad.spec.parse import TubeSpec
 from tubecad.stiffeners.pad import Pad, pad_name
-
-#: the branch's rings when its [[branches]] table has no layout
-DEFAULT_BRANCH_RINGS = 3
 
 
 def branch_walls(spec: TubeSpec) -> list[BranchWall]:
@@ -38,12 +34,7 @@ def branch_walls(spec: TubeSpec) -> list[BranchWall]:
     for branch in spec.branches:
         surface = branch.surface(spec.tube)
         wall = branch.wall or spec.wall
-        layout = (
-            branch.layout.net(surface)
-            if branch.layout is not None
-            else NetLayout.equal(surface, DEFAULT_BRANCH_RINGS, main_stringers)
-        )
-        out.append(BranchWall(surface, wall.thickness, wall.side, layout))
+        out.append(BranchWall(surface, wall.thickness, wall.side, branch.net(surface, main_stringers)))
     return out
 
 
@@ -96,12 +87,78 @@ def build_pads(spec: TubeSpec, junction: JunctionWall, walls: list[BranchWall]) 
     return pads
 
 
-def junction_assembly(junction: JunctionWall, pads: dict[int, Pad] | None = None, branches: int = 1) -> bd.Compound:
-    """``wall`` (the junction solid), each pad (``pad``, ``pad_1``...) and ``junction_edges``:
-    a compound per edge name."""
+def build_junction_stiffeners(spec: TubeSpec, walls: list[BranchWall]) -> list[Any]:
+    """The main [stiffeners] on the main wall, each stopped at every branch's opening (on the
+    surface it stands on: the outer saddle outside, the bore's inside) or at its pad's edge
+    (a pad outside), and each branch's own ``stiffeners`` (its stringers from its saddle, its
+    rings ``start`` beyond it); [] without [stiffeners] (:mod:`tubecad.stiffeners.junction`)."""
+    from tubecad.junctions.saddle import saddle_curve
+    from tubecad.stiffeners.junction import Keepout, branch_stiffeners, main_stiffeners
+    from tubecad.stiffeners.pad import pad_bounds
+
+    if spec.stiffeners is None:
+        return []
+    assert spec.wall is not None
+    layout = spec.layout.net(spec.tube)
+    chosen = spec.stiffeners.select(layout, spec.source, spec.length_unit)
+    outside = chosen.side == "outside"
+    main_base = spec.tube.offset(spec.wall.offsets()[1 if outside else 0])
+    keepouts, saddles = [], []
+    for branch, wall in zip(spec.branches, walls):
+        branch_base = wall.surface.offset(wall.offsets()[1 if outside else 0])
+        saddle = saddle_curve(main_base, branch_base)
+        saddles.append((branch_base, saddle))
+        if outside and branch.pad is not None:
+            s_range, angles = pad_bounds(main_base, saddle, branch.pad.width)
+            keepouts.append(Keepout(s_range=s_range, angles_deg=angles))
+        else:
+            keepouts.append(Keepout(saddle=saddle))
+    try:
+        out = main_stiffeners(
+            main_base,
+            [(i, layout.s_rings[i]) for i in chosen.rings],
+            [(j, layout.stringers_deg[j]) for j in chosen.stringers],
+            chosen.profile,
+            chosen.side,
+            keepouts,
+            spec.fit.tolerance,
+        )
+        for k, (branch, wall, (branch_base, saddle)) in enumerate(zip(spec.branches, walls, saddles)):
+            if branch.stiffeners is None:
+                continue
+            assert wall.layout is not None
+            net = wall.layout
+            start = chosen.profile.height if branch.stiffeners.start is None else branch.stiffeners.start
+            prefix = "branch" if len(walls) == 1 else f"branch{k}"
+            out += branch_stiffeners(
+                branch_base,
+                saddle,
+                [(i, net.s_rings[i]) for i in branch.stiffeners.indices("rings", len(net.s_rings))],
+                [(j, net.stringers_deg[j]) for j in branch.stiffeners.indices("stringers", len(net.stringers_deg))],
+                chosen.profile,
+                chosen.side,
+                start,
+                prefix,
+                spec.fit.tolerance,
+            )
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: [stiffeners] {exc}", key=exc.key or "stiffeners") from None
+    return out
+
+
+def junction_assembly(
+    junction: JunctionWall, pads: dict[int, Pad] | None = None, branches: int = 1, stiffeners: list[Any] | None = None
+) -> bd.Compound:
+    """``wall`` (the junction solid), each pad (``pad``, ``pad_1``...), each stiffener
+    (``ring_03``, ``stringer_05_a``, ``branch_ring_02``...) and ``junction_edges``: a
+    compound per edge name."""
     wall = bd.Solid(junction.shape.wrapped)
     wall.label = "wall"
     plates = []
+    for stiffener in stiffeners or []:  # as on a stiffened wall: the wall, then its stiffeners
+        solid = bd.Solid(stiffener.solid.wrapped)
+        solid.label = stiffener.name
+        plates.append(solid)
     for k, pad in (pads or {}).items():
         plate = bd.Solid(pad.solid.wrapped)
         plate.label = pad_name(k, branches)
@@ -235,14 +292,23 @@ def build_and_export_junction(
     walls = branch_walls(spec)
     junction = build_junction(spec, walls)
     pads = build_pads(spec, junction, walls)
+    stiffeners = build_junction_stiffeners(spec, walls)
     progress.advance(1, "junction")
     report = tube_report(spec.tube, 64, 501, length_unit=unit)
     report["junction"] = junction_report(spec, junction, walls, pads)
+    if stiffeners:
+        report["junction"]["stiffeners"] = {
+            st.name: {"valid": is_valid(st.solid.wrapped), "volume": volume(st.solid.wrapped)} for st in stiffeners
+        }
+        invalid = [st.name for st in stiffeners if not report["junction"]["stiffeners"][st.name]["valid"]]
+        if invalid:
+            raise SpecError(f"{spec.source}: [stiffeners] {', '.join(invalid)}: not a valid solid", key="stiffeners")
     # what a batch's summary reads of any build (tubecad.batch.jobs)
     report["brep"] = {key: report["junction"][key] for key in ("valid", "faces", "edges", "volume")}
     report["brep"]["kind"] = "junction_wall"
-    shape = junction_assembly(junction, pads, len(spec.branches))
+    shape = junction_assembly(junction, pads, len(spec.branches), stiffeners)
     pad_volume = sum(p["volume"] for p in report["junction"].get("pads", {}).values())
+    pad_volume += sum(p["volume"] for p in report["junction"].get("stiffeners", {}).values())
     reference = WrittenShape(shape, {"volume": report["junction"]["volume"] + pad_volume})
     item = Exportable(shape, None, step_schema, length_unit=unit)
     exports = report["exports"] = {}
@@ -254,9 +320,10 @@ def build_and_export_junction(
             height, width = imread(tmp, format="png").shape[:2]
             return {"bytes": tmp.stat().st_size, "picture": f"PNG {width} x {height}"}
         info = readback_report(tmp, reference, None, target, None, unit)
-        if info["solids"] != 1 + len(pads):
+        if info["solids"] != 1 + len(pads) + len(stiffeners):
             raise FileAccuracyError(
-                f"{target.name}: reads back as {info['solids']} solids, not the junction's and its {len(pads)} pads"
+                f"{target.name}: reads back as {info['solids']} solids, not the junction's, its {len(pads)} pads "
+                f"and {len(stiffeners)} stiffeners"
             )
         if fmt.name == "step":
             names = {name for _, name in step_names(tmp)}
@@ -269,7 +336,9 @@ def build_and_export_junction(
     progress.step("writing and reading back files", len(outputs))
     for path in outputs:
         if output_format(path).name == "png":
-            solids = bd.Compound([junction.shape, *(pad.solid for pad in pads.values())])
+            solids = bd.Compound(
+                [junction.shape, *(pad.solid for pad in pads.values()), *(st.solid for st in stiffeners)]
+            )
             done, info = path, render_junction(solids, path, spec.source, check)
         else:
             done, info = write_output(item, path, partial(check, target=path))

@@ -91,6 +91,11 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
                     "dihedral_deg": {"min": float(angles.min()), "max": float(angles.max())},
                 }
             )
+        if spec.stiffeners is not None:  # said, not dropped: the shop has no junction webs yet
+            index["not_made"] = [
+                "the webs of a junction's stiffeners (ring frames and stringers stopped at the openings) are not "
+                "developed and nested yet: tubecad build writes their solids"
+            ]
         (staging / "index.json").write_text(json.dumps(index, indent=2) + "\n")
         for path in [*(staging / "branches").iterdir(), staging / "index.json"]:
             target = output / path.relative_to(staging)

@@ -357,6 +357,22 @@ PAD_KEYS = {
     "width": Key("number", help="how far the pad reaches beyond the branch's outer saddle every way, > 0", low=0.0),
 }
 
+#: a branch's own stiffeners: its rings and stringers with the main [stiffeners] profile and side
+BRANCH_STIFFENER_KEYS = {
+    "rings": Key("selection", required=False, help='ring indices into the branch\'s layout, or "all" (default none)'),
+    "stringers": Key(
+        "selection", required=False, help='stringer indices into the branch\'s layout, or "all" (default none)'
+    ),
+    "start": Key(
+        "number",
+        required=False,
+        low=0.0,
+        low_open=False,
+        help="how far beyond the saddle's highest point the branch's ring frames must lie, >= 0 "
+        "(default the profile's height)",
+    ),
+}
+
 #: a branch's own axis by its natural equations (default: a straight line)
 BRANCH_AXIS_KEYS = {
     "k": Key("string", required=False, default="0", help="curvature k(s) >= 0 along the branch, an expression in s"),
@@ -413,6 +429,13 @@ BRANCH_KEYS = {
         required=False,
         keys=LAYOUT_KEYS,
         help="the branch's rings and stringers, as [layout] (default 3 rings and the main tube's stringers)",
+    ),
+    "stiffeners": Key(
+        "table",
+        required=False,
+        keys=BRANCH_STIFFENER_KEYS,
+        help="the branch's ring frames and stringers, { rings = [...], stringers = [...], start = ... }, with the "
+        "main [stiffeners] profile and side: its stringers start on the saddle, its rings beyond it (default none)",
     ),
     "pad": Key(
         "table",

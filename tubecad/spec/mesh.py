@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -32,15 +33,11 @@ def mesh_from_spec(spec: TubeSpec, **overrides: Any):
     """The spec's wall (or tube) as an :class:`tubecad.fem.FEMesh` with its [mesh] settings
     (``overrides`` win: element, size, ...), [stiffeners] as beams and [panels] as sets."""
     from tubecad.fem import StiffenerPlan, shell_mesh
-    from tubecad.spec.build import refuse_branches
-    from tubecad.spec.model import MeshSection
 
-    refuse_branches(spec)
+    if spec.branches:
+        return _junction(spec, overrides).mesh
     source = spec.source
-    try:
-        settings = (spec.mesh or MeshSection()).settings(**overrides)
-    except ParameterError as exc:
-        raise SpecError(f"{source}: {exc}", key=exc.key or "mesh") from None
+    settings = _mesh_settings(spec, overrides)
     tube = spec.tube
     try:
         layout = spec.layout.net(tube)
@@ -74,6 +71,33 @@ def mesh_from_spec(spec: TubeSpec, **overrides: Any):
         raise SpecError(f"{source}: {text if text.startswith('[') else '[mesh] ' + text}", key=exc.key) from None
 
 
+def _mesh_settings(spec: TubeSpec, overrides: dict[str, Any]):
+    """The spec's checked [mesh] settings (``overrides`` win)."""
+    from tubecad.spec.model import MeshSection
+
+    try:
+        return (spec.mesh or MeshSection()).settings(**overrides)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "mesh") from None
+
+
+def _junction(spec: TubeSpec, overrides: dict[str, Any]):
+    """A branched spec's shell model (tubecad.spec.junction_fem.JunctionModel)."""
+    from tubecad.spec.junction_fem import junction_ends, junction_model
+
+    if spec.analysis is not None:
+        junction_ends(spec)  # refused before the mesh is made
+    return junction_model(spec, _mesh_settings(spec, overrides))
+
+
+def _fe_model(spec: TubeSpec, overrides: dict[str, Any]):
+    """(the mesh, the junction's model or None)."""
+    if spec.branches:
+        model = _junction(spec, overrides)
+        return model.mesh, model
+    return mesh_from_spec(spec, **overrides), None
+
+
 def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
     """A stiffener too high for the wall's curvature is refused as the solids refuse it
     (tubecad.stiffeners.limits), naming [stiffeners] height."""
@@ -100,8 +124,9 @@ def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
         raise SpecError(f"{source}: [stiffeners] {exc}", key="stiffeners.height") from None
 
 
-def material_and_step(spec: TubeSpec, mesh, with_step: bool):
-    """The [analysis] material and, if ``with_step``, the pressure step (tubecad.fem.loads)."""
+def material_and_step(spec: TubeSpec, mesh, with_step: bool, junction=None):
+    """The [analysis] material and, if ``with_step``, the pressure step (tubecad.fem.loads;
+    a junction's, ``junction`` its model: tubecad.spec.junction_fem)."""
     from tubecad.core.units import length_unit, steel_density
     from tubecad.fem.inp import Material
     from tubecad.fem.loads import pressure_step
@@ -118,6 +143,11 @@ def material_and_step(spec: TubeSpec, mesh, with_step: bool):
     material = Material(settings.youngs_modulus, settings.poisson_ratio, density)
     if not with_step:
         return material, None, settings
+    if junction is not None:
+        from tubecad.spec.junction_fem import junction_ends, junction_step
+
+        settings = replace(settings, ends=junction_ends(spec))
+        return material, junction_step(spec, junction, settings.pressure), settings
     surface = reference_surface(spec, mesh)
     ends = (mesh.node_sets.get("start_ring"), mesh.node_sets.get("end_ring"))
     return material, pressure_step(mesh, settings.pressure, settings.ends, surface, ends), settings
@@ -133,13 +163,13 @@ def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[A
     """``tubecad mesh``: the mesh written to each output (by extension); a .inp gets the
     material and, when the spec has [analysis], its pressure step."""
     outputs = checked_outputs(outputs)
-    mesh = mesh_from_spec(spec, **overrides)
+    mesh, junction = _fe_model(spec, overrides)
     formats = _formats()
     material, step = None, None
     if any(p.suffix.lower() == ".inp" for p in outputs):
         if mesh.info["thickness"] is None:
             raise SpecError(f"{spec.source}: a .inp needs the wall's thickness: add a [wall] section", key="wall")
-        material, step, _ = material_and_step(spec, mesh, spec.analysis is not None)
+        material, step, _ = material_and_step(spec, mesh, spec.analysis is not None, junction)
     written = []
     for path in outputs:
         try:
@@ -177,8 +207,8 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
         raise SpecError(str(exc)) from None
     say = progress or (lambda stage: None)
     say("meshing")
-    mesh = mesh_from_spec(spec, **overrides)
-    material, step, settings = material_and_step(spec, mesh, True)
+    mesh, junction = _fe_model(spec, overrides)
+    material, step, settings = material_and_step(spec, mesh, True, junction)
     output = Path(output)
     output.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f".{output.name}.", dir=output.parent))
@@ -207,6 +237,12 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
             **result.summary(),
             "files": ["model.inp", "model.frd", "ring_stress.png", "results.json"],
         }
+        if junction is not None:
+            from tubecad.fem.junction_analysis import junction_checks
+
+            summary["junction"] = junction_checks(
+                mesh, junction.tubes, result.stress, result.ring_stress, settings.pressure
+            )
         write_text(staging / "results.json", json.dumps(summary, indent=2))
         for name in summary["files"]:
             (staging / name).replace(output / name)

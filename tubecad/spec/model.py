@@ -126,6 +126,36 @@ class PadSection:
     width: float
 
 
+#: a branch's rings when its [[branches]] table has no layout
+DEFAULT_BRANCH_RINGS = 3
+
+
+@dataclass(frozen=True)
+class BranchStiffenersSection:
+    """A [[branches]] table's stiffeners: ``rings`` and ``stringers`` of the branch's layout
+    (indices or "all"), its rings at least ``start`` beyond its saddle (None: the profile's height)."""
+
+    rings: Selection = ()
+    stringers: Selection = ()
+    start: float | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "rings", _selection(self.rings))
+        object.__setattr__(self, "stringers", _selection(self.stringers))
+
+    def indices(self, key: str, count: int) -> list[int]:
+        """``rings`` or ``stringers`` as indices into ``count`` lines of the branch's layout; a
+        ParameterError naming ``branches.stiffeners.<key>`` otherwise."""
+        value = getattr(self, key)
+        chosen = list(range(count)) if value == "all" else list(value)
+        bad = [i for i in chosen if not 0 <= i < count]
+        if bad:
+            raise ParameterError(
+                f"stiffeners.{key} must be indices in [0, {count - 1}], got {bad}", key=f"branches.stiffeners.{key}"
+            )
+        return chosen
+
+
 @dataclass(frozen=True)
 class BranchSection:
     """One [[branches]] table: a branch tube of ``radius`` and ``length`` leaving the main
@@ -144,12 +174,27 @@ class BranchSection:
     wall: WallSection | None = None
     layout: LayoutSection | None = None
     pad: PadSection | None = None
+    stiffeners: BranchStiffenersSection | None = None
 
     def __post_init__(self) -> None:
-        for name, kind in (("wall", WallSection), ("layout", LayoutSection), ("pad", PadSection)):
+        for name, kind in (
+            ("wall", WallSection),
+            ("layout", LayoutSection),
+            ("pad", PadSection),
+            ("stiffeners", BranchStiffenersSection),
+        ):
             value = getattr(self, name)
             if isinstance(value, dict):  # the checked inline table, typed
                 object.__setattr__(self, name, kind(**value))
+
+    def net(self, surface: CurvatureLineSurface, main_stringers: int) -> Any:
+        """The branch's rings and stringers on its ``surface``: its ``layout``, else
+        DEFAULT_BRANCH_RINGS rings and the main's ``main_stringers`` stringers."""
+        from tubecad.brep.layout import NetLayout
+
+        if self.layout is not None:
+            return self.layout.net(surface)
+        return NetLayout.equal(surface, DEFAULT_BRANCH_RINGS, main_stringers)
 
     def surface(self, main: CurvatureLineSurface) -> CurvatureLineSurface:
         """The branch's tube (or canal surface) placed on ``main``

@@ -186,6 +186,13 @@ def junction_summary(junction: dict[str, Any]) -> list[str]:
             f"{name}: thickness {pad['thickness']:g}, volume {pad['volume']:.6g}, valid={pad['valid']}, "
             f"development strain {pad['development_max_strain']:.2g}"
         )
+    stiffeners = junction.get("stiffeners", {})
+    if stiffeners:
+        stopped = sorted({name.rsplit("_", 1)[0] for name in stiffeners if name[-2:] in ("_a", "_b", "_c")})
+        lines.append(
+            f"stiffeners: {len(stiffeners)} solids, valid={all(v['valid'] for v in stiffeners.values())}; "
+            f"stringers in pieces at an opening or pad: {', '.join(stopped) if stopped else 'none'}"
+        )
     for row in junction.get("reinforcement", []):
         if "skipped" in row:
             lines.append(f"branch {row['branch']}: area replacement skipped ({row['skipped']})")

@@ -255,8 +255,8 @@ def _numbered(fail: Callable[..., SpecError], name: str, index: int) -> Callable
 
 
 def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
-    """[[branches]]: a main [wall] to join (and no [stiffeners] or [panels]: not built on a
-    junction yet); each branch placed inside the main axis' span, its tube regular, its wall
+    """[[branches]]: a main [wall] to join (and no [panels]: not built on a junction yet);
+    branch stiffeners with the main [stiffeners] and indices in the branch's layout; each branch placed inside the main axis' span, its tube regular, its wall
     inside the main tube's bore where it starts (so it leaves through the main wall)."""
     import numpy as np
 
@@ -264,13 +264,8 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
 
     if model.wall is None:
         raise fail("[[branches]] join the branch's wall to the main tube's: the spec needs a [wall] section", "wall")
-    for section in ("stiffeners", "panels"):
-        if getattr(model, section) is not None:
-            raise fail(
-                f"[{section}] on a wall with [[branches]] is not built yet (stiffeners stopping on the saddle "
-                "are planned): remove one of them",
-                section,
-            )
+    if model.panels is not None:
+        raise fail("[panels] on a wall with [[branches]] is not built yet: remove one of them", "panels")
     main_in = model.wall.offsets()[0]
     for i, branch in enumerate(model.branches):
         where = f"[[branches]] #{i + 1}"
@@ -285,6 +280,22 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
                 branch.layout.net(surface)
             except ParameterError as exc:
                 raise fail(f"{where} layout {exc}", f"branches.{_key('layout', exc)}") from None
+        if branch.stiffeners is not None:
+            if model.stiffeners is None:
+                raise fail(
+                    f"{where} stiffeners take the main [stiffeners] profile and side: the spec needs a [stiffeners] "
+                    "section",
+                    "stiffeners",
+                )
+            start = branch.stiffeners.start
+            if start is not None and not (start >= 0 and math.isfinite(start)):
+                raise fail(f"{where} stiffeners start must be >= 0, got {start:g}", "branches.stiffeners.start")
+            net = branch.net(surface, len(model.layout.net(tube).stringers_deg))
+            for key, count in (("rings", len(net.s_rings)), ("stringers", len(net.stringers_deg))):
+                try:
+                    branch.stiffeners.indices(key, count)
+                except ParameterError as exc:
+                    raise fail(f"{where} {exc}", exc.key or "branches.stiffeners") from None
         if branch.pad is not None:
             for name in ("thickness", "width"):
                 value = getattr(branch.pad, name)

@@ -90,3 +90,19 @@ def test_a_branch_with_a_pad_gives_the_part_a_pad_solid_in_every_copy():
     assert pads[1].center().Y - pads[0].center().Y == pytest.approx(400.0)
     assert on_tee(placed.saddle_outer[: len(placed.saddle_outer) // 2]) < 1e-6
     del builder
+
+
+@pytest.mark.requires("gmsh")
+def test_the_part_gives_its_shell_model_on_the_walls_mid_surfaces(part):
+    """shell_model: the walls' mid-surfaces (main y^2 + z^2 = 50^2, branch (x - 150)^2 + y^2 =
+    30^2 with the branch's 3 mm wall) joined on their saddle, whose nodes lie on both; its
+    branch end in the plane z = 120, its ends of the main in x = 0 and x = 300."""
+    fe = part.shell_model(size=12.0)
+    saddle = fe.nodes[fe.node_sets["saddle"]]
+    assert len(saddle) >= 32
+    assert np.abs(np.hypot(saddle[:, 1], saddle[:, 2]) - 50.0).max() < 1e-6  # measured 2e-8
+    assert np.abs(np.hypot(saddle[:, 0] - 150.0, saddle[:, 1]) - 30.0).max() < 1e-6
+    assert np.abs(fe.nodes[fe.node_sets["branch_end"], 2] - 120.0).max() < 1e-9
+    assert np.abs(fe.nodes[fe.node_sets["main_end"], 0] - 300.0).max() < 1e-9
+    assert {s.block: s.thickness for s in fe.shell_sections}["branch"] == 3.0
+    assert [t.name for t in part.shell_tubes] == ["main", "branch"]

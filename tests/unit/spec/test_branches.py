@@ -80,7 +80,20 @@ def test_a_branch_is_placed_where_its_keys_say():
         (BRANCH + "wall = 3.0\n", MAIN, "branches.wall", "must be an inline table"),
         (BRANCH + "layout = { rings = 1 }\n", MAIN, "branches.layout.rings", "rings"),
         (BRANCH.replace("length = 150.0\n", ""), MAIN, "branches.length", "length is missing"),
-        (BRANCH, MAIN + "[stiffeners]\nrings = [1]\nheight = 3.0\nthickness = 1.0\n", "stiffeners", "not built yet"),
+        (BRANCH, MAIN + "[panels]\nseams = [0, 4]\n", "panels", "not built yet"),
+        (BRANCH + "stiffeners = { rings = [1] }\n", MAIN, "stiffeners", "the spec needs a [stiffeners] section"),
+        (
+            BRANCH + "stiffeners = { rings = [3] }\n",
+            MAIN + "[stiffeners]\nrings = [1]\nheight = 3.0\nthickness = 1.0\n",
+            "branches.stiffeners.rings",
+            "stiffeners.rings must be indices in [0, 2], got [3]",
+        ),
+        (
+            BRANCH + "stiffeners = { stringers = [1], start = -1.0 }\n",
+            MAIN + "[stiffeners]\nrings = [1]\nheight = 3.0\nthickness = 1.0\n",
+            "branches.stiffeners.start",
+            "start must be",
+        ),
     ],
 )
 def test_bad_branches_are_refused_in_one_line_naming_the_key(branch, main, key, says):
@@ -104,7 +117,6 @@ def test_branches_must_be_tables():
 @pytest.mark.parametrize(
     ("command", "says"),
     [
-        (["mesh", "{spec}", "-o", "{out}/m.inp"], "[[branches]]: this command does not make junctions yet"),
         (["build", "{spec}", "-o", "{out}/x.stl"], "output 'x.stl': a spec with [[branches]] is written as CAD"),
         (["build", "{spec}", "-o", "{out}/x.svg"], "output 'x.svg': a spec with [[branches]] is written as CAD"),
     ],
