@@ -556,19 +556,18 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
         raise UserError(str(exc)) from None
     q = built.info["quality"]
     if built.info.get("kind") == "junction":
-        click.echo(
+        line = (
             f"{built.element_count} elements ({q['quads']} quads, {q['quads_on_curvature_lines']} of them on the "
             f"curvature lines, {q['triangles']} triangles), {len(built.nodes)} nodes, "
             f"{len(built.node_sets['saddle'])} on the saddle; aspect ratio <= {q['aspect_ratio_max']:.3g}"
         )
-        for path in written:
-            click.echo(str(path))
-        return
-    click.echo(
-        f"{built.element_count} elements ({built.info['elements_along']} along x {built.info['elements_around']} "
-        f"around, {len(built.beam_blocks)} beam blocks), {len(built.nodes)} nodes; aspect ratio <= "
-        f"{q['aspect_ratio_max']:.3g}, skew <= {q['skew_deg_max']:.3g} deg"
-    )
+    else:
+        line = (
+            f"{built.element_count} elements ({built.info['elements_along']} along x {built.info['elements_around']} "
+            f"around, {len(built.beam_blocks)} beam blocks), {len(built.nodes)} nodes; aspect ratio <= "
+            f"{q['aspect_ratio_max']:.3g}, skew <= {q['skew_deg_max']:.3g} deg"
+        )
+    click.echo(line)
     for path in written:
         click.echo(str(path))
 

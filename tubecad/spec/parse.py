@@ -287,9 +287,9 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
                     "section",
                     "stiffeners",
                 )
-            start = branch.stiffeners.start
-            if start is not None and not (start >= 0 and math.isfinite(start)):
-                raise fail(f"{where} stiffeners start must be >= 0, got {start:g}", "branches.stiffeners.start")
+            gap = branch.stiffeners.start
+            if gap is not None and not (gap >= 0 and math.isfinite(gap)):
+                raise fail(f"{where} stiffeners start must be >= 0, got {gap:g}", "branches.stiffeners.start")
             net = branch.net(surface, len(model.layout.net(tube).stringers_deg))
             for key, count in (("rings", len(net.s_rings)), ("stringers", len(net.stringers_deg))):
                 try:
