@@ -558,7 +558,7 @@ def plan_self_intersection(part: object, refinements: int = REFINEMENTS) -> Self
     fuzzy = BOPAlgo_ArgumentAnalyzer().FuzzyValue()
     n = len(faces)
     bounded = [o.bounded for o in owners]
-    first = [o.cells(0) for o in owners]
+    first = [o.cells(0) if o.bounded else None for o in owners]  # an unbounded face: every pair to OCCT
     low = np.array([c.low.min(axis=0) if c is not None else np.full(3, -np.inf) for c in first])
     high = np.array([c.high.max(axis=0) if c is not None else np.full(3, np.inf) for c in first])
     radius = np.array([o.radius for o in owners])
