@@ -575,7 +575,7 @@ def plan_self_intersection(part: object, refinements: int = REFINEMENTS) -> Self
     candidates = sorted(
         [(int(i), int(j)) for i, j in zip(*np.nonzero(unproven))] + [p for p in to_prove if p not in apart]
     )
-    groups = _groups(n, candidates, overlapping, (low + high) / 2)
+    groups = _groups(n, candidates, overlapping, _centres(faces, low, high))
     pairs = int((overlapping.sum() - n) // 2)
     cost = [float(overlapping[np.ix_(g, g)].sum() - len(g)) / 2 + FACE_COST * len(g) for g in groups]
     return SelfIntersectionPlan(part, faces, pairs, candidates, groups, cost)
@@ -615,6 +615,24 @@ def _touching(part: TopoDS_Shape, faces: list) -> np.ndarray:
             for j in owners:
                 touching[i, j] = True
     return touching
+
+
+def _centres(faces: list, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+    """Each face's centre for grouping: its cells' box's, or OCCT's box's for a face the
+    filter could not bound (its cells' box is infinite)."""
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    centres = np.zeros((len(faces), 3))
+    for i, face in enumerate(faces):
+        if np.all(np.isfinite(low[i])) and np.all(np.isfinite(high[i])):
+            centres[i] = 0.5 * (low[i] + high[i])
+        else:
+            box = Bnd_Box()
+            BRepBndLib.Add_s(face, box)
+            low_corner, high_corner = box.CornerMin(), box.CornerMax()  # Get() differs in OCP 7.9 and 8
+            centres[i] = 0.5 * (np.array(low_corner.Coord()) + np.array(high_corner.Coord()))
+    return centres
 
 
 def _groups(n: int, candidates: list[tuple[int, int]], overlapping: np.ndarray, centres: np.ndarray) -> list[list[int]]:
