@@ -445,7 +445,7 @@ def _assemble(tubes, pads, nodes, coordinates, owner, grouped, normals_of, setti
         },
         element_normals=element_normals,
     )
-    mesh.node_sets.update(_node_sets(mesh, tubes, pads, owner, u, s))
+    mesh.node_sets.update(_node_sets(mesh, tubes, pads))
     mesh.info["quality"] = _quality(mesh, coordinates, tubes, pads)
     return mesh
 
@@ -456,19 +456,18 @@ def _quality(mesh: FEMesh, coordinates, tubes, pads) -> dict[str, float | int]:
     from tubecad.fem.quality import corner_measures
 
     names = [t.name for t in tubes]
-    quads = [b for b in mesh.shell_blocks if corner_count(b) == 4]
+    quads = [b for b in mesh.shell_blocks if b.corners == 4]
     corners = np.concatenate([b.connectivity[:, :4] for b in quads])
     aspect, skew = corner_measures(mesh.nodes, corners)
     on_net = 0
     for block in quads:
-        base = block.name.removesuffix("_tri")
-        c = coordinates[names.index(base) if base in names else 0]
+        c = coordinates[tube_index(block.name, names)]
         ends = block.connectivity[:, :4]
         a, b = ends, np.roll(ends, -1, axis=1)
         same_s = np.abs(c.s[a] - c.s[b]) <= NET_TOLERANCE * (1.0 + np.abs(c.s[a]))
         same_u = np.abs(np.angle(np.exp(1j * (c.u[a] - c.u[b])))) <= NET_TOLERANCE
         on_net += int(np.count_nonzero((same_s | same_u).all(axis=1)))
-    triangles = sum(len(b.connectivity) for b in mesh.shell_blocks if corner_count(b) == 3)
+    triangles = sum(len(b.connectivity) for b in mesh.shell_blocks if b.corners == 3)
     return {
         "aspect_ratio_max": float(aspect.max()),
         "skew_deg_max": float(skew.max()),
@@ -478,21 +477,19 @@ def _quality(mesh: FEMesh, coordinates, tubes, pads) -> dict[str, float | int]:
     }
 
 
-def _block_order(key: tuple[str, str], tubes: list[JunctionTube]) -> tuple[int, int, str]:
+def _block_order(key: tuple[str, str], tubes: list[JunctionTube]) -> tuple[float, bool, str]:
+    """Blocks in the tubes' order, a pad's after the main's, triangles after quads."""
     names = [t.name for t in tubes]
     name, shape = key
-    return (names.index(name) if name in names else 0.5, shape == "tri", name)  # type: ignore[return-value]
+    return (names.index(name) if name in names else 0.5, shape == "tri", name)
 
 
-def _node_sets(mesh: FEMesh, tubes, pads, owner: np.ndarray, u: np.ndarray, s: np.ndarray) -> dict[str, np.ndarray]:
+def _node_sets(mesh: FEMesh, tubes: list[JunctionTube], pads: Sequence[PadRegion]) -> dict[str, np.ndarray]:
     """saddle, pad, main_start, main_end, <branch>_end: see the module."""
-    tube_of_block = {}
-    for block in mesh.shell_blocks:
-        base = block.name.removesuffix("_tri")
-        tube_of_block[block.name] = 0 if base in {p.name for p in pads} else [t.name for t in tubes].index(base)
+    names = [t.name for t in tubes]
     users: list[set[int]] = [set() for _ in tubes]
     for block in mesh.shell_blocks:
-        users[tube_of_block[block.name]].update(np.unique(block.connectivity).tolist())
+        users[tube_index(block.name, names)].update(np.unique(block.connectivity).tolist())
     sets: dict[str, np.ndarray] = {}
     main_nodes = users[0]
     shared = set().union(*(main_nodes & other for other in users[1:]))
@@ -528,14 +525,16 @@ def ring_in_order(mesh: FEMesh, ring: np.ndarray) -> np.ndarray:
     """The nodes of an end ring in order round it (by their stringer angle), starting at a
     corner node (the consistent forces of :func:`tubecad.fem.loads.ring_forces` need it)."""
     ordered = ring[np.argsort(mesh.parameters[ring, 0])]
-    corners = np.unique(np.concatenate([b.connectivity[:, : corner_count(b)].ravel() for b in mesh.shell_blocks]))
+    corners = np.unique(np.concatenate([b.connectivity[:, : b.corners].ravel() for b in mesh.shell_blocks]))
     start = int(np.flatnonzero(np.isin(ordered, corners))[0])
     return np.roll(ordered, -start)
 
 
-def corner_count(block: ElementBlock) -> int:
-    """A shell element's corners: 4 (S4, S8: quads) or 3 (S3, S6: triangles)."""
-    return 4 if block.element[1] in "48" else 3
+def tube_index(block: str, tubes: Sequence[str]) -> int:
+    """The index among the tubes' names ``tubes`` of the tube a shell block lies on: its own
+    (``branch``, ``branch_tri``), or the main's (0) for a pad's block."""
+    base = block.removesuffix("_tri")
+    return tubes.index(base) if base in tubes else 0
 
 
 def radius_at(surface: CurvatureLineSurface, s: float) -> float:

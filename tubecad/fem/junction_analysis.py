@@ -42,7 +42,7 @@ import numpy as np
 
 from tubecad.core.errors import ParameterError
 from tubecad.fem.inp import Step
-from tubecad.fem.junction import JunctionTube, radius_at, ring_in_order, smallest_distance
+from tubecad.fem.junction import JunctionTube, radius_at, ring_in_order, smallest_distance, tube_index
 from tubecad.fem.loads import ring_forces, three_two_one
 from tubecad.fem.model import FEMesh
 
@@ -173,8 +173,7 @@ def _owners(mesh: FEMesh, tubes: Sequence[JunctionTube]) -> np.ndarray:
     names = [t.name for t in tubes]
     owner = np.full(len(mesh.nodes), -1, dtype=np.int64)
     for block in mesh.shell_blocks:
-        base = block.name.removesuffix("_tri")
-        k = names.index(base) if base in names else 0
+        k = tube_index(block.name, names)
         used = np.unique(block.connectivity)
         owner[used[owner[used] < 0]] = k
     return owner

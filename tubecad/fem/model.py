@@ -35,6 +35,12 @@ class ElementBlock:
     def shell(self) -> bool:
         return self.element.startswith("S")
 
+    @property
+    def corners(self) -> int:
+        """An element's corner nodes (its first ones): 4 for a quad (S4, S8), 3 for a triangle
+        (S3, S6), 2 for a beam."""
+        return 2 if not self.shell else 4 if self.element[1] in "48" else 3
+
 
 @dataclass(frozen=True)
 class ShellSection:

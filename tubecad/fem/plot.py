@@ -27,14 +27,15 @@ def deformed_figure(
     largest = float(np.linalg.norm(u, axis=1).max())
     scale = exaggeration * size / largest if largest > 0 else 0.0
     moved = mesh.nodes + scale * u
-    corners = np.concatenate([b.connectivity[:, :4] for b in mesh.shell_blocks])
-    colour = np.nanmean(values[corners], axis=1)
+    corners = [b.connectivity[:, : b.corners] for b in mesh.shell_blocks]  # quads and triangles
+    colour = np.concatenate([np.nanmean(values[c], axis=1) for c in corners])
+    polygons = [polygon for c in corners for polygon in moved[c]]
     fig = Figure(figsize=(9, 7))  # no pyplot: the user's backend is left alone
     ax = fig.add_subplot(projection="3d")
     cmap = matplotlib.colormaps["viridis"]
     lo, hi = float(np.nanmin(colour)), float(np.nanmax(colour))
     norm = Normalize(lo, hi if hi > lo else lo + 1.0)
-    quads = Poly3DCollection(moved[corners], facecolors=cmap(norm(colour)), edgecolors="none", linewidths=0)
+    quads = Poly3DCollection(polygons, facecolors=cmap(norm(colour)), edgecolors="none", linewidths=0)
     ax.add_collection3d(quads)
     low, high = moved.min(axis=0), moved.max(axis=0)
     ax.set_xlim(low[0], high[0]), ax.set_ylim(low[1], high[1]), ax.set_zlim(low[2], high[2])

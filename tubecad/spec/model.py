@@ -36,6 +36,16 @@ def _selection(value: Any) -> Selection:
     return "all" if value == "all" else tuple(value)
 
 
+def selected_indices(value: Selection, count: int, name: str, key: str) -> list[int]:
+    """A selection (indices or "all") as indices into ``count`` lines; a ParameterError naming
+    ``name`` in its text and ``key`` for any outside [0, count - 1]."""
+    chosen = list(range(count)) if value == "all" else list(value)
+    bad = [i for i in chosen if not 0 <= i < count]
+    if bad:
+        raise ParameterError(f"{name} must be indices in [0, {count - 1}], got {bad}", key=key)
+    return chosen
+
+
 def _listed(value: Any) -> Any:
     """A selection as the spec file gives it: "all" or a list."""
     return value if value == "all" else list(value)
@@ -146,14 +156,7 @@ class BranchStiffenersSection:
     def indices(self, key: str, count: int) -> list[int]:
         """``rings`` or ``stringers`` as indices into ``count`` lines of the branch's layout; a
         ParameterError naming ``branches.stiffeners.<key>`` otherwise."""
-        value = getattr(self, key)
-        chosen = list(range(count)) if value == "all" else list(value)
-        bad = [i for i in chosen if not 0 <= i < count]
-        if bad:
-            raise ParameterError(
-                f"stiffeners.{key} must be indices in [0, {count - 1}], got {bad}", key=f"branches.stiffeners.{key}"
-            )
-        return chosen
+        return selected_indices(getattr(self, key), count, f"stiffeners.{key}", f"branches.stiffeners.{key}")
 
 
 @dataclass(frozen=True)
@@ -278,12 +281,7 @@ class StiffenersSection:
     def indices(self, key: str, count: int) -> list[int]:
         """``rings`` or ``stringers`` as indices into ``count`` layout lines; a ParameterError
         (key ``stiffeners.<key>``) for any outside them."""
-        value = getattr(self, key)
-        chosen = list(range(count)) if value == "all" else list(value)
-        bad = [i for i in chosen if not 0 <= i < count]
-        if bad:
-            raise ParameterError(f"{key} must be indices in [0, {count - 1}], got {bad}", key=f"stiffeners.{key}")
-        return chosen
+        return selected_indices(getattr(self, key), count, key, f"stiffeners.{key}")
 
     def select(self, layout: Any, source: str, length_unit: str = DEFAULT_LENGTH_UNIT) -> StiffenerSelection:
         """The section checked against ``layout`` (anything with ``s_rings`` and
