@@ -4,7 +4,9 @@ Vertices and edges are built once and used by both neighbouring faces, so no sew
 needed. A stringer edge's 3D curve is the surface's isoline u = const (the curvature line)
 with the pcurve u = const, the same parameter by construction. A ring edge's 3D curve is a
 true circle (Geom_Circle: centre c(s), plane normal t(s), radius rho, angle from the
-stringer origin), so CAD selectors and OCCT's checks see circles; its pcurve is
+stringer origin), so CAD selectors and OCCT's checks see circles (where the fit keeps the
+circle within CIRCLE_GAP of the faces; a coarser fit's rings are the faces' isolines
+s = const, exact on them, with pcurves v = s); its pcurve is
 (u(theta), s), u(theta) the circle parametrisation's inverse as a quintic B-spline in
 theta (:func:`ring_pcurve`, C1 like the circle, fitted once per stringer interval and
 shared by every ring), and the edge tolerance covers what the fit deviates from the exact
@@ -49,19 +51,34 @@ from tubecad.occ_compat import Array1OfPnt2d
 
 #: edge and vertex tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = EDGE_TOLERANCE
+#: a ring is made a true circle (Geom_Circle) where the circle keeps within this of the
+#: fitted faces (the default fit tolerance 1e-8 leaves 1e-10 .. 1e-9), else the faces' own
+#: isoline: a STEP or IGES file keeps no edge tolerance, its readers (FreeCAD) give each
+#: edge 1e-7, and a circle farther from its faces is then found off them by the pre-boolean
+#: check (64 edges of the paper wall at a fit tolerance of 1e-6, measured)
+CIRCLE_GAP = 0.1 * EDGE_TOLERANCE
 
 
 @dataclass
 class PatchFaces:
     """Faces [ring i][stringer j] and the edges they share, for one tube surface."""
 
-    faces: list[list[TopoDS_Face]]
-    rings: list[list[TopoDS_Edge]]  # rings[i][j]: arc of ring i from stringer j to j+1, along +u
+    faces: list[list[TopoDS_Face]]  # faces[i][c]: between rings i, i+1 and columns c, c+1
+    rings: list[list[TopoDS_Edge]]  # rings[i][c]: arc of ring i from column c to c+1, along +u
     stringers: list[list[TopoDS_Edge]]  # stringers[j][i]: stringer j from ring i to i+1, along +s
     #: a closed tube's closing ring (rings[0] and rings[-1] then hold its arcs): (theta_a,
-    #: theta_b, arc) from the origin stringer, and the angle where each stringer ends on it
+    #: theta_b, arc) from the origin stringer, and the angle where each column ends on it
     closing_arcs: list[tuple[float, float, TopoDS_Edge]] = field(default_factory=list)
     closing_ends: list[float] = field(default_factory=list)
+    #: the face columns' edges [c][i] and angles (degrees): the stringers and, where the
+    #: stringers leave an arc of the circle over 330 deg, the circle's C0 knot inside it
+    #: (:func:`face_columns`); None: the stringers themselves
+    column_edges: list[list[TopoDS_Edge]] | None = None
+    columns_deg: list[float] | None = None
+
+    @property
+    def columns(self) -> list[list[TopoDS_Edge]]:
+        return self.stringers if self.column_edges is None else self.column_edges
 
     def all_faces(self) -> list[TopoDS_Face]:
         return [f for row in self.faces for f in row]
@@ -81,6 +98,10 @@ def patch_faces(
     (see :func:`_closing_ring`)."""
     builder = BRep_Builder()
     surface = tube_surface.surface
+    canal = tube_surface.canal
+    columns_deg = face_columns(tube_surface, stringers_deg)
+    named = [columns_deg.index(a) for a in stringers_deg]  # the stringers among the columns
+    stringers_deg = columns_deg
     angles = [math.radians(a - tube_surface.origin_deg) for a in stringers_deg] + [2 * math.pi]
     u_cuts = stringer_parameters(stringers_deg, tube_surface.u_at)
     n_cuts = len(u_cuts)
@@ -88,7 +109,6 @@ def patch_faces(
     seam = n_stringers == 1
     own = len(s_rings) - (closing is not None)  # rings with edges of their own
 
-    canal = tube_surface.canal
     vertices = []
     rings = []
     bounds = []  # bounds[i][j]: the (edge, pcurve, tolerance) of ring i along face column j, in +u order
@@ -100,14 +120,24 @@ def patch_faces(
             circle, cuts, pcurves, tolerance = canal_ring(cast(CanalSectionSurface, tube_surface), s, angles)
         else:
             circle, gap = ring_circle(tube_surface, s)
-            tolerance = max(TOLERANCE, 2.0 * gap)
-            cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
+            if gap <= CIRCLE_GAP:
+                tolerance = max(TOLERANCE, 2.0 * gap)
+                cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
+            else:  # a coarse fit: the ring is the faces' own isoline s = const (see CIRCLE_GAP)
+                circle, tolerance = None, TOLERANCE
+                cuts, pcurves = u_cuts, [_line(0.0, s, 1.0, 0.0)] * n_stringers
         # a vertex is the surface's point; the exact circle passes within the ring's gap of it,
         # so the vertex tolerance covers the gap as the edge's does (a coarse fit: up to ~1e-7)
         vertices.append([_vertex(builder, surface.Value(u_cuts[j], s), tolerance) for j in range(n_stringers)])
         rings.append(
             [
-                _edge(circle, vertices[i][j], vertices[i][(j + 1) % n_stringers], cuts[j], cuts[j + 1])
+                _edge(
+                    circle if circle is not None else _isoline(surface, s, cuts[j], cuts[j + 1]),
+                    vertices[i][j],
+                    vertices[i][(j + 1) % n_stringers],
+                    cuts[j],
+                    cuts[j + 1],
+                )
                 for j in range(n_stringers)
             ]
         )
@@ -165,9 +195,26 @@ def patch_faces(
             builder.Add(face, wire)
             row.append(TopoDS_Face.Reversed(face) if reverse else face)
         faces.append(row)
+    extra = {} if len(named) == n_stringers else {"column_edges": stringers, "columns_deg": columns_deg}
+    chosen = [stringers[j] for j in named]
     if closing is None:
-        return PatchFaces(faces, rings, stringers)
-    return PatchFaces(faces, rings, stringers, arcs, [angle for angle, _ in ends])
+        return PatchFaces(faces, rings, chosen, **extra)  # type: ignore[arg-type]
+    return PatchFaces(faces, rings, chosen, arcs, [angle for angle, _ in ends], **extra)  # type: ignore[arg-type]
+
+
+def face_columns(tube_surface: TubeSurface, stringers_deg: Sequence[float]) -> list[float]:
+    """The angles (degrees) of the face columns: the stringers, and every C0 knot of the
+    surface's circle between two of them (:mod:`tubecad.fitting.circle`: an arc over 330 deg,
+    which one stringer always leaves, is split at its middle). OCCT's pre-boolean check reports
+    a face that runs over a C0 knot, so the face is split there, along the curvature line
+    u = const through the knot (a stringer no one asked for: an edge, not a named stringer)."""
+    origin = float(stringers_deg[0])
+    knots = [origin + math.degrees(b) for b in tube_surface.circle.breaks]
+    columns = [float(a) for a in stringers_deg]
+    for knot in knots:
+        if all(abs((knot - a + 180.0) % 360.0 - 180.0) > 1e-9 for a in columns):
+            columns.append(knot)
+    return [columns[0], *sorted(columns[1:], key=lambda a: (a - origin) % 360.0)]
 
 
 #: on the closing ring, a stringer's end within this distance of a stringer's start shares its vertex
@@ -547,6 +594,14 @@ def _edge(curve: Geom_Curve, v0: TopoDS_Vertex, v1: TopoDS_Vertex, t0: float, t1
     if not maker.IsDone():
         raise TubecadError(f"OCCT could not make an edge on [{t0:g}, {t1:g}] (error {maker.Error()})")
     return maker.Edge()
+
+
+def _isoline(surface, s: float, u0: float, u1: float) -> Geom_Curve:
+    """The surface's isoline v = s over u in [u0, u1] only (no knot of the rest in its curve,
+    which OCCT's continuity check would report)."""
+    curve = surface.VIso(s)
+    curve.Segment(u0, u1)
+    return curve
 
 
 def _line(x: float, y: float, dx: float, dy: float) -> Geom2d_Line:

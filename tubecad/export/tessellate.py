@@ -114,6 +114,11 @@ def grid_arcs(
     return rows
 
 
+def _columns_deg(build: TubeBuild) -> list[float]:
+    """The angles of the build's face columns (:attr:`~tubecad.brep.faces.PatchFaces.columns_deg`)."""
+    return build.patches[0].columns_deg or list(build.layout.stringers_deg)
+
+
 def triangulate_build(build: TubeBuild, tolerance: float, angular: float) -> int:
     """Attach a triangulation to every face of ``build.shape`` (a TubeBuild's tube or wall):
     its tube faces on the curvature-line grid, its planar caps between the end rings (a
@@ -125,7 +130,8 @@ def triangulate_build(build: TubeBuild, tolerance: float, angular: float) -> int
         angles, arcs = canal_grid(build, tolerance, angular)
     else:
         radius = max(build.radii)  # the outer tube needs the finest angle step; the inner one shares it
-        angles = grid_angles(build.layout.stringers_deg, angle_step(radius, tolerance, angular))
+        # the face columns: the stringers and any C0 knot of the circle between them
+        angles = grid_angles(_columns_deg(build), angle_step(radius, tolerance, angular))
         arcs = grid_arcs(axis, build.layout.s_rings, radius, tolerance, angular)
     # every node once per surface, so that neighbouring faces and the caps share them bit for bit
     columns = np.radians(np.concatenate([a[:-1] for a in angles]))
@@ -148,7 +154,7 @@ def triangulate_build(build: TubeBuild, tolerance: float, angular: float) -> int
         grid = surface.tube.points(columns[:, None], rows[None, :])
         grid = np.concatenate([grid, grid[:1]])  # the first column again: the last sector closes on it
         grids.append(grid)
-        u_cuts = stringer_parameters(build.layout.stringers_deg, surface.u_at)
+        u_cuts = stringer_parameters(_columns_deg(build), surface.u_at)
         closing = (
             _ClosingRing(surface, patches, grid, rows[0], columns, first_column, build.radii[k], *rings[k])
             if rings
@@ -198,7 +204,8 @@ def canal_grid(build: TubeBuild, tolerance: float, angular: float) -> tuple[list
     bay refined (the first pass also coarsened) by the square root of its excess, until
     every one holds."""
     exact = [surface.tube for surface in build.surfaces]
-    ends = np.array([*map(float, build.layout.stringers_deg), float(build.layout.stringers_deg[0]) + 360.0])
+    columns = _columns_deg(build)
+    ends = np.array([*map(float, columns), float(columns[0]) + 360.0])
     s_rings = np.asarray(build.layout.s_rings, dtype=float)
     (chi0, around), (s, along_need) = _canal_densities(exact, np.radians(ends), s_rings, tolerance, angular)
     n_u = np.maximum(1, np.ceil(_integrals(chi0, around))).astype(int)
@@ -438,9 +445,9 @@ def _tube_face(
     triangles = np.concatenate([np.stack([p, q, r], -1).reshape(-1, 3), np.stack([p, r, t], -1).reshape(-1, 3)])
     tri = _triangulation(points.reshape(-1, 3), uv, triangles, tolerance)
     builder.UpdateFace(as_face(face), tri)
-    n_stringers = len(patches.stringers)
+    n_stringers = len(patches.columns)
     bottom, top = patches.rings[i][j], patches.rings[i + 1][j]
-    left, right = patches.stringers[j][i], patches.stringers[(j + 1) % n_stringers][i]
+    left, right = patches.columns[j][i], patches.columns[(j + 1) % n_stringers][i]
     _polygon(builder, bottom, [index[:, 0]], tri)
     _polygon(builder, top, [index[:, -1]], tri)
     if n_stringers == 1:  # one seam edge: its forward use is u = 2 pi, the reversed one u = 0
@@ -498,13 +505,13 @@ def _closing_face(
         rows[b] = (ids, row)
     tri = _triangulation(np.concatenate(nodes), np.concatenate(uv), np.concatenate(triangles), tolerance)
     builder.UpdateFace(as_face(face), tri)
-    n_stringers = len(patches.stringers)
+    n_stringers = len(patches.columns)
     for b, ring in ((0, i), (m - 1, i + 1)):
         if b in rows:
             _closing_polygons(builder, patches.closing_arcs, *rows[b], tri)
         else:
             _polygon(builder, patches.rings[ring][j], [index[:, b]], tri)
-    left, right = patches.stringers[j][i], patches.stringers[(j + 1) % n_stringers][i]
+    left, right = patches.columns[j][i], patches.columns[(j + 1) % n_stringers][i]
     if n_stringers == 1:
         _polygon(builder, right, [index[-1, :], index[0, :]], tri)
     else:

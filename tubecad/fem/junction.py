@@ -29,7 +29,7 @@ import math
 import signal
 import tempfile
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
 
@@ -55,13 +55,16 @@ ON_TUBE = 100.0
 @dataclass(frozen=True)
 class JunctionTube:
     """One tube of the shell model: its ``name`` (``main``, ``branch``, ``branch_1``), its
-    reference ``surface`` (the wall's mid-surface), its wall ``thickness`` and the rings
-    and stringers its faces are bounded by (``layout``)."""
+    reference ``surface`` (the wall's mid-surface), its wall ``thickness``, the rings
+    and stringers its faces are bounded by (``layout``), and those that carry stiffeners
+    (``stiffened``: ring s values, stringer angles in degrees), which stay lines of the mesh
+    wherever they lie (their beams stand on them, :mod:`tubecad.fem.junction_beams`)."""
 
     name: str
     surface: CurvatureLineSurface
     thickness: float
     layout: NetLayout
+    stiffened: tuple[tuple[float, ...], tuple[float, ...]] = ((), ())
 
     @property
     def radius(self) -> float:
@@ -133,8 +136,7 @@ def junction_shell_mesh(
             f"got {settings.surface!r}",
             key="mesh.surface",
         )
-    sizes = [v for v in (settings.size_along, settings.size_around) if v is not None]
-    size = min(sizes) if sizes else DEFAULT_SIZE_PER_RADIUS * min(t.radius for t in [main, *branches])
+    size = junction_mesh_size(settings, [main, *branches])
     tubes = _clear_of_saddles(main, branches, size)
     tubes[0] = _with_pads(tubes[0], pads, size)
     faces = _joined_faces(tubes, tolerance)
@@ -147,6 +149,13 @@ def junction_shell_mesh(
         )
     nodes, patches = _gmsh_mesh(faces, size, settings.order, partial(_nearest_tube, tubes))
     return _model(tubes, pads, nodes, patches, settings, tolerance, size, length_unit)
+
+
+def junction_mesh_size(settings: MeshSettings, tubes: Sequence[JunctionTube]) -> float:
+    """gmsh's one element size: the smaller of ``size_along`` and ``size_around``, default
+    DEFAULT_SIZE_PER_RADIUS times the smallest radius."""
+    sizes = [v for v in (settings.size_along, settings.size_around) if v is not None]
+    return min(sizes) if sizes else DEFAULT_SIZE_PER_RADIUS * min(t.radius for t in tubes)
 
 
 def _nearest_tube(tubes: list[JunctionTube], points: np.ndarray) -> np.ndarray:
@@ -166,18 +175,18 @@ def _clear_of_saddles(main: JunctionTube, branches: Sequence[JunctionTube], clea
     for branch in branches:
         saddle = saddle_curve(main.surface, branch.surface)
         lo, hi = saddle.main_s.min() - clearance, saddle.main_s.max() + clearance
-        main_rings = [x for x in main_rings if not lo < x < hi]
+        main_rings = [x for x in main_rings if not lo < x < hi or x in main.stiffened[0]]
         widen = math.degrees(clearance / main.radius)
         centre = math.degrees(0.5 * (saddle.main_u.min() + saddle.main_u.max()))
         half = 0.5 * math.degrees(saddle.main_u.max() - saddle.main_u.min()) + widen
-        away = [a for a in main_angles if abs((a - centre + 180.0) % 360.0 - 180.0) > half]
+        away = [a for a in main_angles if abs((a - centre + 180.0) % 360.0 - 180.0) > half or a in main.stiffened[1]]
         main_angles = away or [(centre + 180.0) % 360.0]
         b_lo, b_hi = saddle.branch_s.min() - clearance, saddle.branch_s.max() + clearance
-        b_rings = [x for x in branch.layout.s_rings if not b_lo < x < b_hi]
+        b_rings = [x for x in branch.layout.s_rings if not b_lo < x < b_hi or x in branch.stiffened[0]]
         layout = NetLayout.explicit(branch.surface, b_rings, list(branch.layout.stringers_deg))
-        out.append(JunctionTube(branch.name, branch.surface, branch.thickness, layout))
+        out.append(replace(branch, layout=layout))
     layout = NetLayout.explicit(main.surface, main_rings, main_angles)
-    return [JunctionTube(main.name, main.surface, main.thickness, layout), *out]
+    return [replace(main, layout=layout), *out]
 
 
 def _with_pads(main: JunctionTube, pads: Sequence[PadRegion], clearance: float) -> JunctionTube:
@@ -188,12 +197,17 @@ def _with_pads(main: JunctionTube, pads: Sequence[PadRegion], clearance: float) 
     pad_rings = [s for pad in pads for s in pad.s_range]
     pad_angles = [a % 360.0 for pad in pads for a in pad.angles_deg]
     turn = math.degrees(clearance / main.radius)
-    rings = [s for s in main.layout.s_rings if min(abs(s - p) for p in pad_rings) >= clearance]
-    angles = [
-        a for a in main.layout.stringers_deg if min(abs((a - p + 180.0) % 360.0 - 180.0) for p in pad_angles) >= turn
+    rings = [
+        s for s in main.layout.s_rings if min(abs(s - p) for p in pad_rings) >= clearance or s in main.stiffened[0]
     ]
-    layout = NetLayout.explicit(main.surface, rings + pad_rings, sorted({round(a, 9) for a in angles + pad_angles}))
-    return JunctionTube(main.name, main.surface, main.thickness, layout)
+    angles = [
+        a
+        for a in main.layout.stringers_deg
+        if min(abs((a - p + 180.0) % 360.0 - 180.0) for p in pad_angles) >= turn or a in main.stiffened[1]
+    ]
+    rings = sorted({*rings, *pad_rings})
+    layout = NetLayout.explicit(main.surface, rings, sorted({round(a, 9) for a in angles + pad_angles}))
+    return replace(main, layout=layout)
 
 
 def _joined_faces(tubes: list[JunctionTube], tolerance: float) -> list[object]:

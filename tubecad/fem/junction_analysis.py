@@ -12,7 +12,8 @@ joined surface, so the support takes (almost) no load. ``fixed``: every end ring
 
 Checks (:func:`junction_checks`), at the nodes far from the junction: on each tube farther
 than FAR sqrt(r t) from the saddle (a shell's bending boundary layer decays as
-exp(-x / (0.78 sqrt(r t))): e^-5 at FAR = 4), from where the axis' curvature changes (a
+exp(-x / (0.78 sqrt(r t))): e^-5 at FAR = 4) and from its ring frames (made as beams: each
+holds the wall in, a layer of its own), from where the axis' curvature changes (a
 line meeting a bend: a layer of its own) and from the open ends (held, or carrying the caps and the support: CalculiX joins the
 shells at the saddle by a knot and takes the pressure on a surface the caps do not balance
 exactly; the support reacts the difference, 3.6 % of a cap's load measured on a d/D = 0.6
@@ -107,12 +108,19 @@ def junction_checks(
     saddle = mesh.nodes[mesh.node_sets["saddle"]]
     to_saddle = smallest_distance(mesh.nodes, saddle)
     owner = _owners(mesh, tubes)
+    # a beam's node carries CalculiX's mean of the shell's and the expanded beam's stresses
+    on_beams = np.zeros(len(mesh.nodes), dtype=bool)
+    for block in mesh.blocks:
+        if not block.shell:
+            on_beams[block.connectivity.ravel()] = True
     out: dict[str, Any] = {"membrane": {}}
     for k, tube in enumerate(tubes):
         nodes = np.flatnonzero(owner == k)
         s = mesh.parameters[nodes, 1]
         reach = FAR * math.sqrt(tube.radius * tube.thickness)
-        far = (to_saddle[nodes] > reach) & _steady_around(tube, s, reach)
+        far = (to_saddle[nodes] > reach) & _steady_around(tube, s, reach) & ~on_beams[nodes]
+        for ring in tube.stiffened[0]:  # a ring frame's beams hold the wall in: away from them too
+            far &= np.abs(s - ring) > reach
         s0, s1 = tube.surface.span  # the ends: held, or loaded by the caps beside the support
         far &= (s - s0 > reach if k == 0 else True) & (s1 - s > reach)
         far_nodes = nodes[far & np.isfinite(ring_stress[nodes])]

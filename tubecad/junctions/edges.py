@@ -82,11 +82,13 @@ def fit_saddle(
     *,
     name: str = "saddle_outer",
     key: str = "branches",
+    near: SaddleCurve | None = None,
 ) -> SaddleEdge:
     """The saddle where ``branch`` leaves ``main`` as a periodic B-spline edge within
-    ``tolerance`` of the exact saddle (measured at the midpoints between its knots)."""
+    ``tolerance`` of the exact saddle (measured at the midpoints between its knots). ``near``:
+    a saddle close to it (the other wall face's), whose points start Newton instead of a march."""
     tolerance = check_tolerance("tolerance", tolerance)
-    intervals, exact = FIRST_INTERVALS, None
+    intervals, exact = FIRST_INTERVALS, near
     while True:
         exact = saddle_curve(main, branch, 2 * intervals + 1, key=key, near=exact)
         nodes = exact.points[::2].copy()
@@ -135,5 +137,9 @@ def wall_saddles(
     main_in, main_out = wall_offsets(main_thickness, main_side)
     branch_in, branch_out = wall_offsets(branch_thickness, branch_side)
     outer = fit_saddle(main.offset(main_out), branch.offset(branch_out), tolerance, name="saddle_outer", key=key)
-    inner = fit_saddle(main.offset(main_in), branch.offset(branch_in), tolerance, name="saddle_inner", key=key)
+    inner_main, inner_branch = main.offset(main_in), branch.offset(branch_in)
+    try:  # the bore's saddle lies a wall's thickness from the outer one: Newton from its points
+        inner = fit_saddle(inner_main, inner_branch, tolerance, name="saddle_inner", key=key, near=outer.saddle)
+    except ParameterError:  # too far for Newton (or refused): march round the branch anew
+        inner = fit_saddle(inner_main, inner_branch, tolerance, name="saddle_inner", key=key)
     return outer, inner

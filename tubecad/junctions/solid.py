@@ -5,24 +5,31 @@ them), B_o, B_i the branch's, the junction's wall is
 
     W = (A_o u B_o) - (A_i u B_i),
 
-three OCCT booleans: the two fuses each meet along one saddle (``saddle_outer``: B_o's surface
-leaving A_o's; ``saddle_inner``: the bore B_i leaving A_i); in the cut no curved faces cross
-(the tubes of one axis are concentric) and coplanar end discs become the wall's annular caps.
+made of two OCCT booleans: the fuses O = A_o u B_o and I = A_i u B_i each meet along one saddle
+(``saddle_outer``: B_o's surface leaving A_o's; ``saddle_inner``: the bore B_i leaving A_i).
 No face of one argument lies on a curved face of another: that is what makes booleans slow
 and fragile (a wall fused with a wall and then bored would put the bore's tool on the wall's
-own inner face: 18 s against 3 s measured). The cut still costs most (2-4 s on the samples):
-OCCT intersects every pair of concentric faces whose boxes overlap. The branch starts inside the main bore (where
-:func:`~tubecad.junctions.saddle.saddle_curve` requires it) so its start discs vanish in the
-fuse.
+own inner face: 18 s against 3 s measured). The cut O - I is not made by a boolean: no
+curved faces of O and I cross (the tubes of one axis are concentric), so W is bounded by
+O's faces, I's faces turned inside out, and at each open end the annulus between O's and
+I's coplanar end discs (:func:`_between`: O's disc with I's boundary as its hole, every
+edge shared). OCCT's cut intersected every pair of concentric faces whose boxes overlap
+(2-4 s on the samples; the tee's wall 5.3 s -> 2.1 s without it, measured); it remains the
+fallback where the discs do not pair up or the wall is not valid. The branch starts inside
+the main bore (where :func:`~tubecad.junctions.saddle.saddle_curve` requires it) so its
+start discs vanish in the fuse.
 
 Every ring and stringer of the four tubes stays an edge of W where it lies on W, split where
 it crosses an opening: the faces round the opening are the net's faces cut by the saddle.
-The booleans' history (BRepAlgoAPI's Modified / IsDeleted) follows each net edge into W,
+The fuses' history (BRepAlgoAPI's Modified / IsDeleted) follows each net edge into W,
 where its pieces are labelled ``main_ring_03``, ``main_stringer_05``, ``branch_ring_01``
-(``..._inner`` on the inner surfaces). The saddle edges in W are OCCT's intersection curves, not the fitted
-:class:`~tubecad.junctions.edges.SaddleEdge`: each edge of W whose points all lie on the
-exact saddle (within the boolean's own edge tolerance) is labelled with the saddle's name,
-and the largest distance of their points from the exact saddle is measured and reported.
+(``..._inner`` on the inner surfaces). The saddle edges in W are OCCT's intersection curves made again on the fitted faces'
+surfaces (:func:`~tubecad.brep.section_edges.refine_section_edges`: OCCT's are 2e-7 .. 5e-6
+off their faces, which a STEP file cannot carry), not the fitted
+:class:`~tubecad.junctions.edges.SaddleEdge` (which lies on the exact surfaces, within the fit
+tolerance of the faces): each edge of W whose points all lie on the exact saddle (within the
+edge tolerance) is labelled with the saddle's name, and the largest distance of their points
+from the exact saddle is measured and reported.
 """
 
 from __future__ import annotations
@@ -31,27 +38,31 @@ from dataclasses import dataclass, replace
 
 import build123d as bd
 import numpy as np
-from OCP.BRep import BRep_Tool
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepAlgoAPI import BRepAlgoAPI_BooleanOperation, BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
 from OCP.GCPnts import GCPnts_AbscissaPoint
 from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt
-from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
 from tubecad.brep.layout import NetLayout
 from tubecad.brep.properties import is_valid
+from tubecad.brep.section_edges import refine_section_edges
 from tubecad.brep.solids import build_tube_solid
 from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
-from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE
+from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, EDGE_TOLERANCE
 from tubecad.junctions.edges import SaddleEdge, wall_saddles
-from tubecad.occ_compat import ListOfShape
+from tubecad.occ_compat import ListOfShape, as_edge, as_face
 from tubecad.surface.protocol import CurvatureLineSurface
 
 #: points sampled on each edge of W to tell whether it lies on a saddle
 EDGE_SAMPLES = 17
-#: an edge is on a saddle where its points are within this many times its own tolerance of it
+#: an edge is on a saddle where its points are within this many times its own tolerance (or the
+#: fit tolerance) of it
 ON_SADDLE = 10.0
 
 
@@ -187,9 +198,17 @@ def build_branched_wall(
     a_i = solid(main, main_in, rings, stringers, "main", "_inner")
     outside, history_o = _boolean(BRepAlgoAPI_Fuse(), a_o, outers, key)
     bore, history_i = _boolean(BRepAlgoAPI_Fuse(), a_i, inners, key)
-    result, history_w = _boolean(BRepAlgoAPI_Cut(), outside, [bore], key)
+    between = _between(outside, bore)
+    if between is not None:  # no boolean: the faces of both unions and the annular ends
+        cut, history_w = between, _unchanged
+        result, remade, _ = refine_section_edges(cut)
+        if not is_valid(result):
+            between = None
+    if between is None:
+        cut, history_w = _boolean(BRepAlgoAPI_Cut(), outside, [bore], key)
+        result, remade, _ = refine_section_edges(cut)
     solids = bd.Shape.cast(result).solids()
-    if len(solids) != 1 or not is_valid(solids[0].wrapped):
+    if len(solids) != 1 or (between is None and not is_valid(solids[0].wrapped)):
         raise TubecadError(
             f"{key}: OCCT's booleans gave {len(solids)} solids{'' if len(solids) != 1 else ', not valid'} "
             "for the branches on the main wall (do two branches meet, or one end outside the main wall?)",
@@ -203,6 +222,7 @@ def build_branched_wall(
     for name, (net_edges, in_outside) in net.items():
         first = history_o if in_outside else history_i
         for piece in history_w(*first(*net_edges)):
+            piece = remade.Value(piece)
             labels.setdefault(hash(piece), []).append((piece, name))
     named: dict[str, list[bd.Edge]] = {}
     for edge in edges:
@@ -241,6 +261,93 @@ def _boolean(operation: BRepAlgoAPI_BooleanOperation, argument: TopoDS_Shape, to
     return operation.Shape(), pieces
 
 
+def _unchanged(*edges: TopoDS_Shape) -> list[TopoDS_Shape]:
+    return list(edges)
+
+
+def _between(outside: TopoDS_Shape, bore: TopoDS_Shape) -> TopoDS_Shape | None:
+    """W = ``outside`` - ``bore`` made of faces, no boolean: ``outside``'s faces but its end
+    discs, ``bore``'s reversed (they face into the bore) but its end discs, and at each end the
+    annulus between the coplanar outer and bore discs (the outer disc's boundary, the bore
+    disc's as its hole, shared edges). None where the discs do not pair up (a branch through
+    an end disc, a canal's cone-shaped end): then, as where the wall is not valid, OCCT's cut
+    is used."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_Plane
+
+    from tubecad.brep.assembled import closed_solid
+
+    def split(shape: TopoDS_Shape) -> tuple[list[TopoDS_Face], list[TopoDS_Face]]:
+        faces: list[TopoDS_Face] = []
+        discs: list[TopoDS_Face] = []
+        explorer = TopExp_Explorer(shape, TopAbs_FACE)
+        while explorer.More():
+            face = as_face(explorer.Current())
+            (discs if BRepAdaptor_Surface(face).GetType() == GeomAbs_Plane else faces).append(face)
+            explorer.Next()
+        return faces, discs
+
+    if len(bd.Shape.cast(outside).solids()) != 1 or len(bd.Shape.cast(bore).solids()) != 1:
+        return None
+    out_faces, out_discs = split(outside)
+    in_faces, in_discs = split(bore)
+    if len(out_discs) != len(in_discs):
+        return None
+    annuli, left = [], list(in_discs)
+    for disc in out_discs:
+        plane = BRepAdaptor_Surface(disc).Plane()
+        normal, origin = np.array(plane.Axis().Direction().Coord()), np.array(plane.Location().Coord())
+        centre = _centre(disc)
+        coplanar = [
+            d
+            for d in left
+            if abs(abs(np.dot(normal, BRepAdaptor_Surface(d).Plane().Axis().Direction().Coord())) - 1.0) < 1e-12
+            and abs(np.dot(_centre(d) - origin, normal)) < EDGE_TOLERANCE
+        ]
+        if not coplanar:
+            return None
+        inner = min(coplanar, key=lambda d: float(np.linalg.norm(_centre(d) - centre)))
+        left.remove(inner)
+        annuli.append(_annulus(disc, inner))
+    return closed_solid(out_faces + annuli + [as_face(f.Reversed()) for f in in_faces])
+
+
+def _centre(face: TopoDS_Face) -> np.ndarray:
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    box = Bnd_Box()
+    BRepBndLib.Add_s(face, box)
+    return 0.5 * (np.array(box.CornerMin().Coord()) + np.array(box.CornerMax().Coord()))
+
+
+def _annulus(outer: TopoDS_Face, inner: TopoDS_Face) -> TopoDS_Face:
+    """The planar face of ``outer`` (as it is oriented) with ``inner``'s boundary as its hole:
+    the hole's wire runs clockwise about ``outer``'s plane normal (the other way round from
+    ``inner``'s own wire where the two planes' normals agree)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.BRepLib import BRepLib
+    from OCP.BRepTools import BRepTools
+
+    forward = as_face(outer.Oriented(TopAbs_FORWARD))
+    hole = BRepTools.OuterWire_s(as_face(inner.Oriented(TopAbs_FORWARD)))
+    same = np.dot(
+        BRepAdaptor_Surface(forward).Plane().Axis().Direction().Coord(),
+        BRepAdaptor_Surface(inner).Plane().Axis().Direction().Coord(),
+    )
+    if same > 0:
+        hole = hole.Reversed()
+    builder, face = BRep_Builder(), TopoDS_Face()
+    builder.MakeFace(face, BRep_Tool.Surface_s(forward), BRep_Tool.Tolerance_s(forward))
+    for wire in (BRepTools.OuterWire_s(forward), hole):
+        explorer = TopExp_Explorer(wire, TopAbs_EDGE)
+        while explorer.More():
+            BRepLib.BuildPCurveForEdgeOnPlane_s(as_edge(explorer.Current()), face)
+            explorer.Next()
+        builder.Add(face, wire)
+    return as_face(face.Oriented(outer.Orientation()))
+
+
 def _name_saddle_edges(
     edges: list[bd.Edge], saddles: list[SaddleEdge]
 ) -> tuple[dict[str, list[bd.Edge]], dict[str, float], dict[str, float]]:
@@ -257,8 +364,9 @@ def _name_saddle_edges(
         t = np.linspace(curve.FirstParameter(), curve.LastParameter(), EDGE_SAMPLES)
         order = np.argsort(np.abs(np.arange(EDGE_SAMPLES) - EDGE_SAMPLES // 2), kind="stable")  # middle first
         points = [curve.Value(float(t[i])) for i in order]
-        limit = ON_SADDLE * max(BRep_Tool.Tolerance_s(edge.wrapped), 1e-7)
         for saddle in saddles:
+            # the faces' intersection lies within about the fit tolerance of the exact saddle
+            limit = ON_SADDLE * max(BRep_Tool.Tolerance_s(edge.wrapped), EDGE_TOLERANCE, saddle.tolerance)
             far = _distance(projectors[saddle.name], points, limit)
             if far <= limit:
                 edge.label = saddle.name

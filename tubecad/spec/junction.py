@@ -87,11 +87,14 @@ def build_pads(spec: TubeSpec, junction: JunctionWall, walls: list[BranchWall]) 
     return pads
 
 
-def build_junction_stiffeners(spec: TubeSpec, walls: list[BranchWall]) -> list[Any]:
+def build_junction_stiffeners(
+    spec: TubeSpec, walls: list[BranchWall], junction: JunctionWall | None = None
+) -> list[Any]:
     """The main [stiffeners] on the main wall, each stopped at every branch's opening (on the
     surface it stands on: the outer saddle outside, the bore's inside) or at its pad's edge
     (a pad outside), and each branch's own ``stiffeners`` (its stringers from its saddle, its
-    rings ``start`` beyond it); [] without [stiffeners] (:mod:`tubecad.stiffeners.junction`)."""
+    rings ``start`` beyond it); [] without [stiffeners] (:mod:`tubecad.stiffeners.junction`).
+    ``junction``: the built wall, whose saddles start Newton (no new march round a branch)."""
     from tubecad.junctions.saddle import saddle_curve
     from tubecad.stiffeners.junction import Keepout, branch_stiffeners, main_stiffeners
     from tubecad.stiffeners.pad import pad_bounds
@@ -104,9 +107,11 @@ def build_junction_stiffeners(spec: TubeSpec, walls: list[BranchWall]) -> list[A
     outside = chosen.side == "outside"
     main_base = spec.tube.offset(spec.wall.offsets()[1 if outside else 0])
     keepouts, saddles = [], []
-    for branch, wall in zip(spec.branches, walls):
+    for k, (branch, wall) in enumerate(zip(spec.branches, walls)):
         branch_base = wall.surface.offset(wall.offsets()[1 if outside else 0])
-        saddle = saddle_curve(main_base, branch_base)
+        known = saddle_name("saddle_outer" if outside else "saddle_inner", k, len(walls))
+        near = junction.saddles[known].saddle if junction is not None else None
+        saddle = saddle_curve(main_base, branch_base, near=near)
         saddles.append((branch_base, saddle))
         if outside and branch.pad is not None:
             s_range, angles = pad_bounds(main_base, saddle, branch.pad.width)
@@ -292,7 +297,7 @@ def build_and_export_junction(
     walls = branch_walls(spec)
     junction = build_junction(spec, walls)
     pads = build_pads(spec, junction, walls)
-    stiffeners = build_junction_stiffeners(spec, walls)
+    stiffeners = build_junction_stiffeners(spec, walls, junction)
     progress.advance(1, "junction")
     report = tube_report(spec.tube, 64, 501, length_unit=unit)
     report["junction"] = junction_report(spec, junction, walls, pads)

@@ -5,11 +5,12 @@ main [wall], its branches and their pads, and its pressure step and checks
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 from typing import Any
 
 from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
-from tubecad.fem.junction import JunctionTube, PadRegion, junction_shell_mesh
+from tubecad.fem.junction import JunctionTube, PadRegion, junction_mesh_size, junction_shell_mesh
 from tubecad.fem.model import FEMesh
 from tubecad.spec.junction import branch_walls
 from tubecad.spec.parse import TubeSpec
@@ -46,17 +47,20 @@ def junction_tubes(spec: TubeSpec) -> tuple[list[JunctionTube], list[PadRegion]]
 
 
 def junction_model(spec: TubeSpec, settings) -> JunctionModel:
-    """The spec's junction meshed with ``settings`` (checked [mesh] settings)."""
-    if settings.beams and (spec.stiffeners is not None or any(b.stiffeners for b in spec.branches)):
-        raise SpecError(
-            f"{spec.source}: [mesh] beams: the stiffeners of a junction are not made as beams yet; set "
-            "[mesh] beams = false to mesh the junction's shell without them",
-            key="mesh.beams",
-        )
+    """The spec's junction meshed with ``settings`` (checked [mesh] settings), its stiffeners as
+    beams unless ``[mesh] beams = false`` (:mod:`tubecad.fem.junction_beams`)."""
+    from tubecad.fem.junction_beams import add_junction_beams
+
     try:
         tubes, pads = junction_tubes(spec)
         if len(pads) > 1:
             raise ParameterError("a shell model with more than one pad is not made yet", key="branches.pad")
+        lines, chosen = stiffener_lines(spec, tubes) if settings.beams else ([], None)
+        lines, moved = snapped_to_pads(lines, tubes[0], pads, 0.5 * junction_mesh_size(settings, tubes))
+        for k in range(len(tubes)):
+            rings = tuple(line.value for line in lines if line.tube == k and line.kind == "ring")
+            stringers = tuple(line.value for line in lines if line.tube == k and line.kind == "stringer")
+            tubes[k] = replace(tubes[k], stiffened=(rings, stringers))
         mesh = junction_shell_mesh(
             tubes[0],
             tubes[1:],
@@ -65,6 +69,10 @@ def junction_model(spec: TubeSpec, settings) -> JunctionModel:
             tolerance=spec.fit.tolerance,
             length_unit=spec.length_unit,
         )
+        if lines and chosen is not None:
+            lengths = add_junction_beams(mesh, tubes, pads, lines, chosen.profile, chosen.side, settings.beam_type)
+            mesh.info["beams"] = lengths
+            mesh.info["beams_moved_to_pad_edge"] = moved
     except (ParameterError, RegularityError) as exc:
         key = exc.key or "branches"
         where = "" if str(exc).startswith("[") else "[[branches]] "
@@ -72,6 +80,55 @@ def junction_model(spec: TubeSpec, settings) -> JunctionModel:
     except TubecadError as exc:
         raise SpecError(f"{spec.source}: [[branches]] {exc}", key=exc.key or "branches") from None
     return JunctionModel(mesh, tubes, pads)
+
+
+def stiffener_lines(spec: TubeSpec, tubes: list[JunctionTube]) -> tuple[list[Any], Any]:
+    """The junction's stiffeners as lines of its shell model's tubes (the main's [stiffeners],
+    each branch's ``stiffeners``, named as their solids: ``ring_03``, ``branch_stringer_02``)
+    and the [stiffeners] selection (profile, side); ([], None) without [stiffeners]."""
+    from tubecad.fem.junction_beams import StiffenerLine
+
+    if spec.stiffeners is None:
+        return [], None
+    layout = tubes[0].layout
+    chosen = spec.stiffeners.select(layout, spec.source, spec.length_unit)
+    lines = [StiffenerLine(f"ring_{i:02d}", 0, "ring", float(layout.s_rings[i])) for i in chosen.rings]
+    lines += [
+        StiffenerLine(f"stringer_{j:02d}", 0, "stringer", float(layout.stringers_deg[j])) for j in chosen.stringers
+    ]
+    for k, branch in enumerate(spec.branches):
+        if branch.stiffeners is None:
+            continue
+        net, prefix = tubes[k + 1].layout, "branch" if len(spec.branches) == 1 else f"branch{k}"
+        for i in branch.stiffeners.indices("rings", len(net.s_rings)):
+            lines.append(StiffenerLine(f"{prefix}_ring_{i:02d}", k + 1, "ring", float(net.s_rings[i])))
+        for j in branch.stiffeners.indices("stringers", len(net.stringers_deg)):
+            lines.append(StiffenerLine(f"{prefix}_stringer_{j:02d}", k + 1, "stringer", float(net.stringers_deg[j])))
+    return lines, chosen
+
+
+def snapped_to_pads(
+    lines: list[Any], main: JunctionTube, pads: list[PadRegion], reach: float
+) -> tuple[list[Any], dict[str, float]]:
+    """The main's stiffener lines within ``reach`` (half an element) of a pad's bounding ring
+    or stringer moved onto it, and how far each moved (model units): the shell model cannot
+    hold two lines closer than an element without slivers between them, and a stiffener that
+    close to the pad's edge stands on it for the model's purposes."""
+    out, moved = [], {}
+    for line in lines:
+        value = line.value
+        if line.tube == 0:
+            for pad in pads:
+                if line.kind == "ring":
+                    near = min(pad.s_range, key=lambda b: abs(b - value))
+                    gap = abs(near - value)
+                else:
+                    near = min(pad.angles_deg, key=lambda b: abs((b - value + 180.0) % 360.0 - 180.0))
+                    gap = math.radians(abs((near - value + 180.0) % 360.0 - 180.0)) * main.radius
+                if 0.0 < gap < reach:
+                    value, moved[line.name] = float(near), gap
+        out.append(replace(line, value=value))
+    return out, moved
 
 
 def junction_ends(spec: TubeSpec) -> str:

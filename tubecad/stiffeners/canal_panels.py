@@ -72,12 +72,17 @@ class CanalWallEdges:
         self.outer_surface, self.inner_surface = cast("list[CanalSectionSurface]", build.surfaces)
         self.thickness = float(self.outer_surface.offset - self.inner_surface.offset)
         self.n_s = len(build.layout.stringers_deg)
+        # the face columns: the stringers and any C0 knot of the circle between them
+        # (:func:`tubecad.brep.faces.face_columns`); stringer j is column self.column_of[j]
+        columns_deg = self.outer.columns_deg or list(build.layout.stringers_deg)
+        self.n_c = len(columns_deg)
+        self.column_of = [columns_deg.index(float(a)) for a in build.layout.stringers_deg]
         self.last = len(build.layout.s_rings) - 1
         canal = self.outer_surface.tube
         # round a closed axis the closing ring (the first and the last, the same edges) is cut at
         # the stringers' start angles chi0 and at their end angles phi(chi0), the Moebius map's
         self._closing: dict[int, list[float]] = {}
-        if canal.axis.closed and len(self.outer.rings[0]) > self.n_s:
+        if canal.axis.closed and len(self.outer.rings[0]) > self.n_c:
             starts = np.radians(np.asarray(build.layout.stringers_deg, dtype=float))
             self._closing = {0: list(starts), self.last: list(np.asarray(canal.closing_angle(starts), dtype=float))}
         self._radial: dict[tuple[int, int], TopoDS_Edge] = {}
@@ -94,7 +99,7 @@ class CanalWallEdges:
             wall = [f for patches in (outer, inner) for row in patches.faces[ia:ib] for f in row]
             solid = closed_solid(wall + [TopoDS_Face.Reversed(self.annulus(ia)), self.annulus(ib)])
             return bd.Solid(solid), props.faces_area([f for row in outer.faces[ia:ib] for f in row])
-        columns = [j % n_s for j in range(ja, jb)]
+        columns = [c % self.n_c for c in range(self.column(ja), self.column(jb))]
         faces = [patches.faces[row][j] for patches in (outer, inner) for row in range(ia, ib) for j in columns]
         for row in range(ia, ib):
             faces += [self.seam_face(jb % n_s, row), TopoDS_Face.Reversed(self.seam_face(ja, row))]
@@ -118,13 +123,17 @@ class CanalWallEdges:
         (r1(s0), not r1(s1), which the holonomy turns)."""
         return float(self.build.layout.s_rings[0 if k in self._closing else k])
 
+    def column(self, j: int) -> int:
+        """The face column where stringer j starts (j past the last stringer: a turn later)."""
+        return self.column_of[j % self.n_s] + (j // self.n_s) * self.n_c
+
     def arc_index(self, k: int, j: int) -> int:
         """The index in ``rings[k]`` of the ring arc that starts at stringer j: j itself, but on
         the closing ring of a closed axis (cut at both the start and the end angles, in
         angular order) the arc starting at chi0_j on the first ring and at phi(chi0_j) on the
         last."""
         if k not in self._closing:
-            return j
+            return self.column(j)
         angle = self._closing[k][j] % (2.0 * math.pi)
         starts = [BRep_Tool.Range_s(e)[0] % (2.0 * math.pi) for e in self.outer.rings[k]]
         gaps = [abs(math.remainder(a - angle, 2.0 * math.pi)) for a in starts]
@@ -141,8 +150,8 @@ class CanalWallEdges:
         circle's seam at u = 2 pi (its u = theta + 2 pi on the cap)."""
         ring = patches.rings[k]
         if k not in self._closing:
-            columns = range(ja, jb)
-            return [ring[j % self.n_s] for j in columns], [2.0 * math.pi if j >= self.n_s else 0.0 for j in columns]
+            columns = range(self.column(ja), self.column(jb))
+            return [ring[c % self.n_c] for c in columns], [2.0 * math.pi if c >= self.n_c else 0.0 for c in columns]
         first, stop = self.arc_index(k, ja % self.n_s), self.arc_index(k, jb % self.n_s)
         count = (stop - first) % len(ring) or len(ring)
         indices = [first + i for i in range(count)]

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import build123d as bd
 import numpy as np
 
+from tubecad.brep.section_edges import refine_section_edges
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE
 from tubecad.junctions.saddle import SaddleCurve
@@ -200,7 +201,8 @@ def _ring_cut(
     outline = [tuple(p - half * t) for p in [c, *rim]]
     base_face = bd.Face(bd.Wire.make_polygon([bd.Vector(*p) for p in outline], close=True))
     wedge = bd.Solid.extrude(base_face, bd.Vector(*(2 * half * t)))
-    solids = ring.solid.cut(wedge).solids()
+    cut, _, _ = refine_section_edges(ring.solid.cut(wedge).wrapped)
+    solids = bd.Shape.cast(cut).solids()
     if len(solids) != 1 or not solids[0].is_valid:
         raise ParameterError(
             f"stiffeners.rings: {ring.name} at s = {s:.6g} cut at the opening gave {len(solids)} pieces",

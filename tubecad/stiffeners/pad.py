@@ -20,6 +20,7 @@ import numpy as np
 
 from tubecad.brep.layout import NetLayout
 from tubecad.brep.properties import is_valid
+from tubecad.brep.section_edges import refine_section_edges
 from tubecad.brep.solids import build_tube_solid, build_wall_solid
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE
@@ -69,8 +70,11 @@ def reinforcement_pad(
     layout = NetLayout.explicit(piece, [s_a, s_b], [u_a % 360.0])
     wall = build_wall_solid(piece, thickness, "outside", layout, tolerance)
     plate = panel(wall, piece.axis, radius, radius + thickness, u_a, u_b, "pad").solid
-    hole = build_tube_solid(branch_outer, NetLayout.equal(branch_outer, 2, 1), tolerance).shape
-    solids = plate.cut(hole).solids()
+    # two stringers: each face of the hole a C1 half turn (one stringer leaves a C0 knot inside
+    # its face, which OCCT's pre-boolean check reports on the pad's hole)
+    hole = build_tube_solid(branch_outer, NetLayout.equal(branch_outer, 2, 2), tolerance).shape
+    cut, _, _ = refine_section_edges(plate.cut(hole).wrapped)
+    solids = bd.Shape.cast(cut).solids()
     if len(solids) != 1 or not is_valid(solids[0].wrapped):
         raise ParameterError(f"{key}: OCCT's cut of the branch from the pad gave {len(solids)} solids", key=key)
     return Pad(solids[0], outer, (s_a, s_b), (u_a, u_b), thickness, width)

@@ -251,3 +251,87 @@ def test_a_junction_mesh_refuses_what_it_cannot_make(tmp_path):
         assert result.exit_code == 2, result.output
         assert key_text in result.output and "Traceback" not in result.output
         assert not (tmp_path / "m.inp").exists()
+
+
+STIFFENED = """
+[stiffeners]
+rings = [1, 2]
+stringers = "all"
+profile = "flat"
+height = 10.0
+thickness = 3.0
+"""
+
+
+@pytest.fixture(scope="module")
+def stiffened(tmp_path_factory):
+    """The tee without a pad, its main's rings at s = 150 (clear of the opening) and 300 (across
+    its middle) and all its stringers stiffened, and the branch's ring 2 and stringers 0, 2, as
+    beams on the shell model."""
+    from tubecad.spec.mesh import mesh_from_spec
+    from tubecad.spec.parse import load_spec
+
+    folder = tmp_path_factory.mktemp("stiffened")
+    spec = folder / "tee.toml"
+    text = TEE.replace("layout = { rings = 4", "stiffeners = { rings = [2], stringers = [0, 2] }\nlayout = { rings = 4")
+    spec.write_text(text + STIFFENED)
+    return mesh_from_spec(load_spec(spec))
+
+
+def _beam_nodes(mesh, name: str) -> np.ndarray:
+    """(elements, nodes per beam, 3) of the stiffener ``name``'s beams (its web block)."""
+    return mesh.nodes[mesh.block(f"{name}_web").connectivity]
+
+
+def test_the_stiffeners_are_beams_on_their_lines_of_the_shells(stiffened):
+    mesh = stiffened
+    webs = [b for b in mesh.blocks if not b.shell]
+    assert {b.name for b in webs} == {
+        *(f"ring_0{i}_web" for i in (1, 2)),
+        *(f"stringer_0{j}_web" for j in range(8)),
+        "branch_ring_02_web",
+        "branch_stringer_00_web",
+        "branch_stringer_02_web",
+    }
+    assert all(b.element == "B32" for b in webs)  # with S8R shells
+    shell_nodes = np.unique(np.concatenate([b.connectivity.ravel() for b in mesh.shell_blocks]))
+    for block in webs:
+        assert np.isin(block.connectivity, shell_nodes).all()  # on the shells' own nodes
+        p = mesh.nodes[block.connectivity]
+        if block.name.startswith("branch_"):
+            assert np.abs(branch_gap(p)).max() < 1e-6 * r
+        else:
+            assert np.abs(main_gap(p)).max() < 1e-6 * R
+        if block.name.startswith("ring_0"):  # x = 150 or 300 (the main's axis runs along x)
+            assert np.ptp(p[..., 0]) < 1e-6 * R
+        if block.name == "branch_ring_02_web":
+            assert np.ptp(p[..., 2]) < 1e-6 * R
+
+
+def test_the_main_ring_across_the_opening_stops_on_the_saddle(stiffened):
+    """Angles covered round the main axis: the whole turn at x = 150; at x = 300 the turn less
+    the opening, 2 asin(r / R) (the branch cylinder's width there is 2 r)."""
+    for name, expected in (("ring_01", 2 * np.pi), ("ring_02", 2 * np.pi - 2 * np.arcsin(r / R))):
+        p = _beam_nodes(stiffened, name)
+        angle = np.arctan2(p[..., 2], p[..., 1])
+        turned = np.abs(np.angle(np.exp(1j * (angle[:, -1] - angle[:, 0])))).sum()
+        assert turned == pytest.approx(expected, abs=1e-7), name  # measured ~1e-9
+
+
+def test_the_stringers_stop_on_the_saddle(stiffened):
+    """The main's stringers: 600 long, less 2 r for the one the opening cuts (straight lines:
+    their beams' lengths exactly); the branch's run from its end (z = 250) down to the main
+    cylinder, where their last node lies on it."""
+    lengths = {}
+    for j in range(8):
+        p = _beam_nodes(stiffened, f"stringer_0{j}")
+        lengths[j] = float(np.linalg.norm(p[:, -1] - p[:, 0], axis=1).sum())
+    cut = [j for j, length in lengths.items() if length < 599.0]
+    assert len(cut) == 1 and lengths[cut[0]] == pytest.approx(600.0 - 2 * r, abs=1e-6)
+    assert all(lengths[j] == pytest.approx(600.0, abs=1e-9) for j in lengths if j not in cut)
+    for j in (0, 2):
+        p = _beam_nodes(stiffened, f"branch_stringer_0{j}").reshape(-1, 3)
+        low = p[np.argmin(p[:, 2])]
+        assert abs(main_gap(low)) < 1e-6 * R  # the beam reaches the saddle
+        assert np.ptp(p[:, 0]) < 1e-6 * r and np.ptp(p[:, 1]) < 1e-6 * r  # along z
+        assert p[:, 2].max() == pytest.approx(250.0, abs=1e-9)
