@@ -119,3 +119,34 @@ def test_a_ring_frame_far_from_the_origin_is_a_valid_solid(tmp_path):
     built = build_spec(parse_spec(spec, base=tmp_path))
     solids = bd.Shape.cast(built.shape.wrapped if hasattr(built.shape, "wrapped") else built.shape).solids()
     assert len(solids) == 2 and all(BRepCheck_Analyzer(s.wrapped).IsValid() for s in solids)
+
+
+#: case 13 of the run with the file checks (issue 24, this stop's 160 cases): a helix canal
+#: wall fitted to 7.7e-6; its ring circles lie up to ~the fit tolerance from the fitted faces,
+#: which the STEP file does not carry (the reader gives 1e-7)
+COARSE_CANAL = {
+    "axis": {"curve": "helix", "k": -0.0005695901138823759, "beta_deg": -18.72905333378926,
+             "s": [0.0, 2885.354474665675]},
+    "tube": {"radius": "143.94783385865816 * (1 + 0.10002080918590711 * sin(2 * pi * s / 4550.408715790109"
+                       " + 5.963011042274367))"},
+    "layout": {"rings": 5, "stringers": 11},
+    "wall": {"thickness": 3.5298741152742754, "side": "inside"},
+    "fit": {"tolerance": 7.709762775632542e-06},
+}  # fmt: skip
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="found, not fixed: a canal wall's rings stay exact circles (its normal-cone caps and "
+    "panels are made through them), which a coarse fit leaves off its faces by more than a "
+    "STEP reader's 1e-7",
+)
+def test_a_coarse_canal_wall_reads_back_clean_by_the_pre_boolean_check(tmp_path):
+    from tubecad.brep.properties import analyzer_findings
+
+    out = tmp_path / "canal.step"
+    export_build(build_spec(parse_spec(COARSE_CANAL, base=tmp_path)), [out])
+    found = {}
+    for solid in bd.Shape.cast(read_step(out)).solids():
+        found.update(analyzer_findings(solid.wrapped, ("CurveOnSurfaceMode",)))
+    assert found == {}

@@ -55,7 +55,9 @@ TOLERANCE = EDGE_TOLERANCE
 #: fitted faces (the default fit tolerance 1e-8 leaves 1e-10 .. 1e-9), else the faces' own
 #: isoline: a STEP or IGES file keeps no edge tolerance, its readers (FreeCAD) give each
 #: edge 1e-7, and a circle farther from its faces is then found off them by the pre-boolean
-#: check (64 edges of the paper wall at a fit tolerance of 1e-6, measured)
+#: check (64 edges of the paper wall at a fit tolerance of 1e-6, measured). A canal surface's
+#: rings stay circles: its normal-cone caps and panels are made through them (at a coarse fit
+#: its STEP file read back can show the same finding: not solved yet)
 CIRCLE_GAP = 0.1 * EDGE_TOLERANCE
 
 
@@ -116,14 +118,15 @@ def patch_faces(
         to_u = [ring_pcurve(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
     cuts: Sequence[float] | np.ndarray
     for i, s in enumerate(s_rings[:own]):
+        circle: Geom_Curve | None
         if canal:  # the stringers cross each circle at angles that change with s (the Moebius map)
+            # (kept circles at any fit: the normal-cone caps and panels are made through them)
             circle, cuts, pcurves, tolerance = canal_ring(cast(CanalSectionSurface, tube_surface), s, angles)
         else:
             circle, gap = ring_circle(tube_surface, s)
-            if gap <= CIRCLE_GAP:
-                tolerance = max(TOLERANCE, 2.0 * gap)
-                cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
-            else:  # a coarse fit: the ring is the faces' own isoline s = const (see CIRCLE_GAP)
+            tolerance = max(TOLERANCE, 2.0 * gap)
+            cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
+            if gap > CIRCLE_GAP:  # a coarse fit: the ring is the faces' own isoline s = const (see CIRCLE_GAP)
                 circle, tolerance = None, TOLERANCE
                 cuts, pcurves = u_cuts, [_line(0.0, s, 1.0, 0.0)] * n_stringers
         # a vertex is the surface's point; the exact circle passes within the ring's gap of it,
@@ -485,9 +488,9 @@ def ring_circle(tube_surface: TubeSurface, s: float, samples: int = 16) -> tuple
     its largest measured distance from the surface's isoline s = const."""
     tube = tube_surface.tube
     a = math.radians(tube_surface.origin_deg)
-    _, r1, r2 = tube.axis.rotation_minimising_frame(np.array([s]))
-    centre, t = tube.axis.position(np.array([s]))[0], tube.axis.rotation_minimising_frame(np.array([s]))[0][0]
-    x_dir = math.cos(a) * r1[0] + math.sin(a) * r2[0]
+    (t,), (r1,), (r2,) = tube.axis.rotation_minimising_frame(np.array([s]))
+    centre = tube.axis.position(np.array([s]))[0]
+    x_dir = math.cos(a) * r1 + math.sin(a) * r2
     circle = Geom_Circle(
         gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))),
         tube.radius_law.constant_value,  # a tube's radius
