@@ -16,7 +16,8 @@ directions; an element takes the normals of its own tube at its nodes (``element
 a saddle node carries the main's normal in the main's elements and the branch's in the
 branch's; CalculiX joins the two by a knot, as at any shell intersection).
 
-Sets: ``saddle`` (the nodes both tubes share), ``pad`` (the nodes of the pad's elements),
+Sets: ``saddle`` (the nodes both tubes share), ``pad`` (the nodes of the pad's elements;
+``pad_0``, ``pad_1``... with several branches, one per pad),
 ``main_start``, ``main_end``, ``branch_end`` (``branch_1_end``...), element blocks ``main``,
 ``branch`` (``branch_1``...), ``pad`` (a pad's elements: the main's and the pad's
 thickness, offset outward). A pad is bounded by two rings and two stringers of the main,
@@ -364,11 +365,14 @@ def _model(
         owner[used[owner[used] < 0]] = k
         name = tube.name
         if k == 0 and pads:
-            inside = np.zeros(len(conn), dtype=bool)
+            left = np.ones(len(conn), dtype=bool)  # the main's elements in no pad
             centre_u, centre_s = _centres(c, conn[:, :corners])
+            parts = []
             for pad in pads:
-                inside |= pad.holds(centre_u, centre_s)
-            for part, rows in ((name, ~inside), (pads[0].name, inside)):
+                inside = left & pad.holds(centre_u, centre_s)
+                parts.append((pad.name, inside))
+                left &= ~inside
+            for part, rows in [(name, left), *parts]:
                 if rows.any():
                     _add(grouped, normals_of, part, corners, conn[rows], normal[rows])
             continue
@@ -412,7 +416,7 @@ def _assemble(tubes, pads, nodes, coordinates, owner, grouped, normals_of, setti
     blocks, sections, element_normals = [], [], {}
     first = 0
     thickness = {t.name: (t.thickness, 0.0) for t in tubes}
-    for pad in pads[:1]:
+    for pad in pads:
         total = main.thickness + pad.thickness  # the section's middle pad.thickness / 2 outside the nodes
         thickness[pad.name] = (total, -0.5 * pad.thickness / total)
     for (name, shape), parts in sorted(grouped.items(), key=lambda item: _block_order(item[0], tubes)):
@@ -508,10 +512,10 @@ def _node_sets(mesh: FEMesh, tubes: list[JunctionTube], pads: Sequence[PadRegion
     main_nodes = users[0]
     shared = set().union(*(main_nodes & other for other in users[1:]))
     sets["saddle"] = np.array(sorted(shared), dtype=np.int64)
-    if pads:
-        sets["pad"] = np.unique(
-            np.concatenate([b.connectivity.ravel() for b in mesh.shell_blocks if b.name.startswith(pads[0].name)])
-        )
+    for pad in pads:  # pad (one branch), pad_0, pad_1 ... (several): each pad's elements' nodes
+        blocks = [b.connectivity.ravel() for b in mesh.shell_blocks if b.name.removesuffix("_tri") == pad.name]
+        if blocks:
+            sets[pad.name] = np.unique(np.concatenate(blocks))
     for k, tube in enumerate(tubes):
         own = np.array(sorted(users[k]), dtype=np.int64)
         s0, s1 = tube.surface.span

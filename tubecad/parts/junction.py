@@ -175,8 +175,8 @@ class CurvatureJunction(bd.BasePartObject):
     def shell_model(self, size: float | None = None, element: str = "S8R") -> Any:
         """The junction's shell model for a finite-element analysis
         (:func:`tubecad.fem.junction.junction_shell_mesh`: the walls' mid-surfaces joined on
-        their saddle, meshed by gmsh, node sets ``saddle``, ``pad``, ``main_start``,
-        ``main_end``, ``branch_end``), elements of about ``size`` (default 2 pi r / 32 of
+        their saddle, meshed by gmsh, node sets ``saddle``, ``pad`` (``pad_0``... with several
+        branches), ``main_start``, ``main_end``, ``branch_end``), elements of about ``size`` (default 2 pi r / 32 of
         the smallest tube), in the junction's own coordinates (as built, before ``rotation``,
         ``align`` and any placement). Solve it with :func:`tubecad.fem.analysis.solve` and
         :func:`tubecad.fem.junction_analysis.junction_step` (``tubes``: :attr:`shell_tubes`)."""
@@ -184,8 +184,6 @@ class CurvatureJunction(bd.BasePartObject):
         from tubecad.fem.settings import MeshSettings
 
         tubes, pads = self._tubecad.tubes, self._tubecad.pads
-        if len(pads) > 1:
-            raise ValueError("a shell model with more than one pad is not made yet")
         settings = MeshSettings(element=element, size_along=size)
         return junction_shell_mesh(tubes[0], tubes[1:], pads=pads, settings=settings, tolerance=self._tolerance)
 

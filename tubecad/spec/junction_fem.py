@@ -53,8 +53,6 @@ def junction_model(spec: TubeSpec, settings) -> JunctionModel:
 
     try:
         tubes, pads = junction_tubes(spec)
-        if len(pads) > 1:
-            raise ParameterError("a shell model with more than one pad is not made yet", key="branches.pad")
         lines, chosen = stiffener_lines(spec, tubes) if settings.beams else ([], None)
         lines, moved = snapped_to_pads(lines, tubes[0], pads, 0.5 * junction_mesh_size(settings, tubes))
         for k in range(len(tubes)):

@@ -335,3 +335,28 @@ def test_the_stringers_stop_on_the_saddle(stiffened):
         assert abs(main_gap(low)) < 1e-6 * R  # the beam reaches the saddle
         assert np.ptp(p[:, 0]) < 1e-6 * r and np.ptp(p[:, 1]) < 1e-6 * r  # along z
         assert p[:, 2].max() == pytest.approx(250.0, abs=1e-9)
+
+
+def test_two_branches_with_their_pads_make_one_model_with_a_set_and_a_section_each(tmp_path):
+    """Two branches on the tee's main (at s = 150 and 450, each with a pad): the model holds both
+    pads, each an element block with the main's and its own pad's thickness and a node set of
+    its own (pad_0, pad_1), every pad element within its pad's bounds on the main cylinder."""
+    from tubecad.spec.mesh import mesh_from_spec
+    from tubecad.spec.parse import load_spec
+
+    text = TEE.replace("layout = { rings = 4", PAD + "layout = { rings = 4").replace(f"at = {AT}", "at = 150.0")
+    second = text[text.index("[[branches]]") : text.index("[mesh]")].replace("at = 150.0", "at = 450.0")
+    second = second.replace("thickness = 3.0, width = 20.0", "thickness = 5.0, width = 15.0")
+    spec = tmp_path / "two.toml"
+    spec.write_text(text.replace("[mesh]", second + "[mesh]"))
+    mesh = mesh_from_spec(load_spec(spec))
+    assert {"pad_0", "pad_1", "branch_0_end", "branch_1_end"} <= set(mesh.node_sets)
+    sections = {sec.block: sec for sec in mesh.shell_sections}
+    for name, pad_t, width, centre in (("pad_0", 3.0, 20.0, 150.0), ("pad_1", 5.0, 15.0, 450.0)):
+        assert sections[name].thickness == pytest.approx(T + pad_t, rel=1e-12)
+        p = mesh.nodes[mesh.node_sets[name]]
+        assert np.abs(main_gap(p)).max() < 1e-6 * R  # on the main cylinder
+        # round its own branch: the outer saddle spans x = at +- (r + t / 2), the pad reaches
+        # ``width`` beyond it along the main axis
+        assert np.abs(p[:, 0] - centre).max() == pytest.approx(r + t / 2 + width, abs=1e-6)
+    assert not set(mesh.node_sets["pad_0"]) & set(mesh.node_sets["pad_1"])
