@@ -45,6 +45,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SOLID, TopAbs_VERTEX
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
 
+from tubecad.fitting.nurbs import SurfaceArrays
 from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge, as_face, as_vertex
 
 #: BOPAlgo_ArgumentAnalyzer's checks, all switched on (FreeCAD's "Check geometry" with
@@ -79,7 +80,9 @@ def topods(shape: object) -> TopoDS_Shape:
     return getattr(shape, "wrapped", shape)
 
 
-def _explore(shape: TopoDS_Shape, kind) -> list[TopoDS_Shape]:
+def sub_shapes(shape: TopoDS_Shape, kind) -> list[TopoDS_Shape]:
+    """The sub-shapes of ``kind`` (TopAbs_FACE, ...) of ``shape``, in TopExp_Explorer's order
+    (a shared one once per use)."""
     explorer, out = TopExp_Explorer(shape, kind), []
     while explorer.More():
         out.append(explorer.Current())
@@ -126,7 +129,7 @@ def analyzer_findings(shape: object, modes: tuple[str, ...] = ANALYZER_MODES, pr
     """
     whole = topods(shape)
     findings: dict[str, int] = {}
-    for part in _explore(whole, TopAbs_SOLID) or [whole]:
+    for part in sub_shapes(whole, TopAbs_SOLID) or [whole]:
         plan = plan_self_intersection(part) if prefilter and SELF_INTER in modes else None
         if plan is None or len(plan.groups) == 1:
             found = _whole_findings(part, modes)
@@ -186,9 +189,9 @@ class _Face:
         self.children: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
         self.spline: tuple | None = None  # (Bezier patches, their u and v ranges)
         self.radius = BRep_Tool.Tolerance_s(face)
-        for edge in _explore(face, TopAbs_EDGE):
+        for edge in sub_shapes(face, TopAbs_EDGE):
             self.radius = max(self.radius, BRep_Tool.Tolerance_s(as_edge(edge)))
-        for vertex in _explore(face, TopAbs_VERTEX):
+        for vertex in sub_shapes(face, TopAbs_VERTEX):
             self.radius = max(self.radius, BRep_Tool.Tolerance_s(as_vertex(vertex)))
         # a vertex lies within its tolerance of its edges' ends, which lie within theirs of the surface
         self.radius *= 3.0
@@ -225,7 +228,7 @@ class _Face:
 def _uv_box(face) -> tuple[float, float, float, float] | None:
     """A box holding the parameters of the face's pcurves (None: some pcurve cannot be bounded)."""
     points: list[tuple[float, float]] = []
-    edges = _explore(face, TopAbs_EDGE)
+    edges = sub_shapes(face, TopAbs_EDGE)
     if not edges:
         return None
     for shape in edges:
@@ -303,19 +306,12 @@ def _first_cells(owner: _Face, face) -> _Cells | None:
         surface.IncreaseUMultiplicity(2, surface.NbUKnots() - 1, p)
     if surface.NbVKnots() > 2:
         surface.IncreaseVMultiplicity(2, surface.NbVKnots() - 1, q)
-    nu, nv = surface.NbUPoles(), surface.NbVPoles()
-    rational = surface.IsURational() or surface.IsVRational()
-    ctrl = np.ones((nu, nv, 4))
-    for i in range(nu):
-        for j in range(nv):
-            ctrl[i, j, :3] = surface.Pole(i + 1, j + 1).Coord()
-            if rational:
-                ctrl[i, j, 3] = surface.Weight(i + 1, j + 1)
-    if ctrl[..., 3].min() <= 0:
+    arrays = SurfaceArrays.from_occ(surface)  # poles, weights, flat knots (it is not periodic now)
+    nu, nv = arrays.weights.shape
+    if arrays.weights.min() <= 0:
         return None
-    ctrl[..., :3] *= ctrl[..., 3:]
-    uk = np.array([surface.UKnot(i) for i in range(1, surface.NbUKnots() + 1)])
-    vk = np.array([surface.VKnot(i) for i in range(1, surface.NbVKnots() + 1)])
+    ctrl = np.concatenate([arrays.poles * arrays.weights[..., None], arrays.weights[..., None]], axis=-1)
+    uk, vk = np.unique(arrays.u_knots), np.unique(arrays.v_knots)
     if (nu - 1) != p * (len(uk) - 1) or (nv - 1) != q * (len(vk) - 1):
         return None  # not in Bezier form (an unexpected knot structure): nothing proven
     u0, u1, v0, v1 = surface.Bounds()

@@ -19,6 +19,7 @@ from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
 # OCCT's pre-boolean check (BOPAlgo_ArgumentAnalyzer) lives in tubecad.brep.analyzer; its names stay here
 from tubecad.brep.analyzer import ANALYZER_MODES as ANALYZER_MODES
 from tubecad.brep.analyzer import analyzer_findings as analyzer_findings
+from tubecad.brep.analyzer import sub_shapes as sub_shapes
 from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge
 
 EPS = 1e-10

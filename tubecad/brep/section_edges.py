@@ -38,9 +38,10 @@ from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
-from scipy.interpolate import BSpline, NdBSpline, make_interp_spline
+from scipy.interpolate import BSpline, make_interp_spline
 
 from tubecad.core.tolerance import EDGE_TOLERANCE
+from tubecad.fitting.nurbs import SurfaceArrays
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, reals
 from tubecad.occ_compat import Array1OfPnt, Array1OfPnt2d, IndexedDataMapOfShapeListOfShape, as_edge, as_face
 
@@ -110,55 +111,25 @@ def refine_section_edges(
 
 class _Surface:
     """A face's surface evaluated at many (u, v) at once with its first derivatives: a
-    B-spline one as the tensor product of its homogeneous poles (scipy's NdBSpline, de Boor's
-    algorithm; The NURBS Book, eq. 4.8 for the rational quotient S = A / w, S_u = (A_u - w_u S)
-    / w), any other through OCCT point by point."""
+    B-spline one from its own poles, weights and knots
+    (:meth:`tubecad.fitting.nurbs.SurfaceArrays.points_d1`), any other through OCCT point by
+    point."""
 
     def __init__(self, face) -> None:
         self.occt = BRep_Tool.Surface_s(face)
-        self.spline = _tensor_product(self.occt)
+        bspline = self.occt.DynamicType().Name() == "Geom_BSplineSurface"
+        self.spline = SurfaceArrays.from_occ(self.occt) if bspline else None
 
     def d1(self, uv: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(S, S_u, S_v) at the rows of ``uv``, each (rows, 3)."""
         if self.spline is not None:
-            a, a_u, a_v = (self.spline(uv, nu=order) for order in ((0, 0), (1, 0), (0, 1)))
-            w, w_u, w_v = a[:, 3:], a_u[:, 3:], a_v[:, 3:]
-            point = a[:, :3] / w
-            return point, (a_u[:, :3] - w_u * point) / w, (a_v[:, :3] - w_v * point) / w
+            return self.spline.points_d1(uv)
         out = np.empty((3, len(uv), 3))
         p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
         for m, (u, v) in enumerate(uv.tolist()):
             self.occt.D1(u, v, p, du, dv)
             out[0, m], out[1, m], out[2, m] = p.Coord(), du.Coord(), dv.Coord()
         return out[0], out[1], out[2]
-
-
-def _tensor_product(surface) -> NdBSpline | None:
-    """The B-spline surface's homogeneous form (x w, y w, z w, w) as scipy's NdBSpline over its
-    full knot vectors (a periodic one unrolled to its non-periodic form: the same surface), or
-    None for any other surface."""
-    if surface.DynamicType().Name() != "Geom_BSplineSurface":
-        return None
-    if surface.IsUPeriodic() or surface.IsVPeriodic():
-        surface = surface.Copy()
-        if surface.IsUPeriodic():
-            surface.SetUNotPeriodic()
-        if surface.IsVPeriodic():
-            surface.SetVNotPeriodic()
-    nu, nv = surface.NbUPoles(), surface.NbVPoles()
-    c = np.ones((nu, nv, 4))
-    for i in range(nu):
-        for j in range(nv):
-            c[i, j, :3] = surface.Pole(i + 1, j + 1).Coord()
-            c[i, j, 3] = surface.Weight(i + 1, j + 1)
-    c[..., :3] *= c[..., 3:]
-    knots = []
-    for count, knot, multiplicity in (
-        (surface.NbUKnots(), surface.UKnot, surface.UMultiplicity),
-        (surface.NbVKnots(), surface.VKnot, surface.VMultiplicity),
-    ):
-        knots.append(np.repeat([knot(i) for i in range(1, count + 1)], [multiplicity(i) for i in range(1, count + 1)]))
-    return NdBSpline(tuple(knots), c, (surface.UDegree(), surface.VDegree()))
 
 
 class _Pair:

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 from OCP.Geom import Geom_BSplineSurface
-from scipy.interpolate import BSpline
+from scipy.interpolate import BSpline, NdBSpline
 
 FloatArray = NDArray[np.float64]
 
@@ -60,6 +60,16 @@ class SurfaceArrays:
             [surface.VMultiplicity(i) for i in range(1, surface.NbVKnots() + 1)],
         )
         return cls(poles, weights, u_knots, v_knots, surface.UDegree(), surface.VDegree())
+
+    def points_d1(self, uv: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """(S, S_u, S_v) at each row (u, v) of ``uv`` (scattered points, not a grid), each of
+        shape (rows, 3): the homogeneous tensor product as scipy's NdBSpline, then eq. 4.8."""
+        homogeneous = np.concatenate([self.poles * self.weights[..., None], self.weights[..., None]], axis=-1)
+        spline = NdBSpline((self.u_knots, self.v_knots), homogeneous, (self.u_degree, self.v_degree))
+        a, a_u, a_v = (spline(uv, nu=order) for order in ((0, 0), (1, 0), (0, 1)))
+        w = a[:, 3:]
+        s = a[:, :3] / w
+        return s, (a_u[:, :3] - a_u[:, 3:] * s) / w, (a_v[:, :3] - a_v[:, 3:] * s) / w
 
     def grid_d1(self, us: FloatArray, vs: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """(S, S_u, S_v) at every (us[i], vs[j]), each of shape (len(us), len(vs), 3)."""

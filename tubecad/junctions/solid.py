@@ -45,11 +45,10 @@ from OCP.GCPnts import GCPnts_AbscissaPoint
 from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD
-from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
 from tubecad.brep.layout import NetLayout
-from tubecad.brep.properties import is_valid
+from tubecad.brep.properties import is_valid, sub_shapes
 from tubecad.brep.section_edges import refine_section_edges
 from tubecad.brep.solids import build_tube_solid
 from tubecad.brep.wall import wall_offsets
@@ -280,11 +279,8 @@ def _between(outside: TopoDS_Shape, bore: TopoDS_Shape) -> TopoDS_Shape | None:
     def split(shape: TopoDS_Shape) -> tuple[list[TopoDS_Face], list[TopoDS_Face]]:
         faces: list[TopoDS_Face] = []
         discs: list[TopoDS_Face] = []
-        explorer = TopExp_Explorer(shape, TopAbs_FACE)
-        while explorer.More():
-            face = as_face(explorer.Current())
+        for face in map(as_face, sub_shapes(shape, TopAbs_FACE)):
             (discs if BRepAdaptor_Surface(face).GetType() == GeomAbs_Plane else faces).append(face)
-            explorer.Next()
         return faces, discs
 
     if len(bd.Shape.cast(outside).solids()) != 1 or len(bd.Shape.cast(bore).solids()) != 1:
@@ -340,10 +336,8 @@ def _annulus(outer: TopoDS_Face, inner: TopoDS_Face) -> TopoDS_Face:
     builder, face = BRep_Builder(), TopoDS_Face()
     builder.MakeFace(face, BRep_Tool.Surface_s(forward), BRep_Tool.Tolerance_s(forward))
     for wire in (BRepTools.OuterWire_s(forward), hole):
-        explorer = TopExp_Explorer(wire, TopAbs_EDGE)
-        while explorer.More():
-            BRepLib.BuildPCurveForEdgeOnPlane_s(as_edge(explorer.Current()), face)
-            explorer.Next()
+        for edge in sub_shapes(wire, TopAbs_EDGE):
+            BRepLib.BuildPCurveForEdgeOnPlane_s(as_edge(edge), face)
         builder.Add(face, wire)
     return as_face(face.Oriented(outer.Orientation()))
 

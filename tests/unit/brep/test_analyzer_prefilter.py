@@ -12,7 +12,6 @@ from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
 from OCP.gp import gp_Trsf, gp_Vec
 from OCP.TopAbs import TopAbs_FACE
-from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS_Compound
 
 from tubecad import LogSpiral
@@ -25,11 +24,7 @@ SELF = ("SelfInterMode",)
 
 
 def _faces(shape) -> list:
-    explorer, out = TopExp_Explorer(shape, TopAbs_FACE), []
-    while explorer.More():
-        out.append(explorer.Current())
-        explorer.Next()
-    return out
+    return checks.sub_shapes(shape, TopAbs_FACE)
 
 
 def _compound(shapes) -> TopoDS_Compound:
