@@ -121,9 +121,9 @@ def test_a_ring_frame_far_from_the_origin_is_a_valid_solid(tmp_path):
     assert len(solids) == 2 and all(BRepCheck_Analyzer(s.wrapped).IsValid() for s in solids)
 
 
-#: case 13 of the run with the file checks (issue 24, this stop's 160 cases): a helix canal
-#: wall fitted to 7.7e-6; its ring circles lie up to ~the fit tolerance from the fitted faces,
-#: which the STEP file does not carry (the reader gives 1e-7)
+#: case 13 of the run with the file checks (issue 24, cases 0-159): a helix canal wall fitted
+#: to 7.7e-6; its ring circles lay up to ~the fit tolerance from the fitted faces, which the
+#: STEP file does not carry (the reader gives 1e-7); the fit is now exact at the rings
 COARSE_CANAL = {
     "axis": {"curve": "helix", "k": -0.0005695901138823759, "beta_deg": -18.72905333378926,
              "s": [0.0, 2885.354474665675]},
@@ -135,12 +135,6 @@ COARSE_CANAL = {
 }  # fmt: skip
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="found, not fixed: a canal wall's rings stay exact circles (its normal-cone caps and "
-    "panels are made through them), which a coarse fit leaves off its faces by more than a "
-    "STEP reader's 1e-7",
-)
 def test_a_coarse_canal_wall_reads_back_clean_by_the_pre_boolean_check(tmp_path):
     from tubecad.brep.properties import analyzer_findings
 

@@ -4,9 +4,11 @@ Vertices and edges are built once and used by both neighbouring faces, so no sew
 needed. A stringer edge's 3D curve is the surface's isoline u = const (the curvature line)
 with the pcurve u = const, the same parameter by construction. A ring edge's 3D curve is a
 true circle (Geom_Circle: centre c(s), plane normal t(s), radius rho, angle from the
-stringer origin), so CAD selectors and OCCT's checks see circles (where the fit keeps the
-circle within CIRCLE_GAP of the faces; a coarser fit's rings are the faces' isolines
-s = const, exact on them, with pcurves v = s); its pcurve is
+stringer origin), so CAD selectors and OCCT's checks see circles; the fit is exact at
+every ring (:func:`tubecad.fitting.frame_spline.refine_spline`'s sites), so the circle is
+the faces' isoline s = const to round-off at any fit tolerance, and a STEP file (which
+keeps no edge tolerance: its readers give each edge 1e-7) reads back with the rings on
+their faces; its pcurve is
 (u(theta), s), u(theta) the circle parametrisation's inverse as a quintic B-spline in
 theta (:func:`ring_pcurve`, C1 like the circle, fitted once per stringer interval and
 shared by every ring), and the edge tolerance covers what the fit deviates from the exact
@@ -51,14 +53,6 @@ from tubecad.occ_compat import Array1OfPnt2d
 
 #: edge and vertex tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = EDGE_TOLERANCE
-#: a ring is made a true circle (Geom_Circle) where the circle keeps within this of the
-#: fitted faces (the default fit tolerance 1e-8 leaves 1e-10 .. 1e-9), else the faces' own
-#: isoline: a STEP or IGES file keeps no edge tolerance, its readers (FreeCAD) give each
-#: edge 1e-7, and a circle farther from its faces is then found off them by the pre-boolean
-#: check (64 edges of the paper wall at a fit tolerance of 1e-6, measured). A canal surface's
-#: rings stay circles: its normal-cone caps and panels are made through them (at a coarse fit
-#: its STEP file read back can show the same finding: not solved yet)
-CIRCLE_GAP = 0.1 * EDGE_TOLERANCE
 
 
 @dataclass
@@ -118,24 +112,19 @@ def patch_faces(
         to_u = [ring_pcurve(tube_surface.circle, angles[j], angles[j + 1]) for j in range(n_stringers)]
     cuts: Sequence[float] | np.ndarray
     for i, s in enumerate(s_rings[:own]):
-        circle: Geom_Curve | None
         if canal:  # the stringers cross each circle at angles that change with s (the Moebius map)
-            # (kept circles at any fit: the normal-cone caps and panels are made through them)
             circle, cuts, pcurves, tolerance = canal_ring(cast(CanalSectionSurface, tube_surface), s, angles)
         else:
             circle, gap = ring_circle(tube_surface, s)
             tolerance = max(TOLERANCE, 2.0 * gap)
             cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
-            if gap > CIRCLE_GAP:  # a coarse fit: the ring is the faces' own isoline s = const (see CIRCLE_GAP)
-                circle, tolerance = None, TOLERANCE
-                cuts, pcurves = u_cuts, [_line(0.0, s, 1.0, 0.0)] * n_stringers
         # a vertex is the surface's point; the exact circle passes within the ring's gap of it,
-        # so the vertex tolerance covers the gap as the edge's does (a coarse fit: up to ~1e-7)
+        # so the vertex tolerance covers the gap as the edge's does (round-off: the fit is exact at rings)
         vertices.append([_vertex(builder, surface.Value(u_cuts[j], s), tolerance) for j in range(n_stringers)])
         rings.append(
             [
                 _edge(
-                    circle if circle is not None else _isoline(surface, s, cuts[j], cuts[j + 1]),
+                    circle,
                     vertices[i][j],
                     vertices[i][(j + 1) % n_stringers],
                     cuts[j],
@@ -597,14 +586,6 @@ def _edge(curve: Geom_Curve, v0: TopoDS_Vertex, v1: TopoDS_Vertex, t0: float, t1
     if not maker.IsDone():
         raise TubecadError(f"OCCT could not make an edge on [{t0:g}, {t1:g}] (error {maker.Error()})")
     return maker.Edge()
-
-
-def _isoline(surface, s: float, u0: float, u1: float) -> Geom_Curve:
-    """The surface's isoline v = s over u in [u0, u1] only (no knot of the rest in its curve,
-    which OCCT's continuity check would report)."""
-    curve = surface.VIso(s)
-    curve.Segment(u0, u1)
-    return curve
 
 
 def _line(x: float, y: float, dx: float, dy: float) -> Geom2d_Line:

@@ -27,7 +27,8 @@ kappa of Mb: a sub-arc alpha is used with cot(alpha / 4) >= sqrt(3) kappa (then 
 of a sub-arc under the Moebius map stays below 120 deg), and the weights are checked.
 
 The spline is fitted like the frame spline (:func:`.frame_spline.refine_spline`: Greville
-interpolation, knots at the rings, the axis' joints and a radius table's knots, spans
+interpolation, exact at the rings (so a ring's isoline is its characteristic circle),
+knots at the rings, the axis' joints and a radius table's knots, spans
 halved) until, sampled densely at every offset built, the distance of the fitted surface
 from the exact canal surface (:meth:`CanalSurface.points` + d :meth:`CanalSurface.normal`,
 parameter-matched) is <= tolerance / 2 and |cos| between its isolines <= orthogonality / 2.
@@ -256,6 +257,7 @@ def fit_canal(
         orthogonality,
         max_spans,
         "the canal section spline",
+        sites=ring_s,
     )
     spline = _with_singular_parts(spline, singular)
     s_check = np.linspace(*canal.span, 4001)
