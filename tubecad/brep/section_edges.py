@@ -79,6 +79,7 @@ def refine_section_edges(
     faces_of = IndexedDataMapOfShapeListOfShape()
     TopExp.MapShapesAndAncestors_s(shape, TopAbs_EDGE, TopAbs_FACE, faces_of)
     reshape, report = BRepTools_ReShape(), SectionEdgeReport()
+    surfaces = _Surfaces()
     for i in range(1, faces_of.Extent() + 1):
         edge = as_edge(faces_of.FindKey(i))
         old = BRep_Tool.Tolerance_s(edge)
@@ -91,7 +92,9 @@ def refine_section_edges(
         if len(faces) != 2:
             report.kept.append(f"an edge on {len(faces)} faces")
             continue
-        made = _remade(as_edge(edge.Oriented(TopAbs_FORWARD)), as_face(faces[0]), as_face(faces[1]), target)
+        face_1, face_2 = as_face(faces[0]), as_face(faces[1])
+        pair = _Pair(surfaces.of(face_1), surfaces.of(face_2))
+        made = _remade(as_edge(edge.Oriented(TopAbs_FORWARD)), face_1, face_2, pair, target)
         if isinstance(made, str):
             report.kept.append(made)
             continue
@@ -132,11 +135,25 @@ class _Surface:
         return out[0], out[1], out[2]
 
 
+class _Surfaces:
+    """Each face's :class:`_Surface`, read once (a face bounds several section edges)."""
+
+    def __init__(self) -> None:
+        self._made: list[tuple[TopoDS_Shape, _Surface]] = []
+
+    def of(self, face) -> _Surface:
+        for known, surface in self._made:
+            if known.IsSame(face):
+                return surface
+        self._made.append((face, _Surface(face)))
+        return self._made[-1][1]
+
+
 class _Pair:
     """The two surfaces S1(u1, v1), S2(u2, v2) of an edge's faces."""
 
-    def __init__(self, face_1, face_2) -> None:
-        self.surface_1, self.surface_2 = _Surface(face_1), _Surface(face_2)
+    def __init__(self, surface_1: _Surface, surface_2: _Surface) -> None:
+        self.surface_1, self.surface_2 = surface_1, surface_2
 
     def evaluate(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """At each row x = (u1, v1, u2, v2): S1, S2 and the Jacobian [dS1/du1, dS1/dv1, -dS2/du2,
@@ -197,8 +214,7 @@ def _monotone(params: np.ndarray) -> tuple[int, float] | None:
     return None if best is None else (best[1], best[2])
 
 
-def _remade(edge: TopoDS_Edge, face_1, face_2, target: float) -> tuple[TopoDS_Edge, float] | str:
-    pair = _Pair(face_1, face_2)
+def _remade(edge: TopoDS_Edge, face_1, face_2, pair: _Pair, target: float) -> tuple[TopoDS_Edge, float] | str:
     params, points = _table(edge, face_1, face_2)
     chosen = _monotone(params)
     if chosen is None:

@@ -16,6 +16,7 @@ poles, weights and knots; tests/unit/fitting/test_nurbs_arrays.py holds the two 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -64,12 +65,18 @@ class SurfaceArrays:
     def points_d1(self, uv: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """(S, S_u, S_v) at each row (u, v) of ``uv`` (scattered points, not a grid), each of
         shape (rows, 3): the homogeneous tensor product as scipy's NdBSpline, then eq. 4.8."""
-        homogeneous = np.concatenate([self.poles * self.weights[..., None], self.weights[..., None]], axis=-1)
-        spline = NdBSpline((self.u_knots, self.v_knots), homogeneous, (self.u_degree, self.v_degree))
+        spline = self._tensor_product
         a, a_u, a_v = (spline(uv, nu=order) for order in ((0, 0), (1, 0), (0, 1)))
         w = a[:, 3:]
         s = a[:, :3] / w
         return s, (a_u[:, :3] - a_u[:, 3:] * s) / w, (a_v[:, :3] - a_v[:, 3:] * s) / w
+
+    @cached_property
+    def _tensor_product(self) -> NdBSpline:
+        """The homogeneous surface (w P, w) as one scipy NdBSpline, made once (Newton calls
+        :meth:`points_d1` many times on one surface)."""
+        homogeneous = np.concatenate([self.poles * self.weights[..., None], self.weights[..., None]], axis=-1)
+        return NdBSpline((self.u_knots, self.v_knots), homogeneous, (self.u_degree, self.v_degree))
 
     def grid_d1(self, us: FloatArray, vs: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """(S, S_u, S_v) at every (us[i], vs[j]), each of shape (len(us), len(vs), 3)."""
