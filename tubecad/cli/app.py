@@ -452,7 +452,8 @@ def _say_warnings(written: list[Path]) -> None:
 def shop(spec: Path, output: Path, quiet: bool) -> None:
     """Shop-floor outputs of SPEC's stiffened wall, with its [fabrication] settings (plate_size, kerf,
     joint_gap, max_strain, pin_spacing, pin_clearance, joints); with [[branches]], each branch's
-    cutting template, its opening's template and its bevel angles (branches/, index.json):
+    cutting template, its opening's template and its bevel angles (branches/, index.json), and the
+    webs of the stiffeners stopped at the openings:
 
     webs split at butt joints into cuttable pieces and nested 1:1 on plates (DXF, SVG) with the STEP
     solids split the same way; stringer flanges developed and nested; bending tables and inverse
@@ -471,6 +472,12 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
         index = shop_from_spec(checked, output, say)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
+    if "webs" in index:
+        webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
+        click.echo(
+            f"webs: {webs['pieces']} pieces on {webs['plates']} plates, utilisation {100 * webs['utilisation']:.1f} %; "
+            f"flanges: {flanges['pieces']} pieces on {flanges['plates']} plates; {len(index['bending'])} bending tables"
+        )
     if "branches" in index:  # a junction: its templates and bevels
         for row in index["branches"]:
             dihedral = row["dihedral_deg"]
@@ -479,18 +486,13 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
                 f"{row['template']['height']:.6g} (strain {row['template']['strain']:.2g}), the opening's template, "
                 f"bevel basis: dihedral angle {dihedral['min']:.2f} to {dihedral['max']:.2f} deg"
             )
-            for path in row["files"]:
-                click.echo(str(output / path))
-        for line in index.get("not_made", []):
-            click.echo(f"not made: {line}")
-        click.echo(str(output / "index.json"))
-        return
-    webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
-    click.echo(
-        f"webs: {webs['pieces']} pieces on {webs['plates']} plates, utilisation {100 * webs['utilisation']:.1f} %; "
-        f"flanges: {flanges['pieces']} pieces on {flanges['plates']} plates; {len(index['bending'])} bending tables"
-    )
-    if index["panels"]:
+            if "files" not in index:
+                for path in row["files"]:
+                    click.echo(str(output / path))
+        if "files" not in index:
+            click.echo(str(output / "index.json"))
+            return
+    if index.get("panels"):
         worst = max(index["panels"], key=lambda p: p["max_strain"])
         flagged = sum(p["exceeds_max_strain"] for p in index["panels"])
         click.echo(

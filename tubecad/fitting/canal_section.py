@@ -257,7 +257,7 @@ def fit_canal(
         orthogonality,
         max_spans,
         "the canal section spline",
-        sites=ring_s,
+        sites=ring_s.tolist(),
     )
     spline = _with_singular_parts(spline, singular)
     s_check = np.linspace(*canal.span, 4001)

@@ -220,24 +220,34 @@ def stringer_line(
 
 
 def ring_arcs(
-    base: Surface, s: float, level: float = 0.0, pieces: int | None = None, start_deg: float = 0.0
+    base: Surface,
+    s: float,
+    level: float = 0.0,
+    pieces: int | None = None,
+    start_deg: float = 0.0,
+    span_deg: float = 360.0,
 ) -> list[tuple[Curve, float]]:
     """The ring circle at ``s`` on the offset surface at ``level`` (a tube's circle of radius
     R + level; on a canal surface the characteristic circle of r + level, centre c - (r + d) r' t,
-    radius (r + d) q) split into ``pieces`` equal arcs (default 2: a full circle has no chord,
-    so at most 180 deg each), the first starting at ``start_deg`` from r1(s): each as
-    (position(sigma), length), position = centre + a (cos(phi_j + sigma / a) r1 + sin(...) r2)."""
-    count = 2 if pieces is None else pieces
-    if not (isinstance(count, int) and count >= 2):
+    radius (r + d) q), from ``start_deg`` from r1(s) over ``span_deg`` (all round, or the arc a
+    ring cut at an opening keeps), split into ``pieces`` equal arcs (default: the fewest of at
+    most 180 deg each: a full circle has no chord): each as (position(sigma), length),
+    position = centre + a (cos(phi_j + sigma / a) r1 + sin(...) r2)."""
+    if not 0.0 < span_deg <= 360.0:
+        raise ParameterError(f"span_deg must be in (0, 360] degrees, got {span_deg!r}")
+    fewest = max(1, math.ceil(span_deg / 180.0 - 1e-12))
+    count = fewest if pieces is None else pieces
+    if not (isinstance(count, int) and count >= fewest):
         raise ParameterError(
-            f"pieces must be an integer >= 2 (arcs of at most 180 deg; a full circle has no chord), got {pieces!r}"
+            f"pieces must be an integer >= {fewest} (arcs of at most 180 deg; a full circle has no chord), "
+            f"got {pieces!r}"
         )
     surface = offset_surface(base, float(level), key="level")
     at = np.array([float(s)])
     _, r1, r2 = base.axis.rotation_minimising_frame(base.axis.inside(at))
     centre, radius, _ = surface.circle(at)  # a tube's: the axis point, R + level
     centre, a = centre[0], float(radius[0])
-    step = 2 * math.pi / count
+    step = math.radians(span_deg) / count
 
     def arc(phi0: float) -> Curve:
         def position(sigma: np.ndarray) -> np.ndarray:

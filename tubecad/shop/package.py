@@ -38,7 +38,7 @@ class ShopData:
     """What the shop gets for one wall: pieces, plates, flanges, bending tables, panels'
     marking lines, developments and pin jigs, and any warnings (nothing is dropped)."""
 
-    build: TubeBuild
+    build: TubeBuild | None  # None: a junction's stiffeners (its wall is tubecad build's)
     stiffeners: list[Stiffener]
     panels: list[Panel]
     fab: Fabrication
@@ -64,7 +64,27 @@ def shop_data(
     """Compute the shop package (module docstring); ``progress(stage)`` hears of each stage."""
     say = progress or (lambda stage: None)
     data = ShopData(build, stiffeners, panels, fab)
-    stringers_deg = tuple(build.layout.stringers_deg)
+    add_stiffener_data(data, tuple(build.layout.stringers_deg), build.tolerance, say)
+    if panels:
+        say("marking lines, panel developments and pin jigs")
+        data.marking = {p.name: panel_marking(p, stiffeners) for p in panels}
+        data.developments = panel_developments(build, panels, stiffeners[0].side if stiffeners else "outside")
+        data.pin_jigs = pin_jigs(build, panels, stiffeners, fab, data.warnings)
+    else:
+        data.warnings.append(
+            "the spec has no [panels] section: no marking lines, panel developments or pin jigs "
+            "(add [panels] seams = [...] to split the wall)"
+        )
+    return data
+
+
+def add_stiffener_data(
+    data: ShopData, stringers_deg: tuple[float, ...], tolerance: float, say: Callable[[str], None]
+) -> None:
+    """Fill ``data``'s stiffener part: its stiffeners' web pieces (ring joints kept clear of
+    the stringers at ``stringers_deg``), their solids split alike (fitted to ``tolerance``),
+    the webs nested on plates, the developed flanges nested, the bending tables."""
+    stiffeners, fab = data.stiffeners, data.fab
     say("splitting webs into cuttable pieces")
     by_stiffener: dict[str, list[WebPiece]] = {}
     known = {st.name for st in stiffeners}
@@ -81,7 +101,7 @@ def shop_data(
         data.web_pieces += by_stiffener[st.name]
     say("splitting the stiffener solids at the joints")
     for st in stiffeners:
-        data.piece_stiffeners += piece_solids(st, by_stiffener[st.name], build.tolerance)
+        data.piece_stiffeners += piece_solids(st, by_stiffener[st.name], tolerance)
     say("nesting webs on plates")
     data.web_plates = nest(data.web_pieces, fab)
     say("developing flanges")
@@ -89,17 +109,6 @@ def shop_data(
     data.flange_plates = nest(data.flange_pieces, fab) if data.flange_pieces else []
     say("bending tables")
     data.bending = bending_tables(stiffeners, by_stiffener, fab)
-    if panels:
-        say("marking lines, panel developments and pin jigs")
-        data.marking = {p.name: panel_marking(p, stiffeners) for p in panels}
-        data.developments = panel_developments(build, panels, stiffeners[0].side if stiffeners else "outside")
-        data.pin_jigs = pin_jigs(build, panels, stiffeners, fab, data.warnings)
-    else:
-        data.warnings.append(
-            "the spec has no [panels] section: no marking lines, panel developments or pin jigs "
-            "(add [panels] seams = [...] to split the wall)"
-        )
-    return data
 
 
 def flange_pieces(
@@ -146,7 +155,8 @@ def bending_tables(stiffeners: list[Stiffener], by_stiffener: dict[str, list[Web
                     position, length = stringer_line(st.base, st.value, level, piece.span)
                     tables.append(bending_table(position, length, piece.name + suffix, line, max_error=tol))
             else:
-                arcs = ring_arcs(st.base, st.value, level)
+                a, b = st.arc_deg or (0.0, 360.0)  # a ring cut at an opening: its arc
+                arcs = ring_arcs(st.base, st.value, level, start_deg=a, span_deg=b - a)
                 for k, (position, length) in enumerate(arcs, 1):
                     name = f"{st.name}{suffix}_arc{k}"
                     tables.append(

@@ -195,7 +195,8 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
     if it fits the plate, else equal sectors between joints through the ring's axis.
     Chosen joints (``fab.joints[st.name]``, degrees in [0, 360) round the ring, measured as
     the stringers' angles are) come first; automatic joints keep clear of the layout's
-    stringers at ``stringers_deg``."""
+    stringers at ``stringers_deg``. A ring cut at a branch's opening (``st.arc_deg``) is the
+    sector of its arc, or equal sectors of it (:func:`_arc_pieces`)."""
     _check_height(st, fab)
     whole = ring_web_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
     chosen = sorted(fab.joints.get(st.name, ()))
@@ -204,6 +205,8 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
             raise ParameterError(
                 f"[fabrication] joints.{st.name}: {angle:g} is outside the ring's angles [0, 360) degrees"
             )
+    if st.arc_deg is not None:
+        return _arc_pieces(st, fab, whole, chosen)
     if (
         not chosen
         and cuttable(whole.outline, fab)[0]
@@ -242,6 +245,43 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
     raise ParameterError(
         f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: no split "
         f"into up to {MAX_PIECES} sectors is cuttable"
+    )
+
+
+def _arc_pieces(st: Stiffener, fab: Fabrication, whole: FlatPattern, chosen: list[float]) -> list[WebPiece]:
+    """The pieces of a ring kept over the arc a .. b (``st.arc_deg``: its ends square on a
+    branch's opening, no butt joints there): the arc's sector of the annulus, or, split at
+    the chosen joints (inside the arc) and then into equal parts, as few sectors as are all
+    cuttable; the root gap is left at the joints only."""
+    a, b = st.arc_deg or (0.0, 360.0)
+    marks = []
+    for angle in chosen:
+        mark = a + (_ring_angle(st, angle) - a) % 360.0
+        if not a < mark < b:
+            raise ParameterError(
+                f"[fabrication] joints.{st.name}: {angle:g} is not on the ring, which a branch's opening "
+                f"cuts: it runs from {a % 360.0:.6g} round to {b % 360.0:.6g} deg"
+            )
+        marks.append(mark)
+    bounds = list(zip([a, *sorted(marks)], [*sorted(marks), b]))
+    r_in, r_out, q = _annulus(st, whole)
+    base_radius = r_in if st.side == "outside" else r_out
+    half_gap = 0.5 * math.degrees(fab.joint_gap / (base_radius * q))
+    for n in range(1, MAX_PIECES + 1):
+        arcs = [(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n) for lo, hi in bounds for j in range(n)]
+        joints = [(x > a, y < b) for x, y in arcs]
+        arcs = [(x + half_gap * start, y - half_gap * end) for (x, y), (start, end) in zip(arcs, joints)]
+        if any(x >= y for x, y in arcs):
+            break
+        if all(cuttable(_sector(r_in, r_out, math.radians(q * (y - x))), fab)[0] for x, y in arcs):
+            names = piece_names(st.name, len(arcs))
+            return [
+                WebPiece(name, st.name, "ring", (x, y), _sector_pattern(name, r_in, r_out, q, x, y, st.side), joint)
+                for name, (x, y), joint in zip(names, arcs, joints)
+            ]
+    raise ParameterError(
+        f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: no split "
+        f"into up to {MAX_PIECES} sectors of its arc is cuttable"
     )
 
 
@@ -314,7 +354,8 @@ def piece_solids(st: Stiffener, pieces: list[WebPiece], tolerance: float) -> lis
 
     from tubecad.stiffeners.solids import stringer_stiffener
 
-    if len(pieces) == 1 and pieces[0].span == (st.base.span if st.kind == "stringer" else (0.0, 360.0)):
+    whole = st.base.span if st.kind == "stringer" else (st.arc_deg or (0.0, 360.0))
+    if len(pieces) == 1 and pieces[0].span == whole:
         return [replace(st, name=pieces[0].name)]
     if st.kind == "stringer":
         return [
@@ -326,7 +367,28 @@ def piece_solids(st: Stiffener, pieces: list[WebPiece], tolerance: float) -> lis
             )
             for p in pieces
         ]
+    if st.arc_deg is not None:
+        return [replace(st, name=p.name, solid=_arc_sector_solid(st, *p.span), arc_deg=p.span) for p in pieces]
     return [replace(st, name=p.name, solid=_ring_sector_solid(st, *p.span)) for p in pieces]
+
+
+def _arc_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
+    """The part of a cut ring (``st.arc_deg``) between the circle angles a_deg < b_deg: its
+    common with the wedge between the half-planes there (any angle below 360 deg)."""
+    import build123d as bd
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
+
+    from tubecad.brep.properties import is_valid
+    from tubecad.brep.section_edges import refine_section_edges
+    from tubecad.stiffeners.junction import ring_wedge
+
+    reach = st.base_radius + st.profile.height
+    wedge = ring_wedge(st.base, st.value, math.radians(a_deg), math.radians(b_deg), reach, st.profile)
+    common, _, _ = refine_section_edges(BRepAlgoAPI_Common(st.solid.wrapped, wedge.wrapped).Shape())
+    solids = bd.Shape.cast(common).solids()
+    if len(solids) != 1 or not is_valid(solids[0].wrapped):
+        raise ParameterError(f"{st.name}: the ring piece from {a_deg:g} to {b_deg:g} deg is not one valid solid")
+    return solids[0]
 
 
 def _ring_sector_solid(st: Stiffener, a_deg: float, b_deg: float):

@@ -38,7 +38,8 @@ def write_shop(data: ShopData, folder: str | Path, name: str = "tubecad", step_s
     record(
         step,
         "webs",
-        "the wall and the stiffeners split at the web pieces' butt joints (STEP, named stringer_02_a, ...)",
+        f"{'the wall and ' if data.build is not None else ''}the stiffeners split at the web pieces' butt joints "
+        "(STEP, named stringer_02_a, ...)",
     )
     index["webs"]["solids"] = [{"name": st.name, "volume": _volume(st.solid)} for st in data.piece_stiffeners]
 
@@ -135,10 +136,15 @@ def _volume(solid) -> float:
 
 
 def _write_pieces_step(data: ShopData, path: Path, name: str, step_schema: str) -> None:
-    from tubecad.export.cad import export_named_step
-    from tubecad.stiffeners.assembly import named_assembly
+    import build123d as bd
 
-    assembly = named_assembly(data.build, data.piece_stiffeners, panels=data.panels)
+    from tubecad.export.cad import export_named_step
+    from tubecad.stiffeners.assembly import named_assembly, stiffener_solids
+
+    if data.build is None:  # a junction's stiffeners: the pieces alone (tubecad build writes the wall)
+        assembly = bd.Compound(label="tubecad", children=stiffener_solids(data.piece_stiffeners))
+    else:
+        assembly = named_assembly(data.build, data.piece_stiffeners, panels=data.panels)
     export_named_step(assembly, path, step_schema, name, data.fab.length_unit)
 
 
@@ -149,6 +155,7 @@ def _write_panels(data: ShopData, folder: Path, name: str, step_schema: str, ind
     from tubecad.shop.pin_jig import write_pin_jig_csv, write_pin_jig_picture
 
     fab = data.fab
+    assert data.build is not None  # panels are a wall's (a junction has none yet)
     side = data.stiffeners[0].side if data.stiffeners else "outside"
     surface = marking_surface(data.build, side)
     flat_marks = {}
@@ -279,8 +286,9 @@ def write_overview(data: ShopData, folder: Path, index: dict) -> list[Path]:
             a_jig.text(0.5, 0.5, "no pin jig (see the warnings in index.json)", ha="center", va="center")
             a_jig.set_axis_off()
     else:
+        why = "the spec has no [panels] section" if data.build is not None else "a junction has no panels yet"
         for ax, what in ((a_panel, "panel developments"), (a_jig, "pin jigs")):
-            ax.text(0.5, 0.5, f"no {what}: the spec has no [panels] section", ha="center", va="center")
+            ax.text(0.5, 0.5, f"no {what}: {why}", ha="center", va="center")
             ax.set_axis_off()
     if data.bending:
         table = max(data.bending, key=lambda t: float(np.abs(t.offset_y).max()))

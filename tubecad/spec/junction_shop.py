@@ -1,6 +1,8 @@
 """``tubecad shop`` on a spec with [[branches]]: each branch's cutting template, its opening's
-template, its bevel basis and its pad's development (issue 25; the templates'
-geometry is :mod:`tubecad.shop.branch_template`, the pad's :mod:`tubecad.stiffeners.pad`)."""
+template, its bevel basis and its pad's development, and, with [stiffeners], the shop package
+of the junction's stiffeners (issue 25; the templates' geometry is
+:mod:`tubecad.shop.branch_template`, the pad's :mod:`tubecad.stiffeners.pad`, the stopped
+stiffeners' :mod:`tubecad.stiffeners.junction`)."""
 
 from __future__ import annotations
 
@@ -24,12 +26,18 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
     cutting template, girth marks at its stringers), ``branch_k_hole.dxf`` (the bore's saddle
     on the main's inner surface: the opening), ``branch_k_bevel.csv`` (the dihedral angle
     between the outer surfaces along the saddle, the bevel's basis, at each girth position),
-    and ``index.json``. No booleans are needed: the saddles are solved on the exact surfaces.
+    and ``index.json``. With [stiffeners], the main's ring frames and stringers stopped at the
+    openings (or pads) and the branches' own, as ``tubecad shop`` gives a wall's
+    (:func:`tubecad.shop.package.add_stiffener_data`): web pieces nested on plates
+    (``webs/``: a ring cut at an opening is the sector of the arc it keeps, a stopped
+    stringer each piece's strip), developed flanges, bending tables and the pieces' solids.
+    No booleans on the wall are needed: the saddles are solved on the exact surfaces.
     Written into a staging folder and moved into place once complete."""
     import json
     import shutil
     import tempfile
 
+    from tubecad.core.atomic import write_text
     from tubecad.junctions import dihedral_angles, saddle_curve
     from tubecad.shop.branch_template import branch_template, hole_template
 
@@ -40,10 +48,15 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
     output = Path(output)
     output.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f".{output.name}.", dir=output.parent))
-    index: dict[str, Any] = {"name": Path(str(spec.source)).stem, "units": {"length": unit}, "branches": []}
+    name = Path(str(spec.source)).stem
+    index: dict[str, Any] = {"name": name, "units": {"length": unit}}
     try:
+        all_walls = branch_walls(spec)
+        if spec.stiffeners is not None:
+            index = _stiffener_shop(spec, all_walls, staging, name, say)
+        index["branches"] = []
         (staging / "branches").mkdir()
-        for k, walls in enumerate(branch_walls(spec)):
+        for k, walls in enumerate(all_walls):
             say(f"branch {k}: saddles and templates")
             b_in, b_out = walls.offsets()
             main_o, main_i = spec.tube.offset(main_out), spec.tube.offset(main_in)
@@ -91,16 +104,39 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
                     "dihedral_deg": {"min": float(angles.min()), "max": float(angles.max())},
                 }
             )
-        if spec.stiffeners is not None:  # said, not dropped: the shop has no junction webs yet
-            index["not_made"] = [
-                "the webs of a junction's stiffeners (ring frames and stringers stopped at the openings) are not "
-                "developed and nested yet: tubecad build writes their solids"
+        if "files" in index:  # the stiffeners' package lists its files: the branches' too
+            index["files"] += [
+                {"path": f, "kind": "branches", "what": f"branch {b['branch']}'s {f.rsplit('_', 1)[-1]}"}
+                for b in index["branches"]
+                for f in b["files"]
             ]
-        (staging / "index.json").write_text(json.dumps(index, indent=2) + "\n")
-        for path in [*(staging / "branches").iterdir(), staging / "index.json"]:
+        write_text(staging / "index.json", json.dumps(index, indent=2) + "\n")
+        for path in sorted(p for p in staging.rglob("*") if p.is_file()):
             target = output / path.relative_to(staging)
             target.parent.mkdir(parents=True, exist_ok=True)
             path.replace(target)
     finally:
         shutil.rmtree(staging, ignore_errors=True)
     return index
+
+
+def _stiffener_shop(spec: TubeSpec, walls: list, staging: Path, name: str, say: Any) -> dict[str, Any]:
+    """The junction's stiffeners' shop package written into ``staging`` (its index)."""
+    from tubecad.shop.package import ShopData, add_stiffener_data
+    from tubecad.shop.writer import write_shop
+    from tubecad.spec.junction import build_junction_stiffeners
+    from tubecad.spec.model import FabricationSection
+
+    try:
+        fab = (spec.fabrication or FabricationSection()).settings(spec.length_unit)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "fabrication") from None
+    say("stiffeners stopped at the openings")
+    stiffeners = build_junction_stiffeners(spec, walls)
+    data = ShopData(None, stiffeners, [], fab)
+    try:
+        add_stiffener_data(data, tuple(spec.layout.net(spec.tube).stringers_deg), spec.fit.tolerance, say)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "fabrication") from None
+    say("writing the stiffeners' files")
+    return write_shop(data, staging, name)

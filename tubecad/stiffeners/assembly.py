@@ -81,6 +81,16 @@ def distinct_rings(build: TubeBuild, rings: Sequence[int]) -> list[int]:
     return list(dict.fromkeys(0 if closed and i == last else i for i in rings))
 
 
+def stiffener_solids(stiffeners: Sequence[Stiffener]) -> list[bd.Solid]:
+    """Each stiffener as a new labelled, coloured solid (its own shape is not put under an assembly)."""
+    out = []
+    for st in stiffeners:
+        solid = bd.Solid(st.solid.wrapped)
+        solid.label, solid.color = st.name, RING_COLOUR if st.kind == "ring" else STRINGER_COLOUR
+        out.append(solid)
+    return out
+
+
 def named_assembly(
     build: TubeBuild,
     stiffeners: Sequence[Stiffener],
@@ -104,10 +114,7 @@ def named_assembly(
     if fuse and stiffeners:
         wall = wall.fuse(*[st.solid for st in stiffeners]).clean()
     else:
-        for st in stiffeners:
-            solid = bd.Solid(st.solid.wrapped)
-            solid.label, solid.color = st.name, RING_COLOUR if st.kind == "ring" else STRINGER_COLOUR
-            children.append(solid)
+        children += stiffener_solids(stiffeners)
     wall.label, wall.color = "wall", WALL_COLOUR
     children.insert(0, wall)
     if lines:

@@ -15,7 +15,9 @@ about its line; it must stay clear of the opening:
   ring planes there), pieces ``stringer_05_a`` and ``stringer_05_b``;
 - a ring s = s_i stops where its band |s - s_i| <= w / 2 meets the opening, [u_lo, u_hi]
   (unwrapped); the full ring frame is cut by the wedge between the half-planes through the
-  axis at u_lo and u_hi (OCCT's boolean): its ends square, in planes through the ring's axis;
+  axis at u_lo and u_hi (OCCT's boolean): its ends square, in planes through the ring's axis,
+  the arc it keeps, u_hi .. u_lo + 2 pi, its ``arc_deg`` (its web develops as that sector of
+  the annulus: :func:`tubecad.shop.webs.ring_pieces`);
 - a pad (outside) takes the place of the opening: the stiffeners crossing it stop on its
   edge (its bounding rings and stringers), as they would on the opening's;
 - on the branch, a stringer starts where its band leaves the saddle (the saddle's largest
@@ -192,6 +194,25 @@ def _ring_cut(
         raise ParameterError(
             f"stiffeners.rings: {ring.name} at s = {s:.6g} lies all round an opening", key="stiffeners.rings"
         )
+    wedge = ring_wedge(base, s, u_lo, u_hi, reach, profile)
+    cut, _, _ = refine_section_edges(ring.solid.cut(wedge).wrapped)
+    solids = bd.Shape.cast(cut).solids()
+    if len(solids) != 1 or not solids[0].is_valid:
+        raise ParameterError(
+            f"stiffeners.rings: {ring.name} at s = {s:.6g} cut at the opening gave {len(solids)} pieces",
+            key="stiffeners.rings",
+        )
+    kept = (math.degrees(u_hi), math.degrees(u_lo) + 360.0)  # from the opening's far side round to its near one
+    return Stiffener(ring.name, "ring", ring.value, solids[0], ring.profile, ring.side, ring.base, kept)
+
+
+def ring_wedge(
+    base: CurvatureLineSurface, s: float, u_lo: float, u_hi: float, reach: float, profile: Profile
+) -> bd.Solid:
+    """The wedge between the half-planes through the axis at s at the angles u_lo < u_hi
+    (radians from r1, u_hi - u_lo < 2 pi), reaching past a ring frame of ``profile`` whose
+    farthest point is ``reach`` from the axis: a prism on the polygon of the axis point and
+    WEDGE_SIDES + 1 points of the arc at twice ``reach`` (its chords outside the frame)."""
     frame = base.axis.at(np.array([s]))
     c, t, r1, r2 = frame.position[0], frame.t[0], frame.r1[0], frame.r2[0]
     u = np.linspace(u_lo, u_hi, WEDGE_SIDES + 1)
@@ -200,15 +221,7 @@ def _ring_cut(
     half = 2.0 * (profile.flange_width + profile.thickness + profile.height)  # past the frame along the axis
     outline = [tuple(p - half * t) for p in [c, *rim]]
     base_face = bd.Face(bd.Wire.make_polygon([bd.Vector(*p) for p in outline], close=True))
-    wedge = bd.Solid.extrude(base_face, bd.Vector(*(2 * half * t)))
-    cut, _, _ = refine_section_edges(ring.solid.cut(wedge).wrapped)
-    solids = bd.Shape.cast(cut).solids()
-    if len(solids) != 1 or not solids[0].is_valid:
-        raise ParameterError(
-            f"stiffeners.rings: {ring.name} at s = {s:.6g} cut at the opening gave {len(solids)} pieces",
-            key="stiffeners.rings",
-        )
-    return Stiffener(ring.name, "ring", ring.value, solids[0], ring.profile, ring.side, ring.base)
+    return bd.Solid.extrude(base_face, bd.Vector(*(2 * half * t)))
 
 
 def _wrapped(a: np.ndarray) -> np.ndarray:

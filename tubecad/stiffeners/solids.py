@@ -60,6 +60,9 @@ class Stiffener:
     #: the wall surface it stands on, over its own span: a tube, or a canal surface (then a
     #: stringer's ``value`` is its angle chi0 at the wall's start, in degrees)
     base: CurvatureLineSurface
+    #: a ring cut at a branch's opening (:mod:`.junction`): the arc it keeps, (a, b) in degrees
+    #: of the circle from r1 at the ring, counter-clockwise about t, b - a < 360; None: all round
+    arc_deg: tuple[float, float] | None = None
 
     @property
     def base_radius(self) -> float:
@@ -73,11 +76,12 @@ class Stiffener:
 
     def length(self) -> float:
         """Length of its line on the wall: the ring's circle, 2 pi R (2 pi r q on a canal
-        surface); Int sqrt(G) ds along u = angle for a stringer (Gauss-Legendre on the exact
+        surface; a cut ring's arc, R (b - a)); Int sqrt(G) ds along u = angle for a stringer (Gauss-Legendre on the exact
         G, on 32 panels also cut at the axis' joints, where k may jump: a route's line-bend
         joints)."""
         if self.kind == "ring":
-            return 2 * math.pi * self.base_radius
+            turn = 2 * math.pi if self.arc_deg is None else math.radians(self.arc_deg[1] - self.arc_deg[0])
+            return turn * self.base_radius
         x, w = np.polynomial.legendre.leggauss(32)
         s0, s1 = self.base.span
         edges = np.unique(

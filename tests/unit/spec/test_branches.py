@@ -190,6 +190,65 @@ def test_shop_on_a_tee_writes_the_templates_and_bevels_of_the_closed_forms(tmp_p
 
 
 @pytest.mark.slow
+def test_shop_on_a_stiffened_tee_nests_the_webs_stopped_at_the_opening(tmp_path):
+    """[stiffeners] on the tee: the ring frame through the branch's axis (ring 3, x = 150) is
+    cut at the opening, so its web is the sector of the arc it keeps, 2 pi - (pi - 2 acos(32 /
+    52)) of the annulus 52 .. 62; the stringer on the branch's side stops on the saddle, its
+    two pieces' webs rectangles 150 - 32 and 400 - 182 long. The webs' plate, read back by
+    ezdxf and measured by shapely, holds every piece at the area the index gives it."""
+    import json
+
+    import ezdxf
+    from shapely.geometry import Polygon
+
+    spec = tmp_path / "tee.toml"
+    stiffeners = '[stiffeners]\nrings = [1, 3]\nstringers = [0, 2]\nprofile = "flat"\nheight = 10.0\nthickness = 2.0\n'
+    spec.write_text(spec_text(BRANCH + "around = 90.0\n") + "[layout]\nrings = 9\nstringers = 8\n" + stiffeners)
+    result = CliRunner().invoke(cli, ["shop", str(spec), "-o", str(tmp_path / "shop")])
+    assert result.exit_code == 0, result.output
+    index = json.loads((tmp_path / "shop" / "index.json").read_text())
+    pieces = {p["name"]: p for p in index["webs"]["pieces"]}
+    assert set(pieces) == {"ring_01", "ring_03", "stringer_00", "stringer_02_a", "stringer_02_b"}
+    a, b = pieces["ring_03"]["span"]
+    kept = 2 * math.pi - (math.pi - 2 * math.acos(32.0 / 52.0))
+    assert math.radians(b - a) == pytest.approx(kept, rel=1e-7)
+    assert pieces["ring_03"]["area"] == pytest.approx(0.5 * kept * (62.0**2 - 52.0**2), rel=1e-7)
+    assert pieces["ring_01"]["area"] == pytest.approx(math.pi * (62.0**2 - 52.0**2), rel=1e-12)
+    assert pieces["stringer_02_a"]["area"] == pytest.approx(10.0 * (150.0 - 32.0), rel=1e-7)
+    assert pieces["stringer_02_b"]["area"] == pytest.approx(10.0 * (400.0 - 182.0), rel=1e-7)
+    assert pieces["stringer_00"]["area"] == pytest.approx(10.0 * 400.0, rel=1e-9)
+    (plate,) = (tmp_path / "shop" / "webs").glob("webs_plate_*.dxf")
+    parts = [e for e in ezdxf.readfile(plate).modelspace() if e.dxf.layer == "PARTS"]
+    circles = sorted(math.pi * e.dxf.radius**2 for e in parts if e.dxftype() == "CIRCLE")
+    outlines = [Polygon(_bulged_points(e)) for e in parts if e.dxftype() == "LWPOLYLINE"]
+    assert circles == pytest.approx([math.pi * 52.0**2, math.pi * 62.0**2], rel=1e-12)  # ring_01's annulus
+    drawn = sorted([circles[1] - circles[0], *(o.area for o in outlines)])
+    # the arcs as chords of 1/4000 of a turn: measured 4.1e-7 below the exact area (the sector)
+    assert drawn == pytest.approx(sorted(p["area"] for p in pieces.values()), rel=1e-6)
+
+
+def _bulged_points(polyline) -> list[tuple[float, float]]:
+    """A closed LWPOLYLINE's outline with each bulge's exact arc (ezdxf.math.bulge_to_arc)
+    sampled at least every 1/4000 of a turn (ezdxf's own paths make cubic Beziers of the arcs,
+    4e-3 off a 142 deg arc of radius 62)."""
+    from ezdxf.math import bulge_to_arc
+
+    vertices = list(polyline.get_points("xyb"))
+    out = []
+    for (x, y, bulge), (x2, y2, _) in zip(vertices, vertices[1:] + vertices[:1]):
+        out.append((x, y))
+        if bulge:
+            centre, start, end, radius = bulge_to_arc((x, y), (x2, y2), bulge)
+            sweep = (end - start) % (2 * math.pi)
+            steps = max(2, math.ceil(4000 * sweep / (2 * math.pi)))
+            angles = start + sweep * np.arange(1, steps) / steps
+            if bulge < 0:  # clockwise: from the start point the other way round
+                angles = end - sweep * np.arange(1, steps) / steps
+            out += [(centre.x + radius * math.cos(a), centre.y + radius * math.sin(a)) for a in angles]
+    return out
+
+
+@pytest.mark.slow
 def test_a_batch_of_a_branched_spec_builds_its_junctions(tmp_path):
     """`tubecad build SPEC -d DIR --sweep ...` runs each job through the junction's build."""
     import json
