@@ -1,9 +1,12 @@
 """A picture of a result on the deformed shell: each shell element a quadrilateral through
 its corners moved by the displacement (scaled so that the largest is ``exaggeration`` of the
-model's size), coloured by the mean of a nodal value over its corners."""
+model's size), coloured by the mean of a nodal value over its corners (:func:`shell_colours`:
+a node a stiffener's beam shares is left out, where CalculiX's nodal value mixes the beam's
+stress with the shell's)."""
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -28,7 +31,7 @@ def deformed_figure(
     scale = exaggeration * size / largest if largest > 0 else 0.0
     moved = mesh.nodes + scale * u
     corners = [b.connectivity[:, : b.corners] for b in mesh.shell_blocks]  # quads and triangles
-    colour = np.concatenate([np.nanmean(values[c], axis=1) for c in corners])
+    colour = shell_colours(mesh, values)
     polygons = [polygon for c in corners for polygon in moved[c]]
     fig = Figure(figsize=(9, 7))  # no pyplot: the user's backend is left alone
     ax = fig.add_subplot(projection="3d")
@@ -46,6 +49,24 @@ def deformed_figure(
     bar.set_label(label)
     ax.set_title(f"{title}\ndisplacements x {scale:.3g} (largest {largest:.3g} {mesh.length_unit})", fontsize=10)
     return fig
+
+
+def shell_colours(mesh, values: np.ndarray) -> np.ndarray:
+    """Per shell element (blocks in order), the mean of the nodal ``values`` over its corners
+    that no beam element uses (all its corners where every one is a beam's); NaN where no
+    corner has a value."""
+    shared = np.zeros(len(mesh.nodes), dtype=bool)
+    for block in mesh.beam_blocks:
+        shared[block.connectivity.ravel()] = True
+    out = []
+    for block in mesh.shell_blocks:
+        c = block.connectivity[:, : block.corners]
+        v = np.asarray(values, dtype=float)[c]
+        own = np.where(shared[c] & ~shared[c].all(axis=1, keepdims=True), np.nan, v)
+        with np.errstate(invalid="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # an element with no value: NaN, said above
+            out.append(np.nanmean(own, axis=1))
+    return np.concatenate(out) if out else np.zeros(0)
 
 
 def save_deformed(

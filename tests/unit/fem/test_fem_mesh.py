@@ -178,3 +178,22 @@ def test_the_element_cap_is_checked_before_any_node_is_made(torus):
     along, around = 8 * math.ceil(2 * math.pi * (R + RHO) / 8), 8 * math.ceil(2 * math.pi * RHO / 8)
     with pytest.raises(ParameterError, match=rf"give {along * around:,} elements \({along} along x {around} around"):
         shell_mesh(torus, layout, thickness=T, settings=MeshSettings("S4", size_along=1.0, size_around=1.0))
+
+
+def test_the_result_picture_leaves_out_the_nodes_beams_share():
+    """CalculiX's nodal stress at a node a beam shares mixes the beam's stress with the shell's
+    (70 % off on the stiffened tee): two quads either side of a beam along their common side
+    take the mean of their own two corners only; a quad with every corner on beams keeps them."""
+    from tubecad.fem.model import ElementBlock, FEMesh
+    from tubecad.fem.plot import shell_colours
+
+    nodes = np.array([[x, y, 0.0] for y in (0.0, 1.0) for x in (0.0, 1.0, 2.0)])  # 0 1 2 / 3 4 5
+    quads = ElementBlock("wall", "S4", np.array([[0, 1, 4, 3], [1, 2, 5, 4]]), 0)
+    beam = ElementBlock("ring_00_web", "B31", np.array([[1, 4]]), 2)
+    zeros = np.zeros_like(nodes)
+    mesh = FEMesh(nodes, zeros, zeros, zeros, zeros[:, :2], [quads, beam], [], [])
+    values = np.array([1.0, 1e9, 3.0, 5.0, 1e9, 7.0])
+    assert shell_colours(mesh, values).tolist() == [3.0, 5.0]
+    all_beams = ElementBlock("frame", "B31", np.array([[0, 1], [4, 3]]), 3)
+    mesh.blocks.append(all_beams)
+    assert shell_colours(mesh, values).tolist() == [0.25 * (1.0 + 1e9 + 1e9 + 5.0), 5.0]
