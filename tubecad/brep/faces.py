@@ -48,8 +48,7 @@ from tubecad.core.tolerance import EDGE_TOLERANCE
 from tubecad.fitting import TubeSurface
 from tubecad.fitting.canal_section import CanalSectionSurface
 from tubecad.fitting.circle import CircleSpline
-from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, reals
-from tubecad.occ_compat import Array1OfPnt2d
+from tubecad.fitting.nurbs import occ_curve
 
 #: edge and vertex tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = EDGE_TOLERANCE
@@ -465,11 +464,13 @@ def fit_angle_map(to_u: Callable[[np.ndarray], np.ndarray], a: float, b: float, 
 def _ring_pcurve(to_u: BSpline) -> Geom2d_BSplineCurve:
     """The pcurve (u(theta), 0) of a ring arc, parameterised by the circle's angle (each
     ring's pcurve is this curve translated to s)."""
-    poles = Array1OfPnt2d(1, len(to_u.c))
-    for i, u in enumerate(to_u.c):
-        poles.SetValue(i + 1, gp_Pnt2d(float(u), 0.0))
-    knots, mults = knots_and_multiplicities(to_u.t)
-    return Geom2d_BSplineCurve(poles, reals(knots), integers(mults), int(to_u.k))
+    return cast(Geom2d_BSplineCurve, occ_curve(_at_height(to_u, 0.0)))
+
+
+def _at_height(u_of_theta: BSpline, s: float) -> BSpline:
+    """The plane curve (u(theta), s) of a scalar spline u(theta)."""
+    c = np.column_stack([u_of_theta.c, np.full(len(u_of_theta.c), float(s))])
+    return BSpline(u_of_theta.t, c, u_of_theta.k)
 
 
 def ring_circle(tube_surface: TubeSurface, s: float, samples: int = 16) -> tuple[Geom_Circle, float]:
@@ -563,11 +564,7 @@ def canal_arc_pcurve(
     else:
         joints = []
     spline = fit_angle_map(to_u, lo, hi, joints)
-    poles = Array1OfPnt2d(1, len(spline.c))
-    for k, u in enumerate(spline.c):
-        poles.SetValue(k + 1, gp_Pnt2d(float(u), float(s)))
-    knots, mults = knots_and_multiplicities(spline.t)
-    pcurve = Geom2d_BSplineCurve(poles, reals(knots), integers(mults), int(spline.k))
+    pcurve = cast(Geom2d_BSplineCurve, occ_curve(_at_height(spline, s)))
     gap = max(
         circle.Value(float(theta)).Distance(surface.Value(float(spline(theta)), s))
         for theta in np.linspace(lo, hi, CANAL_GAP_SAMPLES + 2)

@@ -32,18 +32,15 @@ from dataclasses import dataclass, field
 import numpy as np
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepTools import BRepTools_ReShape
-from OCP.Geom import Geom_BSplineCurve
-from OCP.Geom2d import Geom2d_BSplineCurve
-from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec
+from OCP.gp import gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
 from scipy.interpolate import BSpline, make_interp_spline
 
 from tubecad.core.tolerance import EDGE_TOLERANCE
-from tubecad.fitting.nurbs import SurfaceArrays
-from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, reals
-from tubecad.occ_compat import Array1OfPnt, Array1OfPnt2d, IndexedDataMapOfShapeListOfShape, as_edge, as_face
+from tubecad.fitting.nurbs import SurfaceArrays, occ_curve
+from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, as_edge, as_face
 
 #: the interpolants' degree
 DEGREE = 5
@@ -275,24 +272,13 @@ def _edge(
     tolerance = max(EDGE_TOLERANCE, 2.0 * deviation)
     first, last = float(curve.t[0]), float(curve.t[-1])
     builder, edge = BRep_Builder(), TopoDS_Edge()
-    builder.MakeEdge(edge, _occ(curve, 3), tolerance)
+    builder.MakeEdge(edge, occ_curve(curve), tolerance)
     builder.Add(edge, TopExp.FirstVertex_s(old).Oriented(TopAbs_FORWARD))
     builder.Add(edge, TopExp.LastVertex_s(old).Oriented(TopAbs_REVERSED))
     builder.Range(edge, first, last)
     for face, pcurve in ((face_1, pcurve_1), (face_2, pcurve_2)):
-        builder.UpdateEdge(edge, _occ(pcurve, 2), face, tolerance)
+        builder.UpdateEdge(edge, occ_curve(pcurve), face, tolerance)
         builder.Range(edge, face, first, last)
     builder.SameParameter(edge, True)
     builder.SameRange(edge, True)
     return edge
-
-
-def _occ(spline: BSpline, dimension: int):
-    """A scipy B-spline as OCCT's (3D or 2D) B-spline curve: the same knots and poles."""
-    knots, multiplicities = knots_and_multiplicities(spline.t)
-    poles = Array1OfPnt(1, len(spline.c)) if dimension == 3 else Array1OfPnt2d(1, len(spline.c))
-    point = gp_Pnt if dimension == 3 else gp_Pnt2d
-    for i, pole in enumerate(spline.c):
-        poles.SetValue(i + 1, point(*map(float, pole)))
-    kind = Geom_BSplineCurve if dimension == 3 else Geom2d_BSplineCurve
-    return kind(poles, reals(knots), integers(multiplicities), spline.k)

@@ -1,4 +1,5 @@
-"""An OCCT B-spline surface as numpy arrays, evaluated on a whole grid at once.
+"""An OCCT B-spline surface as numpy arrays, evaluated on a whole grid at once; a scipy
+B-spline curve as OCCT's (:func:`occ_curve`).
 
 :class:`SurfaceArrays` holds what defines a ``Geom_BSplineSurface`` (poles P_ij, weights
 w_ij, the flat knot vectors and the degrees p, q; The NURBS Book, section 4.4) and
@@ -20,8 +21,13 @@ from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
-from OCP.Geom import Geom_BSplineSurface
+from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface
+from OCP.Geom2d import Geom2d_BSplineCurve
+from OCP.gp import gp_Pnt, gp_Pnt2d
 from scipy.interpolate import BSpline, NdBSpline
+
+from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, reals
+from tubecad.occ_compat import Array1OfPnt, Array1OfPnt2d
 
 FloatArray = NDArray[np.float64]
 
@@ -92,3 +98,17 @@ class SurfaceArrays:
         w = a[..., 3:]
         s = a[..., :3] / w
         return s, (a_u[..., :3] - a_u[..., 3:] * s) / w, (a_v[..., :3] - a_v[..., 3:] * s) / w
+
+
+def occ_curve(spline: BSpline) -> Geom_BSplineCurve | Geom2d_BSplineCurve:
+    """A scipy B-spline of points (coefficients (n, 3) or (n, 2)) as OCCT's 3D or 2D
+    B-spline curve of the same degree, knots and poles (non-rational)."""
+    poles = np.asarray(spline.c, dtype=float)
+    knots, multiplicities = knots_and_multiplicities(spline.t)
+    three = poles.shape[1] == 3
+    array = Array1OfPnt(1, len(poles)) if three else Array1OfPnt2d(1, len(poles))
+    point = gp_Pnt if three else gp_Pnt2d
+    for i, pole in enumerate(poles.tolist()):
+        array.SetValue(i + 1, point(*pole))
+    kind = Geom_BSplineCurve if three else Geom2d_BSplineCurve
+    return kind(array, reals(knots), integers(multiplicities), int(spline.k))
