@@ -1,5 +1,5 @@
-"""CadQuery Workplane plugin: ``curvatureTube``, ``curvatureWall`` and
-``stiffenedCurvatureWall``, the build123d objects' twins (the same arguments, the same engine: :mod:`tubecad.parts.engine`).
+"""CadQuery Workplane plugin: ``curvatureTube``, ``curvatureWall``,
+``stiffenedCurvatureWall`` and ``curvatureJunction``, the build123d objects' twins (the same arguments, the same engine: :mod:`tubecad.parts.engine`).
 
     import cadquery as cq
     import tubecad.integrations.cadquery_plugin  # registers the methods
@@ -175,6 +175,72 @@ def _pushed(
     return workplane.union(cq.Workplane().newObject([solid, *stiffeners]))
 
 
+def curvature_junction(
+    self: cq.Workplane,
+    axis: Any,
+    radius: Any,
+    thickness: float,
+    branches: Sequence[Any],
+    side: str = "centered",
+    rings: int | Sequence[float] = DEFAULT_RINGS,
+    stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+    tolerance: float = DEFAULT_TOLERANCE,
+    bend_radius: float | Sequence[float] | None = None,
+    normal: Sequence[float] | None = None,
+    closed: bool | None = None,
+    combine: bool = True,
+) -> cq.Workplane:
+    """The wall round the tube of ``radius`` about ``axis`` with every branch of ``branches``
+    (``tubecad.Branch``) joined on: one solid (arguments: tubecad.CurvatureJunction's, the same
+    engine: :func:`tubecad.parts.junction.build_junction_part`). Pushes a ``cq.Solid`` carrying
+    ``named_edges`` (name -> its labelled ``cq.Edge``: ``saddle_outer``, ``saddle_inner``,
+    ``main_ring_03``, ``branch_stringer_05_inner``, ...) and ``junction`` (what was built and
+    measured); with pads, a ``cq.Compound`` of it and the pads (labelled ``cq.Solid``: ``pad``,
+    ``pad_0``, ...) carrying the same and ``pads``. With ``combine`` and a solid on the stack,
+    they are fused into it (the names then refer to the unfused solid's edges)."""
+    from tubecad.parts.junction import build_junction_part
+
+    built = build_junction_part(
+        axis,
+        radius,
+        thickness,
+        branches,
+        side=side,
+        rings=rings,
+        stringers=stringers,
+        tolerance=tolerance,
+        bend_radius=bend_radius,
+        normal=normal,
+        closed=closed,
+    )
+    wall = cq.Solid(built.junction.shape.wrapped)
+    named: dict[str, list[cq.Edge]] = {}
+    for name, edges in sorted(built.junction.edges.items()):
+        named[name] = []
+        for edge in edges:
+            found = cq.Edge(edge.wrapped)
+            found.label = name
+            named[name].append(found)
+    pads = []
+    for name, pad in built.pads:
+        solid = cq.Solid(pad.solid.wrapped)
+        solid.label = name
+        pads.append(solid)
+    pushed: cq.Shape = wall if not pads else cq.Compound.makeCompound([wall, *pads])
+    for target in {id(wall): wall, id(pushed): pushed}.values():
+        target.named_edges = named  # type: ignore[attr-defined,unused-ignore]
+        target.junction = built.junction  # type: ignore[attr-defined,unused-ignore]
+    if pads:
+        pushed.pads = pads  # type: ignore[attr-defined,unused-ignore]
+    try:
+        base = self.findSolid()
+    except ValueError:  # nothing solid on the stack or its parents
+        base = None
+    if not combine or base is None:
+        return self.newObject([pushed])
+    return self.union(cq.Workplane().newObject([wall, *pads]))
+
+
 def _wire(label: str, edges: list) -> cq.Wire:
     wire = cq.Wire.assembleEdges([cq.Edge(as_edge(e)) for e in edges])
     wire.label = label
@@ -215,5 +281,6 @@ def curvature_line_wall(
 cq.Workplane.curvatureTube = curvature_tube  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureWall = curvature_wall  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.stiffenedCurvatureWall = stiffened_curvature_wall  # type: ignore[attr-defined,unused-ignore]
+cq.Workplane.curvatureJunction = curvature_junction  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureLineTube = curvature_line_tube  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureLineWall = curvature_line_wall  # type: ignore[attr-defined,unused-ignore]

@@ -67,6 +67,86 @@ class Branch:
     tau: str = "0"
 
 
+@dataclass
+class JunctionPart:
+    """What :func:`build_junction_part` made: the junction wall, the main tube and its net,
+    the branches' walls and each pad (name, :class:`~tubecad.stiffeners.pad.Pad`)."""
+
+    junction: Any
+    main: Any
+    main_layout: Any
+    walls: list
+    pads: list[tuple[str, Any]]
+
+
+def build_junction_part(
+    axis: Any,
+    radius: Any,
+    thickness: float,
+    branches: Sequence[Branch],
+    *,
+    side: str = "centered",
+    rings: int | Sequence[float] = DEFAULT_RINGS,
+    stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+    tolerance: float = DEFAULT_TOLERANCE,
+    bend_radius: float | Sequence[float] | None = None,
+    normal: Sequence[float] | None = None,
+    closed: bool | None = None,
+) -> JunctionPart:
+    """The junction of :class:`CurvatureJunction` (its arguments), for the build123d object
+    and the CadQuery plugin alike: the main tube about ``axis``, each :class:`Branch` placed
+    on it (:func:`tubecad.junctions.branch_surface`) with its wall and net, the walls joined
+    (:func:`tubecad.junctions.build_branched_wall`) and each branch's pad
+    (:func:`tubecad.stiffeners.pad.reinforcement_pad`: ``pad``, ``pad_k`` with several)."""
+    from tubecad.brep.wall import wall_offsets
+    from tubecad.junctions import BranchWall, branch_surface, build_branched_wall, saddle_name
+    from tubecad.stiffeners.pad import pad_name, reinforcement_pad
+    from tubecad.surface.canal import tube_or_canal
+
+    main = tube_or_canal(as_axis(axis, bend_radius=bend_radius, normal=normal, closed=closed), radius)
+    main_layout = layout_of(main, rings, stringers)
+    walls = []
+    for branch in branches:
+        surface = branch_surface(
+            main,
+            branch.at,
+            branch.length,
+            branch.radius,
+            angle=branch.angle,
+            around=branch.around,
+            offset=branch.offset,
+            k=branch.k,
+            tau=branch.tau,
+        )
+        branch_stringers = branch.stringers if branch.stringers is not None else len(main_layout.stringers_deg)
+        walls.append(
+            BranchWall(
+                surface,
+                thickness if branch.thickness is None else branch.thickness,
+                branch.side,
+                layout_of(surface, branch.rings, branch_stringers),
+            )
+        )
+    junction = build_branched_wall(main, thickness, walls, main_side=side, main_layout=main_layout, tolerance=tolerance)
+    pads = []
+    main_out = wall_offsets(thickness, side)[1]
+    for k, (branch, wall) in enumerate(zip(branches, walls)):
+        if branch.pad_thickness is None and branch.pad_width is None:
+            continue
+        saddle = junction.saddles[saddle_name("saddle_outer", k, len(branches))].saddle
+        pad = reinforcement_pad(
+            main.offset(main_out),
+            wall.surface.offset(wall.offsets()[1]),
+            saddle,
+            branch.pad_thickness if branch.pad_thickness is not None else float("nan"),
+            branch.pad_width if branch.pad_width is not None else float("nan"),
+            tolerance,
+            key="pad",
+        )
+        pads.append((pad_name(k, len(branches)), pad))
+    return JunctionPart(junction, main, main_layout, walls, pads)
+
+
 class CurvatureJunction(bd.BasePartObject):
     """The wall of ``thickness`` round the tube of ``radius`` about ``axis`` (any axis
     :class:`~tubecad.parts.build123d_parts.CurvatureWall` takes) with every branch of
@@ -97,80 +177,38 @@ class CurvatureJunction(bd.BasePartObject):
         align: bd.Align | tuple[bd.Align, bd.Align, bd.Align] | None = None,
         mode: bd.Mode = bd.Mode.ADD,
     ) -> None:
-        from tubecad.junctions import BranchWall, branch_surface, build_branched_wall
-        from tubecad.surface.canal import tube_or_canal
-
-        main = tube_or_canal(as_axis(axis, bend_radius=bend_radius, normal=normal, closed=closed), radius)
-        main_layout = layout_of(main, rings, stringers)
-        walls = []
-        for branch in branches:
-            surface = branch_surface(
-                main,
-                branch.at,
-                branch.length,
-                branch.radius,
-                angle=branch.angle,
-                around=branch.around,
-                offset=branch.offset,
-                k=branch.k,
-                tau=branch.tau,
-            )
-            branch_stringers = branch.stringers if branch.stringers is not None else len(main_layout.stringers_deg)
-            walls.append(
-                BranchWall(
-                    surface,
-                    thickness if branch.thickness is None else branch.thickness,
-                    branch.side,
-                    layout_of(surface, branch.rings, branch_stringers),
-                )
-            )
-        junction = build_branched_wall(
-            main, thickness, walls, main_side=side, main_layout=main_layout, tolerance=tolerance
+        built = build_junction_part(
+            axis,
+            radius,
+            thickness,
+            branches,
+            side=side,
+            rings=rings,
+            stringers=stringers,
+            tolerance=tolerance,
+            bend_radius=bend_radius,
+            normal=normal,
+            closed=closed,
         )
-        edge_map = edge_map_of(junction.shape.wrapped)
-        named = {name: [edge_map.FindIndex(e.wrapped) for e in edges] for name, edges in junction.edges.items()}
-        pads = self._pads(main, thickness, side, branches, walls, junction, tolerance)
         from tubecad.fem.junction import PadRegion, mid_surface_tubes
 
-        regions = [PadRegion(name, pad.s_range, pad.angles_deg, pad.thickness) for name, _, pad in pads]
-        self._tubecad = _Shared(
-            junction, named, mid_surface_tubes(main, thickness, main_layout, walls, side=side), regions
-        )
+        junction, pads = built.junction, built.pads
+        edge_map = edge_map_of(junction.shape.wrapped)
+        named = {name: [edge_map.FindIndex(e.wrapped) for e in edges] for name, edges in junction.edges.items()}
+        regions = [PadRegion(name, pad.s_range, pad.angles_deg, pad.thickness) for name, pad in pads]
+        tubes = mid_surface_tubes(built.main, thickness, built.main_layout, built.walls, side=side)
+        self._tubecad = _Shared(junction, named, tubes, regions)
         self._tolerance = tolerance
         wall = bd.Solid(junction.shape.wrapped)
         wall.label = "wall"
-        self._pad_names = [name for name, _, _ in pads]
-        part = bd.Part(bd.Compound([wall, *(solid for _, solid, _ in pads)]).wrapped) if pads else wall
-        super().__init__(part=part, rotation=rotation, align=align, mode=mode)
-
-    @staticmethod
-    def _pads(
-        main: Any, thickness: float, side: str, branches: Sequence[Branch], walls: list, junction: Any, tolerance: float
-    ) -> list[tuple[str, bd.Solid, Any]]:
-        """(name, solid, Pad) of each branch's pad: ``pad`` with one branch, ``pad_k`` with several."""
-        from tubecad.brep.wall import wall_offsets
-        from tubecad.junctions import saddle_name
-        from tubecad.stiffeners.pad import pad_name, reinforcement_pad
-
-        out = []
-        main_out = wall_offsets(thickness, side)[1]
-        for k, (branch, wall) in enumerate(zip(branches, walls)):
-            if branch.pad_thickness is None and branch.pad_width is None:
-                continue
-            saddle = junction.saddles[saddle_name("saddle_outer", k, len(branches))].saddle
-            pad = reinforcement_pad(
-                main.offset(main_out),
-                wall.surface.offset(wall.offsets()[1]),
-                saddle,
-                branch.pad_thickness if branch.pad_thickness is not None else float("nan"),
-                branch.pad_width if branch.pad_width is not None else float("nan"),
-                tolerance,
-                key="pad",
-            )
+        self._pad_names = [name for name, _ in pads]
+        pad_solids = []
+        for name, pad in pads:
             solid = bd.Solid(pad.solid.wrapped)
-            solid.label = pad_name(k, len(branches))
-            out.append((solid.label, solid, pad))
-        return out
+            solid.label = name
+            pad_solids.append(solid)
+        part = bd.Part(bd.Compound([wall, *pad_solids]).wrapped) if pads else wall
+        super().__init__(part=part, rotation=rotation, align=align, mode=mode)
 
     def shell_model(self, size: float | None = None, element: str = "S8R") -> Any:
         """The junction's shell model for a finite-element analysis

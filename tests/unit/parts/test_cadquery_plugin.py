@@ -109,3 +109,36 @@ def test_the_stiffened_wall_carries_labelled_stiffeners_of_exact_volume():
     assert len(fused.solids().vals()) == 1 and fused.val().isValid()
     with pytest.raises(ParameterError, match="ring_frames must be"):
         cq.Workplane().stiffenedCurvatureWall(axis, radius=radius, thickness=thickness, ring_frames=[99])
+
+
+def test_a_junction_carries_its_named_saddles_and_pads():
+    """curvatureJunction, the CurvatureJunction's twin: a main wall round the x axis (outer radius
+    52) with a square branch at x = 150 (outer radius 32) and its pad. Every point of the named
+    outer saddle lies on both outer cylinders (the branch's axis through (150, 0, 0) square to
+    x, along the saddle's mean direction in the yz plane, by symmetry); the solid is valid, as
+    the build123d object's to 1e-12 in volume; the pad is its own labelled solid; on a plate the
+    parts fuse into one valid solid."""
+    import build123d as bd
+    import numpy as np
+
+    from tubecad import Branch, CurvatureJunction
+
+    branch = Branch(at=150.0, length=120.0, radius=30.0, thickness=4.0, pad_thickness=6.0, pad_width=15.0)
+    axis = cq.Edge.makeLine(cq.Vector(0, 0, 0), cq.Vector(300, 0, 0))
+    tee = cq.Workplane().curvatureJunction(axis, 50.0, 4.0, [branch], rings=7, stringers=8).val()
+    assert isinstance(tee, cq.Compound) and [p.label for p in tee.pads] == ["pad"]
+    wall = tee.Solids()[0]
+    assert wall.isValid() and tee.pads[0].isValid()
+    saddle = tee.named_edges["saddle_outer"]
+    assert saddle and all(e.label == "saddle_outer" for e in saddle)
+    points = np.array([tuple(e.positionAt(t)) for e in saddle for t in np.linspace(0.0, 1.0, 9)])
+    assert np.abs(np.hypot(points[:, 1], points[:, 2]) - 52.0).max() < 1e-8
+    d = np.array([0.0, *points[:, 1:].mean(axis=0)])
+    d /= np.linalg.norm(d)
+    off_axis = points - [150.0, 0.0, 0.0]
+    off_axis -= np.outer(off_axis @ d, d)
+    assert np.abs(np.linalg.norm(off_axis, axis=1) - 32.0).max() < 1e-8
+    twin = CurvatureJunction(bd.Edge(axis.wrapped), 50.0, 4.0, [branch], rings=7, stringers=8)
+    assert props.volume(wall.wrapped) == pytest.approx(props.volume(twin.solids()[0].wrapped), rel=1e-12)
+    plate = cq.Workplane().box(400, 200, 10).curvatureJunction(axis, 50.0, 4.0, [branch], rings=7, stringers=8)
+    assert len(plate.solids().vals()) == 1 and plate.val().isValid()
