@@ -4,9 +4,10 @@ The saddle is smooth and periodic in the branch's stringer angle u_B, so it is i
 at N evenly spaced u_B by a periodic B-spline of degree 5 (knots at the samples, C^4 round
 the whole turn: no seam for OCCT's continuity check to find; The NURBS Book, section 9.2.1,
 global interpolation, with scipy's periodic solver), and measured against the exact saddle
-(Newton's points, :mod:`~tubecad.junctions.saddle`) at the N midpoints. N doubles from 32
-until the largest distance is within the fit tolerance: the error of a degree-5 interpolant
-falls as h^6, so each doubling gains about 64x.
+(Newton's points, :mod:`~tubecad.junctions.saddle`) at the N midpoints. N starts at 32 (or
+at the N another saddle of the junction needed) and, until the largest distance is within the
+fit tolerance, goes up to the power of two the error's rate asks for: a degree-5
+interpolant's error falls as h^6, so N (d / tolerance)^(1/6), rounded up, at least 2 N.
 
 The edge lies within that distance of both exact surfaces, and so within it plus the faces'
 own fit tolerance of both fitted faces.
@@ -14,6 +15,7 @@ own fit tolerance of both fitted faces.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import build123d as bd
@@ -83,12 +85,14 @@ def fit_saddle(
     name: str = "saddle_outer",
     key: str = "branches",
     near: SaddleCurve | None = None,
+    intervals: int = FIRST_INTERVALS,
 ) -> SaddleEdge:
     """The saddle where ``branch`` leaves ``main`` as a periodic B-spline edge within
     ``tolerance`` of the exact saddle (measured at the midpoints between its knots). ``near``:
-    a saddle close to it (the other wall face's), whose points start Newton instead of a march."""
+    a saddle close to it (the other wall face's), whose points start Newton instead of a march;
+    ``intervals``: the first number of intervals tried (the other saddle's)."""
     tolerance = check_tolerance("tolerance", tolerance)
-    intervals, exact = FIRST_INTERVALS, near
+    exact = near
     while True:
         exact = saddle_curve(main, branch, 2 * intervals + 1, key=key, near=exact)
         nodes = exact.points[::2].copy()
@@ -105,7 +109,8 @@ def fit_saddle(
                 f"round the branch (tolerance {tolerance:.1e})",
                 key="fit.tolerance",
             )
-        intervals *= 2
+        wanted = intervals * max(2.0, (deviation / tolerance) ** (1.0 / (DEGREE + 1)))
+        intervals = min(MOST_INTERVALS, 2 ** math.ceil(math.log2(wanted)))
     knots = SaddleCurve(
         exact.branch_u[::2],
         exact.branch_s[::2],
@@ -139,7 +144,9 @@ def wall_saddles(
     outer = fit_saddle(main.offset(main_out), branch.offset(branch_out), tolerance, name="saddle_outer", key=key)
     inner_main, inner_branch = main.offset(main_in), branch.offset(branch_in)
     try:  # the bore's saddle lies a wall's thickness from the outer one: Newton from its points
-        inner = fit_saddle(inner_main, inner_branch, tolerance, name="saddle_inner", key=key, near=outer.saddle)
+        inner = fit_saddle(
+            inner_main, inner_branch, tolerance, name="saddle_inner", key=key, near=outer.saddle, intervals=outer.poles
+        )
     except ParameterError:  # too far for Newton (or refused): march round the branch anew
         inner = fit_saddle(inner_main, inner_branch, tolerance, name="saddle_inner", key=key)
     return outer, inner
