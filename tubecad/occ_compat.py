@@ -93,6 +93,21 @@ def as_vertex(shape: TopoDS_Shape) -> TopoDS_Vertex:
     return _vertex(shape)
 
 
+def shapes_in(shapes) -> list[TopoDS_Shape]:
+    """The shapes of an OCP list of shapes (TopTools_ListOfShape), in order. Python's own
+    iteration of one costs about 0.7 ms a list, empty or not (pybind11's iterator; measured
+    on OCP 7.9 and 8 alike: 0.27 s for the history of one junction's edges); taking the first
+    of a copy until it is empty, 5 to 45 microseconds."""
+    if shapes.IsEmpty():
+        return []
+    rest, out = ListOfShape(), []
+    rest.Assign(shapes)
+    while not rest.IsEmpty():
+        out.append(rest.First())
+        rest.RemoveFirst()
+    return out
+
+
 __all__ = [
     "OCP_GENERATION",
     "Array1OfInteger",
@@ -109,5 +124,6 @@ __all__ = [
     "as_face",
     "as_solid",
     "as_vertex",
+    "shapes_in",
     "as_wire",
 ]

@@ -46,7 +46,14 @@ from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
 
 from tubecad.fitting.nurbs import SurfaceArrays
-from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge, as_face, as_vertex
+from tubecad.occ_compat import (
+    IndexedDataMapOfShapeListOfShape,
+    IndexedMapOfShape,
+    as_edge,
+    as_face,
+    as_vertex,
+    shapes_in,
+)
 
 #: BOPAlgo_ArgumentAnalyzer's checks, all switched on (FreeCAD's "Check geometry" with
 #: "BOP check" and every option): what OCCT tests before a boolean operation
@@ -527,7 +534,7 @@ class SelfIntersectionPlan:
         index = self.index()
         for result in analyzer.GetCheckResult() if analyzer.HasFaulty() else []:
             shapes = result.GetFaultyShapes1()
-            keys = tuple(sorted(index.FindIndex(s) for s in _iterate(shapes)))
+            keys = tuple(sorted(index.FindIndex(s) for s in shapes_in(shapes)))
             out.append((_status(result), keys, max(shapes.Extent(), 1)))
         return out
 
@@ -536,10 +543,6 @@ class SelfIntersectionPlan:
             self._index = IndexedMapOfShape()
             TopExp.MapShapes_s(self.part, self._index)
         return self._index
-
-
-def _iterate(shapes) -> list[TopoDS_Shape]:
-    return list(shapes)  # OCP's shape lists iterate in both generations
 
 
 def plan_self_intersection(part: object, refinements: int = REFINEMENTS) -> SelfIntersectionPlan | None:
@@ -606,7 +609,7 @@ def _touching(part: TopoDS_Shape, faces: list) -> np.ndarray:
     TopExp.MapShapesAndAncestors_s(part, TopAbs_VERTEX, TopAbs_FACE, vertex_faces)
     touching = np.zeros((len(faces), len(faces)), dtype=bool)
     for v in range(1, vertex_faces.Extent() + 1):
-        owners = {index[found.FindIndex(f)] for f in _iterate(vertex_faces.FindFromIndex(v))}
+        owners = {index[found.FindIndex(f)] for f in shapes_in(vertex_faces.FindFromIndex(v))}
         for i in owners:
             for j in owners:
                 touching[i, j] = True

@@ -40,7 +40,7 @@ from scipy.interpolate import BSpline, make_interp_spline
 
 from tubecad.core.tolerance import EDGE_TOLERANCE
 from tubecad.fitting.nurbs import SurfaceArrays, occ_curve
-from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, as_edge, as_face
+from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, as_edge, as_face, shapes_in
 
 #: the interpolants' degree
 DEGREE = 5
@@ -83,7 +83,7 @@ def refine_section_edges(
         if old <= above or BRep_Tool.Degenerated_s(edge):
             continue
         faces: list[TopoDS_Shape] = []
-        for face in faces_of.FindFromIndex(i):
+        for face in shapes_in(faces_of.FindFromIndex(i)):
             if not any(face.IsSame(f) for f in faces):
                 faces.append(face)
         if len(faces) != 2:

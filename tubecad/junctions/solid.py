@@ -55,7 +55,7 @@ from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, EDGE_TOLERANCE
 from tubecad.junctions.edges import SaddleEdge, wall_saddles
-from tubecad.occ_compat import ListOfShape, as_edge, as_face
+from tubecad.occ_compat import ListOfShape, as_edge, as_face, shapes_in
 from tubecad.surface.protocol import CurvatureLineSurface
 
 #: points sampled on each edge of W to tell whether it lies on a saddle
@@ -253,7 +253,7 @@ def _boolean(operation: BRepAlgoAPI_BooleanOperation, argument: TopoDS_Shape, to
         for edge in edges:
             if operation.IsDeleted(edge):
                 continue
-            modified = list(operation.Modified(edge))
+            modified = shapes_in(operation.Modified(edge))
             out.extend(modified if modified else [edge])
         return out
 
