@@ -175,11 +175,12 @@ def _clear_of_saddles(main: JunctionTube, branches: Sequence[JunctionTube], clea
     out = []
     for branch in branches:
         saddle = saddle_curve(main.surface, branch.surface)
-        lo, hi = saddle.main_s.min() - clearance, saddle.main_s.max() + clearance
+        (s_lo, s_hi), (u_lo, u_hi) = saddle.extent(saddle.main_s), saddle.extent(saddle.main_u)
+        lo, hi = s_lo - clearance, s_hi + clearance
         main_rings = [x for x in main_rings if not lo < x < hi or x in main.stiffened[0]]
         widen = math.degrees(clearance / main.radius)
-        centre = math.degrees(0.5 * (saddle.main_u.min() + saddle.main_u.max()))
-        half = 0.5 * math.degrees(saddle.main_u.max() - saddle.main_u.min()) + widen
+        centre = math.degrees(0.5 * (u_lo + u_hi))
+        half = 0.5 * math.degrees(u_hi - u_lo) + widen
         away = [a for a in main_angles if abs((a - centre + 180.0) % 360.0 - 180.0) > half or a in main.stiffened[1]]
         main_angles = away or [(centre + 180.0) % 360.0]
         b_lo, b_hi = saddle.branch_s.min() - clearance, saddle.branch_s.max() + clearance

@@ -21,8 +21,6 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
-import numpy as np
-
 from tubecad.core.errors import ParameterError
 from tubecad.junctions.saddle import SaddleCurve
 
@@ -56,8 +54,10 @@ class AreaReplacement:
 
 
 def opening_diameter(bore_saddle: SaddleCurve) -> float:
-    """d: the extent of the bore's saddle along the main axis, max s_A - min s_A."""
-    return float(np.ptp(bore_saddle.main_s))
+    """d: the extent of the bore's saddle along the main axis, max s_A - min s_A (each
+    refined between the samples: :meth:`SaddleCurve.extent`)."""
+    low, high = bore_saddle.extent(bore_saddle.main_s)
+    return high - low
 
 
 def area_replacement(

@@ -47,6 +47,10 @@ COARSE = 12
 TANGENCY = 1e-6
 
 
+#: Newton steps for an extreme of a sampled saddle (:meth:`SaddleCurve.extent`)
+EXTENT_STEPS = 8
+
+
 @dataclass(frozen=True)
 class SaddleCurve:
     """The saddle sampled at ``branch_u`` (u_B, increasing over one turn, the last sample
@@ -62,6 +66,37 @@ class SaddleCurve:
 
     def __len__(self) -> int:
         return len(self.branch_u)
+
+    def extent(self, values: FloatArray) -> tuple[float, float]:
+        """The least and the greatest of ``values`` (one of this curve's arrays: a smooth
+        periodic function of u_B, sampled evenly with it) along the saddle, between the
+        samples too: the trigonometric interpolant of the samples (numpy's FFT: spectrally
+        accurate for a smooth periodic function) has its extremes found by Newton's method
+        on its derivative from the extreme samples. The samples alone miss an extreme
+        between them by O(h^2): 2.3e-4 rad of a tee's opening at 128 samples."""
+        f = np.asarray(values, dtype=float)[:-1]  # the last sample is the first again
+        n = len(f)
+        k = np.arange(n // 2 + 1)
+        c = np.fft.rfft(f) / n * np.where((k == 0) | (2 * k == n), 1.0, 2.0)  # f = Re sum c_k e^(2 pi i k x / n)
+        w = 2j * np.pi * k / n
+
+        def derivatives(x: float) -> tuple[float, float, float]:
+            e = c * np.exp(w * x)
+            return float(e.sum().real), float((w * e).sum().real), float((w * w * e).sum().real)
+
+        def extreme(start: int, sign: float) -> float:  # sign -1: the least, +1: the greatest
+            x = float(start)
+            for _ in range(EXTENT_STEPS):
+                _, slope, bend = derivatives(x)
+                if bend == 0.0:
+                    break
+                step = max(-1.0, min(1.0, -slope / bend))  # within a sample of where it started
+                x += step
+                if abs(step) < 1e-13:
+                    break
+            return sign * max(sign * f[start], sign * derivatives(x)[0])  # never short of the sample
+
+        return extreme(int(np.argmin(f)), -1.0), extreme(int(np.argmax(f)), 1.0)
 
 
 def _ring_coordinates(main: CurvatureLineSurface, points: FloatArray, samples: int = 2001):

@@ -92,16 +92,16 @@ def pad_bounds(
         raise ParameterError(f"{key}.width must be > 0, got {width!r:.40}", key=f"{key}.width")
     radius = outer.radius_law.constant_value
     s0, s1 = outer.span
-    s_a, s_b = float(saddle.main_s.min()) - width, float(saddle.main_s.max()) + width
-    u_a = math.degrees(float(saddle.main_u.min()) - width / radius)
-    u_b = math.degrees(float(saddle.main_u.max()) + width / radius)
+    (s_lo, s_hi), (u_lo, u_hi) = saddle.extent(saddle.main_s), saddle.extent(saddle.main_u)
+    s_a, s_b = s_lo - width, s_hi + width
+    u_a, u_b = math.degrees(u_lo - width / radius), math.degrees(u_hi + width / radius)
     if not (s0 < s_a and s_b < s1):
         raise ParameterError(
             f"{key}.width: the pad reaches s = {s_a:.6g} .. {s_b:.6g}, past the main tube's span ({s0:g}, {s1:g})",
             key=f"{key}.width",
         )
     if u_b - u_a >= 360.0:
-        widest = radius * (math.pi - 0.5 * float(np.ptp(saddle.main_u)))
+        widest = radius * (math.pi - 0.5 * (u_hi - u_lo))
         raise ParameterError(
             f"{key}.width: the pad would reach all round the main tube ({u_b - u_a:.4g} deg); "
             f"width must be < {widest:.6g} here",

@@ -200,3 +200,19 @@ def test_the_saddle_edge_lies_on_both_fitted_tubes():
             distance = BRepExtrema_DistShapeShape(vertex, faces)
             # the guarantee is 2e-8; measured 8.4e-11 (both fits far inside their tolerance)
             assert distance.IsDone() and distance.Value() <= 1e-9
+
+
+def test_the_extent_of_a_sampled_saddle_is_refined_between_its_samples():
+    """The perpendicular cylinders' saddle sampled at 26 points (u_B = 2 pi j / 25, so pi, pi / 2
+    and 3 pi / 2 fall between samples): along the main it spans s_A = 100 -+ r, round it the
+    angles atan2(z, +-r) at z = sqrt(R^2 - r^2). The samples miss the near end by 0.16 and the
+    angles by 8.6e-4 rad; refined (the trigonometric interpolant), by 6e-14 and 5e-11."""
+    branch = line((0.0, 0.0, 0.0), (0, 0, 1), (1, 0, 0), 120.0, r)
+    c = saddle_curve(MAIN, branch, 26)
+    z = math.sqrt(R**2 - r**2)
+    exact_u = (math.atan2(z, r), math.atan2(z, -r))
+    assert c.main_s.min() > 100.0 - r + 0.1 and c.main_u.min() > exact_u[0] + 5e-4
+    s_lo, s_hi = c.extent(c.main_s)
+    u_lo, u_hi = c.extent(c.main_u)
+    assert abs(s_lo - (100.0 - r)) < 1e-12 and abs(s_hi - (100.0 + r)) < 1e-12
+    assert abs(u_lo - exact_u[0]) < 1e-10 and abs(u_hi - exact_u[1]) < 1e-10
