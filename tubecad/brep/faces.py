@@ -5,7 +5,7 @@ needed. A stringer edge's 3D curve is the surface's isoline u = const (the curva
 with the pcurve u = const, the same parameter by construction. A ring edge's 3D curve is a
 true circle (Geom_Circle: centre c(s), plane normal t(s), radius rho, angle from the
 stringer origin), so CAD selectors and OCCT's checks see circles; the fit is exact at
-every ring (:func:`tubecad.fitting.frame_spline.refine_spline`'s sites), so the circle is
+every ring (:func:`tubecad.fitting.frame_spline.refine_spline`'s rings), so the circle is
 the faces' isoline s = const to round-off at any fit tolerance, and a STEP file (which
 keeps no edge tolerance: its readers give each edge 1e-7) reads back with the rings on
 their faces; its pcurve is

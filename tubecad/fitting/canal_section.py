@@ -27,8 +27,8 @@ kappa of Mb: a sub-arc alpha is used with cot(alpha / 4) >= sqrt(3) kappa (then 
 of a sub-arc under the Moebius map stays below 120 deg), and the weights are checked.
 
 The spline is fitted like the frame spline (:func:`.frame_spline.refine_spline`: Greville
-interpolation, exact at the rings (so a ring's isoline is its characteristic circle),
-knots at the rings, the axis' joints and a radius table's knots, spans
+interpolation, knots at the rings (of multiplicity the degree: exact there, so a ring's
+isoline is its characteristic circle), the axis' joints and a radius table's knots, spans
 halved) until, sampled densely at every offset built, the distance of the fitted surface
 from the exact canal surface (:meth:`CanalSurface.points` + d :meth:`CanalSurface.normal`,
 parameter-matched) is <= tolerance / 2 and |cos| between its isolines <= orthogonality / 2.
@@ -171,13 +171,17 @@ def fit_canal(
     degree: int = 7,
     max_spans: int = 4096,
     rings: Sequence[float] = (),
+    exact_at_rings: bool = True,
 ) -> CanalSpline:
     """Fit the 21-vector of ``canal`` adaptively until, at each of the ``offsets`` (the
     normal offsets d of the surfaces that will be built on it: r + d), the fitted surface is
     within ``tolerance`` / 2 of the exact one and its isolines within ``orthogonality`` / 2
     of orthogonal (measured at SAMPLES_PER_SPAN x MEASURE_ANGLES points per span).
 
-    ``rings`` (arc lengths inside the span) become knots, like the axis' joints (reduced
+    ``rings`` (arc lengths inside the span) become knots, of multiplicity ``degree`` (the
+    fit exact there: face boundaries, see the module's text) or, without
+    ``exact_at_rings`` (a ring frame's faces span some of its section's s-values), simple
+    ones, like the axis' joints (reduced
     continuity as in :func:`.frame_spline.fit_frame`) and a radius table's knots (C1: r' is
     only C1 there), except a table knot a sliver away from a joint or ring, which is left
     out or added back exactly after the fit (see SLIVER_NOISE, DROP)."""
@@ -257,7 +261,7 @@ def fit_canal(
         orthogonality,
         max_spans,
         "the canal section spline",
-        sites=ring_s.tolist(),
+        rings=ring_s.tolist() if exact_at_rings else (),
     )
     spline = _with_singular_parts(spline, singular)
     s_check = np.linspace(*canal.span, 4001)

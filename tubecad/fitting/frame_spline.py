@@ -3,9 +3,10 @@
 c is the axis, (r1, r2) its rotation-minimising normals (docs/MATH.md section 6). F is
 interpolated at the Greville abscissae of a clamped knot vector of degree p whose breaks
 include the ring frames (so every face boundary s = s_i is a knot, never a sliver of a
-span away from one) and with each ring taking the place of its nearest abscissa (so the
-fitted section at a ring is the exact one to round-off: its isoline is the ring's exact
-circle at any tolerance, which a STEP file's 1e-7 edges need), and spans are halved until, sampled densely on every span, both
+span away from one), each of multiplicity p (so one abscissa is the ring itself and the
+fitted section there is the exact one to round-off: its isoline is the ring's exact circle
+at any tolerance, which a STEP file's 1e-7 edges need; F is then only C0 at the rings,
+where the faces end anyway, and each face's Segment()-ed surface has the poles it had), and spans are halved until, sampled densely on every span, both
     |c_fit - c| + R sqrt(|r1_fit - r1|^2 + |r2_fit - r2|^2) <= tolerance / 2      (position)
     |cos(S_u, S_s)| of the fitted surface, at every radius built, <= orthogonality / 2
 hold, R the largest radius that will be built on the fit. The first bounds the distance of
@@ -89,7 +90,7 @@ def fit_frame(
         orthogonality,
         max_spans,
         "the frame spline",
-        sites=rings,
+        rings=rings,
     )
     return FrameSpline(spline, pos, orth, radius_bound)
 
@@ -104,20 +105,21 @@ def refine_spline(
     orthogonality: float,
     max_spans: int = 4096,
     what: str = "the spline",
-    sites: Sequence[float] = (),
+    rings: Sequence[float] = (),
 ) -> tuple[BSpline, float, float]:
     """Interpolate the vector function ``values`` (s -> (len(s), m)) at the Greville
     abscissae of the clamped knot vector of ``degree`` on ``breaks`` (inner breaks in
     ``joints`` repeated to their multiplicity), and halve every span where
     ``span_errors(spline, breaks)`` (per span: a position error and an orthogonality error)
-    exceeds half of ``tolerance`` / ``orthogonality``, until none does. Each of ``sites``
-    (breaks: the rings) replaces its nearest abscissa, so the spline is exact there: (spline, largest
+    exceeds half of ``tolerance`` / ``orthogonality``, until none does. Each of ``rings``
+    (breaks) is a knot of multiplicity ``degree``: one abscissa is the ring itself, so the
+    spline is exact there: (spline, largest
     position error, largest orthogonality error). A FitError (naming ``what``) when more than
     ``max_spans`` spans would be needed."""
     best = (math.inf, math.inf)
     worst: list[float] = []  # per refinement: the largest error in units of its target
     while True:
-        spline = _interpolate(values, breaks, degree, joints, sites)
+        spline = _interpolate(values, breaks, degree, joints, rings)
         pos, orth = span_errors(spline, breaks)
         best = (min(best[0], float(pos.max())), min(best[1], float(orth.max())))
         bad = (pos > 0.5 * tolerance) | (orth > 0.5 * orthogonality)
@@ -182,26 +184,17 @@ def _interpolate(
     breaks: np.ndarray,
     p: int,
     joints: dict[float, int],
-    sites: Sequence[float] = (),
+    rings: Sequence[float] = (),
 ) -> BSpline:
-    inner = [b for b in breaks[1:-1] for _ in range(joints.get(float(b), 1))]
+    exact = {float(x) for x in rings}
+    inner = [b for b in breaks[1:-1] for _ in range(p if float(b) in exact else joints.get(float(b), 1))]
     knots = np.concatenate([[breaks[0]] * (p + 1), inner, [breaks[-1]] * (p + 1)])
     n = len(knots) - p - 1
     greville = np.lib.stride_tricks.sliding_window_view(knots[1:], p)[:n].mean(axis=1)  # of knots i + 1 .. i + p
     greville = np.clip(greville, breaks[0], breaks[-1])  # a mean of equal knots can round past them
-    for site in sites:
-        _take_site(greville, knots, p, float(site))
+    for x in exact:  # p equal knots: their mean is the ring, up to the rounding of the mean
+        greville[np.argmin(np.abs(greville - x))] = x
     return make_interp_spline(greville, values(greville), k=p, t=knots)
-
-
-def _take_site(greville: np.ndarray, knots: np.ndarray, p: int, site: float) -> None:
-    """Put ``site`` in place of its nearest abscissa where the interpolation stays well posed
-    (Schoenberg-Whitney: t_i < x_i < t_(i+p+1), sites increasing); an end is already a site."""
-    i = int(np.argmin(np.abs(greville - site)))
-    if greville[i] == site or not greville[0] < site < greville[-1]:
-        return
-    if knots[i] < site < knots[i + p + 1] and greville[i - 1] < site < greville[i + 1]:
-        greville[i] = site
 
 
 class SpanSamples:

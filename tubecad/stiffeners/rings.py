@@ -379,7 +379,7 @@ def canal_ring_solid(base: CurvatureLineSurface, section: Section, tolerance: fl
     sub = base.restricted((max(s0, lo - widen), min(s1, hi + widen)))
     levels = sorted({p[1] for p in section})
     exact = checked_levels(sub, levels, "the ring")
-    fit = fit_canal(sub, levels, tolerance, orthogonality_for(tolerance), rings=s_values)
+    fit = fit_canal(sub, levels, tolerance, orthogonality_for(tolerance), rings=s_values, exact_at_rings=False)
     joints = [s for s, _ in sub.axis.joints]
     surfaces = {d: canal_section_surface(sub, fit, d, QUARTERS, exact[d]) for d in levels}
     faces: list[TopoDS_Face] = []
