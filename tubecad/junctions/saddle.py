@@ -94,7 +94,7 @@ class SaddleCurve:
                 x += step
                 if abs(step) < 1e-13:
                     break
-            return sign * max(sign * f[start], sign * derivatives(x)[0])  # never short of the sample
+            return float(sign * max(sign * f[start], sign * derivatives(x)[0]))  # never short of the sample
 
         return extreme(int(np.argmin(f)), -1.0), extreme(int(np.argmax(f)), 1.0)
 

@@ -214,5 +214,6 @@ def test_the_extent_of_a_sampled_saddle_is_refined_between_its_samples():
     assert c.main_s.min() > 100.0 - r + 0.1 and c.main_u.min() > exact_u[0] + 5e-4
     s_lo, s_hi = c.extent(c.main_s)
     u_lo, u_hi = c.extent(c.main_u)
+    assert type(s_lo) is float and type(u_hi) is float  # (report.json takes them)
     assert abs(s_lo - (100.0 - r)) < 1e-12 and abs(s_hi - (100.0 + r)) < 1e-12
     assert abs(u_lo - exact_u[0]) < 1e-10 and abs(u_hi - exact_u[1]) < 1e-10
