@@ -253,7 +253,8 @@ def _arc_pieces(st: Stiffener, fab: Fabrication, whole: FlatPattern, chosen: lis
     branch's opening, no butt joints there): the arc's sector of the annulus, or, split at
     the chosen joints (inside the arc) and then into equal parts, as few sectors as are all
     cuttable; the root gap is left at the joints only."""
-    a, b = st.arc_deg or (0.0, 360.0)
+    assert st.arc_deg is not None  # ring_pieces sends only a cut ring here
+    a, b = st.arc_deg
     marks = []
     for angle in chosen:
         mark = a + (_ring_angle(st, angle) - a) % 360.0
