@@ -108,6 +108,20 @@ def shapes_in(shapes) -> list[TopoDS_Shape]:
     return out
 
 
+def box_corners(shape: object) -> tuple[tuple[float, float, float], tuple[float, float, float]] | None:
+    """The lowest and highest corners of ``shape``'s bounding box (BRepBndLib: OCCT's box,
+    enlarged by the shapes' tolerances), None for an empty shape. Bnd_Box.Get() returns a
+    struct in OCP 8 and a tuple in OCP 7.9; its corners read the same in both."""
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    box = Bnd_Box()
+    BRepBndLib.Add_s(getattr(shape, "wrapped", shape), box)
+    if box.IsVoid():
+        return None
+    return box.CornerMin().Coord(), box.CornerMax().Coord()
+
+
 __all__ = [
     "OCP_GENERATION",
     "Array1OfInteger",
@@ -126,4 +140,5 @@ __all__ = [
     "as_vertex",
     "shapes_in",
     "as_wire",
+    "box_corners",
 ]

@@ -52,6 +52,7 @@ from tubecad.occ_compat import (
     as_edge,
     as_face,
     as_vertex,
+    box_corners,
     shapes_in,
 )
 
@@ -619,18 +620,13 @@ def _touching(part: TopoDS_Shape, faces: list) -> np.ndarray:
 def _centres(faces: list, low: np.ndarray, high: np.ndarray) -> np.ndarray:
     """Each face's centre for grouping: its cells' box's, or OCCT's box's for a face the
     filter could not bound (its cells' box is infinite)."""
-    from OCP.Bnd import Bnd_Box
-    from OCP.BRepBndLib import BRepBndLib
-
     centres = np.zeros((len(faces), 3))
     for i, face in enumerate(faces):
         if np.all(np.isfinite(low[i])) and np.all(np.isfinite(high[i])):
             centres[i] = 0.5 * (low[i] + high[i])
         else:
-            box = Bnd_Box()
-            BRepBndLib.Add_s(face, box)
-            low_corner, high_corner = box.CornerMin(), box.CornerMax()  # Get() differs in OCP 7.9 and 8
-            centres[i] = 0.5 * (np.array(low_corner.Coord()) + np.array(high_corner.Coord()))
+            corners = box_corners(face)
+            centres[i] = 0.5 * (np.array(corners[0]) + np.array(corners[1])) if corners else 0.0
     return centres
 
 

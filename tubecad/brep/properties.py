@@ -20,7 +20,7 @@ from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
 from tubecad.brep.analyzer import ANALYZER_MODES as ANALYZER_MODES
 from tubecad.brep.analyzer import analyzer_findings as analyzer_findings
 from tubecad.brep.analyzer import sub_shapes as sub_shapes
-from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge
+from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge, box_corners
 
 EPS = 1e-10
 KINDS = {"solid": TopAbs_SOLID, "face": TopAbs_FACE, "edge": TopAbs_EDGE, "vertex": TopAbs_VERTEX}
@@ -63,15 +63,8 @@ def free_edges(shape: object) -> int:
 
 def largest_coordinate(shape: object) -> float:
     """max |x|, |y|, |z| over the shape's bounding box (BRepBndLib, OCCT's optimal box)."""
-    from OCP.Bnd import Bnd_Box
-    from OCP.BRepBndLib import BRepBndLib
-
-    box = Bnd_Box()
-    BRepBndLib.Add_s(topods(shape), box)
-    if box.IsVoid():
-        return 0.0
-    low, high = box.CornerMin(), box.CornerMax()  # Get() returns a struct in OCP 8, a tuple in 7.9
-    return max(abs(v) for v in (*low.Coord(), *high.Coord()))
+    corners = box_corners(shape)
+    return 0.0 if corners is None else max(abs(v) for v in (*corners[0], *corners[1]))
 
 
 def volume(shape: object, eps: float = EPS) -> float:

@@ -30,6 +30,7 @@ from tubecad.core.errors import TubecadError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.core.units import length_unit as unit_of
 from tubecad.export.meshing import ANGULAR_DEFLECTION, RELATIVE_DEFLECTION  # noqa: F401  (the defaults, tubecad.export.meshing)
+from tubecad.occ_compat import box_corners
 
 if TYPE_CHECKING:
     from tubecad.brep import TubeBuild
@@ -41,15 +42,10 @@ class MeshError(TubecadError):
 
 def default_deflection(shape: object) -> float:
     """1e-3 of the smallest extent of ``shape``'s bounding box (a tube: of its diameter)."""
-    from OCP.Bnd import Bnd_Box
-    from OCP.BRepBndLib import BRepBndLib
-
-    box = Bnd_Box()
-    BRepBndLib.Add_s(topods(shape), box)
-    if box.IsVoid():
+    corners = box_corners(shape)
+    if corners is None:
         return RELATIVE_DEFLECTION
-    x0, y0, z0, x1, y1, z1 = box.Get()
-    extents = [v for v in (x1 - x0, y1 - y0, z1 - z0) if v > 0]
+    extents = [b - a for a, b in zip(*corners) if b > a]
     return RELATIVE_DEFLECTION * (min(extents) if extents else 1.0)
 
 

@@ -85,7 +85,9 @@ def fit_frame(
         breaks,
         degree,
         joints,
-        lambda spline, breaks: _span_errors(samples, spline, breaks, radius_bound, radii, 0.5 * orthogonality),
+        lambda spline, breaks: _span_errors(
+            samples, spline, breaks, radius_bound, radii, 0.5 * orthogonality, 0.5 * tolerance
+        ),
         tolerance,
         orthogonality,
         max_spans,
@@ -228,10 +230,18 @@ def _frame_and_curvature(axis: Axis, s: np.ndarray) -> tuple[np.ndarray, np.ndar
 
 
 def _span_errors(
-    samples: SpanSamples, spline: BSpline, breaks: np.ndarray, radius: float, radii: Sequence[float], target: float
+    samples: SpanSamples,
+    spline: BSpline,
+    breaks: np.ndarray,
+    radius: float,
+    radii: Sequence[float],
+    target: float,
+    position_target: float = math.inf,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Per span: the position bound and the orthogonality (the bound, or where it exceeds
-    ``target``, the largest |cos| measured on the fitted surface at every radius)."""
+    ``target``, the largest |cos| measured on the fitted surface at every radius). A span whose
+    position bound already exceeds ``position_target`` is halved whatever its orthogonality:
+    it keeps the orthogonality bound, unmeasured (an upper bound)."""
     m = len(breaks) - 1
     s, F, dF, k = samples(breaks)
 
@@ -244,8 +254,9 @@ def _span_errors(
     with np.errstate(divide="ignore"):
         orth = bound(dfit, dF) / np.maximum(1.0 - radius * k, 0.0)
     orth = orth.reshape(m, -1).max(axis=1)
-    over = np.flatnonzero(orth > target)
+    pos = pos.reshape(m, -1).max(axis=1)
+    over = np.flatnonzero((orth > target) & (pos <= position_target))
     if over.size:
-        rows = np.concatenate([np.arange(i * SAMPLES_PER_SPAN, (i + 1) * SAMPLES_PER_SPAN) for i in over])
+        rows = (over[:, None] * SAMPLES_PER_SPAN + np.arange(SAMPLES_PER_SPAN)).ravel()
         orth[over] = measured_cos(fit[rows], dfit[rows], radii).reshape(over.size, -1).max(axis=1)
-    return pos.reshape(m, -1).max(axis=1), orth
+    return pos, orth

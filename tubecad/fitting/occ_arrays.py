@@ -12,14 +12,14 @@ from tubecad.occ_compat import Array1OfInteger, Array1OfReal, Array2OfPnt, Array
 
 def reals(values: Sequence[float] | np.ndarray) -> Array1OfReal:
     out = Array1OfReal(1, len(values))
-    for i, v in enumerate(values):
-        out.SetValue(i + 1, float(v))
+    for i, v in enumerate(np.asarray(values, dtype=float).tolist()):  # Python floats: no numpy scalar per item
+        out.SetValue(i + 1, v)
     return out
 
 
 def integers(values: Sequence[int] | np.ndarray) -> Array1OfInteger:
     out = Array1OfInteger(1, len(values))
-    for i, v in enumerate(values):
+    for i, v in enumerate(np.asarray(values).tolist()):
         out.SetValue(i + 1, int(v))
     return out
 
@@ -28,18 +28,18 @@ def points_2d(points: np.ndarray) -> Array2OfPnt:
     """(n, m, 3) -> Array2OfPnt(1..n, 1..m)."""
     n, m, _ = points.shape
     out = Array2OfPnt(1, n, 1, m)
-    for i in range(n):
-        for j in range(m):
-            out.SetValue(i + 1, j + 1, gp_Pnt(*map(float, points[i, j])))
+    for i, row in enumerate(np.asarray(points, dtype=float).tolist(), start=1):
+        for j, (x, y, z) in enumerate(row, start=1):
+            out.SetValue(i, j, gp_Pnt(x, y, z))
     return out
 
 
 def reals_2d(values: np.ndarray) -> Array2OfReal:
     n, m = values.shape
     out = Array2OfReal(1, n, 1, m)
-    for i in range(n):
-        for j in range(m):
-            out.SetValue(i + 1, j + 1, float(values[i, j]))
+    for i, row in enumerate(np.asarray(values, dtype=float).tolist(), start=1):
+        for j, v in enumerate(row, start=1):
+            out.SetValue(i, j, v)
     return out
 
 

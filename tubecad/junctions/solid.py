@@ -55,7 +55,7 @@ from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, EDGE_TOLERANCE
 from tubecad.junctions.edges import SaddleEdge, wall_saddles
-from tubecad.occ_compat import ListOfShape, as_edge, as_face, shapes_in
+from tubecad.occ_compat import ListOfShape, as_edge, as_face, box_corners, shapes_in
 from tubecad.surface.protocol import CurvatureLineSurface
 
 #: points sampled on each edge of W to tell whether it lies on a saddle
@@ -309,12 +309,8 @@ def _between(outside: TopoDS_Shape, bore: TopoDS_Shape) -> TopoDS_Shape | None:
 
 
 def _centre(face: TopoDS_Face) -> np.ndarray:
-    from OCP.Bnd import Bnd_Box
-    from OCP.BRepBndLib import BRepBndLib
-
-    box = Bnd_Box()
-    BRepBndLib.Add_s(face, box)
-    return 0.5 * (np.array(box.CornerMin().Coord()) + np.array(box.CornerMax().Coord()))
+    low, high = box_corners(face) or ((0.0,) * 3, (0.0,) * 3)
+    return 0.5 * (np.array(low) + np.array(high))
 
 
 def _annulus(outer: TopoDS_Face, inner: TopoDS_Face) -> TopoDS_Face:

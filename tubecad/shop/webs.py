@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 import string
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -216,36 +217,16 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
         and 2 * float(np.linalg.norm(whole.outline[0])) <= fab.usable[1]
     ):
         return [WebPiece(st.name, st.name, "ring", (0.0, 360.0), whole, (False, False))]
-    r_in, r_out, q = _annulus(st, whole)
-    base_radius = r_in if st.side == "outside" else r_out  # the web's edge on the wall, in the development
-    gap_deg = math.degrees(fab.joint_gap / (base_radius * q))  # the root gap along the base circle, in 3-D degrees
     if chosen:
         marks = [_ring_angle(st, a) for a in chosen]
-        bounds = list(zip(marks, marks[1:] + [marks[0] + 360.0]))
-    else:
-        bounds = None
-    for n in range(1 if chosen else 2, MAX_PIECES + 1):
-        if bounds is None:
-            start = _clear_start(st, n, stringers_deg)
-            arcs = [(start + 360.0 * j / n, start + 360.0 * (j + 1) / n) for j in range(n)]
-        else:  # each chosen bay into n equal sectors
-            arcs = [(a + (b - a) * j / n, a + (b - a) * (j + 1) / n) for a, b in bounds for j in range(n)]
-        arcs = [(a + gap_deg / 2, b - gap_deg / 2) for a, b in arcs]
-        if any(a >= b for a, b in arcs):
-            break
-        outlines = [_sector(r_in, r_out, math.radians(q * (b - a))) for a, b in arcs]
-        if all(cuttable(o, fab)[0] for o in outlines):
-            names = piece_names(st.name, len(arcs))
-            return [
-                WebPiece(
-                    name, st.name, "ring", (a, b), _sector_pattern(name, r_in, r_out, q, a, b, st.side), (True, True)
-                )
-                for name, (a, b) in zip(names, arcs)
-            ]
-    raise ParameterError(
-        f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: no split "
-        f"into up to {MAX_PIECES} sectors is cuttable"
-    )
+        bays = list(zip(marks, marks[1:] + [marks[0] + 360.0]))
+        return _sector_pieces(st, fab, whole, lambda n: bays, first=1)
+
+    def around(n: int) -> list[tuple[float, float]]:  # n equal sectors from the joint clearest of the stringers
+        start = _clear_start(st, n, stringers_deg)
+        return [(start, start + 360.0)]
+
+    return _sector_pieces(st, fab, whole, around, first=2)
 
 
 def _arc_pieces(st: Stiffener, fab: Fabrication, whole: FlatPattern, chosen: list[float]) -> list[WebPiece]:
@@ -264,13 +245,27 @@ def _arc_pieces(st: Stiffener, fab: Fabrication, whole: FlatPattern, chosen: lis
                 f"cuts: it runs from {a % 360.0:.6g} round to {b % 360.0:.6g} deg"
             )
         marks.append(mark)
-    bounds = list(zip([a, *sorted(marks)], [*sorted(marks), b]))
+    bays = list(zip([a, *sorted(marks)], [*sorted(marks), b]))
+    return _sector_pieces(st, fab, whole, lambda n: bays, first=1, square=(a, b))
+
+
+def _sector_pieces(
+    st: Stiffener,
+    fab: Fabrication,
+    whole: FlatPattern,
+    bays: Callable[[int], list[tuple[float, float]]],
+    first: int,
+    square: tuple[float, float] | None = None,
+) -> list[WebPiece]:
+    """The fewest pieces, n = ``first``, first + 1, ... equal sectors of each bay of
+    ``bays(n)`` (circle degrees), that are all cuttable: a butt joint's root gap is left at
+    every sector end except the ends ``square`` of a cut ring's arc."""
     r_in, r_out, q = _annulus(st, whole)
-    base_radius = r_in if st.side == "outside" else r_out
-    half_gap = 0.5 * math.degrees(fab.joint_gap / (base_radius * q))
-    for n in range(1, MAX_PIECES + 1):
-        arcs = [(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n) for lo, hi in bounds for j in range(n)]
-        joints = [(x > a, y < b) for x, y in arcs]
+    base_radius = r_in if st.side == "outside" else r_out  # the web's edge on the wall, in the development
+    half_gap = 0.5 * math.degrees(fab.joint_gap / (base_radius * q))  # along the base circle, in 3-D degrees
+    for n in range(first, MAX_PIECES + 1):
+        arcs = [(lo + (hi - lo) * j / n, lo + (hi - lo) * (j + 1) / n) for lo, hi in bays(n) for j in range(n)]
+        joints = [(square is None or x > square[0], square is None or y < square[1]) for x, y in arcs]
         arcs = [(x + half_gap * start, y - half_gap * end) for (x, y), (start, end) in zip(arcs, joints)]
         if any(x >= y for x, y in arcs):
             break
@@ -280,9 +275,10 @@ def _arc_pieces(st: Stiffener, fab: Fabrication, whole: FlatPattern, chosen: lis
                 WebPiece(name, st.name, "ring", (x, y), _sector_pattern(name, r_in, r_out, q, x, y, st.side), joint)
                 for name, (x, y), joint in zip(names, arcs, joints)
             ]
+    what = "sectors of its arc" if square else "sectors"
     raise ParameterError(
         f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: no split "
-        f"into up to {MAX_PIECES} sectors of its arc is cuttable"
+        f"into up to {MAX_PIECES} {what} is cuttable"
     )
 
 
