@@ -50,44 +50,60 @@ def solve_linear_ode(
 ) -> PiecewiseChebyshev:
     """y' = A(x) y from y(breaks[0]) = y0 (shape (m,) or (m, q): q solutions at once) over
     [breaks[0], breaks[-1]], starting from the panels between ``breaks`` and halving any
-    panel whose solution is not resolved. ``matrix`` maps an array of x (n,) to A (n, m, m).
-    Returns the solution as a piecewise Chebyshev series with values of y0's shape."""
+    panel whose solution is not resolved. ``matrix`` maps an array of x (panels, nodes), each
+    row one panel's nodes, to A (panels, nodes, m, m). Returns the solution as a piecewise
+    Chebyshev series with values of y0's shape.
+
+    The equations are linear, so each panel's solutions are Y(x) y(a) with Y the panel's
+    fundamental matrix (Y(a) = I): every panel of a round is collocated at once for its Y
+    (one batched solve), a panel is resolved when Y's last coefficients are below ``tol``
+    times its scale, and the resolved panels are chained from y0, y(b) = Y(b) y(a)."""
     y0 = np.asarray(y0, dtype=float)
     value_shape = y0.shape
     y = y0.reshape(y0.shape[0], -1)
-    m, q = y.shape
+    m = y.shape[0]
     z, D = lobatto_differentiation(degree)
-    todo = list(zip(breaks[:-1], breaks[1:]))[::-1]  # a stack: the leftmost panel on top
-    done_breaks, done_coeffs = [float(breaks[0])], []
+    nodes = degree + 1
+    base = np.kron(D, np.eye(m))
+    first_block = np.zeros((nodes * m, m))
+    first_block[:m] = np.eye(m)
+    todo = list(zip(breaks[:-1].tolist(), breaks[1:].tolist()))
+    done: list[tuple[float, float, np.ndarray, np.ndarray]] = []  # (lo, hi, Y at the nodes, its coefficients)
     span = float(breaks[-1] - breaks[0])
     while todo:
-        lo, hi = todo.pop()
-        x = 0.5 * (lo + hi) + 0.5 * (hi - lo) * z
+        lo, hi = np.array(todo).T
+        x = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * z
         A = np.asarray(matrix(x), dtype=float)
         if not np.isfinite(A).all():
-            i = int(np.argwhere(~np.isfinite(A))[0][0])
-            raise ParameterError(f"{name}: the equations are not finite at {x[i]:.6g}")
-        system = np.kron(2.0 / (hi - lo) * D, np.eye(m))
-        for i in range(degree + 1):
-            system[i * m : (i + 1) * m, i * m : (i + 1) * m] -= A[i]
-        system[:m] = 0.0
-        system[:m, :m] = np.eye(m)
-        rhs = np.zeros(((degree + 1) * m, q))
-        rhs[:m] = y
-        values = np.linalg.solve(system, rhs).reshape(degree + 1, m, q)
-        coeffs = C.chebfit(z, values.reshape(degree + 1, -1), degree).reshape(degree + 1, m, q)
-        scale = max(float(np.abs(values).max()), 1e-300)
-        if np.abs(coeffs[-4:]).max() <= tol * scale or (hi - lo) <= 1e-12 * span:
-            done_breaks.append(float(hi))
-            done_coeffs.append(coeffs)
-            y = values[-1]
-        else:
-            mid = 0.5 * (lo + hi)
-            todo += [(mid, hi), (lo, mid)]
-        if len(done_coeffs) + len(todo) > MAX_PANELS:
+            where = np.argwhere(~np.isfinite(A))[0]
+            raise ParameterError(f"{name}: the equations are not finite at {x[where[0], where[1]]:.6g}")
+        system = (2.0 / (hi - lo))[:, None, None] * base
+        for i in range(nodes):  # sum_j D_ij Y_j - A(x_i) Y_i = 0 at the nodes after the first
+            system[:, i * m : (i + 1) * m, i * m : (i + 1) * m] -= A[:, i]
+        system[:, :m] = first_block.T  # Y_0 = I
+        Y = np.linalg.solve(system, np.broadcast_to(first_block, (len(todo), nodes * m, m))).reshape(-1, nodes, m, m)
+        coeffs = C.chebfit(z, np.moveaxis(Y, 1, 0).reshape(nodes, -1), degree).reshape(nodes, len(todo), m, m)
+        coeffs = np.moveaxis(coeffs, 0, 1)  # (panels, nodes, m, m)
+        tails = np.abs(coeffs[:, -4:]).max(axis=(1, 2, 3))
+        scales = np.maximum(np.abs(Y).max(axis=(1, 2, 3)), 1e-300)
+        resolved = (tails <= tol * scales) | ((hi - lo) <= 1e-12 * span)
+        next_todo = []
+        for k, (a, b) in enumerate(todo):
+            if resolved[k]:
+                done.append((a, b, Y[k], coeffs[k]))
+            else:
+                next_todo += [(a, 0.5 * (a + b)), (0.5 * (a + b), b)]
+        if len(done) + len(next_todo) > MAX_PANELS:
+            lo_w = min(next_todo, key=lambda p: p[1] - p[0])[0]
             raise ParameterError(
-                f"{name} could not be resolved with {MAX_PANELS} panels near {lo:.6g}: the "
+                f"{name} could not be resolved with {MAX_PANELS} panels near {lo_w:.6g}: the "
                 "curve must be smooth there (a kink, a cusp or a curvature that blows up?)"
             )
-    coeffs = np.array(done_coeffs).reshape(len(done_coeffs), degree + 1, *value_shape)
-    return PiecewiseChebyshev(np.array(done_breaks), coeffs)
+        todo = next_todo
+    done.sort(key=lambda panel: panel[0])
+    out = []
+    for _, _, Y_k, coeffs_k in done:  # y(x) = Y(x) y(a), panel after panel
+        out.append(coeffs_k @ y)
+        y = Y_k[-1] @ y
+    coeffs_all = np.array(out).reshape(len(done), nodes, *value_shape)
+    return PiecewiseChebyshev(np.array([done[0][0]] + [panel[1] for panel in done]), coeffs_all)

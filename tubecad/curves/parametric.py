@@ -107,7 +107,7 @@ class ParametricAxis(Axis):
         r1_start = self._start_normal(normal)
 
         def bishop(t: np.ndarray) -> np.ndarray:  # dr1/dt = -(T_t . r1) T = A r1, A = -T T_t^T
-            T, T_t, _ = self._tangent_and_rate(t, rows=True)  # t: one panel's nodes
+            T, T_t, _ = self._tangent_and_rate(t, rows=True)  # t: (panels, nodes), each row one panel
             return -T[..., :, None] * T_t[..., None, :]
 
         # from the speed's panels (x's, halved where the speed needed it): fewer collocations refused and halved

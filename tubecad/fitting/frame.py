@@ -86,15 +86,28 @@ def frame_values(a: AxisFrame) -> tuple[np.ndarray, np.ndarray]:
 
 
 def measured_cos(fit: np.ndarray, dfit: np.ndarray, radii: Sequence[float]) -> np.ndarray:
-    """max over radii and angles of |cos(S_u, S_s)| of S = C + r (cos u R1 + sin u R2), per sample."""
+    """max over radii and angles of |cos(S_u, S_s)| of S = C + r (cos u R1 + sin u R2), per sample.
+
+    With S_u = -sin u R1 + cos u R2 and S_s = C' + r (cos u R1' + sin u R2'), the dot products
+    S_u . S_s, |S_u|^2 and |S_s|^2 are trigonometric polynomials in u whose coefficients are the
+    15 dot products of R1, R2, C', R1', R2' (taken once per sample, not per angle)."""
     u = np.linspace(0.0, 2 * math.pi, ORTHOGONALITY_ANGLES, endpoint=False)
-    cu, su = np.cos(u)[None, :, None], np.sin(u)[None, :, None]
-    R1, R2, dC, dR1, dR2 = fit[:, None, 3:6], fit[:, None, 6:], dfit[:, None, :3], dfit[:, None, 3:6], dfit[:, None, 6:]
-    S_u = -su * R1 + cu * R2  # the same at every radius
-    S_u_norm = np.linalg.norm(S_u, axis=2)
+    c, s = np.cos(u)[None, :], np.sin(u)[None, :]
+    cc, ss, cs = c * c, s * s, c * s
+    R1, R2, dC, dR1, dR2 = fit[:, 3:6], fit[:, 6:], dfit[:, :3], dfit[:, 3:6], dfit[:, 6:]
+
+    def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return np.einsum("ij,ij->i", a, b)[:, None]
+
+    r1_c, r2_c = dot(R1, dC), dot(R2, dC)
+    r1_r1p, r1_r2p, r2_r1p, r2_r2p = dot(R1, dR1), dot(R1, dR2), dot(R2, dR1), dot(R2, dR2)
+    su_su = ss * dot(R1, R1) + cc * dot(R2, R2) - 2.0 * cs * dot(R1, R2)  # |S_u|^2, the same at every radius
+    c_c, c_r1p, c_r2p = dot(dC, dC), dot(dC, dR1), dot(dC, dR2)
+    r1p_r1p, r2p_r2p, r1p_r2p = dot(dR1, dR1), dot(dR2, dR2), dot(dR1, dR2)
     worst = np.zeros(len(fit))
     for r in radii:
-        S_s = dC + r * (cu * dR1 + su * dR2)
-        cos = np.abs(np.einsum("ijk,ijk->ij", S_u, S_s)) / (S_u_norm * np.linalg.norm(S_s, axis=2))
+        along = -s * r1_c + c * r2_c + r * (-cs * r1_r1p - ss * r1_r2p + cc * r2_r1p + cs * r2_r2p)
+        ss_ss = c_c + 2.0 * r * (c * c_r1p + s * c_r2p) + r * r * (cc * r1p_r1p + ss * r2p_r2p + 2.0 * cs * r1p_r2p)
+        cos = np.abs(along) / np.sqrt(su_su * ss_ss)
         worst = np.maximum(worst, cos.max(axis=1))
     return worst
