@@ -22,7 +22,9 @@ FloatFunction = Callable[[np.ndarray], np.ndarray]
 
 #: points per panel from which a panel's points are evaluated together, as one matrix product
 #: (fewer: Clenshaw's recurrence, each point with its own gathered coefficients)
-GROUPED_POINTS = 32  # measured crossover (25 terms): ~22 points per panel at 11 values, ~4 at 3
+GROUPED_POINTS = (
+    32  # faster from ~4 a panel (measured); above a fit's 25 nodes, which stay on Clenshaw's (see _clenshaw)
+)
 #: points evaluated together outside the grouped path (bounds the gathered coefficients' memory)
 BLOCK_POINTS = 4096
 
@@ -178,9 +180,10 @@ def _by_panels(z: np.ndarray, panel: np.ndarray, coeffs: np.ndarray) -> np.ndarr
     """sum_j c_j T_j(z) for points z (n,) on panels ``panel`` (n,) of ``coeffs`` (panels, terms,
     values): the points sorted by panel, the matrix V_jn = T_j(z_n) by the recurrence
     T_j = 2 z T_{j-1} - T_{j-2} (|T_j| <= 1 on [-1, 1]: no growth), then each panel's
-    coefficients times its block of V, one vector-matrix product a value (a matrix product's
-    sums depend on the matrix's width: a series evaluated alone and stacked with others would
-    differ in the last bit)."""
+    coefficients times its block of V by numpy's einsum, whose own loops sum each value the
+    same whatever else is stacked with it (BLAS's matrix products do not: a series alone and
+    stacked would differ in the last bit; and OpenBLAS starts threads for such products,
+    measured 1.6 x slower on a canal build)."""
     order = np.argsort(panel, kind="stable")
     panels, starts = np.unique(panel[order], return_index=True)
     sorted_z = z[order]
@@ -196,9 +199,7 @@ def _by_panels(z: np.ndarray, panel: np.ndarray, coeffs: np.ndarray) -> np.ndarr
     columns = np.ascontiguousarray(np.moveaxis(coeffs, 2, 1))  # (panels, values, terms)
     by_value = np.empty((columns.shape[1], z.size))
     for k, a, b in zip(panels, starts, np.append(starts[1:], z.size)):
-        block = vander[:, a:b]
-        for v in range(columns.shape[1]):
-            by_value[v, a:b] = columns[k, v] @ block
+        np.einsum("vj,jn->vn", columns[k], vander[:, a:b], out=by_value[:, a:b])
     out = np.empty((z.size, columns.shape[1]))
     out[order] = by_value.T
     return out
