@@ -20,11 +20,8 @@ from tubecad.core.errors import ParameterError
 
 FloatFunction = Callable[[np.ndarray], np.ndarray]
 
-#: points per panel from which a panel's points are evaluated together, as one matrix product
-#: (fewer: Clenshaw's recurrence, each point with its own gathered coefficients)
-GROUPED_POINTS = (
-    32  # faster from ~4 a panel (measured); above a fit's 25 nodes, which stay on Clenshaw's (see _clenshaw)
-)
+#: points per panel from which a panel's points are evaluated together (fewer: each with its own gathers)
+GROUPED_POINTS = 200  # measured: the crossover is at 150-200 points per panel
 #: points evaluated together outside the grouped path (bounds the gathered coefficients' memory)
 BLOCK_POINTS = 4096
 
@@ -140,9 +137,9 @@ class PiecewiseChebyshev:
     def __call__(self, x: ArrayLike, panel: np.ndarray | None = None) -> np.ndarray:
         """Evaluate at ``x`` (any shape; result x.shape + value_shape): f(x) = sum_j c_j T_j(z),
         z the point mapped onto its panel's [-1, 1] (``panel``: each point's, default
-        :meth:`locate`). Where many points share a panel, panel by panel
-        (:func:`_by_panels`); otherwise by Clenshaw's recurrence over all points at once, each with
-        its panel's coefficients, in blocks."""
+        :meth:`locate`). Where many points share a panel, panel by panel (numpy's chebval,
+        Clenshaw's recurrence); otherwise over all points at once, each with its panel's
+        coefficients, in blocks."""
         x = np.asarray(x, dtype=float)
         flat = x.ravel()
         panel = self.locate(flat) if panel is None else np.asarray(panel).ravel()
@@ -155,7 +152,12 @@ class PiecewiseChebyshev:
                 block = slice(a, a + BLOCK_POINTS)
                 out[block] = _clenshaw(z[block], coeffs[panel[block]])
         else:
-            out = _by_panels(z, panel, coeffs)
+            order = np.argsort(panel, kind="stable")
+            panels, starts = np.unique(panel[order], return_index=True)
+            out = np.empty((flat.size, coeffs.shape[2]))
+            for k, a, b in zip(panels, starts, np.append(starts[1:], flat.size)):
+                rows = order[a:b]
+                out[rows] = C.chebval(z[rows], coeffs[k]).T
         return out.reshape(x.shape + self.value_shape)
 
     def antiderivative(self, value_at_start: float | np.ndarray = 0.0) -> PiecewiseChebyshev:
@@ -174,35 +176,6 @@ class PiecewiseChebyshev:
         return PiecewiseChebyshev(
             self.breaks, np.array([C.chebder(c, scl=1.0 / h) for c, h in zip(self.coeffs, half_widths)])
         )
-
-
-def _by_panels(z: np.ndarray, panel: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
-    """sum_j c_j T_j(z) for points z (n,) on panels ``panel`` (n,) of ``coeffs`` (panels, terms,
-    values): the points sorted by panel, the matrix V_jn = T_j(z_n) by the recurrence
-    T_j = 2 z T_{j-1} - T_{j-2} (|T_j| <= 1 on [-1, 1]: no growth), then each panel's
-    coefficients times its block of V by numpy's einsum, whose own loops sum each value the
-    same whatever else is stacked with it (BLAS's matrix products do not: a series alone and
-    stacked would differ in the last bit; and OpenBLAS starts threads for such products,
-    measured 1.6 x slower on a canal build)."""
-    order = np.argsort(panel, kind="stable")
-    panels, starts = np.unique(panel[order], return_index=True)
-    sorted_z = z[order]
-    terms = coeffs.shape[1]
-    vander = np.empty((terms, z.size))
-    vander[0] = 1.0
-    if terms > 1:
-        vander[1] = sorted_z
-    twice = 2.0 * sorted_z
-    for j in range(2, terms):
-        np.multiply(twice, vander[j - 1], out=vander[j])
-        vander[j] -= vander[j - 2]
-    columns = np.ascontiguousarray(np.moveaxis(coeffs, 2, 1))  # (panels, values, terms)
-    by_value = np.empty((columns.shape[1], z.size))
-    for k, a, b in zip(panels, starts, np.append(starts[1:], z.size)):
-        np.einsum("vj,jn->vn", columns[k], vander[:, a:b], out=by_value[:, a:b])
-    out = np.empty((z.size, columns.shape[1]))
-    out[order] = by_value.T
-    return out
 
 
 def _clenshaw(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
