@@ -117,7 +117,7 @@ def refine_spline(
     ``joints`` repeated to their multiplicity), and halve every span where
     ``span_errors(spline, breaks)`` (per span: a position error and an orthogonality error)
     exceeds half of ``tolerance`` / ``orthogonality``, until none does, then try the breaks
-    redistributed to fewer spans (:func:`_fewer_spans`). Each of ``rings``
+    redistributed to fewer spans (:func:`redistributed_breaks`), kept if that fit meets the targets too. Each of ``rings``
     (breaks) is a knot of multiplicity ``degree``: one abscissa is the ring itself, so the
     spline is exact there: (spline, largest
     position error, largest orthogonality error). A FitError (naming ``what``) when more than
@@ -130,9 +130,14 @@ def refine_spline(
         best = (min(best[0], float(pos.max())), min(best[1], float(orth.max())))
         bad = (pos > 0.5 * tolerance) | (orth > 0.5 * orthogonality)
         if not bad.any():
-            return _fewer_spans(
-                values, breaks, degree, joints, span_errors, tolerance, orthogonality, rings, spline, pos, orth
-            )
+            fixed = {float(x) for x in rings} | set(joints)
+            fewer = redistributed_breaks(breaks, pos, orth, degree, tolerance, orthogonality, fixed)
+            if len(fewer) <= REDISTRIBUTE_GAIN * len(breaks):  # worth a round on new samples
+                trial = _interpolate(values, fewer, degree, joints, rings)
+                pos_r, orth_r = span_errors(trial, fewer)
+                if not ((pos_r > 0.5 * tolerance) | (orth_r > 0.5 * orthogonality)).any():
+                    return trial, float(pos_r.max()), float(orth_r.max())
+            return spline, float(pos.max()), float(orth.max())
         worst.append(max(pos.max() / (0.5 * tolerance), orth.max() / (0.5 * orthogonality)))
         if len(breaks) - 1 + bad.sum() > max_spans:
             stalled = len(worst) > STALLED_ROUNDS and min(worst[-STALLED_ROUNDS:]) > 0.5 * worst[-STALLED_ROUNDS - 1]
@@ -162,34 +167,29 @@ REDISTRIBUTE_AIM = 0.5
 REDISTRIBUTE_GAIN = 0.95
 
 
-def _fewer_spans(
-    values: Callable[[np.ndarray], np.ndarray],
+def redistributed_breaks(
     breaks: np.ndarray,
-    degree: int,
-    joints: dict[float, int],
-    span_errors: Callable[[BSpline, np.ndarray], tuple[np.ndarray, np.ndarray]],
-    tolerance: float,
-    orthogonality: float,
-    rings: Sequence[float],
-    spline: BSpline,
     pos: np.ndarray,
     orth: np.ndarray,
-) -> tuple[BSpline, float, float]:
-    """The fit on fewer spans, where the halving left some far below the targets: the breaks
-    redistributed so that every span is expected to meet REDISTRIBUTE_AIM of them, kept if it
-    does (else the halved fit). De Boor's knot placement (A Practical Guide to Splines, 1978,
-    ch. XII: the breaks equidistribute |f^(p+1)|^(1/(p+1))), that derivative taken from each
-    span's measured error e ~ h^(p+1) |f^(p+1)| (an orthogonality error ~ h^p): a span of
-    length h whose error is r times the aim holds r^(1/(p+1)) spans of the redistributed fit.
-    The rings and joints stay breaks (each stretch between two of them is redistributed on its
-    own), and a stretch is left as it is unless it loses a span."""
+    degree: int,
+    tolerance: float,
+    orthogonality: float,
+    fixed: set[float],
+) -> np.ndarray:
+    """Breaks on which every span is expected to meet REDISTRIBUTE_AIM of half the targets,
+    from the errors ``pos``, ``orth`` measured on the spans of ``breaks``. De Boor's knot
+    placement (A Practical Guide to Splines, 1978, ch. XII: the breaks equidistribute
+    |f^(p+1)|^(1/(p+1))), that derivative taken from each span's measured error
+    e ~ h^(p+1) |f^(p+1)| (an orthogonality error ~ h^p): a span whose error is r times the
+    aim holds r^(1/(p+1)) spans of the new breaks. The ``fixed`` breaks (rings, joints) stay
+    (each stretch between two of them is redistributed on its own), and a stretch is left as
+    it is unless it loses a span."""
     p = degree
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.maximum(pos / (0.5 * tolerance), (orth / (0.5 * orthogonality)) ** ((p + 1) / p))
     density = (np.maximum(ratio, 1e-300) / REDISTRIBUTE_AIM) ** (1.0 / (p + 1))  # spans per span
     if not np.isfinite(density).all():
-        return spline, float(pos.max()), float(orth.max())
-    fixed = {float(x) for x in rings} | set(joints)
+        return breaks
     new: list[float] = [float(breaks[0])]
     start = 0
     for i in range(1, len(breaks)):
@@ -204,14 +204,7 @@ def _fewer_spans(
             new += breaks[start + 1 : i].tolist()
         new.append(float(breaks[i]))
         start = i
-    if len(new) > REDISTRIBUTE_GAIN * len(breaks):  # too few spans saved to pay for a round
-        return spline, float(pos.max()), float(orth.max())
-    fewer = np.array(new)
-    redistributed = _interpolate(values, fewer, degree, joints, rings)
-    pos_r, orth_r = span_errors(redistributed, fewer)
-    if ((pos_r > 0.5 * tolerance) | (orth_r > 0.5 * orthogonality)).any():
-        return spline, float(pos.max()), float(orth.max())
-    return redistributed, float(pos_r.max()), float(orth_r.max())
+    return np.array(new)
 
 
 def _initial_breaks(axis: Axis, spans: int) -> np.ndarray:
