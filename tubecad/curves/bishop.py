@@ -68,7 +68,7 @@ def solve_linear_ode(
     first_block = np.zeros((nodes * m, m))
     first_block[:m] = np.eye(m)
     todo = list(zip(breaks[:-1].tolist(), breaks[1:].tolist()))
-    done: list[tuple[float, float, np.ndarray, np.ndarray]] = []  # (lo, hi, Y at the nodes, its coefficients)
+    done: list[tuple[float, float, np.ndarray, np.ndarray]] = []  # (lo, hi, Y(hi), Y's coefficients)
     span = float(breaks[-1] - breaks[0])
     while todo:
         lo, hi = np.array(todo).T
@@ -90,7 +90,7 @@ def solve_linear_ode(
         next_todo = []
         for k, (a, b) in enumerate(todo):
             if resolved[k]:
-                done.append((a, b, Y[k], coeffs[k]))
+                done.append((a, b, Y[k, -1], coeffs[k]))
             else:
                 next_todo += [(a, 0.5 * (a + b)), (0.5 * (a + b), b)]
         if len(done) + len(next_todo) > MAX_PANELS:
@@ -102,8 +102,8 @@ def solve_linear_ode(
         todo = next_todo
     done.sort(key=lambda panel: panel[0])
     out = []
-    for _, _, Y_k, coeffs_k in done:  # y(x) = Y(x) y(a), panel after panel
+    for _, _, Y_end, coeffs_k in done:  # y(x) = Y(x) y(a), panel after panel
         out.append(coeffs_k @ y)
-        y = Y_k[-1] @ y
+        y = Y_end @ y
     coeffs_all = np.array(out).reshape(len(done), nodes, *value_shape)
     return PiecewiseChebyshev(np.array([done[0][0]] + [panel[1] for panel in done]), coeffs_all)

@@ -27,10 +27,8 @@ from typing import Any
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.figure import Figure
-from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
-from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.GCPnts import GCPnts_QuasiUniformDeflection
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_SHELL
@@ -39,7 +37,7 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Shape
 
 from tubecad.core.atomic import atomic_path
-from tubecad.occ_compat import IndexedMapOfShape, as_edge, as_face
+from tubecad.occ_compat import IndexedMapOfShape, as_edge, as_face, box_corners
 
 FACE_RGB = np.array([0.72, 0.78, 0.86])  # light blue-grey
 BACK_FACTOR = 0.75  # back sides are this much darker
@@ -62,9 +60,8 @@ def render_shape_png(
 ) -> Path:
     """Render ``shape`` (TopoDS_Shape or an object with ``.wrapped``) to the PNG ``path``; return it."""
     shape = getattr(shape, "wrapped", shape)
-    box = Bnd_Box()
-    BRepBndLib.Add_s(shape, box)
-    diag = float(np.sqrt(box.SquareExtent())) if not box.IsVoid() else 1.0
+    corners = box_corners(shape)
+    diag = float(np.linalg.norm(np.subtract(corners[1], corners[0]))) if corners else 1.0
     lin = deflection if deflection is not None else 1e-3 * diag
     BRepMesh_IncrementalMesh(shape, lin, False, ANGULAR_DEFLECTION, True)
 

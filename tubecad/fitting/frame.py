@@ -101,13 +101,13 @@ def measured_cos(fit: np.ndarray, dfit: np.ndarray, radii: Sequence[float]) -> n
 
     r1_c, r2_c = dot(R1, dC), dot(R2, dC)
     r1_r1p, r1_r2p, r2_r1p, r2_r2p = dot(R1, dR1), dot(R1, dR2), dot(R2, dR1), dot(R2, dR2)
-    su_su = ss * dot(R1, R1) + cc * dot(R2, R2) - 2.0 * cs * dot(R1, R2)  # |S_u|^2, the same at every radius
+    su_norm2 = ss * dot(R1, R1) + cc * dot(R2, R2) - 2.0 * cs * dot(R1, R2)  # |S_u|^2, the same at every radius
     c_c, c_r1p, c_r2p = dot(dC, dC), dot(dC, dR1), dot(dC, dR2)
     r1p_r1p, r2p_r2p, r1p_r2p = dot(dR1, dR1), dot(dR2, dR2), dot(dR1, dR2)
     worst = np.zeros(len(fit))
     for r in radii:
         along = -s * r1_c + c * r2_c + r * (-cs * r1_r1p - ss * r1_r2p + cc * r2_r1p + cs * r2_r2p)
-        ss_ss = c_c + 2.0 * r * (c * c_r1p + s * c_r2p) + r * r * (cc * r1p_r1p + ss * r2p_r2p + 2.0 * cs * r1p_r2p)
-        cos = np.abs(along) / np.sqrt(su_su * ss_ss)
+        ss_norm2 = c_c + 2.0 * r * (c * c_r1p + s * c_r2p) + r * r * (cc * r1p_r1p + ss * r2p_r2p + 2.0 * cs * r1p_r2p)
+        cos = np.abs(along) / np.sqrt(su_norm2 * ss_norm2)
         worst = np.maximum(worst, cos.max(axis=1))
     return worst
