@@ -15,8 +15,9 @@
    wall's inner and outer surfaces, faces across the tube), each class's count and its mean
    time per pair in OCCT's face/face intersection (IntTools_FaceFace, 60 pairs sampled per class);
 6. every check, old (``prefilter=False``: OCCT on the whole part) against new (the face pairs proven
-   apart left out, ``tubecad.brep.analyzer``), on the paper wall and on a 98-face wall (7 rings x 8
-   stringers): the seconds, the face pairs OCCT intersects either way, the groups.
+   apart, and the touching pairs proven to meet only on what they share, left out:
+   ``tubecad.brep.analyzer``), on the paper wall and on a 98-face wall (7 rings x 8 stringers): the
+   seconds, the face pairs OCCT intersects either way, the groups.
 
 ``--only prefilter`` runs part 6 alone and puts it into the JSON file given, keeping the rest.
 
@@ -222,6 +223,7 @@ def prefilter(layouts=((11, 8), (7, 8))) -> list[dict]:
                 "load_average": round(os.getloadavg()[0], 2),
                 "plan_s": round(plan_s, 2),
                 "face_pairs_overlapping": plan.pairs_overlapping,
+                "face_pairs_touching_proven": len(plan.in_contact),
                 "face_pairs_not_proven_apart": len(plan.candidates),
                 "face_pairs_handed_to_occt": sum(1 for i, j in together if not boxes[i].IsOut(boxes[j])),
                 "groups": len(plan.groups),

@@ -76,13 +76,72 @@ def test_a_clean_wall_has_no_finding_either_way_and_the_filter_proves_pairs_apar
     assert props.analyzer_findings(clean_wall) == {}
 
 
-def test_every_face_pair_sharing_a_vertex_reaches_occt(clean_wall):
+def test_every_face_pair_sharing_a_vertex_reaches_occt_or_is_proven_to_meet_only_on_what_it_shares(clean_wall):
     plan = checks.plan_self_intersection(clean_wall)
     assert plan is not None
-    touching = checks._touching(clean_wall, plan.faces)
+    touching, _ = checks._touching(clean_wall, plan.faces)
     together = {(i, j) for group in plan.groups for i in group for j in group if i < j}
-    assert {(i, j) for i, j in zip(*np.nonzero(np.triu(touching, 1)))} <= set(plan.candidates) <= together
+    touching_pairs = {(int(i), int(j)) for i, j in zip(*np.nonzero(np.triu(touching, 1)))}
+    assert touching_pairs <= set(plan.candidates) | set(plan.in_contact)
+    assert not set(plan.candidates) & set(plan.in_contact)
+    assert set(plan.candidates) <= together
     assert set().union(*map(set, plan.groups)) == set(range(len(plan.faces)))  # every face's own checks
+    # the skin faces (B-splines bounded by their boxes' sides) are proven, the caps' pairs go to OCCT
+    planes = {i for i, face in enumerate(plan.faces) if checks._Face(face).spline is None}
+    assert len(planes) == 2
+    assert {pair for pair in touching_pairs if not set(pair) & planes} == set(plan.in_contact)
+    assert {pair for pair in touching_pairs if set(pair) & planes} <= set(plan.candidates)
+    assert all(set(pair) & planes for pair in plan.candidates)  # the others near a cap, not proven apart
+
+
+def _folded_shell(loop: list[tuple[float, float]]):
+    """A cubic B-spline curve through ``loop``'s poles in the xy plane, swept 4 along z, as 2 x 4
+    faces (each its own segment of the surface) sewn into a shell: the faces of the second half
+    share edges with the first's."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_Sewing
+    from OCP.Geom import Geom_BSplineSurface
+    from OCP.gp import gp_Pnt
+
+    from tubecad.fitting.occ_arrays import integers, reals
+    from tubecad.occ_compat import Array2OfPnt
+
+    poles = Array2OfPnt(1, len(loop), 1, 2)
+    for i, (x, y) in enumerate(loop):
+        for j, z in enumerate((0.0, 4.0)):
+            poles.SetValue(i + 1, j + 1, gp_Pnt(x, y, z))
+    inner = len(loop) - 4
+    knots = np.linspace(0.0, 1.0, inner + 2)
+    surface = Geom_BSplineSurface(
+        poles, reals(knots), reals([0.0, 1.0]), integers([4] + [1] * inner + [4]), integers([2, 2]), 3, 1
+    )
+    sewing = BRepBuilderAPI_Sewing(1e-6)
+    for u0, u1 in ((0.0, 0.5), (0.5, 1.0)):
+        for k in range(4):
+            piece = surface.Copy()
+            piece.Segment(u0, u1, k / 4, (k + 1) / 4)
+            sewing.Add(BRepBuilderAPI_MakeFace(piece, 1e-7).Face())
+    sewing.Perform()
+    return sewing.SewedShape()
+
+
+def test_faces_crossing_the_faces_they_share_edges_with_are_flagged_the_same_either_way():
+    # the second half of the curve comes back through the first: each face of it crosses the face
+    # it shares an edge with (no contact proof can hold there)
+    crossing = _folded_shell([(0, 0), (3, 0), (6, 0), (9, 0), (10, 3), (8, 5), (6, 3), (6, -3)])
+    assert props.is_valid(crossing)
+    whole = props.analyzer_findings(crossing, SELF, prefilter=False)
+    assert "SelfIntersect" in whole
+    assert props.analyzer_findings(crossing, SELF) == whole
+    plan = checks.plan_self_intersection(crossing)
+    assert plan is not None
+    across = {(k, 4 + k) for k in range(4)}  # the faces sharing the edge u = 0.5
+    assert across <= set(plan.candidates)
+    # the same curve turning away instead: every touching pair proven, nothing for OCCT to compare
+    clean = _folded_shell([(0, 0), (3, 0), (6, 0), (9, 0), (10, 3), (8, 5), (6, 5), (4, 6)])
+    assert props.is_valid(clean)
+    plan = checks.plan_self_intersection(clean)
+    assert plan is not None and plan.candidates == [] and across <= set(plan.in_contact)
+    assert props.analyzer_findings(clean, SELF, prefilter=False) == props.analyzer_findings(clean, SELF) == {}
 
 
 @pytest.mark.parametrize("name", ["coiled_tube", "crossing_tubes"])
