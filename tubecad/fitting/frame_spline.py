@@ -296,7 +296,7 @@ def _span_errors(
     radius: float,
     radii: Sequence[float],
     target: float,
-    position_target: float = math.inf,
+    position_target: float,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Per span: the position bound and the orthogonality (the bound, or where it exceeds
     ``target``, the largest |cos| measured on the fitted surface at every radius). A span whose

@@ -26,7 +26,6 @@ import math
 import string
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Literal
 
 import numpy as np
 from scipy.optimize import brentq
@@ -365,13 +364,14 @@ def piece_solids(st: Stiffener, pieces: list[WebPiece], tolerance: float) -> lis
             for p in pieces
         ]
     if st.arc_deg is not None:
-        return [replace(st, name=p.name, solid=_arc_sector_solid(st, *p.span), arc_deg=p.span) for p in pieces]
-    return [replace(st, name=p.name, solid=_ring_sector_solid(st, *p.span)) for p in pieces]
+        return [replace(st, name=p.name, solid=_sector_solid(st, *p.span), arc_deg=p.span) for p in pieces]
+    return [replace(st, name=p.name, solid=_sector_solid(st, *p.span)) for p in pieces]
 
 
-def _arc_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
-    """The part of a cut ring (``st.arc_deg``) between the circle angles a_deg < b_deg: its
-    common with the wedge between the half-planes there (any angle below 360 deg)."""
+def _sector_solid(st: Stiffener, a_deg: float, b_deg: float):
+    """The part of a ring (whole, or cut: ``st.arc_deg``) between the circle angles a_deg < b_deg:
+    its common with the wedge between the half-planes through the axis there (any angle below
+    360 deg; each half-plane holds a ruling of the web)."""
     import build123d as bd
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
 
@@ -386,38 +386,3 @@ def _arc_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
     if len(solids) != 1 or not is_valid(solids[0].wrapped):
         raise ParameterError(f"{st.name}: the ring piece from {a_deg:g} to {b_deg:g} deg is not one valid solid")
     return solids[0]
-
-
-def _ring_sector_solid(st: Stiffener, a_deg: float, b_deg: float):
-    """The part of the ring solid between the half-planes through its axis at the circle
-    angles a_deg < b_deg (b - a <= 180 deg): kept where (x - c) . e'(a) >= 0 and
-    (x - c) . e'(b) <= 0, e'(chi) = -sin chi r1 + cos chi r2 (the circle's tangent)."""
-    import build123d as bd
-
-    from tubecad.brep.properties import is_valid
-
-    s = st.value
-    axis = st.base.axis
-    centre = st.base.circle(np.array([s]))[0][0]  # a tube's: the axis point
-    t, r1, r2 = (v[0] for v in axis.rotation_minimising_frame(np.array([s])))
-    solid = st.solid
-    halves: tuple[tuple[float, Literal[bd.Keep.TOP, bd.Keep.BOTTOM]], ...] = (
-        (a_deg, bd.Keep.TOP),
-        (b_deg, bd.Keep.BOTTOM),
-    )
-    for angle, keep in halves:
-        chi = math.radians(angle)
-        tangent = -math.sin(chi) * r1 + math.cos(chi) * r2
-        plane = bd.Plane(
-            origin=tuple(map(float, centre)),
-            z_dir=tuple(map(float, tangent)),
-            x_dir=tuple(map(float, math.cos(chi) * r1 + math.sin(chi) * r2)),
-        )
-        pieces: Any = solid.split(plane, keep=keep)  # a Solid, a list of them, or None
-        solids = pieces.solids() if hasattr(pieces, "solids") else [pieces]
-        if len(solids) != 1:
-            raise ParameterError(f"{st.name}: cutting the ring at {angle:g} deg gave {len(solids)} solids")
-        solid = solids[0]
-    if not is_valid(solid):
-        raise ParameterError(f"{st.name}: the ring piece from {a_deg:g} to {b_deg:g} deg is not a valid solid")
-    return solid
