@@ -129,7 +129,7 @@ def build_report(
     """What was measured on a built B-rep shape (issue 3): per surface the fit's deviation
     and orthogonality by dense sampling of the OCCT surface, poles; topology and validity;
     OCCT's pre-boolean check (BOPAlgo_ArgumentAnalyzer: every check, the self-intersection
-    test only with ``self_intersection``, as it takes ~20 s on an 11 x 8 wall); volume and
+    test only with ``self_intersection``: ~1.5 s more on an 11 x 8 wall); volume and
     areas against the exact values (docs/MATH.md section 4)."""
     import math
 
