@@ -19,7 +19,12 @@
    ``tubecad.brep.analyzer``), on the paper wall and on a 98-face wall (7 rings x 8 stringers): the
    seconds, the face pairs OCCT intersects either way, the groups.
 
-``--only prefilter`` runs part 6 alone and puts it into the JSON file given, keeping the rest.
+7. (``--only random --cases N``) the same comparison, self-intersection alone, on every solid of at
+   most 260 faces of the first N cases of the random-spec run (benchmarks/random_specs.py, seed
+   2026), two cases at a time.
+
+``--only prefilter`` runs part 6 alone and puts it into the JSON file given, keeping the rest
+(``--only random`` likewise part 7).
 
 Every shape checked is valid with no finding; only the times differ.
 """
@@ -233,6 +238,52 @@ def prefilter(layouts=((11, 8), (7, 8))) -> list[dict]:
     return rows
 
 
+def random_case(index: int) -> dict:
+    """Self-intersection findings both ways on each solid of random-spec case ``index``."""
+    import tempfile
+
+    import random_specs
+    from OCP.TopAbs import TopAbs_SOLID
+
+    from tubecad.brep.analyzer import sub_shapes
+    from tubecad.core.errors import TubecadError
+    from tubecad.spec import build_spec
+
+    with tempfile.TemporaryDirectory() as folder:
+        case = random_specs.make_case(2026, index, Path(folder))
+        row: dict = {"index": index, "kind": case.kind, "canal": case.canal, "stiffeners": case.stiffeners}
+        try:
+            built = build_spec(parse_spec(case.spec, source="random.toml", base=Path(folder)))
+        except TubecadError:
+            return {**row, "outcome": "refused"}
+    row.update(outcome="built", solids=[])
+    shape = topods(built.shape)
+    for solid in sub_shapes(shape, TopAbs_SOLID) or [shape]:
+        item: dict = {"faces": len(faces_of(solid))}
+        new_s, new = timed(lambda solid=solid: analyzer_findings(solid, ("SelfInterMode",)))
+        item.update(new=new, new_s=round(new_s, 2))
+        if item["faces"] <= 260:
+            old_s, old = timed(lambda solid=solid: analyzer_findings(solid, ("SelfInterMode",), prefilter=False))
+            item.update(old=old, old_s=round(old_s, 2), same=old == new)
+        row["solids"].append(item)
+    return row
+
+
+def random_cases(cases: int) -> dict:
+    from multiprocessing import Pool
+
+    with Pool(2) as pool:
+        rows = list(pool.imap(random_case, range(cases)))
+    compared = [s for r in rows for s in r.get("solids", []) if "same" in s]
+    return {
+        "cases": cases,
+        "built": sum(r["outcome"] == "built" for r in rows),
+        "solids_compared": len(compared),
+        "all_the_same": all(s["same"] for s in compared),
+        "rows": rows,
+    }
+
+
 def run() -> dict:
     paper = wall()
     assert is_valid(paper)
@@ -281,11 +332,17 @@ def run() -> dict:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", type=Path, help="write the results there")
-    parser.add_argument("--only", choices=["prefilter"], help="run this part alone (kept with the rest of --json)")
+    parser.add_argument(
+        "--only", choices=["prefilter", "random"], help="run this part alone (kept with the rest of --json)"
+    )
+    parser.add_argument("--cases", type=int, default=25, help="random-spec cases for --only random")
     args = parser.parse_args()
     if args.only:
         result = json.loads(args.json.read_text()) if args.json and args.json.exists() else {}
-        result["prefilter"] = prefilter()
+        if args.only == "prefilter":
+            result["prefilter"] = prefilter()
+        else:
+            result["random_specs"] = random_cases(args.cases)
     else:
         result = run()
     text = json.dumps(result, indent=2)

@@ -95,7 +95,7 @@ def test_every_face_pair_sharing_a_vertex_reaches_occt_or_is_proven_to_meet_only
 
 
 def _folded_shell(loop: list[tuple[float, float]]):
-    """A cubic B-spline curve through ``loop``'s poles in the xy plane, swept 4 along z, as 2 x 4
+    """A cubic B-spline curve through ``loop``'s poles in the xy plane, swept 6 along z, as 2 x 6
     faces (each its own segment of the surface) sewn into a shell: the faces of the second half
     share edges with the first's."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_Sewing
@@ -107,7 +107,7 @@ def _folded_shell(loop: list[tuple[float, float]]):
 
     poles = Array2OfPnt(1, len(loop), 1, 2)
     for i, (x, y) in enumerate(loop):
-        for j, z in enumerate((0.0, 4.0)):
+        for j, z in enumerate((0.0, 6.0)):
             poles.SetValue(i + 1, j + 1, gp_Pnt(x, y, z))
     inner = len(loop) - 4
     knots = np.linspace(0.0, 1.0, inner + 2)
@@ -116,9 +116,9 @@ def _folded_shell(loop: list[tuple[float, float]]):
     )
     sewing = BRepBuilderAPI_Sewing(1e-6)
     for u0, u1 in ((0.0, 0.5), (0.5, 1.0)):
-        for k in range(4):
+        for k in range(6):
             piece = surface.Copy()
-            piece.Segment(u0, u1, k / 4, (k + 1) / 4)
+            piece.Segment(u0, u1, k / 6, (k + 1) / 6)
             sewing.Add(BRepBuilderAPI_MakeFace(piece, 1e-7).Face())
     sewing.Perform()
     return sewing.SewedShape()
@@ -134,7 +134,7 @@ def test_faces_crossing_the_faces_they_share_edges_with_are_flagged_the_same_eit
     assert props.analyzer_findings(crossing, SELF) == whole
     plan = checks.plan_self_intersection(crossing)
     assert plan is not None
-    across = {(k, 4 + k) for k in range(4)}  # the faces sharing the edge u = 0.5
+    across = {(k, 6 + k) for k in range(6)}  # the faces sharing the edge u = 0.5
     assert across <= set(plan.candidates)
     # the same curve turning away instead: every touching pair proven, nothing for OCCT to compare
     clean = _folded_shell([(0, 0), (3, 0), (6, 0), (9, 0), (10, 3), (8, 5), (6, 5), (4, 6)])
