@@ -18,6 +18,7 @@ from tubecad import LogSpiral
 from tubecad.brep import NetLayout, build_tube_solid, build_wall_solid
 from tubecad.brep import analyzer as checks
 from tubecad.brep import properties as props
+from tubecad.brep.face_cells import FaceCells
 from tubecad.surface import CurvatureLineTube
 
 SELF = ("SelfInterMode",)
@@ -87,7 +88,7 @@ def test_every_face_pair_sharing_a_vertex_reaches_occt_or_is_proven_to_meet_only
     assert set(plan.candidates) <= together
     assert set().union(*map(set, plan.groups)) == set(range(len(plan.faces)))  # every face's own checks
     # the skin faces (B-splines bounded by their boxes' sides) are proven, the caps' pairs go to OCCT
-    planes = {i for i, face in enumerate(plan.faces) if checks._Face(face).spline is None}
+    planes = {i for i, face in enumerate(plan.faces) if FaceCells(face).spline is None}
     assert len(planes) == 2
     assert {pair for pair in touching_pairs if not set(pair) & planes} == set(plan.in_contact)
     assert {pair for pair in touching_pairs if set(pair) & planes} <= set(plan.candidates)
@@ -176,7 +177,7 @@ def test_the_cells_hold_the_face(clean_wall):
 
     for shape in _faces(clean_wall)[:6]:
         face = as_face(shape)
-        owner = checks._Face(face)
+        owner = FaceCells(face)
         surface = BRep_Tool.Surface_s(face)
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
         points = np.array([surface.Value(u, v).Coord() for u in np.linspace(u0, u1, 7) for v in np.linspace(v0, v1, 9)])
