@@ -58,11 +58,10 @@ from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
 
 from tubecad.brep import contact
-from tubecad.brep.face_cells import Cells, CellStack, FaceCells, pcurve_points, sub_shapes, unresolved
+from tubecad.brep.face_cells import Cells, CellStack, FaceCells, sub_shapes, unresolved
 from tubecad.occ_compat import (
     IndexedDataMapOfShapeListOfShape,
     IndexedMapOfShape,
-    as_edge,
     as_face,
     as_vertex,
     box_corners,
@@ -223,20 +222,16 @@ def _prove_batch(
 # --- faces that touch: their cells in contact only along what the faces share ---------------------
 
 
-def _box_sides(face, box: tuple[float, float, float, float] | None, edges: IndexedMapOfShape) -> list[set[int]] | None:
+def _box_sides(owner: FaceCells, edges: IndexedMapOfShape) -> list[set[int]] | None:
     """The edges (indices in ``edges``) on each side of the face's parameter box (u low, u high,
     v low, v high) for a face bounded by iso-parametric pcurves on the box's sides, all four
     holding some: the face is then the whole box, its sides its boundary (None for any other)."""
-    if box is None:
+    box = owner.box
+    if box is None or owner.pcurves is None or not owner.bounded:
         return None
     sides: list[set[int]] = [set(), set(), set(), set()]
     slack_u, slack_v = 1e-9 * max(box[1] - box[0], 1e-300), 1e-9 * max(box[3] - box[2], 1e-300)
-    for shape in sub_shapes(face, TopAbs_EDGE):
-        edge = as_edge(shape)
-        curve = BRep_Tool.CurveOnSurface_s(edge, face, 0.0, 0.0)
-        found = None if curve is None else pcurve_points(curve, *BRep_Tool.Range_s(edge, face))
-        if not found:
-            return None
+    for edge, found in owner.pcurves:
         us, vs = np.array([p[0] for p in found]), np.array([p[1] for p in found])
         for side, (values, bound, slack) in enumerate(
             ((us, box[0], slack_u), (us, box[1], slack_u), (vs, box[2], slack_v), (vs, box[3], slack_v))
@@ -259,12 +254,16 @@ class _Contact:
     match: float  # two poles closer than this are one point (the faces' tolerance radii)
 
 
-def _contact_of(a: FaceCells, b: FaceCells, vertices: np.ndarray) -> _Contact | None:
-    if a.sides is None or b.sides is None:
+def _contact_of(
+    sides: tuple[list[set[int]] | None, list[set[int]] | None], match: float, vertices: np.ndarray
+) -> _Contact | None:
+    """Two touching faces' contact rule from their box sides' edges (:func:`_box_sides`)."""
+    a, b = sides
+    if a is None or b is None:
         return None
-    shared = set().union(*a.sides) & set().union(*b.sides)
-    sides = tuple(tuple(k for k in range(4) if face.sides[k] <= shared) for face in (a, b))  # type: ignore[index]
-    return _Contact((sides[0], sides[1]), vertices, a.radius + b.radius)
+    shared = set().union(*a) & set().union(*b)
+    allowed = tuple(tuple(k for k in range(4) if face[k] <= shared) for face in (a, b))
+    return _Contact((allowed[0], allowed[1]), vertices, match)
 
 
 _ROWS = ((0, slice(None)), (-1, slice(None)), (slice(None), 0), (slice(None), -1))  # sides of a grid
@@ -466,13 +465,12 @@ def plan_self_intersection(part: object, refinements: int = REFINEMENTS) -> Self
     overlapping = gap <= need
     edges = IndexedMapOfShape()
     TopExp.MapShapes_s(part, TopAbs_EDGE, edges)
-    for owner, face in zip(owners, faces):
-        owner.sides = _box_sides(face, owner.box, edges) if owner.bounded else None
+    sides = [_box_sides(owner, edges) for owner in owners]
     touching, shared = _touching(part, faces)
     upper = np.triu(overlapping, 1)
     rules = {}
     for i, j in zip(*np.nonzero(upper & touching)):
-        rule = _contact_of(owners[i], owners[j], np.array(shared[int(i), int(j)]))
+        rule = _contact_of((sides[i], sides[j]), radius[i] + radius[j], np.array(shared[int(i), int(j)]))
         if rule is not None:
             rules[int(i), int(j)] = rule
     in_rules = np.zeros_like(touching)

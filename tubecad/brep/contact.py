@@ -129,12 +129,6 @@ def lambda_bounds(low: np.ndarray, high: np.ndarray) -> np.ndarray:
     return np.stack([least, most], axis=1)
 
 
-def lambda_range(low: tuple[float, ...], high: tuple[float, ...] | None = None) -> tuple[float, float]:
-    """:func:`lambda_bounds` of one box of weights (``high`` None: the weights ``low``)."""
-    bounds = lambda_bounds(np.array([low], dtype=float), np.array([low if high is None else high], dtype=float))
-    return float(bounds[0, 0]), float(bounds[0, 1])
-
-
 def derivative_sets(grids: np.ndarray, axis: int, rational: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The derivatives along ``axis`` (0: s, 1: t) of a stack of patches whose weights vary along
     that axis (``rational``) or not: (Lambda's bounds (k, 2), vectors (k, N, 3), radius (k,)), the

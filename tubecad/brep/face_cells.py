@@ -86,8 +86,10 @@ class FaceCells:
         self.levels: list[Cells] = []
         self.children: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
         self.spline: tuple | None = None  # (Bezier patches, their u and v ranges)
-        self.box: tuple[float, float, float, float] | None = None  # the pcurves' parameter box
-        self.sides: list[set[int]] | None = None  # the edges on each side of the box (see _box_sides)
+        # each edge with points whose hull holds its pcurve, and the box of them all (None: some
+        # pcurve cannot be bounded)
+        self.pcurves = _pcurve_hulls(as_face(face))
+        self.box = _box(self.pcurves)
         self.radius = BRep_Tool.Tolerance_s(face)
         for edge in sub_shapes(face, TopAbs_EDGE):
             self.radius = max(self.radius, BRep_Tool.Tolerance_s(as_edge(edge)))
@@ -125,31 +127,34 @@ class FaceCells:
         return self.children[level]
 
 
-def _uv_box(face) -> tuple[float, float, float, float] | None:
-    """A box holding the parameters of the face's pcurves (None: some pcurve cannot be bounded)."""
-    points: list[tuple[float, float]] = []
-    edges = sub_shapes(face, TopAbs_EDGE)
-    if not edges:
-        return None
-    for shape in edges:
+def _pcurve_hulls(face) -> list[tuple[object, list[tuple[float, float]]]] | None:
+    """Each edge of the face with points whose convex hull holds its pcurve (None: some pcurve
+    cannot be bounded, or the face has no edge)."""
+    out = []
+    for shape in sub_shapes(face, TopAbs_EDGE):
         edge = as_edge(shape)
         curve = BRep_Tool.CurveOnSurface_s(edge, face, 0.0, 0.0)
-        if curve is None:
+        found = None if curve is None else _pcurve_points(curve, *BRep_Tool.Range_s(edge, face))
+        if not found:
             return None
-        first, last = BRep_Tool.Range_s(edge, face)
-        found = pcurve_points(curve, first, last)
-        if found is None:
-            return None
-        points += found
-    us, vs = [p[0] for p in points], [p[1] for p in points]
+        out.append((edge, found))
+    return out or None
+
+
+def _box(pcurves: list[tuple[object, list[tuple[float, float]]]] | None) -> tuple[float, float, float, float] | None:
+    """The box of the pcurves' hull points: it holds the face's parameters."""
+    if pcurves is None:
+        return None
+    us = [p[0] for _, points in pcurves for p in points]
+    vs = [p[1] for _, points in pcurves for p in points]
     return min(us), max(us), min(vs), max(vs)
 
 
-def pcurve_points(curve, first: float, last: float) -> list[tuple[float, float]] | None:
+def _pcurve_points(curve, first: float, last: float) -> list[tuple[float, float]] | None:
     """Points whose convex hull holds the 2D curve over [first, last]."""
     name = curve.DynamicType().Name()
     if name == "Geom2d_TrimmedCurve":
-        return pcurve_points(curve.BasisCurve(), first, last)
+        return _pcurve_points(curve.BasisCurve(), first, last)
     if name == "Geom2d_Line":
         return [curve.Value(first).Coord(), curve.Value(last).Coord()]
     if name in ("Geom2d_Circle", "Geom2d_Ellipse"):
@@ -181,7 +186,7 @@ def _first_cells(owner: FaceCells, face) -> Cells | None:
     if name == "Geom_RectangularTrimmedSurface":
         surface = surface.BasisSurface()
         name = surface.DynamicType().Name()
-    box = owner.box = _uv_box(face)
+    box = owner.box
     if name == "Geom_Plane":
         if box is None:
             return None

@@ -50,7 +50,8 @@ def test_lambda_bounds_hold_the_rational_quadratic_derivative_factor(weights):
     big_w = w0 * (1 - s) ** 2 + 2 * w1 * s * (1 - s) + w2 * s**2
     factor = 2 * (w0 * w1 * (1 - s) ** 2 + w0 * w2 * s * (1 - s) + w1 * w2 * s**2) / big_w**2
     scale = max(weights)
-    low, high = contact.lambda_range(tuple(w / scale for w in weights))
+    w = np.array([[x / scale for x in weights]])
+    low, high = contact.lambda_bounds(w, w)[0]
     factor_scaled = factor  # Lambda does not change when every weight is scaled
     assert low <= factor_scaled.min() and factor_scaled.max() <= high * (1 + 1e-12)
     assert low >= 0.85 * factor_scaled.min() and high <= 1.15 * factor_scaled.max()  # tight enough to prove
@@ -90,7 +91,7 @@ def test_lambda_bounds_of_a_box_of_weights_hold_every_weight_in_it():
     rng = np.random.default_rng(3)
     low = rng.uniform(0.4, 1.0, size=4)
     high = low * rng.uniform(1.0, 1.05, size=4)
-    least, most = contact.lambda_range(tuple(low), tuple(high))
+    least, most = contact.lambda_bounds(low[None], high[None])[0]
     s = np.linspace(0.0, 1.0, 1001)[:, None]
     basis = np.concatenate([comb(3, i) * s**i * (1 - s) ** (3 - i) for i in range(4)], axis=1)
     slope = np.gradient(basis, s[:, 0], axis=0)
