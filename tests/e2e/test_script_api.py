@@ -154,23 +154,16 @@ def test_the_paper_is_the_sample_spec():
     assert paper.tube.axis.describe() == sample.tube.axis.describe() and paper.tube.radius == 15.0
 
 
-def test_stiffeners_are_checked_once_for_the_build_and_the_mesh(tmp_path):
-    """[stiffeners] indices outside the layout: the same message and key from the build's
-    selection and the mesh (which did not check them before the typed model)."""
-    from tubecad.spec.build import stiffener_selection
-    from tubecad.spec.mesh import mesh_from_spec
-
+def test_stiffener_indices_are_checked_when_the_spec_is_read():
+    """[stiffeners] indices outside the layout: refused by parse_spec, before anything is built
+    (the build's selection and the mesh take the checked spec), naming the section and key."""
     data = tomllib.loads(SMALL.format(radius=5.0))
     data["wall"] = {"thickness": 0.5}
     data["stiffeners"] = {"rings": [7], "height": 1.0, "thickness": 0.5, "side": "inside"}
-    spec = parse_spec(data, "bad.toml")
-    fake = SimpleNamespace(layout=SimpleNamespace(s_rings=[0.0, 150.0, 300.0], stringers_deg=[0.0, 180.0]))
-    with pytest.raises(SpecError) as built:
-        stiffener_selection(spec, fake)
-    with pytest.raises(SpecError) as meshed:
-        mesh_from_spec(spec)
-    assert str(built.value) == str(meshed.value) == "bad.toml: [stiffeners] rings must be indices in [0, 2], got [7]"
-    assert built.value.key == meshed.value.key == "stiffeners.rings"
+    with pytest.raises(SpecError) as parsed:
+        parse_spec(data, "bad.toml")
+    assert str(parsed.value) == "bad.toml: [stiffeners] rings must be indices in [0, 2], got [7]"
+    assert parsed.value.key == "stiffeners.rings"
 
 
 @pytest.mark.parametrize(

@@ -75,6 +75,27 @@ class NetLayout:
     def faces_per_tube(self) -> int:
         return (len(self.s_rings) - 1) * len(self.stringers_deg)
 
+    def panel_bounds(self, seams: Sequence[int], rings: Sequence[int] | None = None) -> tuple[list[int], list[int]]:
+        """The seam stringers and bounding rings of panels on this layout, checked.
+
+        Args:
+            seams: stringer indices the wall is split along (at least one).
+            rings: ring indices bounding the panels (None: every ring); the end rings are always added.
+
+        Returns:
+            (the seams, sorted and distinct; the rings, sorted and distinct, end rings included).
+
+        Raises:
+            ParameterError: an index outside the layout, naming the range.
+        """
+        n_s, n_r = len(self.stringers_deg), len(self.s_rings)
+        if not seams or any(not 0 <= j < n_s for j in seams):
+            raise ParameterError(f"seams must be one or more stringer indices in [0, {n_s - 1}], got {list(seams)}")
+        if rings is not None and any(not 0 <= i < n_r for i in rings):
+            raise ParameterError(f"rings must be ring indices in [0, {n_r - 1}], got {sorted(set(rings))}")
+        chosen = sorted(set(range(n_r) if rings is None else rings) | {0, n_r - 1})
+        return sorted(set(seams)), chosen
+
 
 def equal_rings(tube: CurvatureLineSurface, rings: int, stringers: int = 1) -> np.ndarray:
     """The arc lengths of ``rings`` ring frames equally spaced over the span: on an open axis

@@ -322,12 +322,9 @@ def build(
     DIR/NAME.report.json, a line per finished job goes to stderr, DIR/batch.json lists every
     job; the exit code is 2 if any job failed.
     """
-    checked = None if len(specs) > 1 or sweeps or out_dir is not None else _checked_spec(specs[0])
-    _load()
-    with interrupts_end_at_once():
-        from tubecad.core.progress import Progress
-        from tubecad.spec.build import build_and_export, check_mesh_options, split_outputs
-        from tubecad.spec.outputs import build_summary
+    one = not (len(specs) > 1 or sweeps or out_dir is not None)
+    checked = _checked_spec(specs[0]) if one else None
+    from tubecad.spec.preflight import check_build_outputs, check_mesh_options  # light: no OCCT
 
     try:
         check_mesh_options(outputs or [f"job.{f}" for f in formats or ("step",)], mesh_tolerance, mesh_angle)
@@ -335,7 +332,25 @@ def build(
         raise UserError(str(exc)) from None
     if resume and force:
         raise click.UsageError("--resume and --force exclude each other")
-    if len(specs) > 1 or sweeps or out_dir is not None:
+    if one and (formats or jobs is not None or scheduler or remote_dir or job_timeout is not None):
+        raise click.UsageError(
+            "-f/--format, -j/--jobs, --scheduler, --remote-dir and --job-timeout are for batch mode "
+            "(several SPECs, --sweep, or -d/--out-dir)"
+        )
+    if one and not outputs:
+        raise click.UsageError("Missing option '-o' / '--output' (or -d/--out-dir DIR for batch mode).")
+    if checked is not None:  # what the spec and the options decide, before the 3-6 s of OCCT's imports
+        try:
+            check_build_outputs(checked, outputs, report_path, mesh_tolerance, mesh_angle)
+        except TubecadError as exc:
+            raise UserError(str(exc)) from None
+    _load()
+    with interrupts_end_at_once():
+        from tubecad.core.progress import Progress
+        from tubecad.spec.build import build_and_export
+        from tubecad.spec.outputs import build_summary
+
+    if not one:
         batch(
             specs,
             out_dir,
@@ -355,17 +370,9 @@ def build(
             quiet=quiet,
         )
         return
-    if formats or jobs is not None or scheduler or remote_dir or job_timeout is not None:
-        raise click.UsageError(
-            "-f/--format, -j/--jobs, --scheduler, --remote-dir and --job-timeout are for batch mode "
-            "(several SPECs, --sweep, or -d/--out-dir)"
-        )
-    if not outputs:
-        raise click.UsageError("Missing option '-o' / '--output' (or -d/--out-dir DIR for batch mode).")
     assert checked is not None  # one SPEC, not a batch: read above
     written: list[Path] = []
     try:
-        split_outputs(outputs)  # an unknown extension is refused before anything is built
         with Progress(enabled=not quiet) as progress:  # on stderr, once the build has run for 2 s
             report = build_and_export(
                 checked, outputs, step_schema, report_path, written, mesh_tolerance, mesh_angle, progress
@@ -416,12 +423,18 @@ def batch(specs, out_dir, outputs, report_path, **options) -> None:
 def flat(spec: Path, output: Path) -> None:
     """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, [units] length), NAME.svg/.png
     each, and flat.json with every web's area and edge lengths."""
+    checked = _checked_spec(spec)
+    from tubecad.spec.preflight import check_flat  # light: before OCCT loads
+
+    try:
+        check_flat(checked, output)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
     _load()
     with interrupts_end_at_once():
         from tubecad.spec.outputs import flat_from_spec
-        from tubecad.spec.parse import load_spec
     try:
-        written = flat_from_spec(load_spec(spec), output)
+        written = flat_from_spec(checked, output)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     for path in written:
@@ -462,6 +475,12 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
     unless all of it is.
     """
     checked = _checked_spec(spec)
+    from tubecad.spec.preflight import check_shop  # light: before OCCT loads
+
+    try:
+        check_shop(checked, output)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
     _load()
     with interrupts_end_at_once():
         from tubecad.spec.shop import shop_from_spec
@@ -547,12 +566,17 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
     With [[branches]]: the junction's shell model (the walls' mid-surfaces joined on their saddle,
     meshed by gmsh; node sets saddle, pad, main_start, main_end, branch_end)."""
     checked = _checked_spec(spec)
-    _load()
-    with interrupts_end_at_once():
-        from tubecad.spec.mesh import checked_outputs, write_mesh
+    from tubecad.spec.mesh import checked_outputs  # light: the FE formats' table
 
     try:
         checked_outputs(list(outputs))
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+    _load()
+    with interrupts_end_at_once():
+        from tubecad.spec.mesh import write_mesh
+
+    try:
         built, written = write_mesh(checked, list(outputs), element=element, size=size)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
@@ -592,15 +616,21 @@ def analyse(spec: Path, output: Path, element: str | None, size: float | None, q
     stresses along the rings and stringers) and a picture of the ring stress on the deformed shell.
     With [[branches]]: the junction's hoop stress far from the saddle against membrane theory and
     the saddle's stress concentration, in results.json and on the terminal."""
+    checked = _checked_spec(spec)
+    from tubecad.spec.preflight import check_analysis  # light: [analysis], [wall] and ccx, before OCCT loads
+
+    try:
+        check_analysis(checked)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
     _load()
     with interrupts_end_at_once():
         from tubecad.spec.mesh import analyse_spec
-        from tubecad.spec.parse import load_spec
 
     live = not quiet and sys.stderr.isatty()
     say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
     try:
-        summary = analyse_spec(load_spec(spec), output, say, element=element, size=size)
+        summary = analyse_spec(checked, output, say, element=element, size=size)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     ring, stringer = summary["ring_stress"], summary["stringer_stress"]

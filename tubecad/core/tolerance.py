@@ -63,3 +63,59 @@ def orthogonality_for(tolerance: float) -> float:
     """The |cos| the isolines are fitted to: tolerance / 10, and never worse than 1e-6
     (1e-9 at the default tolerance 1e-8)."""
     return min(1e-6, tolerance / 10) if isinstance(tolerance, (int, float)) and tolerance > 0 else tolerance
+
+
+#: double precision's unit round-off (numpy.finfo(float).eps), without importing numpy
+EPSILON = 2.0**-52
+
+#: a fit's position error cannot be promised below POSITION_FLOOR_ULPS * eps * L for
+#: coordinates up to L (the fit must meet half its tolerance; OCCT and numpy round every
+#: pole and sample to eps * L / 2). Measured: the frame fit stalls at 6-48 eps L.
+POSITION_FLOOR_ULPS = 8
+
+#: nor its isolines' |cos| below ORTHOGONALITY_FLOOR_ULPS * eps: measured, the fit stalls
+#: at |cos| 675-2900 eps; its target is half of ``orthogonality_for(tolerance)``
+ORTHOGONALITY_FLOOR_ULPS = 64
+
+
+def smallest_tolerance(size: float) -> float:
+    """The smallest fit tolerance double precision can reach for coordinates up to ``size``.
+
+    A fit meets half its tolerance in position and half its orthogonality
+    (:func:`orthogonality_for`, tolerance / 10) in |cos|; neither can beat round-off. So the
+    tolerance must be at least max(8 eps L, 10 * 64 eps) (about 4e-13 at L = 223, the
+    paper's tube). This is a bound a spec can be refused by before fitting, not a promise:
+    between it and what a fit measures (6-48 eps L, |cos| 675-2900 eps) the fit itself
+    says it stalled.
+
+    Args:
+        size: the largest coordinate magnitude of the surfaces fitted (model units).
+
+    Returns:
+        The smallest tolerance worth fitting to.
+    """
+    return max(POSITION_FLOOR_ULPS * EPSILON * abs(size), 10.0 * ORTHOGONALITY_FLOOR_ULPS * EPSILON)
+
+
+def check_reachable(name: str, tolerance: float, size: float) -> float:
+    """``tolerance`` if double precision can reach it for coordinates up to ``size``.
+
+    Args:
+        name: the parameter's name, for the message.
+        tolerance: the fit tolerance (already in (0, 1), see :func:`check_tolerance`).
+        size: the largest coordinate magnitude of the surfaces fitted.
+
+    Returns:
+        ``tolerance``.
+
+    Raises:
+        ParameterError: below :func:`smallest_tolerance`, naming it.
+    """
+    floor = smallest_tolerance(size)
+    if tolerance < floor:
+        raise ParameterError(
+            f"fit {name} {tolerance:g} is below what double precision can reach for coordinates up to "
+            f"{size:.6g}: use at least {floor:.2g} (8 eps x size, and |cos| 64 eps at tolerance / 10)",
+            key=name,
+        )
+    return tolerance

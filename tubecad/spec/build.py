@@ -15,6 +15,13 @@ from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.fitting import FitError
 from tubecad.spec.model import StiffenerSelection
 from tubecad.spec.parse import TubeSpec
+from tubecad.spec.preflight import (  # light: the outputs' checks, made again here for a script's call
+    MESH_OPTIONS,
+    check_build_outputs,
+    check_mesh_options,
+    mesh_tolerance_for,
+    split_outputs,
+)
 
 __all__ = [
     "MESH_OPTIONS",
@@ -138,17 +145,6 @@ def panels_from_spec(spec: TubeSpec, build: TubeBuild) -> list:
         ) from None
 
 
-def split_outputs(outputs) -> tuple[list[Path], list[Path]]:
-    """Shape outputs (CAD and mesh formats) and polyline outputs (.csv, .json), by the one
-    table of formats (tubecad.export.registry); a ParameterError listing every allowed
-    extension for any other, before anything is built."""
-    from tubecad.export.registry import output_format
-
-    paths = [Path(p) for p in outputs]
-    kinds = {p: output_format(p).kind for p in paths}
-    return [p for p in paths if kinds[p] != "polylines"], [p for p in paths if kinds[p] == "polylines"]
-
-
 def wall_lines(build: TubeBuild) -> list:
     """The layout's curvature lines on every wall surface (``..._inner`` on the inner one)."""
     from tubecad.stiffeners import net_lines
@@ -164,42 +160,6 @@ def mesh_deflection(build: TubeBuild) -> float:
     from tubecad.export.meshing import checked_tolerance
 
     return checked_tolerance(None, None, min(build.radii))[0]
-
-
-#: how the command line names the mesh tolerances (in messages)
-MESH_OPTIONS = ("--mesh-tolerance", "--mesh-angle")
-
-
-def mesh_tolerance_for(
-    spec: TubeSpec, linear: float | None = None, angle_deg: float | None = None
-) -> tuple[float, float]:
-    """(linear deflection, angular deflection in radians) of the spec's mesh outputs, checked
-    before anything is built (tubecad.export.meshing: the defaults, and the ranges relative
-    to the spec's smallest tube radius); a SpecError names the option and the range."""
-    from tubecad.export.meshing import checked_tolerance
-
-    radius = spec.min_radius  # a tube's constant radius, or a canal surface's smallest r
-    if spec.wall is not None:
-        try:
-            radius += spec.wall.offsets()[0]
-        except ParameterError:
-            pass  # the build says what is wrong with [wall]
-    try:
-        return checked_tolerance(linear, angle_deg, radius, MESH_OPTIONS)
-    except ParameterError as exc:
-        raise SpecError(f"{spec.source}: {exc}", key=exc.key) from None
-
-
-def check_mesh_options(outputs, mesh_tolerance: float | None, mesh_angle: float | None) -> None:
-    """--mesh-tolerance and --mesh-angle only with a mesh output among ``outputs`` (paths or
-    names with an extension): a ParameterError otherwise."""
-    from tubecad.export.registry import EXTENSIONS
-
-    if mesh_tolerance is None and mesh_angle is None or any(Path(p).suffix.lower() not in EXTENSIONS for p in outputs):
-        return  # an unknown extension is refused by split_outputs, listing them all
-    if not any(getattr(EXTENSIONS.get(Path(p).suffix.lower()), "kind", "") == "mesh" for p in outputs):
-        meshes = ", ".join(ext for ext, fmt in EXTENSIONS.items() if fmt.kind == "mesh")
-        raise ParameterError(f"{' and '.join(MESH_OPTIONS)} apply to mesh outputs ({meshes}); none is asked for")
 
 
 def check_output(
@@ -375,20 +335,18 @@ def build_and_export(
     stiffener, each file written and read back); it shows nothing by default.
     (:func:`build_spec` and :func:`export_build` are its two halves.)
     """
-    from tubecad.core.atomic import check_writable, write_text
+    from tubecad.core.atomic import write_text
     from tubecad.spec.report import to_json
 
     written = [] if written is None else written
     progress = progress if progress is not None else Progress(enabled=False)
     outputs = [Path(p) for p in outputs]
-    split_outputs(outputs)  # an unknown extension is refused, listing them all, before anything is built
+    # a bad output is refused, naming it, before anything is built or written
+    deflection, angular = check_build_outputs(spec, outputs, report_path, mesh_tolerance, mesh_angle)
     if spec.branches:  # a junction: its own build, assembly and read-back
         from tubecad.spec.junction import build_and_export_junction
 
         return build_and_export_junction(spec, outputs, step_schema, report_path, written, progress)
-    for path in (*outputs, *([report_path] if report_path is not None else [])):
-        check_writable(path)  # a bad output is refused before anything is built or written
-    deflection, angular = mesh_tolerance_for(spec, mesh_tolerance, mesh_angle)
     built = build_spec(spec, progress)
     export_build(built, outputs, step_schema, written, deflection, angular, progress)
     if report_path is not None:

@@ -274,24 +274,16 @@ def build_and_export_junction(
     edge names all there), a PNG output the solid rendered with its edges, and the report.
     Meshes, SVG pictures and polylines of a junction are refused before anything is built
     (not made yet)."""
-    from tubecad.core.atomic import check_writable, write_text
+    from tubecad.core.atomic import write_text
     from tubecad.export.cad import step_names
     from tubecad.export.readback import FileAccuracyError, WrittenShape, readback_report
     from tubecad.export.registry import Exportable, output_format, write_output
+    from tubecad.spec.preflight import check_build_outputs
     from tubecad.spec.report import to_json, tube_report
 
     written = [] if written is None else written
     progress = progress if progress is not None else Progress(enabled=False)
-    for path in outputs:
-        if output_format(path).kind != "cad" and output_format(path).name != "png":
-            raise SpecError(
-                f"{spec.source}: output {path.name!r}: a spec with [[branches]] is written as CAD files "
-                "(.step, .iges, .brep) or a .png picture; meshes, SVG pictures and polylines of a junction "
-                "are not made yet",
-                key="output",
-            )
-    for path in (*outputs, *([report_path] if report_path is not None else [])):
-        check_writable(path)
+    check_build_outputs(spec, outputs, report_path)  # made by build_and_export too: a script may call this alone
     unit = spec.length_unit
     progress.step("building the junction", 1)
     walls = branch_walls(spec)

@@ -192,19 +192,11 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
 
     from tubecad.core.atomic import write_text
     from tubecad.fem.analysis import solve
-    from tubecad.fem.calculix import CalculixError, ccx_executable
+    from tubecad.fem.calculix import CalculixError
     from tubecad.fem.plot import save_deformed
+    from tubecad.spec.preflight import check_analysis
 
-    if spec.analysis is None:
-        raise SpecError(
-            f"{spec.source}: has no [analysis] section (pressure, ends, youngs_modulus, poisson_ratio)", key="analysis"
-        )
-    if spec.wall is None:
-        raise SpecError(f"{spec.source}: an analysis needs the wall's thickness: add a [wall] section", key="wall")
-    try:
-        ccx_executable()
-    except CalculixError as exc:
-        raise SpecError(str(exc)) from None
+    check_analysis(spec)
     say = progress or (lambda stage: None)
     say("meshing")
     mesh, junction = _fe_model(spec, overrides)

@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from tubecad.core.errors import ParameterError, SpecError
+from tubecad.core.errors import ParameterError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.spec.parse import TubeSpec
 
@@ -27,12 +27,10 @@ def flat_from_spec(spec: TubeSpec, output: str | Path) -> list[Path]:
     its wall) into ``output``: webs.dxf, NAME.svg/.png per web and flat.json (lengths in
     the spec's [units] length). Returns the files written."""
     from tubecad.spec.build import build_from_spec, stiffener_selection
+    from tubecad.spec.preflight import check_flat
     from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
 
-    if spec.stiffeners is None:
-        raise SpecError(
-            f"{spec.source}: has no [stiffeners] section, so there are no webs to flatten", key="stiffeners"
-        )
+    check_flat(spec, output)
     result = build_from_spec(spec)
     chosen = stiffener_selection(spec, result)
     assert chosen is not None  # the spec has [stiffeners]

@@ -236,7 +236,7 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
     for count, listed in (("rings", "s_rings"), ("stringers", "u_stringers_deg")):
         if getattr(layout, count) is not None and getattr(layout, listed) is not None:
             raise fail(f"[layout] give either {count} or {listed}, not both", f"layout.{count}")
-    _check_build_sections(tube, model, fail)
+    _check_build_sections(tube, model, fail, source)
     if model.branches:
         _check_branches(tube, model, fail)
     return TubeSpec(tube, checked, source, model)
@@ -328,11 +328,13 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
             )
 
 
-def _check_build_sections(tube: CurvatureLineSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
+def _check_build_sections(
+    tube: CurvatureLineSurface, model: SpecModel, fail: Callable[..., SpecError], source: str
+) -> None:
     """Check what the B-rep needs ([tube] sizes, [layout], [wall], [fit]) against the tube now,
     so that a bad value is refused before anything is built, by ``report`` as by ``build``.
     The rules themselves live with the B-rep code."""
-    from tubecad.core.tolerance import MIN_SIZE, check_tolerance
+    from tubecad.core.tolerance import MIN_SIZE, check_reachable, check_tolerance
 
     canal = not tube.constant_radius
     smallest = tube.radius_law.min_radius  # a tube's law is its constant radius
@@ -343,9 +345,19 @@ def _check_build_sections(tube: CurvatureLineSurface, model: SpecModel, fail: Ca
         raise fail(f"[tube] radius must be >= {MIN_SIZE:g} model units for a B-rep{where}", "tube.radius")
     if tube.length < MIN_SIZE:
         raise fail(f"[axis] s must span at least {MIN_SIZE:g} model units for a B-rep, got {tube.length:g}", "axis.s")
-    _with_section("fit", fail, lambda: check_tolerance("tolerance", model.fit.tolerance), "tolerance")
-    _with_section("layout", fail, lambda: model.layout.net(tube))
+    tolerance = _with_section("fit", fail, lambda: check_tolerance("tolerance", model.fit.tolerance), "tolerance")
+    _with_section("fit", fail, lambda: check_reachable("tolerance", tolerance, _size(tube, model)), "tolerance")
+    layout = _with_section("layout", fail, lambda: model.layout.net(tube))
     unit = model.units.length
+    if model.stiffeners is not None:  # the indices against the layout, before anything is built
+        model.stiffeners.select(layout, source, unit)
+    if model.panels is not None:
+        panels = model.panels
+        _with_section(
+            "panels",
+            fail,
+            lambda: layout.panel_bounds(panels.seam_indices(len(layout.stringers_deg)), panels.ring_indices()),
+        )
     if model.fabrication is not None:  # the shop's settings, in the spec's length unit
         try:
             model.fabrication.settings(unit)
@@ -393,6 +405,16 @@ def _check_build_sections(tube: CurvatureLineSurface, model: SpecModel, fail: Ca
                 lambda: check_spec_heights(tube.axis, layout, (r_in, r_out), stiffeners.table()),
                 "height",
             )
+
+
+def _size(tube: CurvatureLineSurface, model: SpecModel) -> float:
+    """The largest coordinate magnitude of the surfaces a spec fits: the axis's largest |c|
+    (2001 samples) plus the largest radius and the wall's thickness."""
+    import numpy as np
+
+    s = np.linspace(*tube.span, 2001)
+    wall = model.wall.thickness if model.wall is not None else 0.0
+    return float(np.abs(tube.axis.position(s)).max()) + tube.radius_law.max_radius + wall
 
 
 def _check_canal_sections(surface: CanalSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:

@@ -23,24 +23,14 @@ def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None]
     from tubecad.shop.writer import write_shop
     from tubecad.spec.build import build_from_spec, panels_from_spec, stiffeners_from_spec
     from tubecad.spec.model import FabricationSection
+    from tubecad.spec.preflight import check_shop
 
-    if spec.wall is None:
-        raise SpecError(
-            f"{spec.source}: has no [wall] section; the shop package is made of a wall's stiffeners and panels",
-            key="wall",
-        )
+    check_shop(spec, output)
     if spec.branches:  # a junction: the branches' cutting templates, openings and bevels
         from tubecad.spec.junction_shop import junction_shop
 
         return junction_shop(spec, output, progress)
-    if spec.stiffeners is None and spec.panels is None:
-        raise SpecError(
-            f"{spec.source}: has neither [stiffeners] nor [panels]; there is nothing for the shop", key="stiffeners"
-        )
-    try:
-        fab = (spec.fabrication or FabricationSection()).settings(spec.length_unit)
-    except ParameterError as exc:
-        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "fabrication") from None
+    fab = (spec.fabrication or FabricationSection()).settings(spec.length_unit)  # checked by check_shop
     say = progress or (lambda stage: None)
     say("building the wall")
     build = build_from_spec(spec)

@@ -41,15 +41,10 @@ def split_into_panels(build: TubeBuild, seams: list[int], rings: list[int] | Non
     if len(build.radii) != 2:
         raise ParameterError("panels need a wall (build_wall_solid), not a tube solid")
     layout = build.layout
-    n_s, n_r = len(layout.stringers_deg), len(layout.s_rings)
-    if not seams or any(not 0 <= j < n_s for j in seams):
-        raise ParameterError(f"seams must be one or more stringer indices in [0, {n_s - 1}], got {seams}")
-    rings = sorted(set(range(n_r) if rings is None else rings) | {0, n_r - 1})
-    if any(not 0 <= i < n_r for i in rings):
-        raise ParameterError(f"rings must be ring indices in [0, {n_r - 1}], got {rings}")
+    n_s = len(layout.stringers_deg)
+    ordered, rings = layout.panel_bounds(seams, rings)
     surface = build.surfaces[0].tube
     # the layout's angles increase with the index: seam bays j_a -> j_b, j_b past n_s wrapping round
-    ordered = sorted(set(seams))
     bays = list(zip(ordered, ordered[1:] + [ordered[0] + n_s]))
 
     def angle(j: int) -> float:
