@@ -77,6 +77,31 @@ def sample_face(face: TopoDS_Face, nu: int, nv: int) -> tuple[np.ndarray, np.nda
     return out[0], out[1], out[2]
 
 
+def face_orthogonality(face: TopoDS_Face, per_span: int = 4) -> float:
+    """The largest |cos| between the face's isoparametric directions d/du and d/dv, sampled
+    on every knot span of its B-spline surface inside its UV bounds, the bounds (its edges)
+    and corners included (:func:`~tubecad.fitting.nurbs.span_grid`): where a file's rounded
+    poles and a fit's error peak. Another kind of surface: :func:`sample_face`'s grid.
+
+    Args:
+        face: a face of a read-back or built shape.
+        per_span: samples per knot span, both ways.
+
+    Returns:
+        max |cos| over the samples.
+    """
+    from tubecad.fitting.nurbs import span_grid
+
+    surface = BRep_Tool.Surface_s(face)
+    if not isinstance(surface, Geom_BSplineSurface):
+        _, du, dv = sample_face(face, 8, 8)
+        return float(orthogonality(du, dv).max())
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    arrays = SurfaceArrays.from_occ(surface)
+    _, du, dv = arrays.grid_d1(span_grid(arrays.u_knots, u0, u1, per_span), span_grid(arrays.v_knots, v0, v1, per_span))
+    return float(orthogonality(du.reshape(-1, 3), dv.reshape(-1, 3)).max())
+
+
 def orthogonality(d1: np.ndarray, d2: np.ndarray) -> np.ndarray:
     """|cos| of the angle between each pair of rows of ``d1`` and ``d2``."""
     return np.abs(np.einsum("ij,ij->i", d1, d2)) / (np.linalg.norm(d1, axis=1) * np.linalg.norm(d2, axis=1))
@@ -170,8 +195,7 @@ def measure_tube_faces(
     points = np.concatenate([g[0] for g in grids])
     dist, _ = distance_to_axis(axis, points) if level is None else level(points)
     dist = dist.reshape(len(faces), nu * nv)
-    cos = orthogonality(np.concatenate([g[1] for g in grids]), np.concatenate([g[2] for g in grids]))
-    cos = cos.reshape(len(faces), nu * nv)
+    cos = [face_orthogonality(face) for face in faces]  # edges, corners and every knot span
     per_radius: dict[float, list] = {}
     measured = 0
     for i in range(len(faces)):
@@ -185,7 +209,7 @@ def measure_tube_faces(
         entry = per_radius.setdefault(r, [0, 0.0, 0.0])
         entry[0] += 1
         entry[1] = max(entry[1], float(np.abs(dist[i] - r).max()))
-        entry[2] = max(entry[2], float(cos[i].max()))
+        entry[2] = max(entry[2], cos[i])
     return TubeFacesMeasure(
         max_deviation=max((e[1] for e in per_radius.values()), default=0.0),
         max_orthogonality=max((e[2] for e in per_radius.values()), default=0.0),

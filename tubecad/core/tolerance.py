@@ -27,8 +27,8 @@ EDGE_TOLERANCE = 1e-7
 #: below it edges and faces collapse within tolerance
 MIN_SIZE = 100 * EDGE_TOLERANCE
 
-#: significant digits OCCT's STEP and IGES writers give a coordinate (e.g. -18.39692620785)
-WRITTEN_DIGITS = 13
+#: significant digits tubecad's STEP and IGES writers give a real (tubecad.export.cad.FILE_REAL: a double to the bit)
+WRITTEN_DIGITS = 17
 
 
 def written_resolution(size: float, digits: int = WRITTEN_DIGITS) -> float:

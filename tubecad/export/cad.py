@@ -11,8 +11,9 @@ schema is one of OCCT's global settings (``write.step.schema``); :func:`step_set
 sets it for one write only, after the STEP controllers exist (their first initialisation
 would reset it), and restores the previous value afterwards.
 
-IGES is written through OCCT's IGES writer with its numbers to 13 significant digits
-(:data:`IGES_REAL`; the writer's own 9 decimals would lose a canal surface's weights).
+Both are written with every real to 17 significant digits (:data:`FILE_REAL`): a double to
+the bit, so the file's surfaces are the built ones (OCCT's writers alone write 13 digits for
+STEP and 9 decimals for IGES).
 
 Length units (tubecad.core.units): the coordinates are written as they are, in the model's
 unit (``length_unit``, default mm), and the file says which unit that is: STEP's
@@ -26,6 +27,7 @@ does); :func:`import_shape` reads in the unit asked.
 from __future__ import annotations
 
 import contextlib
+import re
 from collections.abc import Iterator
 from datetime import UTC
 from pathlib import Path
@@ -41,7 +43,8 @@ from OCP.IGESSelect import IGESSelect_WorkLibrary
 from OCP.Interface import Interface_Static
 from OCP.Message import Message, Message_PrinterOStream
 from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Reader, STEPCAFControl_Writer
-from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller, STEPControl_Reader
+from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller, STEPControl_Reader, STEPControl_Writer
+from OCP.StepData import StepData_StepWriter
 from OCP.TCollection import TCollection_ExtendedString, TCollection_HAsciiString
 from OCP.TDataStd import TDataStd_Name
 from OCP.TDF import TDF_Label
@@ -62,15 +65,22 @@ if TYPE_CHECKING:
 
 STEP_SCHEMAS = {"AP214": "AP214IS", "AP242": "AP242DIS"}
 
-#: how IGES writes a real: 13 significant digits, trailing zeros and E+00 dropped. OCCT's IGES
-#: writer alone writes 9 decimals ("%11.9f" for 0.1 <= |x| < 1000, else "%11.9E"): a weight
-#: rounded by 5e-10 moves the surface by that times the distance to its pole (~ the radius),
-#: up to ~4e-8 on a canal surface or a route, whose weights vary in both directions. 13 digits is
-#: the most the zero suppression takes (it looks for the exponent in the first 16 characters,
-#: at 15 in "-1.234567890123E-05", and cuts a longer number short); more would have to keep
-#: every trailing zero, 2.4 times the file. The surfaces read back are then within ~1e-10 of
-#: the written ones, as STEP's.
-IGES_REAL = "%.12E"
+#: how STEP and IGES write a real: 17 significant digits, as many as a double holds, so a
+#: file's numbers read back to the bit and its surfaces are the built ones (tested). OCCT's
+#: writers alone write 13 (STEP: "%.12f" or "%.12E") or 9 decimals (IGES), and the rounding
+#: shows where the poles are close together: the paper's wall at [fit] tolerance 1e-10 read
+#: back from 13 digits has isolines |cos| 5.9e-11 apart at a face's corner, where the fit
+#: holds 4.8e-12. The writers' own zero suppression cuts a number longer than 16 characters
+#: short, so it is off: STEP's numbers are shortened afterwards (:func:`_shortened_reals`,
+#: trailing zeros and E+00 dropped); IGES keeps them (its card images have fixed columns),
+#: about twice OCCT's own IGES file.
+FILE_REAL = "%.16E"
+
+#: the old name of FILE_REAL, kept importable
+IGES_REAL = FILE_REAL
+
+#: one real as FILE_REAL writes it, in a STEP file's data: its trailing zeros and E+00 are dropped
+_REAL = re.compile(rb"(?<=[(,\s])(-?\d\.\d*?)0*E([+-]\d\d)(?=[,)\s])")
 
 
 class ExportError(TubecadError):
@@ -163,8 +173,29 @@ def write_step(
             stamp = _source_date()
             if stamp is not None:  # reproducible builds: the same spec, the same bytes
                 header.SetTimeStamp(TCollection_HAsciiString(stamp))
-        if writer.Write(str(path)) != IFSelect_RetDone:
-            raise ExportError(f"OCCT could not write STEP to {str(path)!r}")
+        _print_step(writer.Writer(), Path(path))
+
+
+def _print_step(writer: STEPControl_Writer, path: Path) -> None:
+    """What ``writer.Write(path)`` does (StepSelect_WorkLibrary::WriteFile: the model sent to
+    a StepData_StepWriter and printed), with every real to 17 significant digits
+    (:data:`FILE_REAL`), shortened by :func:`_shortened_reals`."""
+    import io
+
+    step = StepData_StepWriter(writer.Model())
+    step.FloatWriter().SetFormat(FILE_REAL, True)  # True: no second format for 0.1 <= |x| < 1000
+    step.FloatWriter().SetZeroSuppress(False)  # it would cut 17 digits short
+    step.SendModel(writer.WS().Protocol())
+    buffer = io.BytesIO()
+    if not step.Print(buffer):
+        raise ExportError(f"OCCT could not write STEP to {str(path)!r}")
+    path.write_bytes(_shortened_reals(buffer.getvalue()))
+
+
+def _shortened_reals(text: bytes) -> bytes:
+    """STEP data with each real of :data:`FILE_REAL` written shortest: 1.5000000000000000E+02
+    as 1.5E+02, 2.0000000000000000E+00 as 2., the same numbers (ISO 10303-21 reals)."""
+    return _REAL.sub(lambda m: m[1] + (b"" if m[2] == b"+00" else b"E" + m[2]), text)
 
 
 def _source_date() -> str | None:
@@ -283,11 +314,11 @@ def _write_iges(shape: TopoDS_Shape, path: Path, length_unit: str = DEFAULT_LENG
     if not writer.AddShape(shape):
         raise ExportError("OCCT could not translate the shape to IGES")
     writer.ComputeModel()
-    # IGESControl_Writer.Write, with the numbers written to 13 significant digits (IGES_REAL)
+    # IGESControl_Writer.Write, with the numbers written to 17 significant digits (FILE_REAL)
     # instead of its fixed 9 decimals
     iges = IGESData_IGESWriter(writer.Model())
-    iges.FloatWriter().SetFormat(IGES_REAL, True)  # True: no second format for 0.1 <= |x| < 1000
-    iges.FloatWriter().SetZeroSuppress(True)
+    iges.FloatWriter().SetFormat(FILE_REAL, True)  # True: no second format for 0.1 <= |x| < 1000
+    iges.FloatWriter().SetZeroSuppress(False)  # it would cut 17 digits short
     try:
         if writer.Model().NbEntities() == 0:
             raise OSError("no entities")

@@ -100,6 +100,28 @@ class SurfaceArrays:
         return s, (a_u[..., :3] - a_u[..., 3:] * s) / w, (a_v[..., :3] - a_v[..., 3:] * s) / w
 
 
+def span_grid(knots: FloatArray, lo: float, hi: float, per_span: int) -> FloatArray:
+    """Parameters that cover every knot span of ``knots`` inside [lo, hi]: each distinct knot
+    there, both ends, and ``per_span - 1`` equally spaced points inside each span.
+
+    Where an isoline's error peaks, at a face's boundary (a ring or a stringer), at a knot or
+    inside a span, such a grid has a sample: sampling only inside the spans misses the first two.
+
+    Args:
+        knots: a knot vector (repeats allowed).
+        lo: the first parameter wanted (a face's or surface's bound).
+        hi: the last parameter wanted.
+        per_span: samples per span (at least 1).
+
+    Returns:
+        The increasing parameters.
+    """
+    inside = np.unique(np.clip(np.asarray(knots, dtype=float), lo, hi))
+    ends = np.unique(np.concatenate([[lo], inside, [hi]]))
+    steps = np.arange(per_span) / per_span
+    return np.concatenate([(a + steps * (b - a)) for a, b in zip(ends[:-1], ends[1:])] + [[hi]])
+
+
 def occ_curve(spline: BSpline) -> Geom_BSplineCurve | Geom2d_BSplineCurve:
     """A scipy B-spline of points (coefficients (n, 3) or (n, 2)) as OCCT's 3D or 2D
     B-spline curve of the same degree, knots and poles (non-rational)."""

@@ -241,8 +241,8 @@ def test_points_from_a_csv_file(tmp_path):
 @pytest.mark.slow
 def test_iges_holds_a_route_to_the_fit_tolerance(sample_build):
     """A route's surfaces are rational in both directions: OCCT's IGES writer, keeping 9
-    decimals, moved their weights and held them only to ~1.4e-8 (refused); written with 13
-    significant digits (tubecad.export.cad.IGES_REAL) the file holds them to ~4e-11."""
+    decimals, moved their weights and held them only to ~1.4e-8 (refused); written with 17
+    significant digits (tubecad.export.cad.FILE_REAL) the file holds them as built."""
     result = sample_build("route")  # the suite's one build of samples/route.toml, to STEP and IGES
     out = result.folder / "a.iges"
     assert result.exit_code == 0, result.output
