@@ -364,6 +364,22 @@ def paper_run(tmp_path_factory) -> CliRun:
     return CliRun(root, root / "new" / "out")
 
 
+@pytest.fixture(scope="session")
+def sample_shop(tmp_path_factory):
+    """``sample_shop(NAME)``: ``tubecad shop samples/NAME.toml -o ROOT/out`` once per run, a
+    CliRun whose folder is ROOT/out (a folder the command creates): the suite's one shop
+    package of each sample, which every test of it shares."""
+
+    def shop(name: str) -> CliRun:
+        def make(root: Path) -> None:
+            _cli_in(root, ["shop", str(SAMPLES / f"{name}.toml"), "-o", str(root / "out")])
+
+        root = built_once(tmp_path_factory, f"shop-{name}", make)
+        return CliRun(root, root / "out")
+
+    return shop
+
+
 def edges_of(shape) -> list:
     """The edges of ``shape`` (a build123d or OCP shape), as TopoDS_Edges, in explorer order."""
     from OCP.TopAbs import TopAbs_EDGE

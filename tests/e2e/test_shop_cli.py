@@ -22,9 +22,9 @@ def run(*args):
 
 
 @pytest.fixture(scope="module")
-def shop(tmp_path_factory):
-    out = tmp_path_factory.mktemp("shop")
-    result = run("shop", SAMPLE, "-o", out)
+def shop(sample_shop):
+    result = sample_shop(SAMPLE.stem)  # the suite's one shop package of the sample (conftest)
+    out = result.folder
     assert result.exit_code == 0, result.output
     return out, json.loads((out / "index.json").read_text(encoding="utf-8")), result.output
 
@@ -126,8 +126,10 @@ def test_panel_developments_pin_jigs_and_bending_tables(shop):
 
     out, index, _ = shop
     assert len(index["panels"]) == 12
-    flagged = [p for p in index["panels"] if p["exceeds_max_strain"]]
-    assert 0 < len(flagged) < 12 and all(p["max_strain"] > 0.02 for p in flagged)
+    # the sample's max_strain = 0.04 holds every panel (issue 41: a sample runs clean); the
+    # largest strain, 0.033, at the seams of the panels on the bend's inside
+    assert not any(p["exceeds_max_strain"] for p in index["panels"])
+    assert 0.02 < max(p["max_strain"] for p in index["panels"]) < 0.04
     for panel in index["panels"][:3]:
         assert panel["flat_area"] == pytest.approx(panel["surface_area"], rel=0.05)
         doc = ezdxf.readfile(out / "panels" / f"{panel['name']}_development.dxf")
@@ -179,7 +181,7 @@ def test_bad_fabrication_input_is_refused_with_one_line_and_no_file(tmp_path, ex
 
 
 @pytest.mark.slow
-def test_shop_on_the_stiffened_tee_sample_lists_every_file_and_reads_back(tmp_path):
+def test_shop_on_the_stiffened_tee_sample_lists_every_file_and_reads_back(sample_shop):
     """samples/tee.toml (issue 25): the branch's templates and the webs of its 16 stiffeners;
     every file the index lists is on disk and nothing else; the two main rings that cross the
     pad are sectors of the arc they keep (the pad spans 2 asin(31.5 / 52) + 2 x 25 / 52 rad round
@@ -193,8 +195,8 @@ def test_shop_on_the_stiffened_tee_sample_lists_every_file_and_reads_back(tmp_pa
 
     from tubecad.brep.analyzer import sub_shapes
 
-    out = tmp_path / "tee"
-    result = run("shop", "samples/tee.toml", "-o", out)
+    result = sample_shop("tee")  # the suite's one shop package of the sample (conftest)
+    out = result.folder
     assert result.exit_code == 0, result.output
     index = json.loads((out / "index.json").read_text(encoding="utf-8"))
     listed = {entry["path"] for entry in index["files"]} | {"index.json"}

@@ -3,7 +3,6 @@
 import json
 import math
 import os
-import re
 import subprocess
 import sys
 from pathlib import Path
@@ -90,18 +89,20 @@ def test_paper_command_writes_report_and_pictures(paper_run):
 
 
 @pytest.mark.slow
-def test_paper_command_says_which_flat_patterns_cross_themselves(paper_run):
-    """The webs whose flat outline crosses itself (read back from webs.dxf with ezdxf, judged
-    by shapely) are each named on the terminal: the paper's stringer_02 and stringer_06."""
+def test_paper_command_writes_webs_that_do_not_cross_themselves(paper_run):
+    """issue 41: the paper's stringer webs are those at 0 and 180 deg (stringer_00, _04), whose
+    flat outlines (read back from webs.dxf with ezdxf, judged by shapely) are simple, and the
+    command warns of none (the webs at 90 and 270 deg cross themselves flat:
+    tests/unit/shop/test_shop_webs.py)."""
     import ezdxf
     from shapely.geometry import Polygon
 
     outlines: dict[str, list] = {}
     for entity in ezdxf.readfile(paper_run.folder / "flat" / "webs.dxf").modelspace().query("LWPOLYLINE"):
         outlines.setdefault(entity.dxf.layer, []).extend((x, y) for x, y, *_ in entity.get_points())
-    crossing = sorted(name for name, points in outlines.items() if not Polygon(points).is_valid)
-    said = re.findall(r"warning: (\w+): its flat pattern crosses itself", paper_run.output)
-    assert crossing == ["stringer_02", "stringer_06"] and sorted(said) == crossing, paper_run.output
+    assert sorted(n for n in outlines if n.startswith("stringer_")) == ["stringer_00", "stringer_04"]
+    assert all(Polygon(points).is_valid for points in outlines.values())
+    assert "crosses itself" not in paper_run.output and "warning" not in paper_run.output, paper_run.output
 
 
 def write(tmp_path, text, name="spec.toml"):

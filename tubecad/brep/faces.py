@@ -75,6 +75,16 @@ class PatchFaces:
     def columns(self) -> list[list[TopoDS_Edge]]:
         return self.stringers if self.column_edges is None else self.column_edges
 
+    @property
+    def seams(self) -> list[list[TopoDS_Edge]]:
+        """The face columns that are not stringers, [k][i] as :attr:`stringers`: the curvature
+        lines u = const through the circle's C0 knots (:func:`face_columns`), edges no one asked
+        for, named ``seam_00``, ... (never ``stringer_..``); none where the columns are the
+        stringers (at least two stringers no more than 330 deg apart)."""
+        if self.column_edges is None:
+            return []
+        return [col for col in self.column_edges if not any(col[0].IsSame(st[0]) for st in self.stringers)]
+
     def all_faces(self) -> list[TopoDS_Face]:
         return [f for row in self.faces for f in row]
 
@@ -206,6 +216,13 @@ def face_columns(tube_surface: TubeSurface, stringers_deg: Sequence[float]) -> l
         if all(abs((knot - a + 180.0) % 360.0 - 180.0) > 1e-9 for a in columns):
             columns.append(knot)
     return [columns[0], *sorted(columns[1:], key=lambda a: (a - origin) % 360.0)]
+
+
+def seam_angles(tube_surface: TubeSurface, stringers_deg: Sequence[float]) -> list[float]:
+    """The angles (degrees) of the face columns that are not stringers (:func:`face_columns`):
+    the seams, in the order of :attr:`PatchFaces.seams` (round from the first stringer)."""
+    stringers = {float(a) for a in stringers_deg}
+    return [a for a in face_columns(tube_surface, stringers_deg) if a not in stringers]
 
 
 #: on the closing ring, a stringer's end within this distance of a stringer's start shares its vertex

@@ -123,7 +123,7 @@ def paper(output: Path, nu: int, ns: int) -> None:
     the curvature-line net); paper.step and paper.iges, the wall solid (thickness 2,
     centred: radii 14 and 16) with 11 ring frames and 8 stringers as its edges;
     paper_step.png, a picture rendered from the STEP file read back; paper_stiffened.step,
-    a named assembly (wall, ring_01..ring_09 and stringer_00, _02, _04, _06 flat-bar
+    a named assembly (wall, ring_01..ring_09 and stringer_00 and _04 flat-bar
     stiffeners inside the wall, curvature_lines with line_ring_00.., line_stringer_00..
     and their _inner twins) and its picture paper_stiffened.png;
     paper_lines.csv/.json, the curvature lines as polylines with tangents and normals;

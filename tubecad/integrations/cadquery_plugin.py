@@ -12,9 +12,10 @@
 The solid is pushed onto the stack in the axis' own (global) coordinates, as built, and
 combined with what is there as CadQuery's own solids are (``combine``); it is a ``cq.Solid``
 whose faces are bounded by the chosen ring frames and stringers, which it carries as
-``rings``, ``stringers`` (``inner_rings``, ``inner_stringers`` on a wall): lists of labelled
-``cq.Wire`` of its own edges. ``curvatureLineTube`` and ``curvatureLineWall`` (a tube object
-in, CadQuery 2.x plugin of tubecad 0.x) are deprecated names of the same.
+``rings``, ``stringers`` and ``seams`` (``inner_rings``, ``inner_stringers``, ``inner_seams`` on
+a wall): lists of labelled ``cq.Wire`` of its own edges. ``curvatureLineTube`` and
+``curvatureLineWall`` (a tube object in, CadQuery 2.x plugin of tubecad 0.x) are deprecated
+names of the same.
 """
 
 from __future__ import annotations
@@ -148,10 +149,12 @@ def _pushed(
     for name, lines in (
         ("rings", net.rings),
         ("stringers", net.stringers),
+        ("seams", net.seams),  # face edges u = const that are no stringer (the build123d objects' seams)
         ("inner_rings", net.inner_rings),
         ("inner_stringers", net.inner_stringers),
+        ("inner_seams", net.inner_seams),
     ):
-        if lines or name in ("rings", "stringers"):
+        if net.inner_rings or not name.startswith("inner_"):  # inner_...: on a wall
             setattr(solid, name, [_wire(label, [edge_map.FindKey(i) for i in found]) for label, found in lines.items()])
     pushed: cq.Shape = solid
     stiffeners: list[cq.Solid] = []
@@ -161,7 +164,7 @@ def _pushed(
             stiffener.label = label
             stiffeners.append(stiffener)
         pushed = cq.Compound.makeCompound([solid, *stiffeners])
-        for name in ("rings", "stringers", "inner_rings", "inner_stringers"):
+        for name in ("rings", "stringers", "seams", "inner_rings", "inner_stringers", "inner_seams"):
             if hasattr(solid, name):
                 setattr(pushed, name, getattr(solid, name))
         pushed.stiffeners = stiffeners  # type: ignore[attr-defined,unused-ignore]

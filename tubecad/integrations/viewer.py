@@ -85,7 +85,7 @@ class Shown:
         return out
 
     def summary(self) -> str:
-        """One line: what went where, e.g. ``paper: wall, 9 ring and 4 stringer stiffeners,
+        """One line: what went where, e.g. ``paper: wall, 9 ring and 2 stringer stiffeners,
         38 curvature lines sent to the viewer on 127.0.0.1:3939``."""
         names = self.names
         count = lambda prefix: sum(n.startswith(prefix) for n in names)  # noqa: E731

@@ -30,7 +30,7 @@ from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, check_tolerance
 from tubecad.fitting.occ_arrays import integers, reals
-from tubecad.junctions.saddle import SaddleCurve, saddle_curve
+from tubecad.junctions.saddle import SaddleCurve, saddle_curve, saddle_distance
 from tubecad.occ_compat import Array1OfPnt
 from tubecad.surface.protocol import CurvatureLineSurface
 
@@ -44,8 +44,8 @@ FIRST_INTERVALS, MOST_INTERVALS = 32, 4096
 class SaddleEdge:
     """A saddle curve as an OCCT edge: ``name`` (``saddle_outer``, ``saddle_inner``), the
     periodic B-spline ``curve`` (parameter u_B), its ``edge``, the exact ``saddle`` at its
-    knots, and the largest distance ``deviation`` from the exact saddle measured at the
-    midpoints between them."""
+    knots, the largest distance ``deviation`` from the exact saddle measured at the
+    midpoints between them, and the exact surfaces ``main`` and ``branch`` that meet on it."""
 
     name: str
     curve: Geom_BSplineCurve
@@ -53,10 +53,25 @@ class SaddleEdge:
     saddle: SaddleCurve
     deviation: float
     tolerance: float
+    main: CurvatureLineSurface
+    branch: CurvatureLineSurface
 
     @property
     def poles(self) -> int:
         return self.curve.NbPoles()
+
+    def exact_distance(self, points: np.ndarray, u_b: np.ndarray) -> np.ndarray:
+        """How far ``points`` (n, 3) lie from the exact saddle, the intersection of the exact
+        surfaces (:func:`~tubecad.junctions.saddle.saddle_distance`), not from this fitted edge.
+
+        Args:
+            points: the points, near the saddle.
+            u_b: (n,) their parameters on :attr:`curve` (u_B: where their feet are looked for first).
+
+        Returns:
+            (n,) distances.
+        """
+        return saddle_distance(self.main, self.branch, points, u_b, self.saddle)
 
     def to_build123d(self) -> bd.Edge:
         """The edge as a build123d Edge labelled with its name (``saddle_outer``...)."""
@@ -120,7 +135,7 @@ def fit_saddle(
         exact.residual,
     )
     edge = BRepBuilderAPI_MakeEdge(curve).Edge()
-    return SaddleEdge(name, curve, edge, knots, deviation, tolerance)
+    return SaddleEdge(name, curve, edge, knots, deviation, tolerance, main, branch)
 
 
 def wall_saddles(

@@ -49,6 +49,9 @@ TANGENCY = 1e-6
 
 #: Newton steps for an extreme of a sampled saddle (:meth:`SaddleCurve.extent`)
 EXTENT_STEPS = 8
+#: at most this many Gauss-Newton steps for a point's foot on the saddle (:func:`saddle_distance`),
+#: which stop where they are below FOOT_CONVERGED radians of u_B
+FOOT_STEPS, FOOT_CONVERGED = 12, 1e-14
 
 
 @dataclass(frozen=True)
@@ -193,16 +196,60 @@ def saddle_curve(
     if samples < 8:
         raise ParameterError(f"samples must be at least 8, got {samples}", key="samples")
     u_b = np.linspace(0.0, 2.0 * np.pi, samples)
-    corners = np.concatenate(
-        [main.points(np.zeros(2), np.array(main.span)), branch.points(np.zeros(2), np.array(branch.span))]
-    )
-    scale = float(np.abs(corners).max() + main.radius_law.r(np.array(main.span)).max())
+    scale = _scale(main, branch)
     if near is None:
         near = _march(main, branch, scale, key)
     guess = _interpolated(near, u_b)
     x, size, jac, _ = _solve(main, branch, u_b, guess, scale)
     _check(size, jac, u_b, scale, key)
     return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], main.points(x[:, 0], x[:, 1]), float(size.max()))
+
+
+def _scale(main: CurvatureLineSurface, branch: CurvatureLineSurface) -> float:
+    """The model's size that Newton's residual is measured against: the largest coordinate of
+    the surfaces' end points plus the main's largest end radius."""
+    corners = np.concatenate(
+        [main.points(np.zeros(2), np.array(main.span)), branch.points(np.zeros(2), np.array(branch.span))]
+    )
+    return float(np.abs(corners).max() + main.radius_law.r(np.array(main.span)).max())
+
+
+def saddle_distance(
+    main: CurvatureLineSurface, branch: CurvatureLineSurface, points: FloatArray, u_b: FloatArray, near: SaddleCurve
+) -> FloatArray:
+    """How far each of ``points`` lies from the exact saddle of ``main`` and ``branch``: |P - X(u*)|
+    at the foot u* of P on it, where g(u) = (X(u) - P) . X'(u) = 0.
+
+    X(u) is the saddle's point at the branch's stringer angle u, solved by Newton as in
+    :func:`saddle_curve` (to round-off), and X'(u) = X_A,u du_A/du + X_A,s ds_A/du with
+    d(u_A, s_A, s_B)/du = J^-1 X_B,u (the continuation's tangent). u* by Gauss-Newton steps
+    du = -g / |X'|^2 (g' = |X'|^2 + (X - P) . X'', the second term as small as P's distance)
+    from ``u_b``, each Newton solve started from the step's tangent prediction.
+
+    Args:
+        main: the main surface X_A.
+        branch: the branch surface X_B.
+        points: (n, 3) points near the saddle (an edge's samples).
+        u_b: (n,) their first guesses of u* (their parameters on a fitted saddle edge).
+        near: the saddle sampled (its interpolation starts the first Newton solve).
+
+    Returns:
+        (n,) distances from the exact saddle.
+    """
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    u = np.asarray(u_b, dtype=float).ravel().copy()
+    scale = _scale(main, branch)
+    x = _interpolated(near, u)
+    for _ in range(FOOT_STEPS):
+        x, _, jac, b_u = _solve(main, branch, u, x, scale)
+        rate = np.linalg.solve(jac, b_u[..., None])[..., 0]  # d(u_A, s_A, s_B)/du
+        tangent = jac[:, :, 0] * rate[:, :1] + jac[:, :, 1] * rate[:, 1:2]  # X'(u)
+        gap = main.points(x[:, 0], x[:, 1]) - points
+        step = -np.einsum("pk,pk->p", gap, tangent) / np.einsum("pk,pk->p", tangent, tangent)
+        if np.abs(step).max() <= FOOT_CONVERGED:
+            break
+        u, x = u + step, x + rate * step[:, None]
+    return np.linalg.norm(gap, axis=-1)
 
 
 def _march(main: CurvatureLineSurface, branch: CurvatureLineSurface, scale: float, key: str) -> SaddleCurve:

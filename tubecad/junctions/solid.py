@@ -23,17 +23,20 @@ Every ring and stringer of the four tubes stays an edge of W where it lies on W,
 it crosses an opening: the faces round the opening are the net's faces cut by the saddle.
 The fuses' history (BRepAlgoAPI's Modified / IsDeleted) follows each net edge into W,
 where its pieces are labelled ``main_ring_03``, ``main_stringer_05``, ``branch_ring_01``
-(``..._inner`` on the inner surfaces). The saddle edges in W are OCCT's intersection curves made again on the fitted faces'
+(``..._inner`` on the inner surfaces; a face edge u = const that is no stringer, where the faces
+are split at the circle's C0 knot, ``main_seam_00``). The saddle edges in W are OCCT's intersection curves made again on the fitted faces'
 surfaces (:func:`~tubecad.brep.section_edges.refine_section_edges`: OCCT's are 2e-7 .. 5e-6
 off their faces, which a STEP file cannot carry), not the fitted
 :class:`~tubecad.junctions.edges.SaddleEdge` (which lies on the exact surfaces, within the fit
-tolerance of the faces): each edge of W whose points all lie on the exact saddle (within the
+tolerance of the faces): each edge of W whose points all lie on the fitted saddle (within the
 edge tolerance) is labelled with the saddle's name, and the largest distance of their points
-from the exact saddle is measured and reported.
+from the exact saddle, the intersection of the exact surfaces (each point's foot on it by
+Newton, :func:`~tubecad.junctions.saddle.saddle_distance`), is measured and reported.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import build123d as bd
@@ -42,6 +45,7 @@ from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepAlgoAPI import BRepAlgoAPI_BooleanOperation, BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
 from OCP.GCPnts import GCPnts_AbscissaPoint
+from OCP.GeomAbs import GeomAbs_BSplineCurve
 from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD
@@ -63,6 +67,8 @@ EDGE_SAMPLES = 17
 #: an edge is on a saddle where its points are within this many times its own tolerance (or the
 #: fit tolerance) of it
 ON_SADDLE = 10.0
+#: points per knot span at which a saddle edge of W is measured against the exact saddle
+PROBES_PER_SPAN = 8
 
 
 @dataclass
@@ -170,6 +176,8 @@ def build_branched_wall(
             net.setdefault(f"{name}_ring_{i:02d}{side}", ([], outside))[0].extend(ring)
         for j, stringer in enumerate(patches.stringers):
             net.setdefault(f"{name}_stringer_{j:02d}{side}", ([], outside))[0].extend(stringer)
+        for k, seam in enumerate(patches.seams):  # a face split at the circle's C0 knot: no stringer
+            net.setdefault(f"{name}_seam_{k:02d}{side}", ([], outside))[0].extend(seam)
         return built.shape.wrapped
 
     saddles: list[SaddleEdge] = []
@@ -341,10 +349,11 @@ def _annulus(outer: TopoDS_Face, inner: TopoDS_Face) -> TopoDS_Face:
 def _name_saddle_edges(
     edges: list[bd.Edge], saddles: list[SaddleEdge]
 ) -> tuple[dict[str, list[bd.Edge]], dict[str, float], dict[str, float]]:
-    """Label those of ``edges`` that lie on each saddle; their largest distance from it and
-    their total length over the saddle's."""
+    """Label those of ``edges`` that lie on each saddle (within the limit of the fitted saddle
+    edge); their largest distance from the exact saddle, the intersection of the exact
+    surfaces (:meth:`SaddleEdge.exact_distance`), and their total length over the saddle's."""
     named: dict[str, list[bd.Edge]] = {s.name: [] for s in saddles}
-    deviation = {s.name: 0.0 for s in saddles}
+    found: dict[str, list[_OnSaddle]] = {s.name: [] for s in saddles}
     length = {s.name: 0.0 for s in saddles}
     projectors = {s.name: GeomAPI_ProjectPointOnCurve() for s in saddles}
     for saddle in saddles:
@@ -357,24 +366,68 @@ def _name_saddle_edges(
         for saddle in saddles:
             # the faces' intersection lies within about the fit tolerance of the exact saddle
             limit = ON_SADDLE * max(BRep_Tool.Tolerance_s(edge.wrapped), EDGE_TOLERANCE, saddle.tolerance)
-            far = _distance(projectors[saddle.name], points, limit)
-            if far <= limit:
+            feet = _feet(projectors[saddle.name], points, limit)
+            if feet is not None:
                 edge.label = saddle.name
                 named[saddle.name].append(edge)
-                deviation[saddle.name] = max(deviation[saddle.name], far)
+                found[saddle.name].append(_OnSaddle(curve, t[order], np.array(feet)))
                 length[saddle.name] += GCPnts_AbscissaPoint.Length_s(curve)
                 break
+    deviation = {s.name: _exact_deviation(s, found[s.name]) for s in saddles}
     coverage = {s.name: length[s.name] / GCPnts_AbscissaPoint.Length_s(BRepAdaptor_Curve(s.edge)) for s in saddles}
     return named, deviation, coverage
 
 
-def _distance(projector: GeomAPI_ProjectPointOnCurve, points: list[gp_Pnt], limit: float) -> float:
-    """The largest distance of ``points`` from the projector's curve; inf as soon as one is
+def _feet(projector: GeomAPI_ProjectPointOnCurve, points: list[gp_Pnt], limit: float) -> list[float] | None:
+    """The parameters of ``points``' feet on the projector's curve; None as soon as one is
     farther than ``limit`` or does not project (most edges: at the first point)."""
-    far = 0.0
+    feet = []
     for point in points:
         projector.Perform(point)
         if projector.NbPoints() == 0 or projector.LowerDistance() > limit:
-            return float("inf")
-        far = max(far, projector.LowerDistance())
-    return far
+            return None
+        feet.append(projector.LowerDistanceParameter())
+    return feet
+
+
+@dataclass(frozen=True)
+class _OnSaddle:
+    """An edge of W labelled with a saddle: its ``curve``, the parameters ``t`` it was tested
+    at and their feet's parameters u_B on the fitted saddle edge."""
+
+    curve: BRepAdaptor_Curve
+    t: np.ndarray
+    feet: np.ndarray
+
+    def probes(self) -> np.ndarray:
+        """Where the edge is measured: evenly, PROBES_PER_SPAN points to its shortest knot
+        span (a B-spline interpolant is exact at its nodes and farthest off between them,
+        which samples at the nodes alone would hide; its end spans, without interior knots,
+        hold nodes too), or to each of EDGE_SAMPLES - 1 even steps on another curve."""
+        first, last = self.curve.FirstParameter(), self.curve.LastParameter()
+        spans = EDGE_SAMPLES - 1
+        if self.curve.GetType() == GeomAbs_BSplineCurve:
+            spline = self.curve.BSpline()
+            knots = np.unique(np.clip([spline.Knot(i) for i in range(1, spline.NbKnots() + 1)], first, last))
+            if len(knots) > 1:
+                spans = max(spans, math.ceil((last - first) / float(np.diff(knots).min())))
+        return np.linspace(first, last, PROBES_PER_SPAN * spans + 1)
+
+    def guesses(self, probes: np.ndarray) -> np.ndarray:
+        """u_B of the probes' feet on the fitted saddle, interpolated from the tested points'
+        (unwrapped: an edge may cross the periodic curve's seam)."""
+        order = np.argsort(self.t)
+        return np.interp(probes, self.t[order], np.unwrap(self.feet[order]))
+
+
+def _exact_deviation(saddle: SaddleEdge, found: list[_OnSaddle]) -> float:
+    """The largest distance of the edges ``found`` on ``saddle`` from the exact saddle, at
+    their probes (0 without any)."""
+    if not found:
+        return 0.0
+    points, guesses = [], []
+    for edge in found:
+        probes = edge.probes()
+        points += [edge.curve.Value(float(t)).Coord() for t in probes]
+        guesses.append(edge.guesses(probes))
+    return float(saddle.exact_distance(np.array(points), np.concatenate(guesses)).max())

@@ -46,8 +46,9 @@ class _Engine:
 
 
 class _CurvatureNetPart(bd.BasePartObject):
-    """A part whose face edges are curvature lines: ``rings``, ``stringers`` (and on a wall
-    ``inner_rings``, ``inner_stringers``) as labelled wires of this part's own edges."""
+    """A part whose face edges are curvature lines: ``rings``, ``stringers``, ``seams`` (and on
+    a wall ``inner_rings``, ``inner_stringers``, ``inner_seams``) as labelled wires of this
+    part's own edges."""
 
     _applies_to = [bd.BuildPart._tag]
 
@@ -87,8 +88,16 @@ class _CurvatureNetPart(bd.BasePartObject):
     @property
     def stringers(self) -> bd.ShapeList[bd.Wire]:
         """The stringers (the other family of lines of curvature) on the outer surface, from
-        the first ring to the last: ``stringer_00``, ``stringer_01``, ..."""
+        the first ring to the last: ``stringer_00``, ``stringer_01``, ...: as many as asked for."""
         return self._wires(self._net.stringers)
+
+    @property
+    def seams(self) -> bd.ShapeList[bd.Wire]:
+        """The face edges u = const on the outer surface that are no stringer, labelled
+        ``seam_00``, ...: where a face would run over the circle's C0 knot it is split there
+        (with one stringer, along the line opposite it). Empty with two or more stringers no
+        more than 330 deg apart."""
+        return self._wires(self._net.seams)
 
     @property
     def report(self) -> dict[str, Any]:
@@ -225,6 +234,11 @@ class CurvatureWall(_CurvatureNetPart):
     def inner_stringers(self) -> bd.ShapeList[bd.Wire]:
         """The stringers on the inner surface (``stringer_00``, ...)."""
         return self._wires(self._net.inner_stringers)
+
+    @property
+    def inner_seams(self) -> bd.ShapeList[bd.Wire]:
+        """The seams on the inner surface (``seam_00``, ...; see :attr:`seams`)."""
+        return self._wires(self._net.inner_seams)
 
 
 class StiffenedCurvatureWall(CurvatureWall):

@@ -8,7 +8,7 @@ Both front ends (:mod:`tubecad.parts.build123d_parts`, the CadQuery plugin) call
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from tubecad.brep import NetLayout, TubeBuild, build_tube_solid, build_wall_solid
@@ -99,16 +99,20 @@ class NetEdges:
     ``stringer_05``): for each line the indices of its edges in the solid's edge map
     (``TopExp.MapShapes``, 1-based), in order along the line; on the outer surface and (a
     wall) on the inner one. Indices, not shapes: a placed or copied solid explores its edges
-    in the same order, so the same indices find the line on it."""
+    in the same order, so the same indices find the line on it. ``seams`` (``seam_00``, ...):
+    the face edges u = const that are no stringer, where the faces are split at the circle's
+    C0 knots (one stringer: the line opposite it; :attr:`~tubecad.brep.faces.PatchFaces.seams`)."""
 
     rings: dict[str, list[int]]
     stringers: dict[str, list[int]]
     inner_rings: dict[str, list[int]]
     inner_stringers: dict[str, list[int]]
+    seams: dict[str, list[int]] = field(default_factory=dict)
+    inner_seams: dict[str, list[int]] = field(default_factory=dict)
 
 
 def net_edges(build: TubeBuild) -> NetEdges:
-    """The ring and stringer edges of ``build``'s solid, by name. On a closed axis the closing
+    """The ring, stringer and seam edges of ``build``'s solid, by name. On a closed axis the closing
     ring (the first and last ring of the layout) is ``ring_00`` once, made of all its arcs."""
     edge_map = edge_map_of(build.shape.wrapped)
     closed = build.surfaces[0].tube.axis.closed
@@ -119,13 +123,15 @@ def net_edges(build: TubeBuild) -> NetEdges:
         if closed and patches.closing_arcs:
             named["ring_00"] = [arc for _, _, arc in patches.closing_arcs]
         stringers = {f"stringer_{j:02d}": list(col) for j, col in enumerate(patches.stringers)}
+        seams = {f"seam_{k:02d}": list(col) for k, col in enumerate(patches.seams)}
         out.append(
             tuple(
-                {name: _indices(edge_map, edges, name) for name, edges in lines.items()} for lines in (named, stringers)
+                {name: _indices(edge_map, edges, name) for name, edges in lines.items()}
+                for lines in (named, stringers, seams)
             )
         )
-    inner = out[1] if len(out) > 1 else ({}, {})
-    return NetEdges(out[0][0], out[0][1], inner[0], inner[1])
+    inner = out[1] if len(out) > 1 else ({}, {}, {})
+    return NetEdges(out[0][0], out[0][1], inner[0], inner[1], out[0][2], inner[2])
 
 
 def edge_map_of(shape: Any) -> Any:

@@ -130,9 +130,9 @@ def build_report(
     and orthogonality by dense sampling of the OCCT surface, poles; topology and validity;
     OCCT's pre-boolean check (BOPAlgo_ArgumentAnalyzer: every check, the self-intersection
     test only with ``self_intersection``: ~1.5 s more on an 11 x 8 wall); volume and
-    areas against the exact values (docs/MATH.md section 4)."""
-    import math
-
+    areas against the exact values (docs/MATH.md section 4): each surface's faces against
+    its exact surface's area (:attr:`~tubecad.surface.CurvatureLineSurface.area_exact`: a
+    tube's 2 pi rho L, a canal surface's or a wall's offset surface's by quadrature)."""
     # imported here so that `tubecad report` (maths only) never loads OCCT
     from tubecad.brep import properties as props
     from tubecad.brep.solids import exact_volume
@@ -142,7 +142,7 @@ def build_report(
     for surface, patches, radius in zip(build.surfaces, build.patches, build.radii):
         m = measure_surface(surface, nu, ns)
         area = props.faces_area(patches.all_faces())
-        exact = 2 * math.pi * radius * tube.length
+        exact = surface.tube.area_exact  # the exact surface this one is fitted to (a wall's: its offset)
         surfaces.append(
             {
                 "radius": radius,

@@ -24,7 +24,7 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.Geom import Geom_Circle
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 
-from tubecad.brep.faces import ring_circle
+from tubecad.brep.faces import ring_circle, seam_angles
 from tubecad.brep.layout import NetLayout
 from tubecad.core.atomic import write_text
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
@@ -33,12 +33,14 @@ from tubecad.fitting import CanalSectionSurface, TubeSurface
 
 @dataclass(frozen=True)
 class CurvatureLine:
-    """One ring frame or stringer on one tube surface."""
+    """One ring frame or stringer (or seam) on one tube surface."""
 
-    name: str  # line_ring_03, line_stringer_05 (inner surface: ..._inner): unlike the stiffeners ring_03, ...
-    kind: str  # "ring" | "stringer"
+    #: line_ring_03, line_stringer_05, line_seam_00 (inner surface: ..._inner): unlike the stiffeners ring_03, ...
+    name: str
+    #: "ring" | "stringer" | "seam" (a face edge u = const that is no stringer: :func:`net_lines`)
+    kind: str
     index: int
-    value: float  # s of a ring, angle in degrees of a stringer
+    value: float  # s of a ring, angle in degrees of a stringer or a seam
     surface: TubeSurface
 
     @property
@@ -119,13 +121,20 @@ class CurvatureLine:
 
 def net_lines(surface: TubeSurface, layout: NetLayout, suffix: str = "") -> list[CurvatureLine]:
     """The layout's rings and stringers on ``surface``, named line_ring_00.., line_stringer_00..
-    (plus ``suffix``, e.g. ``_inner``), so that no line shares a name with a stiffener."""
+    (plus ``suffix``, e.g. ``_inner``), so that no line shares a name with a stiffener; then
+    the seams, line_seam_00..: the face edges u = const that are no stringer, where the faces
+    are split at the circle's C0 knots (one stringer, or stringers leaving an arc over 330 deg:
+    :func:`~tubecad.brep.faces.face_columns`), lines of curvature but not stringers."""
     rings = [CurvatureLine(f"line_ring_{i:02d}{suffix}", "ring", i, s, surface) for i, s in enumerate(layout.s_rings)]
     stringers = [
         CurvatureLine(f"line_stringer_{j:02d}{suffix}", "stringer", j, a, surface)
         for j, a in enumerate(layout.stringers_deg)
     ]
-    return rings + stringers
+    seams = [
+        CurvatureLine(f"line_seam_{k:02d}{suffix}", "seam", k, a, surface)
+        for k, a in enumerate(seam_angles(surface, layout.stringers_deg))
+    ]
+    return rings + stringers + seams
 
 
 def lines_compound(lines: list[CurvatureLine]) -> bd.Compound:

@@ -54,6 +54,13 @@ class CurvatureLineSurface(Protocol):
         ...
 
     @property
+    def area_exact(self) -> float:
+        """The exact surface's area over the span, A = Int Int sqrt(E G - F^2) du ds (F = 0):
+        a tube's 2 pi rho L (Pappus-Guldin, docs/MATH.md section 4), a canal surface's by
+        quadrature of its exact derivatives (section 8)."""
+        ...
+
+    @property
     def radius_law(self) -> RadiusLaw:
         """r(s) with r', r'', r''' (a tube: the constant law rho, r' = r'' = 0 exactly)."""
         ...
