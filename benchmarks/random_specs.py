@@ -621,8 +621,8 @@ def judge_file(path: Path, case: Case, built) -> dict[str, Any]:
     # the pre-boolean checks a file's reader can break (its edges get 1e-7: a curve off its face,
     # a face over a C0 knot), FreeCAD's BOP check on the read-back solids
     findings: dict[str, int] = {}
-    # where the file's 13 digits cannot hold 1e-7 (coordinates past ~2e4), every reader's edge
-    # is off its face by the rounding: no check of the file can pass, the case says so
+    # where the file's digits cannot hold 1e-7 (coordinates past ~2e8 with 17 digits), every
+    # reader's edge is off its face by the rounding: no check of the file can pass, the case says so
     holds = case.coord * 0.5 * 10.0 ** (1 - WRITTEN_DIGITS) * 10.0 <= EDGE_TOLERANCE
     for solid in solids if holds else []:
         for name, number in analyzer_findings(solid, FILE_CHECKS).items():
@@ -639,6 +639,9 @@ def judge_file(path: Path, case: Case, built) -> dict[str, Any]:
         problems.append(f"deviation {m.max_deviation:.3g} above the tolerance {tol:.3g}")
     if m.max_orthogonality > orthogonality_for(tol):
         problems.append(f"|cos| {m.max_orthogonality:.3g} above {orthogonality_for(tol):.3g}")
+    reported = built.report["brep"]["fit"]["max_orthogonality_error"]
+    if m.max_orthogonality > reported:  # a build never reports better than its file (issue 41)
+        problems.append(f"the file's |cos| {m.max_orthogonality:.3g} above the reported {reported:.3g}")
     n_surfaces = 2 if "wall" in case.spec else 1
     s_rings = built.build.layout.s_rings
     rings, stringers = case.spec["layout"]["rings"], case.spec["layout"]["stringers"]

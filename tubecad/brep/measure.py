@@ -92,6 +92,7 @@ def face_orthogonality(face: TopoDS_Face, per_span: int = 4) -> float:
     """
     from tubecad.fitting.nurbs import span_grid
 
+    face = as_face(face)
     surface = BRep_Tool.Surface_s(face)
     if not isinstance(surface, Geom_BSplineSurface):
         _, du, dv = sample_face(face, 8, 8)

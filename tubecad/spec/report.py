@@ -135,13 +135,18 @@ def build_report(
     tube's 2 pi rho L, a canal surface's or a wall's offset surface's by quadrature)."""
     # imported here so that `tubecad report` (maths only) never loads OCCT
     from tubecad.brep import properties as props
+    from tubecad.brep.measure import face_orthogonality
     from tubecad.brep.solids import exact_volume
     from tubecad.fitting import measure_surface
 
     surfaces = []
     for surface, patches, radius in zip(build.surfaces, build.patches, build.radii):
         m = measure_surface(surface, nu, ns)
-        area = props.faces_area(patches.all_faces())
+        faces = patches.all_faces()
+        area = props.faces_area(faces)
+        # the faces as built, edges and corners included: what a file read back is measured on
+        # (tubecad.export.readback), so the build never reports better than its file
+        orthogonality = max([m.max_orthogonality_error, *(face_orthogonality(f) for f in faces)])
         exact = surface.tube.area_exact  # the exact surface this one is fitted to (a wall's: its offset)
         surfaces.append(
             {
@@ -150,7 +155,7 @@ def build_report(
                 "pole_count": surface.pole_count[0] * surface.pole_count[1],
                 "degree": [2, build.frame.degree],
                 "max_deviation": m.max_deviation,
-                "max_orthogonality_error": m.max_orthogonality_error,
+                "max_orthogonality_error": orthogonality,
                 "samples": m.samples,
                 "area": area,
                 "area_exact": exact,
