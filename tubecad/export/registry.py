@@ -101,12 +101,11 @@ def _polylines(fmt: str) -> Writer:
 
 def _picture(fmt: str) -> Writer:
     def write(item: Exportable, path: Path, name: str) -> None:
-        from tubecad.export.plots import projection_figure
+        from tubecad.export.plots import projection_figure_of_build
 
         if item.build is None:
             raise ParameterError(f"output {path.name!r}: a {fmt.upper()} picture is drawn from a built tube or wall")
-        layout = item.build.layout
-        fig = projection_figure(item.build.surfaces[0].tube, s_rings=layout.s_rings, stringers_deg=layout.stringers_deg)
+        fig = projection_figure_of_build(item.build)
         try:
             fig.savefig(path, format=fmt, dpi=150)
         finally:

@@ -54,6 +54,7 @@ def cut_paths(placed: PlacedPiece, kerf: float) -> list[np.ndarray]:
 
 
 def label_point(placed: PlacedPiece) -> tuple[float, float]:
+    """A point inside the placed piece (shapely's representative point): where its name goes."""
     point = placed.polygon().representative_point()
     return float(point.x), float(point.y)
 
@@ -149,40 +150,102 @@ def write_plate_svg(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
         ).text = placed.piece.name
     ET.SubElement(text, "text", x=f"{pad * mm:.6g}", y=f"{(width + 2.5 * pad) * mm:.6g}").text = (
         f"{plate.name}  {length:g} x {width:g} {fab.length_unit}  kerf {fab.kerf:g}  "
-        f"{len(plate.pieces)} pieces  utilisation {100 * plate.utilisation:.1f} %"
+        f"{len(plate.pieces)} pieces  {utilisation_text(plate, fab.length_unit)}"
     )
     return write_text(path, ET.tostring(svg, encoding="unicode") + "\n")
 
 
-def write_plate_picture(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
-    """A preview of the plate for people (PNG, not to scale): parts, their names, the
-    butt-joint edges in green and the utilisation in the title."""
-    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
+def utilisation_text(plate: Plate, unit: str) -> str:
+    """The plate's utilisation in words: over the strip the nest uses, and over the plate.
+
+    Args:
+        plate: a nested plate.
+        unit: the length unit's name.
+
+    Returns:
+        e.g. "utilisation 8.4 % of the 3000 x 252 mm strip used (1.4 % of the plate; the
+        3000 x 1248 mm rest is an offcut)".
+    """
+    (length, width), (_, used) = plate.size, plate.used_size
+    if used >= width:
+        return f"utilisation {100 * plate.utilisation:.1f} % of the plate"
+    return (
+        f"utilisation {100 * plate.utilisation:.1f} % of the {length:g} x {used:.0f} {unit} strip used "
+        f"({100 * plate.plate_utilisation:.1f} % of the plate; the {length:g} x {width - used:.0f} {unit} "
+        "rest is an offcut)"
+    )
+
+
+def draw_plate(ax, plate: Plate, fontsize: float = 7.0, top: float | None = None) -> int:
+    """Draw ``plate`` into the Axes ``ax``: the plate, its used strip's edge, the parts, their
+    butt-joint edges (green) and their names, placed so that none overlaps another or crosses
+    another part (:func:`tubecad.export.labels.place_labels`). The figure's layout must be final.
+
+    Args:
+        ax: a matplotlib Axes.
+        plate: the nested plate.
+        fontsize: the names' size (points), shrunk where the parts are crowded.
+        top: show the plate up to this y only (e.g. its used strip and room for the names;
+            default the whole plate).
+
+    Returns:
+        How many names were moved off their parts (each with a leader line).
+    """
     from matplotlib.patches import Polygon as Patch
 
-    from tubecad.core.atomic import save_figure
+    from tubecad.export.labels import place_labels
 
     length, width = plate.size
-    fig = Figure(figsize=(12, 12 * width / length + 0.8))
-    ax = fig.subplots()
     ax.add_patch(
         Patch([(0, 0), (length, 0), (length, width), (0, width)], closed=True, facecolor="#f2f2f2", edgecolor="#555555")
     )
+    used = plate.used_size[1]
+    if used < width:  # the offcut's edge
+        ax.plot([0, length], [used, used], color="#888888", linewidth=0.8, linestyle="--")
     for placed in plate.pieces:
         ax.add_patch(Patch(placed.outline, closed=True, facecolor="#c9d6ea", edgecolor="#10203a", linewidth=0.6))
         if placed.hole is not None:
             ax.add_patch(Patch(placed.hole, closed=True, facecolor="#f2f2f2", edgecolor="#10203a", linewidth=0.6))
         for _, edge in joint_edges(placed):
             ax.plot(edge[:, 0], edge[:, 1], color=SVG_STYLE["JOINTS"][0], linewidth=1.5)
-        ax.text(*label_point(placed), placed.piece.name, fontsize=6, ha="center", va="center")
     ax.set_xlim(-0.01 * length, 1.01 * length)
-    ax.set_ylim(-0.01 * width, 1.01 * width)
+    ax.set_ylim(-0.01 * width, 1.01 * width if top is None else min(top, 1.01 * width))
     ax.set_aspect("equal")
+    outlines = [[p.outline] + ([] if p.hole is None else [p.hole]) for p in plate.pieces]
+    names = [p.piece.name for p in plate.pieces]
+    return place_labels(ax, [label_point(p) for p in plate.pieces], names, fontsize=fontsize, outlines=outlines)
+
+
+def plate_figure(plate: Plate, fab: Fabrication):
+    """A preview of the plate for people (not to scale): parts, their names (none
+    overlapping), the butt-joint edges in green, the used strip's edge dashed and the
+    utilisation in the title.
+
+    Args:
+        plate: the nested plate.
+        fab: the shop settings (unit, kerf).
+
+    Returns:
+        The matplotlib Figure (never pyplot's), its layout final.
+    """
+    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
+
+    length, width = plate.size
+    fig = Figure(figsize=(12, 0.96 * 12 * width / length + 0.8))
+    ax = fig.add_axes((0.02, 0.02, 0.96, 1.0 - 0.02 - 0.75 / fig.get_size_inches()[1]))
     ax.set_axis_off()
     ax.set_title(
-        f"{plate.name}: {length:g} x {width:g} {fab.length_unit}, {len(plate.pieces)} pieces, utilisation "
-        f"{100 * plate.utilisation:.1f} %, kerf {fab.kerf:g} (butt joints green)",
+        f"{plate.name}: {length:g} x {width:g} {fab.length_unit}, {len(plate.pieces)} pieces, kerf {fab.kerf:g} "
+        f"(butt joints green)\n{utilisation_text(plate, fab.length_unit)}",
         fontsize=9,
     )
+    draw_plate(ax, plate)
+    return fig
+
+
+def write_plate_picture(plate: Plate, fab: Fabrication, path: str | Path) -> Path:
+    """Write :func:`plate_figure` to the PNG ``path`` (atomically); return its path."""
+    from tubecad.core.atomic import save_figure
+
     target = Path(path)
-    return save_figure(fig, target.parent, target.stem, ("png",), dpi=120)[0]
+    return save_figure(plate_figure(plate, fab), target.parent, target.stem, ("png",), dpi=120)[0]

@@ -10,6 +10,12 @@ lowest, then leftmost; each such spot is checked exactly with shapely (distance 
 to every placed piece, inside the plate less a kerf) before it is taken. A new plate is
 opened when no plate has room. Pieces nest inside ring annuli and curved strips inside
 each other. :func:`check_nesting` measures the plates with shapely, independently.
+
+A plate's utilisation is the pieces' area over the material the nest uses: the bottom-left
+fill leaves the plate's upper part free, one strip the plate's length, which goes back to
+stock as an offcut when it is wide enough (:data:`OFFCUT_MIN`); the used strip is the rest.
+A few small webs on a large plate thus read as the share of the strip they take, not of
+the plate (which is reported too, ``plate_utilisation``).
 """
 
 from __future__ import annotations
@@ -22,6 +28,10 @@ import numpy as np
 from tubecad.core.errors import ParameterError
 from tubecad.shop.fabrication import Fabrication
 from tubecad.shop.webs import WebPiece
+
+#: the rest of a plate's width above its nest is an offcut back to stock if at least this
+#: fraction of the width, else scrap (the whole plate counts as used)
+OFFCUT_MIN = 0.2
 
 
 @dataclass(frozen=True)
@@ -57,18 +67,42 @@ class PlacedPiece:
 
 @dataclass
 class Plate:
+    """A stock plate and the pieces nested on it, a kerf or more from its edges."""
+
     index: int  # 1, 2, ...
     size: tuple[float, float]  # (length, width): x along the length
     pieces: list[PlacedPiece] = field(default_factory=list)
+    kerf: float = 0.0  # the margin kept from the plate's edges
 
     @property
     def name(self) -> str:
         return f"plate_{self.index:02d}"
 
     @property
+    def used_size(self) -> tuple[float, float]:
+        """(length, width) of the strip the nest uses: the plate's whole length, across its
+        width to a kerf past the highest piece (the nest fills the plate from its lower long
+        edge up, so the rest of the width is one strip, an offcut back to stock); the whole
+        plate if that offcut would be narrower than OFFCUT_MIN of the plate's width (scrap)."""
+        top = max((_top(p) for p in self.pieces), default=0.0)
+        used = min(self.size[1], top + self.kerf)
+        return self.size[0], used if self.size[1] - used >= OFFCUT_MIN * self.size[1] else self.size[1]
+
+    @property
     def utilisation(self) -> float:
-        """The pieces' exact area over the plate's."""
-        return sum(p.piece.area for p in self.pieces) / (self.size[0] * self.size[1])
+        """The pieces' exact area over the used strip's (:attr:`used_size`)."""
+        length, width = self.used_size
+        return self.area / (length * width) if width > 0.0 else 0.0
+
+    @property
+    def plate_utilisation(self) -> float:
+        """The pieces' exact area over the whole plate's."""
+        return self.area / (self.size[0] * self.size[1])
+
+    @property
+    def area(self) -> float:
+        """The pieces' exact area."""
+        return sum(p.piece.area for p in self.pieces)
 
 
 def oriented(piece: WebPiece) -> tuple[float, np.ndarray, np.ndarray]:
@@ -115,7 +149,7 @@ def nest(pieces: list[WebPiece], fab: Fabrication) -> list[Plate]:
         candidates = _turned(piece, usable)
         for k, plate in enumerate(plates + [None]):
             if plate is None:
-                plates.append(Plate(len(plates) + 1, (length, width)))
+                plates.append(Plate(len(plates) + 1, (length, width), kerf=fab.kerf))
                 occupied.append(np.zeros(shape, dtype=bool))
                 plate = plates[-1]
             spot = _lowest_spot(plate, occupied[k], piece, candidates, cell, margin, spacing)
@@ -243,10 +277,17 @@ def _pad_of(placed: PlacedPiece) -> float:
     return _arc_pad(pattern.outline) if pattern.hole is not None or pattern.sector is not None else 0.0
 
 
+def _top(placed: PlacedPiece) -> float:
+    """The highest y of a placed piece, its exact arcs' bulge included."""
+    return float(placed.outline[:, 1].max()) + _pad_of(placed)
+
+
 def check_nesting(plates: list[Plate], fab: Fabrication) -> dict:
     """What the plates hold, measured with shapely on the placed outlines: every piece a
     valid polygon inside its plate at least a kerf from the edge, no two closer than 2 kerf
-    (the smallest distances found are reported), and the utilisation."""
+    (the smallest distances found are reported), and the utilisation: the pieces' area over
+    the material the nest uses (each plate's used strip, :attr:`Plate.used_size`; the rest of
+    its width is an offcut back to stock), and over the whole plates (``plate_utilisation``)."""
     from shapely.geometry import box
 
     smallest_gap, smallest_margin, valid = math.inf, math.inf, True
@@ -259,7 +300,8 @@ def check_nesting(plates: list[Plate], fab: Fabrication) -> dict:
             for other in polygons[i + 1 :]:
                 if _bounds_gap(polygon, other) < smallest_gap:  # else it cannot be the smallest
                     smallest_gap = min(smallest_gap, polygon.distance(other))
-    area = sum(p.piece.area for plate in plates for p in plate.pieces)
+    area = sum(plate.area for plate in plates)
+    used = sum(plate.used_size[0] * plate.used_size[1] for plate in plates)
     tol = 1e-9 * max(fab.plate_size)
     return {
         "plates": len(plates),
@@ -267,9 +309,17 @@ def check_nesting(plates: list[Plate], fab: Fabrication) -> dict:
         "valid": bool(valid and smallest_gap >= 2 * fab.kerf - tol and smallest_margin >= fab.kerf - tol),
         "smallest_gap": None if math.isinf(smallest_gap) else smallest_gap,
         "smallest_margin": None if math.isinf(smallest_margin) else smallest_margin,
-        "utilisation": area / (len(plates) * plate_area(fab)) if plates else 0.0,
+        "utilisation": area / used if used > 0.0 else 0.0,
+        "plate_utilisation": area / (len(plates) * plate_area(fab)) if plates else 0.0,
         "per_plate": [
-            {"plate": p.name, "pieces": [q.piece.name for q in p.pieces], "utilisation": p.utilisation} for p in plates
+            {
+                "plate": p.name,
+                "pieces": [q.piece.name for q in p.pieces],
+                "used_size": list(p.used_size),
+                "utilisation": p.utilisation,
+                "plate_utilisation": p.plate_utilisation,
+            }
+            for p in plates
         ],
     }
 

@@ -4,15 +4,19 @@ then ``index.json`` listing each file with what it is, and the one-page overview
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from tubecad.core.atomic import save_figure, write_text
-from tubecad.shop.drawings import write_plate_dxf, write_plate_picture, write_plate_svg
+from tubecad.shop.drawings import draw_plate, utilisation_text, write_plate_dxf, write_plate_picture, write_plate_svg
 from tubecad.shop.nesting import Plate, check_nesting
 from tubecad.shop.package import ShopData
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 
 def write_shop(data: ShopData, folder: str | Path, name: str = "tubecad", step_schema: str = "AP214") -> dict[str, Any]:
@@ -221,89 +225,161 @@ def _write_panels(data: ShopData, folder: Path, name: str, step_schema: str, ind
 
 
 def write_overview(data: ShopData, folder: Path, index: dict) -> list[Path]:
-    """overview.png and overview.svg: one page of what the folder holds."""
-    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
-    from matplotlib.patches import Polygon as Patch
+    """overview.png and overview.svg: one page of what the folder holds (:func:`overview_figure`).
 
-    fig = Figure(figsize=(14, 9.5))
-    axes = fig.subplots(2, 2)
-    (a_plate, a_panel), (a_jig, a_bend) = axes
+    Args:
+        data: the shop package.
+        folder: where to write.
+        index: the package's index (its ``name`` titles the page).
+
+    Returns:
+        The two paths.
+    """
+    return save_figure(overview_figure(data, index["name"]), folder, "overview", ("png", "svg"))
+
+
+#: the overview's width, its title's (per line), its plate's title's and its lower row's heights (inches)
+OVERVIEW_WIDTH, TITLE_LINE, PLATE_TITLE, LOWER_ROW = 14.0, 0.25, 0.45, 4.6
+
+
+def overview_figure(data: ShopData, name: str) -> Figure:
+    """One page of a shop package: the first plate of webs across the top (its pieces named,
+    no name over another), and below it only the panels there is something for: the most
+    strained panel's development, its pin jig, the bending table with the largest offset.
+    What is missing (no panels, no pin jig) is said in the title, not drawn as an empty panel.
+
+    Args:
+        data: the shop package.
+        name: the package's name, for the title.
+
+    Returns:
+        The matplotlib Figure (never pyplot's), its layout final.
+    """
+    from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
+
+    lower = _lower_panels(data)
+    plate = data.web_plates[0] if data.web_plates else None
+    inner = OVERVIEW_WIDTH - 0.6
+    shown, top = 0.0, 0.0  # how far up the plate is shown (model units), how tall its row is (inches)
+    if plate is not None:
+        shown = _plate_view(plate, inner)
+        top = inner * (shown + 0.01 * plate.size[1]) / (1.02 * plate.size[0]) + PLATE_TITLE
+    title = _overview_title(data, name)
+    head = 0.3 + TITLE_LINE * (title.count("\n") + 1)
+    height = head + top + (LOWER_ROW if lower else 0.0)
+    fig = Figure(figsize=(OVERVIEW_WIDTH, height))
+    fig.suptitle(title, fontsize=11, y=1.0 - 0.15 / height, va="top")
+    if lower:
+        grid = fig.add_gridspec(
+            1, len(lower), left=0.06, right=0.96, bottom=0.6 / height, top=(LOWER_ROW - 0.55) / height, wspace=0.35
+        )
+        for k, draw in enumerate(lower):
+            draw(fig.add_subplot(grid[0, k]), fig)
+    if plate is not None:  # last: its names are placed once the page's layout is final
+        box = (
+            0.3 / OVERVIEW_WIDTH,
+            (height - head - top) / height,
+            inner / OVERVIEW_WIDTH,
+            (top - PLATE_TITLE) / height,
+        )
+        _draw_webs_plate(fig.add_axes(box), data, plate, shown)
+    return fig
+
+
+def _draw_webs_plate(ax, data: ShopData, plate: Plate, shown: float) -> None:
+    """The first plate of webs, up to ``shown`` (its used strip and room for the names)."""
+    ax.set_axis_off()
     unit = data.fab.length_unit
-    if data.web_plates:
-        plate = data.web_plates[0]
-        a_plate.add_patch(
-            Patch(
-                [(0, 0), (plate.size[0], 0), plate.size, (0, plate.size[1])],
-                closed=True,
-                facecolor="#f2f2f2",
-                edgecolor="#555555",
-            )
-        )
-        for placed in plate.pieces:
-            a_plate.add_patch(Patch(placed.outline, closed=True, facecolor="#c9d6ea", edgecolor="#10203a", lw=0.5))
-            if placed.hole is not None:
-                a_plate.add_patch(Patch(placed.hole, closed=True, facecolor="#f2f2f2", edgecolor="#10203a", lw=0.5))
-            x, y = placed.polygon().representative_point().coords[0]
-            a_plate.text(x, y, placed.piece.name, fontsize=5, ha="center", va="center")
-        a_plate.set_xlim(-0.02 * plate.size[0], 1.02 * plate.size[0])
-        a_plate.set_ylim(-0.02 * plate.size[1], 1.02 * plate.size[1])
-        nesting = index["webs"]["nesting"]
-        a_plate.set_title(
-            f"webs: {plate.name} of {nesting['plates']} ({plate.size[0]:g} x {plate.size[1]:g} {unit}), "
-            f"{len(plate.pieces)} pieces, utilisation {100 * plate.utilisation:.1f} %",
-            fontsize=9,
-        )
-    a_plate.set_aspect("equal")
-    if data.developments:
-        dev = max(data.developments, key=lambda d: d.max_strain)
-        grid = dev.grid
-        mesh = a_panel.pcolormesh(
-            grid[..., 0], grid[..., 1], dev.strain, shading="gouraud", cmap="viridis", rasterized=True
-        )
-        fig.colorbar(mesh, ax=a_panel, label="largest principal strain")
-        a_panel.plot(*np.vstack([dev.outline(), dev.outline()[:1]]).T, color="#10203a", lw=0.8)
-        for mark in data.marking.get(dev.name, []):
-            line = dev.ring_line(mark.value) if mark.kind == "ring" else dev.stringer_line(mark.value)
-            a_panel.plot(line[:, 0], line[:, 1], color="#d04020", lw=0.8)
-        a_panel.set_aspect("equal")
-        a_panel.set_title(
-            f"{dev.name} developed (the most strained panel)\nmax strain {dev.max_strain:.3g} at "
-            f"{dev.max_strain_at[0]:.4g} deg, s = {dev.max_strain_at[1]:.6g}; marking lines red",
-            fontsize=9,
-        )
-        jig = next((j for j in data.pin_jigs if j.name == dev.name), data.pin_jigs[0] if data.pin_jigs else None)
-        if jig is not None and len(jig.heights):
-            dots = a_jig.scatter(jig.xy[:, 0], jig.xy[:, 1], c=jig.heights, cmap="magma", s=25)
-            fig.colorbar(dots, ax=a_jig, label=f"pin height ({unit})")
-            a_jig.plot(*np.vstack([jig.outline, jig.outline[:1]]).T, color="#10203a", lw=0.8)
-            a_jig.set_aspect("equal")
-            a_jig.set_title(
-                f"{jig.name} pin jig: {len(jig.heights)} pins at {jig.spacing:g} {unit}, heights "
-                f"{jig.heights.min():.4g} to {jig.heights.max():.4g}",
-                fontsize=9,
-            )
-        else:
-            a_jig.text(0.5, 0.5, "no pin jig (see the warnings in index.json)", ha="center", va="center")
-            a_jig.set_axis_off()
-    else:
-        why = "the spec has no [panels] section" if data.build is not None else "a junction has no panels yet"
-        for ax, what in ((a_panel, "panel developments"), (a_jig, "pin jigs")):
-            ax.text(0.5, 0.5, f"no {what}: {why}", ha="center", va="center")
-            ax.set_axis_off()
-    if data.bending:
-        table = max(data.bending, key=lambda t: float(np.abs(t.offset_y).max()))
-        a_bend.plot(table.arc_length, table.offset_y, "o-", ms=3, label="offset from the chord")
-        a_bend.plot(table.arc_length, table.inverse_y, "s--", ms=3, label="inverse bending curve")
-        a_bend.legend(fontsize=8)
-        a_bend.set_xlabel(f"arc length ({unit})")
-        a_bend.set_title(
-            f"bending table {table.name} ({table.line}): {len(table.arc_length)} stations, bend-back "
-            f"error {table.bend_back_error:.2g} {unit}",
-            fontsize=9,
-        )
-    fig.suptitle(
-        f"{index['name']}: shop package ({len(data.web_pieces)} web pieces on {len(data.web_plates)} plates, "
+    ax.set_title(
+        f"webs: {plate.name} of {len(data.web_plates)} ({plate.size[0]:g} x {plate.size[1]:g} {unit}), "
+        f"{len(plate.pieces)} pieces; {utilisation_text(plate, unit)}",
+        fontsize=9,
+    )
+    draw_plate(ax, plate, fontsize=7.0, top=shown)
+
+
+#: the plate's picture on the overview: at most this tall, at least this tall where the plate is (inches)
+PLATE_MAX, PLATE_MIN = 7.0, 2.4
+
+
+def _plate_view(plate: Plate, width_in: float) -> float:
+    """How far up the plate the overview shows it: its used strip with a fifth more for the
+    names, at least PLATE_MIN inches tall where the plate is, and no more than the plate or
+    PLATE_MAX inches, drawn ``width_in`` inches wide."""
+    length, width = plate.size
+    used = plate.used_size[1]
+    inches = length / width_in  # model units per inch
+    return min(1.01 * width, max(1.2 * used, PLATE_MIN * inches), PLATE_MAX * inches)
+
+
+def _overview_title(data: ShopData, name: str) -> str:
+    """The page's title: what the package holds, and what it lacks and why."""
+    title = (
+        f"{name}: shop package ({len(data.web_pieces)} web pieces on {len(data.web_plates)} plates, "
         f"{len(data.flange_pieces)} flange pieces, {len(data.bending)} bending tables, {len(data.panels)} panels)"
     )
-    fig.tight_layout()
-    return save_figure(fig, folder, "overview", ("png", "svg"))
+    if not data.developments:
+        why = "the spec has no [panels] section" if data.build is not None else "a junction has no panels yet"
+        title += f"\nno panel developments or pin jigs: {why}"
+    elif not any(len(j.heights) for j in data.pin_jigs):
+        title += "\nno pin jig (see the warnings in index.json)"
+    return title
+
+
+def _lower_panels(data: ShopData) -> list[Callable[[Any, Figure], None]]:
+    """The lower row's drawers, only of what the package has."""
+    panels: list[Callable[[Any, Figure], None]] = []
+    if data.developments:
+        dev = max(data.developments, key=lambda d: d.max_strain)
+        panels.append(lambda ax, fig: _draw_development(ax, fig, data, dev))
+        jig = next((j for j in data.pin_jigs if j.name == dev.name), data.pin_jigs[0] if data.pin_jigs else None)
+        if jig is not None and len(jig.heights):
+            panels.append(lambda ax, fig: _draw_pin_jig(ax, fig, jig, data.fab.length_unit))
+    if data.bending:
+        panels.append(lambda ax, fig: _draw_bending(ax, data, data.fab.length_unit))
+    return panels
+
+
+def _draw_development(ax, fig: Figure, data: ShopData, dev) -> None:
+    """The panel ``dev`` developed: its strain, outline and marking lines."""
+    grid = dev.grid
+    mesh = ax.pcolormesh(grid[..., 0], grid[..., 1], dev.strain, shading="gouraud", cmap="viridis", rasterized=True)
+    fig.colorbar(mesh, ax=ax, label="largest principal strain")
+    ax.plot(*np.vstack([dev.outline(), dev.outline()[:1]]).T, color="#10203a", lw=0.8)
+    for mark in data.marking.get(dev.name, []):
+        line = dev.ring_line(mark.value) if mark.kind == "ring" else dev.stringer_line(mark.value)
+        ax.plot(line[:, 0], line[:, 1], color="#d04020", lw=0.8)
+    ax.set_aspect("equal")
+    ax.set_title(
+        f"{dev.name} developed (the most strained panel)\nmax strain {dev.max_strain:.3g} at "
+        f"{dev.max_strain_at[0]:.4g} deg, s = {dev.max_strain_at[1]:.6g}; marking lines red",
+        fontsize=9,
+    )
+
+
+def _draw_pin_jig(ax, fig: Figure, jig, unit: str) -> None:
+    """A panel's pin jig: the pins coloured by height, the panel's outline."""
+    dots = ax.scatter(jig.xy[:, 0], jig.xy[:, 1], c=jig.heights, cmap="magma", s=25)
+    fig.colorbar(dots, ax=ax, label=f"pin height ({unit})")
+    ax.plot(*np.vstack([jig.outline, jig.outline[:1]]).T, color="#10203a", lw=0.8)
+    ax.set_aspect("equal")
+    ax.set_title(
+        f"{jig.name} pin jig: {len(jig.heights)} pins at {jig.spacing:g} {unit},\nheights "
+        f"{jig.heights.min():.4g} to {jig.heights.max():.4g}",
+        fontsize=9,
+    )
+
+
+def _draw_bending(ax, data: ShopData, unit: str) -> None:
+    """The bending table with the largest offset from its chord, and its inverse curve."""
+    table = max(data.bending, key=lambda t: float(np.abs(t.offset_y).max()))
+    ax.plot(table.arc_length, table.offset_y, "o-", ms=3, label="offset from the chord")
+    ax.plot(table.arc_length, table.inverse_y, "s--", ms=3, label="inverse bending curve")
+    ax.legend(fontsize=8, loc="best")
+    ax.set_xlabel(f"arc length ({unit})")
+    ax.set_ylabel(f"offset ({unit})")
+    ax.set_title(
+        f"bending table {table.name} ({table.line}):\n{len(table.arc_length)} stations, bend-back "
+        f"error {table.bend_back_error:.2g} {unit}",
+        fontsize=9,
+    )

@@ -43,3 +43,19 @@ def test_other_view_gives_another_picture(solid, tmp_path):
     assert ia.shape == ib.shape
     assert np.abs(ia - ib).mean() > 0.01
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.png", "b.png"]
+
+
+def test_a_curved_surface_is_shaded_smoothly(tmp_path):
+    """Issue 41: a sphere reads round, not faceted. With its edges drawn transparent, the
+    luminance's Laplacian is small almost everywhere on it: flat-shaded facets (0.3 rad) put a
+    step at every facet border (17 % of the pixels above 0.02), smooth shading on a fine mesh
+    keeps them under 2 %."""
+    from build123d import Sphere
+    from scipy import ndimage
+
+    out = render_shape_png(Sphere(10.0), tmp_path / "sphere.png", size_px=(400, 300), edge_color=(1, 1, 1, 0))
+    rgb = mpimg.imread(out)[:, :, :3]
+    body = ndimage.binary_erosion(np.any(rgb < 0.97, axis=-1), iterations=4)  # the sphere, off its outline
+    assert body.sum() > 40_000
+    steps = np.abs(ndimage.laplace(rgb.mean(axis=2)))[body]
+    assert (steps > 0.02).mean() < 0.02
