@@ -47,7 +47,6 @@ MAX_S_SAMPLES = 1500
 MAX_U_FACTOR = 4
 #: points along each ring line, per surface sample round the tube
 RING_OVERSAMPLE = 4
-ZBUFFER_PX = 900
 #: about how many pixels a view's longer side spans (at 150 dpi)
 VIEW_PX = 900
 #: a line's visible or hidden runs shorter than this many segments are taken as the run before
@@ -257,7 +256,7 @@ def _draw_view(ax, pts: np.ndarray, normals: np.ndarray, rings: list, stringers:
     )
     painted.set(zorder=1, gid="surface")
     diag = float(np.linalg.norm(np.ptp(pts.reshape(-1, 3), axis=0)))
-    buffer = zbuffer(tris, ZBUFFER_PX)
+    buffer = zbuffer(tris)
     for family, lines, colour in (("rings", rings, RING_COLOUR), ("stringers", stringers, STRINGER_COLOUR)):
         visible, hidden = [], []
         for line in lines:

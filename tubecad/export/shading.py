@@ -19,7 +19,8 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.colors import ListedColormap
 
-#: z-buffer resolution along the longer screen side
+#: z-buffer resolution along the longer screen side: about a view's pixels (a projection's
+#: panel is ~700 px wide at 150 dpi); the hidden-line test allows a pixel of slack round it
 ZBUFFER_PX = 600
 #: the light, in the camera frame (x right, y up, z towards the viewer): upper left, in front
 LIGHT = np.array([-0.4, 0.6, 1.0]) / np.linalg.norm([-0.4, 0.6, 1.0])
@@ -111,8 +112,10 @@ def zbuffer(tris: np.ndarray, res: int = ZBUFFER_PX) -> tuple[np.ndarray, np.nda
         res: pixels along the longer side of the triangles' screen box.
 
     Returns:
-        (depths, origin, pixel size): depths (nx, ny), -inf where no triangle covers the
-        pixel; the grid's lower-left corner (x, y); the pixel's side.
+        (depths, origin, pixel size): depths (nx, ny), the nearest surface within one pixel
+        of each pixel centre (the hidden-line test's slack: the least of the 3 x 3 pixels
+        round it), -inf where no triangle is that near; the grid's lower-left corner (x, y);
+        the pixel's side.
     """
     lo = tris[:, :, :2].reshape(-1, 2).min(axis=0)
     hi = tris[:, :, :2].reshape(-1, 2).max(axis=0)
@@ -129,7 +132,14 @@ def zbuffer(tris: np.ndarray, res: int = ZBUFFER_PX) -> tuple[np.ndarray, np.nda
         sel = np.flatnonzero(covers & (size[:, 0] == sx) & (size[:, 1] == sy))
         for chunk in np.array_split(sel, max(1, len(sel) * sx * sy // 2_000_000)):
             _fill(z, shape, p[chunk], tris[chunk, :, 2], i0[chunk][:, None, :] + off[None])
-    return z.reshape(shape), lo, h
+    return _with_slack(z.reshape(shape)), lo, h
+
+
+def _with_slack(z: np.ndarray) -> np.ndarray:
+    """Each pixel's depth as the least of the 3 x 3 pixels round it (outside: -inf)."""
+    padded = np.pad(z, 1, constant_values=-np.inf)
+    nx, ny = z.shape
+    return np.min([padded[i : i + nx, j : j + ny] for i in range(3) for j in range(3)], axis=0)
 
 
 def _fill(z: np.ndarray, shape: tuple[int, ...], p: np.ndarray, d: np.ndarray, pix: np.ndarray) -> None:
@@ -180,13 +190,10 @@ def visible_mask(segs: np.ndarray, buffer: tuple[np.ndarray, np.ndarray, float] 
     """
     if buffer is None or not len(segs):
         return np.ones(len(segs), dtype=bool)
-    z, lo, h = buffer
-    padded = np.pad(z, 1, constant_values=-np.inf)
-    nx, ny = z.shape  # nearest-surface depth allowing for one pixel of slack: min over 3x3
-    zmin = np.min([padded[i : i + nx, j : j + ny] for i in range(3) for j in range(3)], axis=0)
+    zmin, lo, h = buffer  # the nearest surface, with a pixel of slack round it (zbuffer)
     mid = segs.mean(axis=1)  # test each segment at its midpoint and both ends
     vis = np.zeros(len(segs), dtype=int)
     for pt in (segs[:, 0], mid, segs[:, 1]):
-        ij = np.clip(np.rint((pt[:, :2] - lo) / h).astype(int), 0, np.array(z.shape) - 1)
+        ij = np.clip(np.rint((pt[:, :2] - lo) / h).astype(int), 0, np.array(zmin.shape) - 1)
         vis += pt[:, 2] >= zmin[ij[:, 0], ij[:, 1]] - (2.0 * h + 2e-3 * diag)
     return vis >= 2

@@ -198,7 +198,7 @@ def _deepest_entry(
     p_idx, q_idx = cand["i"], cand["j"]
     x, target = ss[q_idx].astype(float), surf[p_idx]
     lo, hi = ss[0], ss[-1]
-    for _ in range(8):  # Newton: the closest axis point near each candidate sample
+    for _ in range(5):  # Newton: the closest axis point near each candidate sample (from within 2 h: quadratic)
         a = axis.at(x)
         r = target - a.position
         f = np.einsum("ij,ij->i", r, a.t)
