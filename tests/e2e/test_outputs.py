@@ -308,9 +308,9 @@ tolerance = {tolerance}
 @pytest.mark.slow
 def test_step_at_large_coordinates_is_refused_or_passes_honestly(tmp_path):
     """Log spiral at s = 2.4e7, radius 1e5, tolerance 2.7e-7 (near what double precision lets
-    the fit reach there): STEP's ~14 significant digits measured 4.0e-7, so it is refused;
-    BREP keeps every digit and passes. Whatever the outcome, no report claims what the file
-    does not hold."""
+    the fit reach there): with 13 significant digits STEP measured 4.0e-7 and was refused;
+    with 17 (tubecad.export.cad.FILE_REAL) it holds what BREP holds. Whatever the outcome, no
+    report claims what the file does not hold."""
     from tubecad.brep.measure import measure_tube_faces
     from tubecad.export.cad import import_shape
     from tubecad.spec.parse import load_spec
@@ -343,7 +343,7 @@ def test_step_at_large_coordinates_is_refused_or_passes_honestly(tmp_path):
 
 def test_iges_of_a_large_involute_holds_it_as_closely_as_step(tmp_path):
     # with 9 decimals (OCCT's IGES default) the file held it only to 3.6e-6 at this size;
-    # written with 13 significant digits, as closely as STEP (1.1e-7 both, measured)
+    # written with 17 significant digits, as STEP is: both read back as built
     spec = tmp_path / "inv.toml"
     spec.write_text(INVOLUTE_LARGE.format(tolerance=1e-6))
     iges, step, report = tmp_path / "inv.iges", tmp_path / "inv.step", tmp_path / "r.json"

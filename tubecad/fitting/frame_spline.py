@@ -261,7 +261,8 @@ def _interpolate(
 
 class SpanSamples:
     """``exact`` (s -> a tuple of arrays, one row per s) at SAMPLES_PER_SPAN points
-    s = a + (b - a) j / (SAMPLES_PER_SPAN - 1) of every span [a, b] of a refinement, each span
+    s = a + (b - a) j / (SAMPLES_PER_SPAN - 1) of every span [a, b] (the last one b less one
+    ulp: the span's own end, its derivatives' left limits) of a refinement, each span
     evaluated once: a span kept from one round to the next keeps its samples, and a round
     evaluates ``exact`` (in one call) only on the spans it halved."""
 
@@ -275,7 +276,12 @@ class SpanSamples:
         new = [span for span in dict.fromkeys(spans) if span not in self._spans]
         if new:
             lo, hi = np.array(new).T
-            s = (lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)).ravel()
+            s = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)
+            # each span's last sample a step inside it: a spline (and the exact frame at a
+            # joint) evaluated at a break gives the next span's derivative, and at a ring (a
+            # knot of multiplicity p) the two differ: the span's own end was never measured
+            s[:, -1] = np.nextafter(hi, lo)
+            s = s.ravel()
             values = (s, *self.exact(s))
             for i, span in enumerate(new):
                 rows = slice(i * SAMPLES_PER_SPAN, (i + 1) * SAMPLES_PER_SPAN)

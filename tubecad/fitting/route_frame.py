@@ -213,7 +213,9 @@ def _measure(
     between the isolines of the surfaces of ``radii`` on the frame, sampled on every span."""
     spans = np.unique(t)
     frac = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)
-    v = (spans[:-1, None] + np.diff(spans)[:, None] * frac).ravel()
+    v = spans[:-1, None] + np.diff(spans)[:, None] * frac
+    v[:, -1] = np.nextafter(spans[1:], spans[:-1])  # each span's own end (a knot gives the next span's derivative)
+    v = v.ravel()
     F, dF = rational_values(t, P, w, v), rational_values(t, P, w, v, 1)
     exact, _ = exact_frame(axis, np.clip(params.arc_length(v), *axis.span))
     d = F - exact
