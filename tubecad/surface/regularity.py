@@ -27,7 +27,7 @@ from tubecad.curves.axis import Axis
 MAX_SAMPLES = 40_000
 #: the closest return of the axis is reported when it is within this many radii
 REPORT_RETURNS_WITHIN = 3.0
-MAX_CANDIDATES = 50_000
+MAX_CANDIDATES = 20_000
 #: axis sample pairs within REPORT_RETURNS_WITHIN radii kept in memory: an axis that coils
 #: onto itself (a long helix of tiny pitch, a circle run many times round) is sampled more
 #: coarsely instead, so the check stays within ~100 MB and a few seconds
