@@ -21,6 +21,8 @@ Names are imported on first use (PEP 562), so ``tubecad --help`` and a Ctrl-C at
 start-up load no numpy, scipy or OCCT.
 """
 
+from typing import TYPE_CHECKING
+
 from tubecad.core.lazy import lazy_exports
 
 _PUBLIC = {
@@ -43,6 +45,10 @@ _PUBLIC = {
     "CurvatureJunction": "tubecad.parts",
     "Branch": "tubecad.parts",
     "NetLayout": "tubecad.brep.layout",
+    "AxisLike": "tubecad.parts.axis_input",
+    "RadiusLike": "tubecad.parts.axis_input",
+    "WallSide": "tubecad.brep.wall",
+    "StiffenerSide": "tubecad.stiffeners.profiles",
     "Profile": "tubecad.stiffeners.profiles",
     "saddle_curve": "tubecad.junctions",
     "fit_saddle": "tubecad.junctions",
@@ -69,3 +75,50 @@ _PUBLIC = {
 
 __all__ = list(_PUBLIC)
 __getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())
+
+if TYPE_CHECKING:  # the public names' own types for type checkers and IDEs (nothing is imported at run time)
+    from tubecad.brep.layout import NetLayout as NetLayout
+    from tubecad.brep.wall import WallSide as WallSide
+    from tubecad.core.errors import ExpressionError as ExpressionError
+    from tubecad.core.errors import ParameterError as ParameterError
+    from tubecad.core.errors import RegularityError as RegularityError
+    from tubecad.core.errors import SpecError as SpecError
+    from tubecad.core.errors import TubecadError as TubecadError
+    from tubecad.curves import Axis as Axis
+    from tubecad.curves import CircleInvolute as CircleInvolute
+    from tubecad.curves import Clothoid as Clothoid
+    from tubecad.curves import CustomCurvature as CustomCurvature
+    from tubecad.curves import Helix as Helix
+    from tubecad.curves import LogSpiral as LogSpiral
+    from tubecad.curves import SlopeCurve as SlopeCurve
+    from tubecad.curves.edge import edge_axis as edge_axis
+    from tubecad.curves.natural import NaturalAxis as NaturalAxis
+    from tubecad.curves.parametric import ParametricAxis as ParametricAxis
+    from tubecad.curves.parametric import expression_curve as expression_curve
+    from tubecad.curves.points import points_axis as points_axis
+    from tubecad.curves.radius_law import RadiusLaw as RadiusLaw
+    from tubecad.curves.radius_law import radius_law as radius_law
+    from tubecad.curves.route import RouteAxis as RouteAxis
+    from tubecad.integrations.viewer import show as show
+    from tubecad.junctions import BranchWall as BranchWall
+    from tubecad.junctions import JunctionWall as JunctionWall
+    from tubecad.junctions import branch_surface as branch_surface
+    from tubecad.junctions import build_branched_wall as build_branched_wall
+    from tubecad.junctions import build_junction_wall as build_junction_wall
+    from tubecad.junctions import fit_saddle as fit_saddle
+    from tubecad.junctions import saddle_curve as saddle_curve
+    from tubecad.parts import Branch as Branch
+    from tubecad.parts import CurvatureJunction as CurvatureJunction
+    from tubecad.parts import CurvatureTube as CurvatureTube
+    from tubecad.parts import CurvatureWall as CurvatureWall
+    from tubecad.parts import StiffenedCurvatureWall as StiffenedCurvatureWall
+    from tubecad.parts.axis_input import AxisLike as AxisLike
+    from tubecad.parts.axis_input import RadiusLike as RadiusLike
+    from tubecad.spec.paper import paper_tube as paper_tube
+    from tubecad.stiffeners.profiles import Profile as Profile
+    from tubecad.stiffeners.profiles import StiffenerSide as StiffenerSide
+    from tubecad.surface import CurvatureLineTube as CurvatureLineTube
+    from tubecad.surface import FundamentalForms as FundamentalForms
+    from tubecad.surface.canal import CanalSurface as CanalSurface
+    from tubecad.surface.canal import tube_or_canal as tube_or_canal
+    from tubecad.surface.protocol import CurvatureLineSurface as CurvatureLineSurface

@@ -4,11 +4,15 @@ Light on purpose (no OCCT): the spec checker uses it before anything is built.""
 
 from __future__ import annotations
 
+from typing import Literal, TypeAlias, get_args
+
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import MIN_SIZE
 from tubecad.core.validation import bounded_length
 
-WALL_SIDES = ("centered", "inside", "outside")
+#: where a wall lies on its surface: astride it, inside it (towards the axis) or outside it
+WallSide: TypeAlias = Literal["centered", "inside", "outside"]
+WALL_SIDES: tuple[str, ...] = get_args(WallSide)
 
 
 def wall_offsets(thickness: float, side: str) -> tuple[float, float]:

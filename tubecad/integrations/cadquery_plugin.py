@@ -33,15 +33,18 @@ except ImportError as exc:  # CadQuery is an extra: it pins OCP 7.9, build123d 0
     ) from exc
 
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
+from tubecad.brep.wall import WallSide
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
 from tubecad.occ_compat import as_edge
+from tubecad.parts.axis_input import AxisLike, RadiusLike
 from tubecad.parts.engine import PartArguments, build_part, edge_map_of, net_edges, stiffener_solids
+from tubecad.stiffeners.profiles import StiffenerSide
 
 
 def curvature_tube(
     self: cq.Workplane,
-    axis: Any,
-    radius: Any,
+    axis: AxisLike,
+    radius: RadiusLike,
     rings: int | Sequence[float] = DEFAULT_RINGS,
     stringers: int | Sequence[float] = DEFAULT_STRINGERS,
     tolerance: float = DEFAULT_TOLERANCE,
@@ -68,10 +71,10 @@ def curvature_tube(
 
 def curvature_wall(
     self: cq.Workplane,
-    axis: Any,
-    radius: Any,
+    axis: AxisLike,
+    radius: RadiusLike,
     thickness: float,
-    side: str = "centered",
+    side: WallSide = "centered",
     rings: int | Sequence[float] = DEFAULT_RINGS,
     stringers: int | Sequence[float] = DEFAULT_STRINGERS,
     tolerance: float = DEFAULT_TOLERANCE,
@@ -101,14 +104,14 @@ def curvature_wall(
 
 def stiffened_curvature_wall(
     self: cq.Workplane,
-    axis: Any,
-    radius: Any,
+    axis: AxisLike,
+    radius: RadiusLike,
     thickness: float,
     ring_frames: Sequence[int] | str = "all",
     stringer_stiffeners: Sequence[int] | str = (),
     profile: Any = None,
-    stiffener_side: str = "outside",
-    side: str = "centered",
+    stiffener_side: StiffenerSide = "outside",
+    side: WallSide = "centered",
     rings: int | Sequence[float] = DEFAULT_RINGS,
     stringers: int | Sequence[float] = DEFAULT_STRINGERS,
     tolerance: float = DEFAULT_TOLERANCE,
@@ -180,11 +183,11 @@ def _pushed(
 
 def curvature_junction(
     self: cq.Workplane,
-    axis: Any,
-    radius: Any,
+    axis: AxisLike,
+    radius: RadiusLike,
     thickness: float,
     branches: Sequence[Any],
-    side: str = "centered",
+    side: WallSide = "centered",
     rings: int | Sequence[float] = DEFAULT_RINGS,
     stringers: int | Sequence[float] = DEFAULT_STRINGERS,
     tolerance: float = DEFAULT_TOLERANCE,

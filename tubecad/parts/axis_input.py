@@ -14,18 +14,30 @@ One rule for the build123d objects and the CadQuery plugin alike:
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
 from tubecad.core.errors import ParameterError
 from tubecad.curves import Axis
+from tubecad.curves.radius_law import RadiusLaw
+
+if TYPE_CHECKING:
+    import build123d as bd
 
 AXIS_KINDS = "a tubecad Axis, a build123d or CadQuery Edge or Wire, or a sequence of (x, y, z) points"
 
+#: what the parts take as an axis (see the module): a tubecad Axis, a build123d Edge or Wire
+#: (or a CadQuery one, a TopoDS edge or wire, an OCCT Geom_Curve: typed Any by their
+#: libraries), or (x, y, z) points
+AxisLike: TypeAlias = "Axis | bd.Edge | bd.Wire | Sequence[Sequence[float]] | np.ndarray"
+#: what the parts take as a radius: a number (a tube), an expression in s or a table of
+#: [s, r] rows (a canal surface's radius law), or a RadiusLaw
+RadiusLike: TypeAlias = "float | str | Sequence[Sequence[float]] | RadiusLaw"
+
 
 def as_axis(
-    axis: Any,
+    axis: AxisLike,
     *,
     bend_radius: float | Sequence[float] | None = None,
     normal: Sequence[float] | None = None,

@@ -30,8 +30,11 @@ from typing import Any
 import build123d as bd
 
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
+from tubecad.brep.wall import WallSide
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
+from tubecad.parts.axis_input import AxisLike, RadiusLike
 from tubecad.parts.engine import NetEdges, PartArguments, build_part, net_edges
+from tubecad.stiffeners.profiles import StiffenerSide
 
 
 class _Engine:
@@ -156,8 +159,8 @@ class CurvatureTube(_CurvatureNetPart):
 
     def __init__(
         self,
-        axis: Any,
-        radius: Any,
+        axis: AxisLike,
+        radius: RadiusLike,
         *,
         rings: int | Sequence[float] = DEFAULT_RINGS,
         stringers: int | Sequence[float] = DEFAULT_STRINGERS,
@@ -194,11 +197,11 @@ class CurvatureWall(_CurvatureNetPart):
 
     def __init__(
         self,
-        axis: Any,
-        radius: Any,
+        axis: AxisLike,
+        radius: RadiusLike,
         thickness: float,
         *,
-        side: str = "centered",
+        side: WallSide = "centered",
         rings: int | Sequence[float] = DEFAULT_RINGS,
         stringers: int | Sequence[float] = DEFAULT_STRINGERS,
         tolerance: float = DEFAULT_TOLERANCE,
@@ -259,15 +262,15 @@ class StiffenedCurvatureWall(CurvatureWall):
 
     def __init__(
         self,
-        axis: Any,
-        radius: Any,
+        axis: AxisLike,
+        radius: RadiusLike,
         thickness: float,
         *,
         ring_frames: Sequence[int] | str = "all",
         stringer_stiffeners: Sequence[int] | str = (),
         profile: Any = None,
-        stiffener_side: str = "outside",
-        side: str = "centered",
+        stiffener_side: StiffenerSide = "outside",
+        side: WallSide = "centered",
         rings: int | Sequence[float] = DEFAULT_RINGS,
         stringers: int | Sequence[float] = DEFAULT_STRINGERS,
         tolerance: float = DEFAULT_TOLERANCE,

@@ -13,9 +13,10 @@ from typing import Any
 
 from tubecad.brep import NetLayout, TubeBuild, build_tube_solid, build_wall_solid
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
+from tubecad.brep.wall import WallSide
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
-from tubecad.parts.axis_input import as_axis
+from tubecad.parts.axis_input import AxisLike, RadiusLike, as_axis
 from tubecad.surface import CurvatureLineSurface
 from tubecad.surface.canal import tube_or_canal
 
@@ -25,10 +26,10 @@ class PartArguments:
     """What a plugin object is built from (the keyword arguments of ``CurvatureTube`` and
     ``CurvatureWall``, checked)."""
 
-    axis: Any
-    radius: Any
+    axis: AxisLike
+    radius: RadiusLike
     thickness: float | None = None
-    side: str = "centered"
+    side: WallSide = "centered"
     rings: int | Sequence[float] = DEFAULT_RINGS
     stringers: int | Sequence[float] = DEFAULT_STRINGERS
     tolerance: float = DEFAULT_TOLERANCE

@@ -24,8 +24,9 @@ from typing import Any
 import build123d as bd
 
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
+from tubecad.brep.wall import WallSide
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
-from tubecad.parts.axis_input import as_axis
+from tubecad.parts.axis_input import AxisLike, RadiusLike, as_axis
 from tubecad.parts.engine import edge_map_of, layout_of
 
 
@@ -53,12 +54,12 @@ class Branch:
 
     at: float
     length: float
-    radius: Any
+    radius: RadiusLike
     thickness: float | None = None
     angle: float = 90.0
     around: float = 90.0
     offset: float = 0.0
-    side: str = "centered"
+    side: WallSide = "centered"
     rings: int | Sequence[float] = 3
     stringers: int | Sequence[float] | None = None
     pad_thickness: float | None = None
@@ -80,12 +81,12 @@ class JunctionPart:
 
 
 def build_junction_part(
-    axis: Any,
-    radius: Any,
+    axis: AxisLike,
+    radius: RadiusLike,
     thickness: float,
     branches: Sequence[Branch],
     *,
-    side: str = "centered",
+    side: WallSide = "centered",
     rings: int | Sequence[float] = DEFAULT_RINGS,
     stringers: int | Sequence[float] = DEFAULT_STRINGERS,
     tolerance: float = DEFAULT_TOLERANCE,
@@ -161,12 +162,12 @@ class CurvatureJunction(bd.BasePartObject):
 
     def __init__(
         self,
-        axis: Any,
-        radius: Any,
+        axis: AxisLike,
+        radius: RadiusLike,
         thickness: float,
         branches: Sequence[Branch],
         *,
-        side: str = "centered",
+        side: WallSide = "centered",
         rings: int | Sequence[float] = DEFAULT_RINGS,
         stringers: int | Sequence[float] = DEFAULT_STRINGERS,
         tolerance: float = DEFAULT_TOLERANCE,

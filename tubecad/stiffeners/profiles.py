@@ -7,12 +7,17 @@ direction across the line), and h outward from the wall along the surface normal
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal, TypeAlias, get_args
 
 from tubecad.core.errors import ParameterError
 from tubecad.core.validation import number_in_range
 
-KINDS = ("flat", "T", "L")
-SIDES = ("outside", "inside")
+#: a stiffener's cross-section
+ProfileKind: TypeAlias = Literal["flat", "T", "L"]
+KINDS: tuple[str, ...] = get_args(ProfileKind)
+#: which side of the wall a stiffener stands on
+StiffenerSide: TypeAlias = Literal["outside", "inside"]
+SIDES: tuple[str, ...] = get_args(StiffenerSide)
 
 
 @dataclass(frozen=True)
