@@ -202,13 +202,13 @@ def trefoil(quick: bool):
     cubic = 1000 if quick else 2000
     fits: dict = {}
 
-    def degree_8(built):
+    def degree_8(_built):
         edge, fits["spans"] = periodic_fit(tube)
         return edge
 
     spines = {
         f"periodic cubic {cubic}": (
-            lambda built: periodic_cubic(tube, cubic),
+            lambda _built: periodic_cubic(tube, cubic),
             f"periodic cubic through {cubic} points with exact tangents at arc-length parameters",
         ),
         "periodic degree 8": (
@@ -235,24 +235,24 @@ def trefoil(quick: bool):
     )
 
 
-def spline_edge(quick: bool):
+def spline_edge(_quick: bool):
     """The axis along a build123d Spline edge; the spines: that edge, and it refined."""
     edge = bd.Spline(*SPLINE_POINTS)
     tube = CurvatureLineTube(edge_axis(edge), 6.0)
     spines = {
-        "the edge": (lambda built: edge, "the build123d Spline edge itself"),
-        "the edge refined": (lambda built: refined(edge), f"the same edge with {REFINE - 1} knots inserted per span"),
+        "the edge": (lambda _built: edge, "the build123d Spline edge itself"),
+        "the edge refined": (lambda _built: refined(edge), f"the same edge with {REFINE - 1} knots inserted per span"),
     }
     return tube, spines, f"edge_axis of the build123d Spline through {', '.join(map(str, SPLINE_POINTS))}"
 
 
-def route(quick: bool):
+def route(_quick: bool):
     """The pipe route of samples/route.toml; the spine: its lines and arcs."""
     axis = RouteAxis(ROUTE_POINTS, ROUTE_BENDS)
     tube = CurvatureLineTube(axis, 20.0)
     return (
         tube,
-        {"lines and arcs": (lambda built: route_wire(axis), "the route's lines and arcs as a wire")},
+        {"lines and arcs": (lambda _built: route_wire(axis), "the route's lines and arcs as a wire")},
         (
             f"RouteAxis through {len(ROUTE_POINTS)} points, bend radii {', '.join(f'{r:g}' for r in ROUTE_BENDS)}: "
             f"{sum(p.kind == 'line' for p in axis.pieces)} legs, {sum(p.kind == 'bend' for p in axis.pieces)} bends in three planes"
@@ -284,7 +284,7 @@ def run_methods(
         try:
             shape, solid, build_s = timed_build(make, tube, path, repeats)
             results.append(measure(method, shape, tube, build_s, samples, solid=solid))
-        except Exception as exc:  # noqa: BLE001 - a peer failing on this axis is a result
+        except Exception as exc:  # a peer failing on this axis is a result
             errors[method] = f"{type(exc).__name__}: {str(exc).strip() or 'no message'}"[:200]
             log(f"  {name}: {method}: FAILED ({errors[method]})")
             continue
@@ -319,7 +319,7 @@ def run_case(name: str, setup: Callable, quick: bool, samples: int, repeats: int
             "seconds": seconds,
             "closed": bool(paths[label].is_closed),
         }
-    named = (lambda sweep, label: f"{sweep} [{label}]") if len(paths) > 1 else (lambda sweep, label: sweep)
+    named = (lambda sweep, label: f"{sweep} [{label}]") if len(paths) > 1 else (lambda sweep, _label: sweep)
     runs = [("tubecad", tubecad_solid, None)] + [
         (f"tubecad, tol {t:.0e}".replace("e-0", "e-"), tubecad_at(t), None) for t in TUBECAD_TOLERANCES
     ]

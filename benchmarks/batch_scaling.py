@@ -469,7 +469,7 @@ def summarise(runs: list[dict]) -> dict:
     return out
 
 
-def efficiency(one: list[dict], two: list[dict], key: str, keep=lambda run: True) -> dict:
+def efficiency(one: list[dict], two: list[dict], key: str, keep=lambda _run: True) -> dict:
     """jobs/s at 2 / (2 x jobs/s at 1): paired round by round (the median of those), and of the
     medians; only the rounds where both runs pass ``keep``."""
     both = [(a, b) for a, b in zip(one, two) if keep(a) and keep(b)]
@@ -495,8 +495,8 @@ def _log_run(log, label: str, config: str, result: dict) -> None:
 
 def _warm(_=None) -> bool:
     """On a Dask worker: import what a job imports (pickled by value from this script)."""
-    import tubecad.batch.dask_executor  # noqa: F401
-    import tubecad.batch.jobs  # noqa: F401
+    import tubecad.batch.dask_executor
+    import tubecad.batch.jobs
     import tubecad.spec.build  # noqa: F401
 
     return True
@@ -718,7 +718,7 @@ def resume_check_in_process(spec: Path, jobs: int, out: Path) -> dict:
         t3 = time.perf_counter()
         fresh = sum(up_to_date(manifest.get(job.name), job, d) for job, d in zip(planned, digests))
         t4 = time.perf_counter()
-    except Exception as exc:  # noqa: BLE001 - the tree is being edited; record, do not fail the run
+    except Exception as exc:  # the tree is being edited; record, do not fail the run
         return {"error": f"{type(exc).__name__}: {exc}"}
     return {
         "plan_s": round(t1 - t0, 3),
@@ -933,7 +933,7 @@ def main(argv: list[str] | None = None) -> int:
         args.state or tmp_root / f"tubecad-batch-scaling-state{'.quick' if quick else ''}.json", params, args.resume
     )
 
-    def on_signal(signum, frame) -> None:  # recorded, the command stopped cleanly, then this process ends as asked
+    def on_signal(signum, _frame) -> None:  # recorded, the command stopped cleanly, then this process ends as asked
         state.save(ended_by=f"signal {signum} (from outside the benchmark)")
         for proc in RUNNING:
             with contextlib.suppress(OSError, subprocess.TimeoutExpired):

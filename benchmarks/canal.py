@@ -212,7 +212,7 @@ def multisection_sweep(surface: CanalSurface, path: bd.Edge | bd.Wire):
     return bd.sweep(sections(surface), as_wire(path), multisection=True).solids()[0], True
 
 
-def loft(surface: CanalSurface, path):
+def loft(surface: CanalSurface, _path):
     return bd.loft(sections(surface)).solids()[0], True
 
 
@@ -232,7 +232,7 @@ PEERS: dict[str, Callable] = {
 def tubecad_at(tolerance: float) -> Callable:
     """tubecad's capped canal solid fitted to ``tolerance`` (the spine is not used)."""
 
-    def make(surface: CanalSurface, path):
+    def make(surface: CanalSurface, _path):
         return build_tube_solid(surface, NetLayout.equal(surface, 2, 1), tolerance).shape, True
 
     return make
@@ -356,7 +356,7 @@ def run_case(name: str, spec: Path, make_spine: Callable, samples: int, repeats:
         try:
             shape, solid, build_s = timed_build(make, surface, path, repeats)
             results.append(measure_canal(method, shape, surface, exact, build_s, samples, solid))
-        except Exception as exc:  # noqa: BLE001 - a peer failing here is a result
+        except Exception as exc:  # a peer failing here is a result
             if method in own:
                 raise
             errors[method] = f"{type(exc).__name__}: {str(exc).strip() or 'no message'}"[:200]

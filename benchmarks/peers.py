@@ -66,7 +66,7 @@ def profile(tube: CurvatureLineTube) -> bd.Wire:
 def tubecad_at(tolerance: float) -> Callable:
     """tubecad's capped tube solid fitted to ``tolerance`` (the spine is not used)."""
 
-    def make(tube: CurvatureLineTube, path: bd.Edge | None):
+    def make(tube: CurvatureLineTube, _path: bd.Edge | None):
         return build_tube_solid(tube, NetLayout.equal(tube, 2, 1), tolerance).shape, True
 
     return make
@@ -105,7 +105,7 @@ def occt_pipe_shell(mode: str = "CorrectedFrenet") -> Callable:
 
 
 def grid_fit(nu: int, ns: int, tolerance: float) -> Callable:
-    def make(tube: CurvatureLineTube, path: bd.Edge):
+    def make(tube: CurvatureLineTube, _path: bd.Edge):
         fit = grid_surface(tube, nu, ns, tolerance)
         return bd.Face(BRepBuilderAPI_MakeFace(fit.surface, 1e-6).Face()), False
 

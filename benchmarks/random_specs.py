@@ -574,7 +574,7 @@ def run_case(case: Case, workdir: Path) -> dict[str, Any]:
             problems.append("a regular tube refused")
         row["problems"] = problems
         return row
-    except Exception as exc:  # noqa: BLE001 - every other exception is a failure to report
+    except Exception as exc:  # every other exception is a failure to report
         row.update(
             outcome="crashed", message=f"{type(exc).__name__}: {exc}"[:400], trace=traceback.format_exc()[-2000:]
         )
@@ -699,7 +699,7 @@ def _work(job: tuple[int, int, str]) -> dict[str, Any]:
         workdir = Path(tmp)
         try:
             case = make_case(seed, index, workdir)
-        except Exception as exc:  # noqa: BLE001 - a generator bug is reported, not hidden
+        except Exception as exc:  # a generator bug is reported, not hidden
             return {"index": index, "outcome": "generator", "problems": [f"{type(exc).__name__}: {exc}"]}
         return run_case(case, workdir)
 

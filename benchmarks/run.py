@@ -18,14 +18,14 @@ from pathlib import Path
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
-import axes  # noqa: E402
-import canal  # noqa: E402
-import compare  # noqa: E402
-import scaling  # noqa: E402
-import startup  # noqa: E402
-import stiffened  # noqa: E402
+import axes
+import canal
+import compare
+import scaling
+import startup
+import stiffened
 
-from tubecad.core.atomic import write_text  # noqa: E402
+from tubecad.core.atomic import write_text
 
 #: the published results (docs/benchmarks.md quotes them); --quick never writes here
 PUBLISHED = Path(__file__).resolve().parent / "results"

@@ -56,7 +56,10 @@ def test_mypy_sees_the_classes_and_their_typed_arguments(tmp_path):
     assert len(revealed) == 3, done.stdout + done.stderr
     assert revealed[0].endswith('-> tubecad.parts.build123d_parts.CurvatureWall"')
     assert "side: Literal['centered'] | Literal['inside'] | Literal['outside']" in revealed[0]
-    assert "radius: float | str | typing.Sequence[typing.Sequence[float]] | tubecad.curves.radius_law.RadiusLaw" in revealed[0]
+    assert (
+        "radius: float | str | typing.Sequence[typing.Sequence[float]] | tubecad.curves.radius_law.RadiusLaw"
+        in revealed[0]
+    )
     assert revealed[1].endswith('-> tubecad.curves.families.Helix"')
     assert revealed[2].endswith('-> tubecad.brep.layout.NetLayout"')
     # a side no wall has is a type error, named by mypy

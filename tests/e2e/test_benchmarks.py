@@ -10,11 +10,11 @@ from conftest import ROOT
 
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
-from axes import CASES  # noqa: E402
-from measure import measure  # noqa: E402
-from peers import METHODS, SWEEPS, spine, spine_deviation  # noqa: E402
+from axes import CASES
+from measure import measure
+from peers import METHODS, SWEEPS, spine, spine_deviation
 
-from tubecad import paper_tube  # noqa: E402
+from tubecad import paper_tube
 
 
 @pytest.fixture(scope="module")

@@ -13,7 +13,7 @@ from conftest import ROOT
 
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
-import random_specs  # noqa: E402
+import random_specs
 
 SEED, SLICE = 2026, range(12)
 

@@ -211,7 +211,7 @@ def run_python_block(block: Block, workdir: Path) -> PythonRun:
         warnings.simplefilter("always")
         try:
             exec(compile(tree, str(block.page), "exec"), result.ns)
-        except Exception as exc:  # noqa: BLE001 - reported by the block's test
+        except Exception as exc:  # reported by the block's test
             result.error = exc  # the traceback from the page's line on (this file's frame left out)
             result.traceback = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__.tb_next))
     result.warnings = [w for w in caught if _ours(w.filename)]
@@ -311,7 +311,7 @@ def _custom_any_k(ns, workdir):
     """The numeric axis of k = 10/s is the log spiral up to a rigid motion (README: ~1e-12 over L = 1000)."""
     s = ns["s"]
     exact, numeric = ns["axis"].evaluate(s), ns["numeric"].evaluate(s)
-    chord = lambda f: np.linalg.norm(f.position - f.position[0], axis=1)  # noqa: E731
+    chord = lambda f: np.linalg.norm(f.position - f.position[0], axis=1)
     assert np.abs(chord(numeric) - chord(exact)).max() < 1e-10
     assert np.ptp(numeric.psi - exact.psi) < 1e-10 and np.abs(numeric.k - exact.k).max() < 1e-12
 
@@ -368,7 +368,7 @@ def _inner_lines(ns, workdir):
 def _csv_points(ns, workdir):
     with open(workdir / "lines.csv", newline="") as file:
         rows = list(csv.DictReader(file))
-    vec = lambda names: np.array([[float(r[n]) for n in names] for r in rows])  # noqa: E731
+    vec = lambda names: np.array([[float(r[n]) for n in names] for r in rows])
     position, tangent, normal = vec("xyz"), vec(["tx", "ty", "tz"]), vec(["nx", "ny", "nz"])
     assert np.isfinite(position).all() and len(rows) > 100
     assert np.abs(np.linalg.norm(tangent, axis=1) - 1).max() < 1e-9
@@ -593,7 +593,7 @@ def run_spec_through_cli(block: Block, data: dict, workdir: Path) -> None:
         [*tubecad_command(), *args],
         cwd=workdir,
         env=env,
-        text=True,  # noqa: E731
+        text=True,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
     )

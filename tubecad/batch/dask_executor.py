@@ -155,7 +155,7 @@ class DaskExecutor:
                 if running:
                     try:
                         self.client.restart_workers(running)
-                    except Exception:  # noqa: BLE001 - a worker without a nanny cannot be restarted
+                    except Exception:  # a worker without a nanny cannot be restarted
                         pass
                 del self._futures[future]
                 self._jobs.pop(index, None)

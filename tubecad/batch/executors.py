@@ -72,7 +72,7 @@ class InlineExecutor:
     def submit(self, index: int, job: Any) -> None:
         self._done.append((index, self._run(job)))
 
-    def poll(self, timeout: float) -> list[tuple[int, Any]]:
+    def poll(self, timeout: float) -> list[tuple[int, Any]]:  # noqa: ARG002 - the Executor protocol's; nothing to wait for
         done, self._done = self._done, []
         return done
 

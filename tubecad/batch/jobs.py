@@ -373,7 +373,7 @@ def init_worker() -> None:
     signal.signal(signal.SIGTERM, on_sigterm)
 
 
-def on_sigterm(signum, frame) -> None:
+def on_sigterm(_signum, _frame) -> None:
     global _stopping
     _stopping = True
     if _busy:

@@ -283,7 +283,7 @@ def build_batch(
     from tubecad.spec.report import to_json
 
     options = options or BatchOptions()
-    say = echo or (lambda line: None)
+    say = echo or (lambda _line: None)
     out_dir = Path(out_dir)
     planned = plan_jobs(
         specs,
@@ -355,7 +355,7 @@ def build_batch(
             _, interrupted = run_batch(
                 [planned[i] for i in todo],
                 workers,
-                (lambda line: None) if options.quiet else say,
+                (lambda _line: None) if options.quiet else say,
                 executor=executor,
                 retries=options.retries,
                 timeout=options.job_timeout,
@@ -374,5 +374,5 @@ def _digest(spec_hash: Callable[[Job], str], job: Job) -> str | None:
     """The job's spec hash, or None when its spec cannot be read (the job then fails, saying why)."""
     try:
         return spec_hash(job)
-    except Exception:  # noqa: BLE001 - a bad spec fails its own job with the checker's message
+    except Exception:  # a bad spec fails its own job with the checker's message
         return None

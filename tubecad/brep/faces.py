@@ -567,7 +567,7 @@ def canal_arc_pcurve(
     band_lo, band_mid = lo - moved, 0.5 * (lo + hi) - moved
 
     def to_u(theta: np.ndarray) -> np.ndarray:
-        chi0 = tube_surface.ring_chi0(s, chi_o, band_lo, origin + a0, theta - moved, band_mid, moebius)
+        chi0 = tube_surface.ring_chi0(s, chi_o, origin + a0, theta - moved, band_mid, moebius)
         return spline_circle.u_of_theta(np.clip(chi0 - origin, a0, a1))
 
     starts = [arc.start for arc in spline_circle.arcs if a0 + 1e-12 < arc.start < a1 - 1e-12]

@@ -46,7 +46,7 @@ from tubecad.brep.faces import TOLERANCE, PatchFaces, _edge, patch_faces
 from tubecad.brep.layout import NetLayout
 from tubecad.brep.wall import WALL_SIDES, wall_offsets, wall_radii  # noqa: F401  (re-exported)
 from tubecad.core.errors import ParameterError, RegularityError
-from tubecad.core.tolerance import DEFAULT_TOLERANCE, MIN_SIZE, orthogonality_for  # noqa: F401  (re-exported)
+from tubecad.core.tolerance import DEFAULT_TOLERANCE, MIN_SIZE, orthogonality_for  # re-exported
 from tubecad.fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
 from tubecad.fitting.canal_section import CanalSpline, canal_section_surface, fit_canal
 from tubecad.surface import CanalSurface, CurvatureLineSurface, CurvatureLineTube, is_surface

@@ -486,7 +486,7 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
         from tubecad.spec.shop import shop_from_spec
 
     live = not quiet and sys.stderr.isatty()  # stages on a terminal only: a log or a pipe gets the result lines
-    say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
+    say = (lambda stage: click.echo(stage, err=True)) if live else (lambda _stage: None)
     try:
         index = shop_from_spec(checked, output, say)
     except TubecadError as exc:
@@ -628,7 +628,7 @@ def analyse(spec: Path, output: Path, element: str | None, size: float | None, q
         from tubecad.spec.mesh import analyse_spec
 
     live = not quiet and sys.stderr.isatty()
-    say = (lambda stage: click.echo(stage, err=True)) if live else (lambda stage: None)
+    say = (lambda stage: click.echo(stage, err=True)) if live else (lambda _stage: None)
     try:
         summary = analyse_spec(checked, output, say, element=element, size=size)
     except TubecadError as exc:
@@ -702,7 +702,7 @@ def main() -> None:
     """
     import signal
 
-    def terminate(signum, frame):  # SIGTERM: the same clean exit as Ctrl-C
+    def terminate(_signum, _frame):  # SIGTERM: the same clean exit as Ctrl-C
         raise KeyboardInterrupt
 
     try:

@@ -16,7 +16,7 @@ INTERRUPTED_EXIT_CODE = 130  # 128 + SIGINT, as shells report Ctrl-C
 _console_process = False
 
 
-def _exit_now(signum, frame) -> None:  # pragma: no cover - runs in a subprocess
+def _exit_now(_signum, _frame) -> None:  # pragma: no cover - runs in a subprocess
     try:
         sys.stderr.write("\ninterrupted\n")
         sys.stderr.flush()

@@ -118,9 +118,10 @@ class Axis(ABC):
         _, r1, r2 = self.rotation_minimising_frame(np.array(self.span))
         return float(math.atan2(r1[1] @ r2[0], r1[1] @ r1[0]))
 
-    def tube_radius_problem(self, radius: float) -> str | None:
+    def tube_radius_problem(self, radius: float) -> str | None:  # noqa: ARG002 - the hook's signature
         """Why a tube of ``radius`` cannot be regular, said in the axis' own terms (a route
-        names the bend), or None; the general check (rho k < 1, no self-approach) follows."""
+        names the bend), or None; the general check (rho k < 1, no self-approach) follows.
+        None here: a kind that knows its limits (RouteAxis) overrides it."""
         return None
 
     def curvature(self, s: ArrayLike) -> FloatArray:

@@ -77,7 +77,7 @@ class CustomCurvature(SlopeCurve):
             return np.asarray(self._k(s), dtype=float) * np.ones_like(s)
         try:  # a user's callable: whatever goes wrong in it is a ParameterError naming k
             value = np.asarray(self._k(s))
-        except Exception as exc:  # noqa: BLE001
+        except Exception as exc:
             raise ParameterError(f"k(s) raised {type(exc).__name__}: {exc}"[:300]) from exc
         if value.dtype.kind not in "iuf":
             raise ParameterError(

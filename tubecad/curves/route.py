@@ -145,7 +145,7 @@ class RouteAxis(Axis):
                     f"{detail}"
                 )
         self.points, self.bend_radii = p, radii
-        self.pieces = self._build(v, d, lengths, turn, tangent, radius, loop, normal)
+        self.pieces = self._build(v, d, lengths, turn, tangent, radius, normal)
         self.span = (0.0, self.pieces[-1].s1)
         self._starts = np.array([piece.s0 for piece in self.pieces])
         self._closed = closing(self, True) if loop else False  # the loop's ends agree to round-off
@@ -159,11 +159,11 @@ class RouteAxis(Axis):
         turn: np.ndarray,
         tangent: np.ndarray,
         radius: np.ndarray,
-        loop: bool,
         normal: Sequence[float] | None,
     ) -> list[Piece]:
         """The pieces leg by leg: leg j's line, then the bend at its end vertex (if it has
-        one). A loop starts after the bend at vertex 0 and ends with it."""
+        one). A loop (n legs, its vertex 0 bent) starts after the bend at vertex 0 and ends
+        with it; an open route (n - 1 legs, its ends not bent) from end to end."""
         n = len(v)
         r1 = _start_normal(d, normal)
         r2 = np.cross(d[0], r1)

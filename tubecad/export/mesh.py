@@ -29,7 +29,7 @@ from tubecad.brep.properties import topods
 from tubecad.core.errors import TubecadError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.core.units import length_unit as unit_of
-from tubecad.export.meshing import ANGULAR_DEFLECTION, RELATIVE_DEFLECTION  # noqa: F401  (the defaults, tubecad.export.meshing)
+from tubecad.export.meshing import ANGULAR_DEFLECTION, RELATIVE_DEFLECTION  # the defaults, tubecad.export.meshing
 from tubecad.occ_compat import box_corners
 
 if TYPE_CHECKING:

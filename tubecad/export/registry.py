@@ -43,7 +43,7 @@ __all__ = [
     "output_format",
 ]
 
-#: (item, path, product name) -> None
+#: (item, path, product name) -> None; the product name is for the formats that record one (CAD)
 Writer = Callable[["Exportable", Path, str], None]
 
 
@@ -76,7 +76,7 @@ def _cad(fmt: str) -> Writer:
 
 
 def _mesh(fmt: str) -> Writer:
-    def write(item: Exportable, path: Path, name: str) -> None:
+    def write(item: Exportable, path: Path, _name: str) -> None:
         from tubecad.export.mesh import write_mesh
         from tubecad.export.meshing import ANGULAR_DEFLECTION
 
@@ -87,7 +87,7 @@ def _mesh(fmt: str) -> Writer:
 
 
 def _polylines(fmt: str) -> Writer:
-    def write(item: Exportable, path: Path, name: str) -> None:
+    def write(item: Exportable, path: Path, _name: str) -> None:
         from tubecad.stiffeners.lines import polylines_csv_text, polylines_json_text
 
         if item.lines is None:
@@ -100,7 +100,7 @@ def _polylines(fmt: str) -> Writer:
 
 
 def _picture(fmt: str) -> Writer:
-    def write(item: Exportable, path: Path, name: str) -> None:
+    def write(item: Exportable, path: Path, _name: str) -> None:
         from tubecad.export.plots import projection_figure_of_build
 
         if item.build is None:

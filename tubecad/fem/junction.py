@@ -465,13 +465,14 @@ def _assemble(tubes, pads, nodes, coordinates, owner, grouped, normals_of, setti
         element_normals=element_normals,
     )
     mesh.node_sets.update(_node_sets(mesh, tubes, pads))
-    mesh.info["quality"] = _quality(mesh, coordinates, tubes, pads)
+    mesh.info["quality"] = _quality(mesh, coordinates, tubes)
     return mesh
 
 
-def _quality(mesh: FEMesh, coordinates, tubes, pads) -> dict[str, float | int]:
+def _quality(mesh: FEMesh, coordinates, tubes) -> dict[str, float | int]:
     """The quads' aspect ratio and skew, and how many are curvature-line quads: each side
-    on a ring (s the same at both ends) or a stringer (u the same), to NET_TOLERANCE."""
+    on a ring (s the same at both ends) or a stringer (u the same), to NET_TOLERANCE (a pad's
+    quads on the main's coordinates, :func:`tube_index`)."""
     from tubecad.fem.quality import corner_measures
 
     names = [t.name for t in tubes]

@@ -28,8 +28,9 @@ def corner_measures(nodes: np.ndarray, corners: np.ndarray) -> tuple[np.ndarray,
     return aspect, skew
 
 
-def element_quality(mesh, surface=None, grid=None) -> dict:
-    """Aspect ratio and skew of the shells (max and mean) and the net's orthogonality."""
+def element_quality(mesh) -> dict:
+    """Aspect ratio and skew of the shells (max and mean) and the net's orthogonality, from
+    the mesh's unit ring and stringer tangents (the exact surface's, at the nodes)."""
     shells = [b for b in mesh.blocks if b.shell]
     corners = np.concatenate([b.connectivity[:, :4] for b in shells])
     aspect, skew = corner_measures(mesh.nodes, corners)

@@ -133,7 +133,7 @@ def shell_mesh(
             shell_sections.append(ShellSection(name, float(thickness), offset))
         element_sets[name] = blocks[-1].ids
     node_sets = _node_sets(ids, grid, layout, closed, per_surface, len(references))
-    element_sets.update(_panel_sets(blocks, grid, layout, closed, seams, panel_rings))
+    element_sets.update(_panel_sets(blocks, grid, layout, seams, panel_rings))
 
     beam_sections: list[BeamSection] = []
     if plan is not None:
@@ -182,7 +182,7 @@ def shell_mesh(
             "elements_around": len(grid.angles) // grid.order,
             "thickness": thickness,
             "reference_offsets": [d for _, d, _ in references],
-            "quality": element_quality(mesh, first, grid),
+            "quality": element_quality(mesh),
         }
     )
     return mesh
@@ -280,7 +280,6 @@ def _panel_sets(
     blocks: list[ElementBlock],
     grid: ParameterGrid,
     layout: NetLayout,
-    closed: bool,
     seams: Sequence[int] | None,
     panel_rings: Sequence[int] | None,
 ) -> dict[str, np.ndarray]:

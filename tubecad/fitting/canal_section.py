@@ -449,14 +449,13 @@ class CanalSectionSurface(TubeSurface):
         self,
         s: float,
         chi_o: float,
-        theta_a: float,
         chi0_a: float,
         theta: np.ndarray,
         theta_mid: float,
         moebius: np.ndarray | None = None,
     ) -> np.ndarray:
         """chi0 (radians, absolute) of the points at angles ``theta`` from the origin stringer
-        on the circle at ``s``, on the arc that starts at theta_a on the stringer chi0_a: the
+        on the circle at ``s``, on the arc that starts on the stringer chi0_a: the
         exact inverse Moebius map, continued from the arc's start through its middle (each
         step turns the half-angle vector by less than pi). ``moebius``: Mb(s), if already known."""
         m = self.tube.moebius_matrix(np.array([s]))[0] if moebius is None else moebius
@@ -471,8 +470,8 @@ class CanalSectionSurface(TubeSurface):
 
         v_a = np.array([math.sin(0.5 * chi0_a), math.cos(0.5 * chi0_a)])
         v_mid = half(np.array(theta_mid))
-        # the start's half-angle vector is +- v_a (chi_o + theta_a is chi_a only mod 2 pi): the
-        # turn to the middle is in (0, pi), so taken mod pi
+        # the start's half-angle vector is +- v_a (chi_o plus the arc's start angle is chi_a only
+        # mod 2 pi, so that angle is not used): the turn to the middle is in (0, pi), so taken mod pi
         return chi0_a + 2.0 * (np.mod(turn(v_a, v_mid), math.pi) + turn(v_mid, half(theta)))
 
 

@@ -179,7 +179,7 @@ def route_frame(
     spline = BSpline(t, P, 2)
     params = RouteFrame(segments)
     radii = tuple(float(r) for r in radii) or (float(radius_bound),)
-    pos, orth = _measure(axis, t, P, w, params, radius_bound, radii, breaks)
+    pos, orth = _measure(axis, t, P, w, params, radius_bound, radii)
     if pos > 0.5 * tolerance or orth > 0.5 * orthogonality:
         raise FitError(
             f"the exact route frame measured {pos:.3g} / {orth:.3g} from the exact tube (targets "
@@ -207,10 +207,10 @@ def _measure(
     params: RouteFrame,
     radius: float,
     radii: Sequence[float],
-    breaks: np.ndarray,
 ) -> tuple[float, float]:
     """The position bound |C - c| + R |(R1, R2) - (r1, r2)| at s(v), and the largest |cos|
-    between the isolines of the surfaces of ``radii`` on the frame, sampled on every span."""
+    between the isolines of the surfaces of ``radii`` on the frame, sampled on every span of
+    the knots ``t`` (the breaks among them)."""
     spans = np.unique(t)
     frac = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN)
     v = spans[:-1, None] + np.diff(spans)[:, None] * frac

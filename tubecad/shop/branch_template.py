@@ -71,14 +71,15 @@ def branch_template(
 
 
 def hole_template(
-    main: CurvatureLineSurface, saddle: SaddleCurve, stringers: int = 8, *, key: str = "branches"
+    main: CurvatureLineSurface, saddle: SaddleCurve, stringers: int = 8, *, key: str = "tube"
 ) -> BranchTemplate:
     """The opening the branch's bore cuts in the main tube (``saddle`` the bore's saddle on
     ``main``, e.g. ``saddle_inner``), unrolled onto the main tube's development as one closed
     line (R u_A, s_A - s_0), placed on the strip's girth 0 .. 2 pi R; girth marks at the
-    main tube's ``stringers``."""
+    main tube's ``stringers``. A main tube whose radius varies is refused naming
+    ``{key}.radius`` (``key``: the main tube's key, ``tube`` in a spec)."""
     u = saddle.main_u - 2 * math.pi * np.floor(np.mean(saddle.main_u) / (2 * math.pi))
-    return _developed(main, u, saddle.main_s, stringers, "tube.radius", "a main tube")
+    return _developed(main, u, saddle.main_s, stringers, f"{key}.radius", "a main tube")
 
 
 def _developed(

@@ -62,7 +62,7 @@ def shop_data(
     progress: Callable[[str], None] | None = None,
 ) -> ShopData:
     """Compute the shop package (module docstring); ``progress(stage)`` hears of each stage."""
-    say = progress or (lambda stage: None)
+    say = progress or (lambda _stage: None)
     data = ShopData(build, stiffeners, panels, fab)
     add_stiffener_data(data, tuple(build.layout.stringers_deg), build.tolerance, say)
     if panels:

@@ -81,11 +81,9 @@ def _spacing(value: Any) -> float:
     return h
 
 
-def _mean_normal(
-    surface: WallSurface, u: tuple[float, float], s: tuple[float, float], breaks: np.ndarray
-) -> np.ndarray:
+def _mean_normal(surface: WallSurface, u: tuple[float, float], breaks: np.ndarray) -> np.ndarray:
     """Int Int S_u x S_s du ds by Gauss-Legendre (16 nodes per panel of at most 45 deg, and per
-    s panel between the breaks)."""
+    s panel between the ``breaks``, which run from the panel's first ring to its last)."""
     x, w = np.polynomial.legendre.leggauss(16)
 
     def nodes(edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -121,7 +119,7 @@ def pin_jig(
     u_a, u_b = math.radians(deg_a), math.radians(deg_b)
     u_m, s_m = 0.5 * (u_a + u_b), 0.5 * (s_a + s_b)
 
-    mean = _mean_normal(surface, (u_a, u_b), (s_a, s_b), _s_breaks(surface, (s_a, s_b)))
+    mean = _mean_normal(surface, (u_a, u_b), _s_breaks(surface, (s_a, s_b)))
     mid = surface.derivatives(u_m, s_m)
     area_scale = float(np.linalg.norm(np.cross(mid.S_u, mid.S_s))) * (u_b - u_a) * (s_b - s_a)
     if np.linalg.norm(mean) < 1e-6 * area_scale:

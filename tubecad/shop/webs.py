@@ -219,7 +219,7 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
     if chosen:
         marks = [_ring_angle(st, a) for a in chosen]
         bays = list(zip(marks, marks[1:] + [marks[0] + 360.0]))
-        return _sector_pieces(st, fab, whole, lambda n: bays, first=1)
+        return _sector_pieces(st, fab, whole, lambda _n: bays, first=1)
 
     def around(n: int) -> list[tuple[float, float]]:  # n equal sectors from the joint clearest of the stringers
         start = _clear_start(st, n, stringers_deg)
@@ -245,7 +245,7 @@ def _arc_pieces(st: Stiffener, fab: Fabrication, whole: FlatPattern, chosen: lis
             )
         marks.append(mark)
     bays = list(zip([a, *sorted(marks)], [*sorted(marks), b]))
-    return _sector_pieces(st, fab, whole, lambda n: bays, first=1, square=(a, b))
+    return _sector_pieces(st, fab, whole, lambda _n: bays, first=1, square=(a, b))
 
 
 def _sector_pieces(
@@ -259,7 +259,7 @@ def _sector_pieces(
     """The fewest pieces, n = ``first``, first + 1, ... equal sectors of each bay of
     ``bays(n)`` (circle degrees), that are all cuttable: a butt joint's root gap is left at
     every sector end except the ends ``square`` of a cut ring's arc."""
-    r_in, r_out, q = _annulus(st, whole)
+    r_in, r_out, q = _annulus(whole)
     base_radius = r_in if st.side == "outside" else r_out  # the web's edge on the wall, in the development
     half_gap = 0.5 * math.degrees(fab.joint_gap / (base_radius * q))  # along the base circle, in 3-D degrees
     for n in range(first, MAX_PIECES + 1):
@@ -281,7 +281,7 @@ def _sector_pieces(
     )
 
 
-def _annulus(st: Stiffener, whole: FlatPattern) -> tuple[float, float, float]:
+def _annulus(whole: FlatPattern) -> tuple[float, float, float]:
     """(inner radius, outer radius, q): the ring web's development is the sector of angle
     2 pi q of that annulus (q = 1 on a tube)."""
     if whole.sector is not None:

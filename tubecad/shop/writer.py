@@ -75,7 +75,7 @@ def write_shop(data: ShopData, folder: str | Path, name: str = "tubecad", step_s
     # panels: marking lines in STEP, developments, pin jigs
     index["panels"], index["marking"], index["pin_jig"] = [], [], []
     if data.panels:
-        _write_panels(data, folder, name, step_schema, index, record)
+        _write_panels(data, folder, step_schema, index, record)
     index["warnings"] = list(data.warnings)
     for path in write_overview(data, folder, index):
         record(path, "overview", "one page: a plate of webs, the most strained panel, its pin jig, a bending table")
@@ -152,7 +152,7 @@ def _write_pieces_step(data: ShopData, path: Path, name: str, step_schema: str) 
     export_named_step(assembly, path, step_schema, name, data.fab.length_unit)
 
 
-def _write_panels(data: ShopData, folder: Path, name: str, step_schema: str, index: dict, record) -> None:
+def _write_panels(data: ShopData, folder: Path, step_schema: str, index: dict, record) -> None:
     from tubecad.export.cad import export_named_step
     from tubecad.shop.marking import marking_surface, panel_assembly
     from tubecad.shop.panel_development import write_panel_dxf, write_panel_picture
@@ -336,7 +336,7 @@ def _lower_panels(data: ShopData) -> list[Callable[[Any, Figure], None]]:
         if jig is not None and len(jig.heights):
             panels.append(lambda ax, fig: _draw_pin_jig(ax, fig, jig, data.fab.length_unit))
     if data.bending:
-        panels.append(lambda ax, fig: _draw_bending(ax, data, data.fab.length_unit))
+        panels.append(lambda ax, _fig: _draw_bending(ax, data, data.fab.length_unit))
     return panels
 
 

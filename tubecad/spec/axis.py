@@ -160,7 +160,7 @@ def _named(path: Path, name: str, length_unit: str) -> Any:
 
     try:
         root = bd.import_step(str(path))
-    except Exception as exc:  # noqa: BLE001 - whatever the reader says, as one line
+    except Exception as exc:  # whatever the reader says, as one line
         raise ParameterError(f"file {path.name!r} cannot be read as STEP: {exc}"[:300]) from None
     stack, labels = [root], []
     while stack:

@@ -42,7 +42,7 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
     from tubecad.shop.branch_template import branch_template, hole_template
 
     assert spec.wall is not None
-    say = say or (lambda stage: None)
+    say = say or (lambda _stage: None)
     unit = spec.length_unit
     main_in, main_out = spec.wall.offsets()
     output = Path(output)

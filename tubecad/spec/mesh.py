@@ -197,7 +197,7 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
     from tubecad.spec.preflight import check_analysis
 
     check_analysis(spec)
-    say = progress or (lambda stage: None)
+    say = progress or (lambda _stage: None)
     say("meshing")
     mesh, junction = _fe_model(spec, overrides)
     material, step, settings = material_and_step(spec, mesh, True, junction)

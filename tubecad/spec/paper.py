@@ -36,7 +36,7 @@ PAPER_RINGS = 11
 PAPER_STRINGERS = 8
 
 
-def PAPER_LAYOUT(tube: CurvatureLineTube) -> NetLayout:  # noqa: N802 - reads as a constant
+def PAPER_LAYOUT(tube: CurvatureLineTube) -> NetLayout:  # reads as a constant
     """11 ring frames every 100 along the axis (ends included) and 8 stringers 45 deg apart."""
     from tubecad.brep import NetLayout  # OCCT is loaded only when B-rep is asked for
 

@@ -9,7 +9,7 @@ from typing import Any, cast
 import numpy as np
 
 from tubecad.core.units import DEFAULT_LENGTH_UNIT, density_unit
-from tubecad.spec.grid import DEFAULT_NS, DEFAULT_NU  # noqa: E402  (re-exported)
+from tubecad.spec.grid import DEFAULT_NS, DEFAULT_NU  # re-exported
 from tubecad.surface import CanalSurface, CurvatureLineTube
 from tubecad.surface.checks import area_by_quadrature, axis_distance_errors, net_errors
 from tubecad.surface.protocol import CurvatureLineSurface

@@ -31,7 +31,7 @@ def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None]
 
         return junction_shop(spec, output, progress)
     fab = (spec.fabrication or FabricationSection()).settings(spec.length_unit)  # checked by check_shop
-    say = progress or (lambda stage: None)
+    say = progress or (lambda _stage: None)
     say("building the wall")
     build = build_from_spec(spec)
     say("building stiffeners")

@@ -23,10 +23,10 @@ distributed = pytest.importorskip("distributed")
 
 from conftest import SMALL_BATCH_TUBE
 
-from tubecad.batch.dask_executor import DaskExecutor  # noqa: E402
-from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs  # noqa: E402
+from tubecad.batch.dask_executor import DaskExecutor
+from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs
 from tubecad.batch.runner import run_batch
-from tubecad.cli.app import cli  # noqa: E402
+from tubecad.cli.app import cli
 
 # the same on both OCCT generations: CI runs it once; clusters of worker processes: slow
 pytestmark = [pytest.mark.once, pytest.mark.slow]

@@ -61,7 +61,7 @@ def test_frame_is_the_closed_form_rmf(route):
         s = np.linspace(piece.s0 + 10 * h, piece.s1 - 10 * h, 50)
         t, r1, r2 = route.rotation_minimising_frame(s)
         k1, k2 = route.normal_development(s)
-        diff = lambda f: (f(s + h) - f(s - h)) / (2 * h)  # noqa: E731
+        diff = lambda f: (f(s + h) - f(s - h)) / (2 * h)
         assert np.abs(diff(route.position) - t).max() < 1e-7
         assert np.abs(diff(lambda x: route.rotation_minimising_frame(x)[1]) + k1[:, None] * t).max() < 1e-7
         assert np.abs(diff(lambda x: route.rotation_minimising_frame(x)[2]) + k2[:, None] * t).max() < 1e-7

@@ -6,7 +6,7 @@ import pytest
 
 build123d = pytest.importorskip("build123d")
 
-from tubecad.export.render import render_shape_png  # noqa: E402
+from tubecad.export.render import render_shape_png
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 

@@ -15,15 +15,15 @@ from conftest import requires
 
 meshio = pytest.importorskip("meshio")
 
-from tubecad.brep.layout import NetLayout  # noqa: E402
-from tubecad.core.errors import ParameterError  # noqa: E402
-from tubecad.curves import Helix  # noqa: E402
-from tubecad.curves.natural import NaturalAxis  # noqa: E402
-from tubecad.fem import MeshSettings, StiffenerPlan, shell_mesh  # noqa: E402
-from tubecad.fem.inp import write_inp  # noqa: E402
-from tubecad.fem.meshio_formats import msh_text, panel_names, to_meshio, write_msh, write_vtu  # noqa: E402
-from tubecad.stiffeners.profiles import Profile  # noqa: E402
-from tubecad.surface import CurvatureLineTube  # noqa: E402
+from tubecad.brep.layout import NetLayout
+from tubecad.core.errors import ParameterError
+from tubecad.curves import Helix
+from tubecad.curves.natural import NaturalAxis
+from tubecad.fem import MeshSettings, StiffenerPlan, shell_mesh
+from tubecad.fem.inp import write_inp
+from tubecad.fem.meshio_formats import msh_text, panel_names, to_meshio, write_msh, write_vtu
+from tubecad.stiffeners.profiles import Profile
+from tubecad.surface import CurvatureLineTube
 
 #: written here, not taken from the module: meshio's cell type and gmsh's element type number
 #: (3 4-node quadrangle, 16 8-node quadrangle, 1 2-node line, 8 3-node line) per element

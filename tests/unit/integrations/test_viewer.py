@@ -343,7 +343,7 @@ def pixel_counts(png: bytes) -> dict[str, int]:
 
     rgb = np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)[60:, 270:]
     r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
-    near = lambda colour, tol=25: np.abs(rgb - np.array(colour)).max(axis=-1) < tol  # noqa: E731
+    near = lambda colour, tol=25: np.abs(rgb - np.array(colour)).max(axis=-1) < tol
     return {
         "logo": int(near((0x5F, 0xA8, 0xF0)).sum()),  # the splash's blue "OCP"
         "wall": int(((b > r + 15) & (r > 140)).sum()),  # the translucent blue-grey wall over white

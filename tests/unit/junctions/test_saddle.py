@@ -165,7 +165,7 @@ def test_a_periodic_bspline_through_samples_reproduces_them():
     p = np.column_stack([np.cos(u) + 0.3 * np.cos(3 * u), np.sin(2 * u), np.sin(u)])
     p[-1] = p[0]
     curve = periodic_bspline(u, p)
-    at = lambda x: np.array([curve.Value(float(v)).Coord() for v in x])  # noqa: E731
+    at = lambda x: np.array([curve.Value(float(v)).Coord() for v in x])
     assert np.abs(at(u) - p).max() < 1e-14
     x = np.linspace(0.0, 2 * np.pi, 101)
     assert np.abs(at(x) - make_interp_spline(u, p, k=5, bc_type="periodic")(x)).max() < 1e-14

@@ -10,9 +10,9 @@ import pytest
 
 cq = pytest.importorskip("cadquery", reason="CadQuery is the extra tubecad[cadquery]")
 
-import tubecad.integrations.cadquery_plugin  # noqa: E402,F401  (registers the methods)
-from tubecad import ParameterError  # noqa: E402
-from tubecad.brep import properties as props  # noqa: E402
+import tubecad.integrations.cadquery_plugin  # noqa: F401  (registers the methods)
+from tubecad import ParameterError
+from tubecad.brep import properties as props
 
 pytestmark = pytest.mark.slow
 

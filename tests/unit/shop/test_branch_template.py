@@ -65,6 +65,23 @@ def test_a_conical_branch_is_refused_naming_its_radius():
     assert info.value.key == "branches.radius"
 
 
+def test_a_conical_main_tubes_hole_is_refused_naming_its_key():
+    """The refusal names the main tube's radius under the caller's ``key`` (``tube`` by default)."""
+    from tubecad.shop.branch_template import hole_template
+
+    cone = tube_or_canal(
+        NaturalAxis("0", "0", (0.0, 200.0), origin=(-100.0, 0.0, 0.0), tangent=(1, 0, 0), normal=(0, 1, 0)),
+        "55 - 0.05 * s",
+    )
+    saddle = saddle_curve(cone, BRANCH, 65)
+    with pytest.raises(ParameterError, match="sector") as info:
+        hole_template(cone, saddle)
+    assert info.value.key == "tube.radius"
+    with pytest.raises(ParameterError, match="^vessel.radius: a main tube") as info:
+        hole_template(cone, saddle, key="vessel")
+    assert info.value.key == "vessel.radius"
+
+
 def test_the_main_tubes_hole_template_is_the_closed_form_and_its_area(tmp_path):
     """The opening on the main tube unrolled to (R chi, s_A): chi = atan2(z, y) with
     y = r sin u, z = sqrt(R^2 - r^2 sin^2 u), s_A = 100 + r cos u; one closed line, whose

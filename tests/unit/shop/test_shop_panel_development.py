@@ -273,7 +273,7 @@ def test_canal_lengths_and_strain_against_finite_differences(curved_canal):
             -f(u + 2 * du, s + 2 * ds) + 8 * f(u + du, s + ds) - 8 * f(u - du, s - ds) + f(u - 2 * du, s - 2 * ds)
         ) / 12.0
 
-    surf = lambda ud, ss: base.points(np.radians(ud), ss)  # noqa: E731
+    surf = lambda ud, ss: base.points(np.radians(ud), ss)
     X_u, X_s = diff(surf, h_u, 0) / math.radians(h_u), diff(surf, 0, h_s) / h_s
     P_u, P_s = diff(dev.map, h_u, 0) / math.radians(h_u), diff(dev.map, 0, h_s) / h_s
     tangents = dev.tangents(u, s)

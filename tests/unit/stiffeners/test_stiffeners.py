@@ -206,7 +206,7 @@ def test_stringer_flat_pattern_matches_the_3d_web(side, theta):
     assert lengths == pytest.approx(sorted([pattern.base_length, pattern.top_length]), rel=1e-6)
     n = len(pattern.outline) // 2
     assert polygon_area(pattern.outline) == pytest.approx(pattern.area, rel=1e-6)
-    polyline = lambda p: float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())  # noqa: E731
+    polyline = lambda p: float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())
     assert polyline(pattern.outline[:n]) == pytest.approx(pattern.base_length, rel=1e-6)
     assert polyline(pattern.outline[n:]) == pytest.approx(pattern.top_length, rel=1e-6)
 

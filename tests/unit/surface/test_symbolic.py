@@ -31,7 +31,7 @@ def forms(phi):
     Su, Ss = S.diff(u), axis_derivatives(S.diff(s))
     Suu, Sus, Sss = S.diff(u, 2), axis_derivatives(S.diff(u, s)), axis_derivatives(S.diff(s, 2))
     normal = sp.cos(phi) * NRM + sp.sin(phi) * BN  # outward unit normal of the tube
-    simplify = lambda e: sp.simplify(sp.trigsimp(sp.expand(e)))  # noqa: E731
+    simplify = lambda e: sp.simplify(sp.trigsimp(sp.expand(e)))
     return {
         "E": simplify(Su.dot(Su)),
         "F": simplify(Su.dot(Ss)),
@@ -78,7 +78,7 @@ def test_rotation_minimising_tube_on_any_axis():
     Su = rho * radial.diff(u)  # c does not depend on u
     Ss = sp.Matrix([1, 0, 0]) + rho * d_ds(radial)
     Suu, Sus, Sss = rho * radial.diff(u, 2), d_ds(Su), d_ds(Ss)
-    simplify = lambda e: sp.simplify(sp.trigsimp(sp.expand(e)))  # noqa: E731
+    simplify = lambda e: sp.simplify(sp.trigsimp(sp.expand(e)))
     assert simplify(Su.dot(Su) - rho**2) == 0
     assert simplify(Su.dot(Ss)) == 0
     assert simplify(Ss.dot(Ss) - (1 - rho * (k1 * sp.cos(u) + k2 * sp.sin(u))) ** 2) == 0
