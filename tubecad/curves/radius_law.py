@@ -26,7 +26,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import minimize_scalar
 
 from tubecad.core.errors import ParameterError
 from tubecad.core.validation import bounded_length, finite_number, span_pair
@@ -248,6 +247,8 @@ def refined_extreme(
     i = int(np.argmin(v))
     best = (float(s[i]), float(v[i]))
     if 0 < i < len(s) - 1:
+        from scipy.optimize import minimize_scalar  # at first use: a spec's check loads no scipy.optimize (0.1 s)
+
         res = minimize_scalar(
             lambda x: sign * float(f(np.array(x))),
             bounds=(s[i - 1], s[i + 1]),

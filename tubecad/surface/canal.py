@@ -41,7 +41,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 from tubecad.core.errors import ParameterError, RegularityError
 from tubecad.core.validation import flag
@@ -618,6 +617,10 @@ class CanalSurface:
 
 def _runs(excess: Any, s: np.ndarray, bad: np.ndarray) -> list[tuple[float, float]]:
     """Maximal runs of samples where ``bad``, their ends refined by root finding on ``excess``."""
+    if not bad.any():
+        return []
+    from scipy.optimize import brentq  # at first use: a surface that never folds loads no scipy.optimize
+
     runs = []
     edges = np.flatnonzero(np.diff(bad.astype(np.int8)))
     starts = ([0] if bad[0] else []) + [e + 1 for e in edges if not bad[e]]

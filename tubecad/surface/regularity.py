@@ -19,7 +19,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq, minimize, minimize_scalar
 from scipy.spatial import cKDTree
 
 from tubecad.curves.axis import Axis
@@ -32,6 +31,8 @@ MAX_CANDIDATES = 20_000
 #: onto itself (a long helix of tiny pitch, a circle run many times round) is sampled more
 #: coarsely instead, so the check stays within ~100 MB and a few seconds
 MAX_PAIRS = 500_000
+#: points per side of the grids refining the closest return (_refine_closest)
+REFINE_GRID = 33
 #: axis samples whose circles are tested for entry at once (bounds the candidate matrix)
 ENTRY_CHUNK = 128
 
@@ -98,6 +99,8 @@ def _refine_max(axis: Axis, radius: float, s: np.ndarray, i: int) -> tuple[float
     lo, hi = s[max(i - 1, 0)], s[min(i + 1, len(s) - 1)]
     best = (float(s[i]), float(radius * abs(axis.curvature(s[i]))))
     if 0 < i < len(s) - 1:
+        from scipy.optimize import minimize_scalar  # at first use: a spec's check loads no scipy.optimize (0.1 s)
+
         res = minimize_scalar(lambda x: -radius * abs(float(axis.curvature(x))), bounds=(lo, hi), method="bounded")
         if -res.fun > best[1]:
             best = (float(res.x), float(-res.fun))
@@ -106,6 +109,9 @@ def _refine_max(axis: Axis, radius: float, s: np.ndarray, i: int) -> tuple[float
 
 def _folded_intervals(axis: Axis, radius: float, s: np.ndarray, bad: np.ndarray) -> list[tuple[float, float]]:
     """Maximal runs of s where rho |k| >= 1, with their ends refined by root finding."""
+    if not bad.any():
+        return []
+    from scipy.optimize import brentq  # at first use: a tube that never folds loads no scipy.optimize
 
     def excess(x: float) -> float:
         return radius * abs(float(axis.curvature(x))) - 1.0
@@ -229,12 +235,26 @@ def _apart(axis: Axis, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def _refine_closest(axis: Axis, ss: np.ndarray, i: int, j: int, sampled: float) -> tuple[float, tuple[float, float]]:
+    """The closest pair of axis points in the cells round samples i and j: the distance on a
+    REFINE_GRID x REFINE_GRID grid over (s_i +- h) x (s_j +- h), then on the same grid over
+    the two steps round its best pair. Near its minimum the distance is quadratic in the
+    parameters, so the grid's step (h / 256 at the second level) leaves an error of order
+    (h / 256)^2 |c''|. (A grid, not scipy's L-BFGS: the spec check then loads no
+    scipy.optimize, 0.1 s of every refusal.)"""
     h, lo, hi = ss[1] - ss[0], ss[0], ss[-1]
-
-    def gap(x: np.ndarray) -> float:
-        return float(np.sum((axis.position(x[0]) - axis.position(x[1])) ** 2))
-
-    bounds = [(max(lo, ss[i] - h), min(hi, ss[i] + h)), (max(lo, ss[j] - h), min(hi, ss[j] + h))]
-    res = minimize(gap, x0=[ss[i], ss[j]], bounds=bounds, method="L-BFGS-B")
-    a, b = sorted(float(v) for v in res.x)
-    return math.sqrt(min(float(res.fun), sampled**2)), (a, b)
+    boxes = [(max(lo, ss[i] - h), min(hi, ss[i] + h)), (max(lo, ss[j] - h), min(hi, ss[j] + h))]
+    best = (sampled**2, float(ss[i]), float(ss[j]))
+    for _ in range(2):
+        a = np.linspace(*boxes[0], REFINE_GRID)
+        b = np.linspace(*boxes[1], REFINE_GRID)
+        gap = np.sum((axis.position(a)[:, None, :] - axis.position(b)[None, :, :]) ** 2, axis=-1)
+        k, m = np.unravel_index(int(np.argmin(gap)), gap.shape)
+        if gap[k, m] <= best[0]:
+            best = (float(gap[k, m]), float(a[k]), float(b[m]))
+        step_a, step_b = a[1] - a[0], b[1] - b[0]
+        boxes = [
+            (max(lo, a[k] - 2 * step_a), min(hi, a[k] + 2 * step_a)),
+            (max(lo, b[m] - 2 * step_b), min(hi, b[m] + 2 * step_b)),
+        ]
+    x, y = sorted(best[1:])
+    return math.sqrt(best[0]), (x, y)
