@@ -86,7 +86,7 @@ WATCHED = [
     "tubecad/cli/app.py",
     "tubecad/batch/manifest.py",
     "tubecad/spec/build.py",
-    "tubecad/spec/report.py",
+    "tubecad/design/report.py",
 ]
 
 SMALL = """[axis]

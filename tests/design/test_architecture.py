@@ -23,6 +23,7 @@ LAYERS = [
     {"stiffeners"},
     {"export"},
     {"fem", "shop"},
+    {"design"},
     {"spec"},
     {"batch"},
     {"parts"},
@@ -298,4 +299,78 @@ def test_the_reach_in_checker_sees_another_modules_private_method():
         "tubecad.shop.x:4 ._inside()",
         "tubecad.shop.x:5 ._solve()",
         "tubecad.surface.canal:5 ._inside()",
+    ]
+
+
+# --- no downcast: what a caller needs is a protocol member, never typing.cast -----------------------
+#: casts left in modules outside the change that removed the others (issue 42), as (module, the type
+#: named): the list only shrinks; a cast not in it fails the test, and one removed must leave it too
+PENDING_CASTS = {
+    ("tubecad.stiffeners.panels", "FrameSpline"),  # a tube's build.frame: TubeBuild.frame is FrameSpline | CanalSpline
+    ("tubecad.batch.executors", "int"),  # a busy worker's index (int | None)
+}
+
+
+def typing_casts(modules: dict[str, ast.Module]) -> list[tuple[str, int, str]]:
+    """Every call of ``typing.cast`` as (module, line, the type named): ``cast(T, x)`` (also
+    imported under another name) and ``typing.cast(T, x)`` (also ``import typing as t``).
+    build123d's ``Shape.cast`` (``bd.Shape.cast``: a TopoDS shape as its build123d class, a
+    conversion at run time) is not typing's and is not counted."""
+    found = []
+    for name, tree in modules.items():
+        functions, namespaces = {"cast"}, {"typing"}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.module == "typing":
+                functions |= {a.asname or a.name for a in node.names if a.name == "cast"}
+            elif isinstance(node, ast.Import):
+                namespaces |= {a.asname or a.name for a in node.names if a.name == "typing"}
+        for node in ast.walk(tree):
+            if not (isinstance(node, ast.Call) and node.args):
+                continue
+            func = node.func
+            if (isinstance(func, ast.Name) and func.id in functions) or (
+                isinstance(func, ast.Attribute)
+                and func.attr == "cast"
+                and isinstance(func.value, ast.Name)
+                and func.value.id in namespaces
+            ):
+                kind = node.args[0]
+                named = (
+                    kind.value if isinstance(kind, ast.Constant) and isinstance(kind.value, str) else ast.unparse(kind)
+                )
+                found.append((name, node.lineno, named))
+    return sorted(found)
+
+
+def test_no_cast():
+    """docs/ARCHITECTURE.md: no stage asks which concrete kind a surface, a fit or an axis is;
+    it asks the protocol (a member, or the surface's double dispatch), so no value is cast to
+    a class it was not declared as (nor to any other type: a function returns what it says)."""
+    found = typing_casts(_modules())
+    new = [f"{m}:{line} cast({kind}, ...)" for m, line, kind in found if (m, kind) not in PENDING_CASTS]
+    assert not new, "typing.cast (add the protocol member the caller needs instead):\n" + "\n".join(new)
+    gone = sorted(PENDING_CASTS - {(m, kind) for m, _, kind in found})
+    assert not gone, f"casts removed: take them out of PENDING_CASTS too: {gone}"
+
+
+def test_the_cast_checker_sees_typing_casts_only():
+    """The check itself: ``cast``, an alias of it and ``typing.cast`` (also through an alias of
+    typing) are found, with the type as written; build123d's ``bd.Shape.cast`` is not."""
+    module = ast.parse(
+        "import typing\n"
+        "import typing as t\n"
+        "import build123d as bd\n"
+        "from typing import cast, cast as as_\n"
+        "def f(x):\n"
+        "    a = cast(CanalSurface, x)\n"
+        "    b = typing.cast('list[CanalSectionSurface]', x)\n"
+        "    c = t.cast(int, x)\n"
+        "    d = as_(CurvatureLineTube, x)\n"
+        "    return bd.Shape.cast(x), Shape.cast(x), a, b, c, d\n"
+    )
+    assert typing_casts({"tubecad.brep.x": module}) == [
+        ("tubecad.brep.x", 6, "CanalSurface"),
+        ("tubecad.brep.x", 7, "list[CanalSectionSurface]"),
+        ("tubecad.brep.x", 8, "int"),
+        ("tubecad.brep.x", 9, "CurvatureLineTube"),
     ]

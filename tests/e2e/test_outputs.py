@@ -417,11 +417,19 @@ def test_build_draws_the_projections_of_any_spec_with_its_own_net(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.png", "t.svg"]  # no temporary file left
 
 
-def test_a_picture_needs_a_build_and_says_so(tmp_path):
+def test_a_picture_of_a_bare_shape_is_drawn_and_an_svg_needs_a_build(tmp_path):
+    """A PNG is drawn from any shape (a junction's, a bare solid's: shaded, its edges on top);
+    the SVG projection needs the build's net and says so, writing nothing."""
+    from matplotlib.image import imread
+
     from tubecad.core.errors import ParameterError
 
+    solid = build_wall_solid(paper_tube(), 2.0, layout=NetLayout.equal(paper_tube(), 3, 2)).shape
+    export_shape(solid, tmp_path / "w.png")
+    image = imread(tmp_path / "w.png")
+    assert image.shape[:2] == (1200, 1600)
+    drawn = (image[..., :3] < 0.9).any(axis=2)  # anything darker than the light background
+    assert 0.02 < drawn.mean() < 0.9  # the wall is in the picture, and the picture is not a blot
     with pytest.raises(ParameterError, match="picture is drawn from a built tube or wall"):
-        export_shape(
-            build_wall_solid(paper_tube(), 2.0, layout=NetLayout.equal(paper_tube(), 3, 2)).shape, tmp_path / "w.png"
-        )
-    assert list(tmp_path.iterdir()) == []
+        export_shape(solid, tmp_path / "w.svg")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["w.png"]

@@ -30,7 +30,7 @@ import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 from OCP.BRep import BRep_Builder
@@ -46,9 +46,8 @@ from tubecad.brep.layout import stringer_parameters
 from tubecad.core.errors import TubecadError
 from tubecad.core.tolerance import EDGE_TOLERANCE
 from tubecad.fitting import TubeSurface
-from tubecad.fitting.canal_section import CanalSectionSurface
 from tubecad.fitting.circle import CircleSpline
-from tubecad.fitting.nurbs import occ_curve
+from tubecad.fitting.nurbs import occ_curve_2d
 
 #: edge and vertex tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = EDGE_TOLERANCE
@@ -122,7 +121,7 @@ def patch_faces(
     cuts: Sequence[float] | np.ndarray
     for i, s in enumerate(s_rings[:own]):
         if canal:  # the stringers cross each circle at angles that change with s (the Moebius map)
-            circle, cuts, pcurves, tolerance = canal_ring(cast(CanalSectionSurface, tube_surface), s, angles)
+            circle, cuts, pcurves, tolerance = canal_ring(tube_surface, s, angles)
         else:
             circle, gap = ring_circle(tube_surface, s)
             tolerance = max(TOLERANCE, 2.0 * gap)
@@ -259,7 +258,7 @@ def _closing_ring(
     On a canal surface (:func:`_canal_closing_ring`) the stringers come back moved by a
     Moebius map of the circle rather than turned: b_j = phi(a_j)."""
     if tube_surface.canal:
-        return _canal_closing_ring(cast(CanalSectionSurface, tube_surface), s_first, s_last, angles, start_vertices)
+        return _canal_closing_ring(tube_surface, s_first, s_last, angles, start_vertices)
     two_pi = 2.0 * math.pi
     n = len(start_vertices)
     rho = tube_surface.tube.radius_law.constant_value  # a tube's radius
@@ -306,7 +305,7 @@ def _closing_ring(
 
 
 def _canal_closing_ring(
-    tube_surface: CanalSectionSurface,
+    tube_surface: TubeSurface,
     s_first: float,
     s_last: float,
     angles: list[float],
@@ -481,7 +480,7 @@ def fit_angle_map(to_u: Callable[[np.ndarray], np.ndarray], a: float, b: float, 
 def _ring_pcurve(to_u: BSpline) -> Geom2d_BSplineCurve:
     """The pcurve (u(theta), 0) of a ring arc, parameterised by the circle's angle (each
     ring's pcurve is this curve translated to s)."""
-    return cast(Geom2d_BSplineCurve, occ_curve(_at_height(to_u, 0.0)))
+    return occ_curve_2d(_at_height(to_u, 0.0))
 
 
 def _at_height(u_of_theta: BSpline, s: float) -> BSpline:
@@ -514,7 +513,7 @@ CANAL_GAP_SAMPLES = 6
 
 
 def canal_ring(
-    tube_surface: CanalSectionSurface, s: float, angles: list[float]
+    tube_surface: TubeSurface, s: float, angles: list[float]
 ) -> tuple[Geom_Circle, np.ndarray, list[Geom2d_BSplineCurve], float]:
     """A canal surface's ring at ``s``: the exact characteristic circle (parameter: the angle
     from the origin stringer's point), the angles where the stringers ``angles`` (chi0 -
@@ -540,7 +539,7 @@ def canal_ring(
 
 
 def canal_arc_pcurve(
-    tube_surface: CanalSectionSurface,
+    tube_surface: TubeSurface,
     s: float,
     angles: Sequence[float],
     column: int,
@@ -581,7 +580,7 @@ def canal_arc_pcurve(
     else:
         joints = []
     spline = fit_angle_map(to_u, lo, hi, joints)
-    pcurve = cast(Geom2d_BSplineCurve, occ_curve(_at_height(spline, s)))
+    pcurve = occ_curve_2d(_at_height(spline, s))
     gap = max(
         circle.Value(float(theta)).Distance(surface.Value(float(spline(theta)), s))
         for theta in np.linspace(lo, hi, CANAL_GAP_SAMPLES + 2)

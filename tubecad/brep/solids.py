@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, cast
+from typing import Any
 
 import build123d as bd
 import numpy as np
@@ -266,7 +266,7 @@ def _surfaces(
 
         def section(k: int) -> TubeSurface:
             # a constant radius: the surfaces are tubes (fast_path, _wall_surfaces)
-            return exact_section_surface(cast(CurvatureLineTube, exact[k]), frame, stringers_deg=layout.stringers_deg)
+            return exact_section_surface(exact[k], frame, stringers_deg=layout.stringers_deg)
 
     else:
         spline = fit = fit_canal(tube, offsets, tolerance, orthogonality, rings=layout.s_rings)
@@ -408,10 +408,11 @@ def exact_volume(build: TubeBuild, tube: CurvatureLineSurface) -> float:
     V = pi Int (r q)^2 (q^2 - r r'') ds round the loop (:meth:`CanalSurface.swept_measures`:
     the characteristic discs swept), and a wall V(r + d_out) - V(r + d_in)."""
     if not tube.constant_radius:
-        exact = [cast(CanalSurface, surface.tube) for surface in build.surfaces]  # (not a tube: canal surfaces)
+        exact = [surface.tube for surface in build.surfaces]
+        enclosed = [_enclosed_volume(surface) for surface in exact]
+        volume = enclosed[0] - (enclosed[1] if len(exact) > 1 else 0.0)
         if tube.axis.closed:
-            return exact[0].swept_measures()[1] - (exact[1].swept_measures()[1] if len(exact) > 1 else 0.0)
-        volume = exact[0].volume - (exact[1].volume if len(exact) > 1 else 0.0)
+            return volume
         if len(exact) > 1:
             for k, sign in ((0, -1.0), (1, 1.0)):
                 s = np.array([tube.span[k]])
@@ -424,6 +425,17 @@ def exact_volume(build: TubeBuild, tube: CurvatureLineSurface) -> float:
         return volume
     radii = build.radii
     return math.pi * (radii[0] ** 2 - (radii[1] ** 2 if len(radii) > 1 else 0.0)) * tube.length
+
+
+def _enclosed_volume(surface: CurvatureLineSurface) -> float:
+    """The volume ``surface`` encloses with the discs of its end circles: a tube's pi rho^2 L;
+    a canal surface's :attr:`CanalSurface.volume` (a quadrature), or round a closed axis the
+    characteristic discs swept (:meth:`CanalSurface.swept_measures`)."""
+
+    def canal(exact: CanalSurface) -> float:
+        return exact.swept_measures()[1] if exact.axis.closed else exact.volume
+
+    return surface.dispatch(lambda exact: exact.volume_exact, canal)
 
 
 # --- canal surfaces ----------------------------------------------------------------------

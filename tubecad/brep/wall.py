@@ -15,6 +15,14 @@ WallSide: TypeAlias = Literal["centered", "inside", "outside"]
 WALL_SIDES: tuple[str, ...] = get_args(WallSide)
 
 
+def as_wall_side(side: str) -> WallSide:
+    """``side`` as a :data:`WallSide`; a ParameterError (key ``side``) naming the allowed ones."""
+    for allowed in get_args(WallSide):
+        if side == allowed:
+            return allowed
+    raise ParameterError(f"side must be one of {', '.join(WALL_SIDES)}, got {side!r:.80}", key="side")
+
+
 def wall_offsets(thickness: float, side: str) -> tuple[float, float]:
     """(d_in, d_out): where the wall's inner and outer surfaces lie from the surface, along
     its normal: centered (-t/2, t/2), inside (-t, 0) or outside (0, t). A canal surface's

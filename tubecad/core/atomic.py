@@ -1,4 +1,5 @@
-"""Atomic file output: write to a temporary file beside the target, then rename.
+"""Atomic file output: write to a temporary file beside the target, then rename; a folder
+of outputs is filled in a staging folder beside it, then moved into place (:func:`staged_folder`).
 
 A failed or interrupted write never leaves a partial or corrupt file at the target path.
 """
@@ -8,6 +9,7 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
+import shutil
 import sys
 from collections.abc import Iterator
 from pathlib import Path
@@ -17,14 +19,20 @@ from tubecad.core.errors import ParameterError
 #: temporaries of atomic writes in progress: an interrupt that lands between two steps of
 #: the bookkeeping below still leaves none (see :func:`remove_temporaries`)
 _LIVE: set[Path] = set()
+#: staging folders being filled (:func:`staged_folder`), likewise
+_LIVE_FOLDERS: set[Path] = set()
 
 
 def remove_temporaries() -> None:
-    """Remove the temporary file of every atomic write still in progress (called when an
-    interrupt ends the command), so an interrupt can never leave a ``.part`` file."""
+    """Remove the temporary file of every atomic write and the staging folder of every
+    :func:`staged_folder` still in progress (called when an interrupt ends the command), so
+    an interrupt can never leave a ``.part`` file or folder."""
     for path in list(_LIVE):
         path.unlink(missing_ok=True)
         _LIVE.discard(path)
+    for folder in list(_LIVE_FOLDERS):
+        shutil.rmtree(folder, ignore_errors=True)
+        _LIVE_FOLDERS.discard(folder)
 
 
 @contextlib.contextmanager
@@ -94,6 +102,60 @@ def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+@contextlib.contextmanager
+def staged_folder(target: str | Path) -> Iterator[Path]:
+    """Yield an empty staging folder beside the folder ``target`` (``.NAME.XXXX.part``, made
+    with ``target``'s missing parent folders) to write a set of outputs into. When the block
+    ends without an error, every file left in it is moved into ``target`` (made if need be) at
+    the same relative path, replacing a file of that name and keeping the folder's other files
+    (``-o .`` never loses the user's files); empty folders are not moved. On an error or an
+    interrupt nothing is moved: the staging folder is removed, so a failed run leaves no
+    partial set of outputs, and ``target`` is made only once the outputs are complete.
+
+    The one staging recipe of tubecad's folder outputs (``tubecad shop`` and ``analyse``)."""
+    target = Path(target)
+    folder = target.parent if str(target.parent) else Path(".")
+    folder.mkdir(parents=True, exist_ok=True)
+    staging = None
+    try:
+        staging = _temporary_folder(target, folder)
+        yield staging
+        target.mkdir(exist_ok=True)
+        for path in sorted(p for p in staging.rglob("*") if p.is_file()):
+            moved = target / path.relative_to(staging)
+            moved.parent.mkdir(parents=True, exist_ok=True)
+            os.replace(path, moved)
+    finally:
+        if staging is not None:
+            shutil.rmtree(staging, ignore_errors=True)
+            _LIVE_FOLDERS.discard(staging)
+
+
+def _temporary_folder(target: Path, folder: Path) -> Path:
+    """An empty folder beside ``target`` in ``folder``, recorded in ``_LIVE_FOLDERS`` before it
+    is made (as :func:`_temporary` records a file), with the usual mode (umask's)."""
+    for _ in range(100):
+        candidate = folder / f".{target.name}.{secrets.token_hex(6)}.part"
+        _LIVE_FOLDERS.add(candidate)
+        try:
+            os.mkdir(candidate)
+            return candidate
+        except FileExistsError:  # another run's staging folder of that name: draw again
+            _LIVE_FOLDERS.discard(candidate)
+        except OSError as exc:
+            _LIVE_FOLDERS.discard(candidate)
+            raise ParameterError(
+                f"output folder {str(target)!r}: cannot write to {str(folder)!r}: {exc.strerror}", key="output"
+            ) from None
+        except BaseException:
+            shutil.rmtree(candidate, ignore_errors=True)
+            _LIVE_FOLDERS.discard(candidate)
+            raise
+    raise ParameterError(
+        f"output folder {str(target)!r}: cannot make a staging folder in {str(folder)!r}", key="output"
+    )
 
 
 def write_text(target: str | Path, text: str) -> Path:

@@ -16,6 +16,10 @@ class TubecadError(Exception):
     ``TubecadError(message)`` works as before."""
 
     key: str | None = None
+    #: the part of a design's build that failed (``"wall"``, ``"stiffeners"``...; tubecad.design.stages)
+    stage: str | None = None
+    #: with a branch's part of a junction's build, the branch's index
+    branch: int | None = None
 
     def __init__(self, *args: object, key: str | None = None) -> None:
         super().__init__(*args)

@@ -118,6 +118,12 @@ class Axis(ABC):
         _, r1, r2 = self.rotation_minimising_frame(np.array(self.span))
         return float(math.atan2(r1[1] @ r2[0], r1[1] @ r1[0]))
 
+    def piece_at(self, s: float) -> Any:
+        """The piece of :attr:`pieces` (an exact line or circular arc) holding arc length
+        ``s``, the later one at a joint: what the exact rational frame is made of. A kind with
+        pieces (RouteAxis) gives it; a smooth axis has none (a ParameterError here)."""
+        raise ParameterError(f"piece_at: the axis is a smooth curve, not made of lines and arcs (s = {s:g})")
+
     def tube_radius_problem(self, radius: float) -> str | None:  # noqa: ARG002 - the hook's signature
         """Why a tube of ``radius`` cannot be regular, said in the axis' own terms (a route
         names the bend), or None; the general check (rho k < 1, no self-approach) follows.

@@ -100,9 +100,14 @@ def _polylines(fmt: str) -> Writer:
 
 
 def _picture(fmt: str) -> Writer:
-    def write(item: Exportable, path: Path, _name: str) -> None:
+    def write(item: Exportable, path: Path, name: str) -> None:
         from tubecad.export.plots import projection_figure_of_build
 
+        if item.build is None and fmt == "png" and item.shape is not None:  # any shape: shaded, its edges drawn
+            from tubecad.export.render import render_shape_png
+
+            render_shape_png(item.shape, path, title=name)
+            return
         if item.build is None:
             raise ParameterError(f"output {path.name!r}: a {fmt.upper()} picture is drawn from a built tube or wall")
         fig = projection_figure_of_build(item.build)

@@ -38,7 +38,7 @@ FE_FORMATS = {
         FEFormat(
             ".inp",
             "CalculiX/Abaqus deck: nodes, elements, named node and element sets, exact normals (*NORMAL), "
-            "material, shell and beam sections, and the [analysis] step when the spec has one",
+            "material, shell and beam sections, and the pressure step when there is one",
             _inp,
         ),
         FEFormat(".msh", "gmsh 4.1: nodes, elements, one physical group per block (wall, ring_03_web, ...)", _msh),

@@ -102,8 +102,9 @@ def inp_text(
         raise ParameterError("a CalculiX step needs a material")
     if material is not None and not mesh.shell_sections:
         raise ParameterError(
-            "[mesh] surface = 'both' gives two unconnected surface meshes with no shell section; "
-            "a CalculiX model needs one reference surface: 'mid', 'inner' or 'outer'"
+            "surface = 'both' gives two unconnected surface meshes with no shell section; "
+            "a CalculiX model needs one reference surface: 'mid', 'inner' or 'outer'",
+            key="surface",
         )
     out = io.StringIO()
     w = out.write

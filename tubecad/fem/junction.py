@@ -128,14 +128,14 @@ def junction_shell_mesh(
     """The junction's shell model (module docstring). ``settings``: the element (S4, S4R,
     S8, S8R) and size (default DEFAULT_SIZE_PER_RADIUS times the smallest radius; gmsh takes
     one size, the smaller of ``size_along`` and ``size_around``); ``tolerance``: the faces'
-    fit tolerance. A ParameterError names ``mesh.size`` where the mesh would exceed
-    ``max_elements``, ``mesh.surface`` for a surface other than ``mid``."""
+    fit tolerance. A ParameterError names ``size`` where the mesh would exceed
+    ``max_elements``, ``surface`` for a surface other than ``mid`` (its key)."""
     settings = settings or MeshSettings()
     if settings.surface != "mid":
         raise ParameterError(
-            f"[mesh] surface must be 'mid' for a junction (its tubes' mid-surfaces joined on their saddle), "
+            f"surface must be 'mid' for a junction (its tubes' mid-surfaces joined on their saddle), "
             f"got {settings.surface!r}",
-            key="mesh.surface",
+            key="surface",
         )
     size = junction_mesh_size(settings, [main, *branches])
     tubes = _clear_of_saddles(main, branches, size)
@@ -144,9 +144,9 @@ def junction_shell_mesh(
     estimate = _area(faces) / size**2
     if estimate > settings.max_elements:
         raise ParameterError(
-            f"[mesh] size {size:g} would give about {estimate:.3g} elements, more than max_elements = "
+            f"size {size:g} would give about {estimate:.3g} elements, more than max_elements = "
             f"{settings.max_elements}; choose a larger size",
-            key="mesh.size",
+            key="size",
         )
     nodes, patches = _gmsh_mesh(faces, size, settings.order, partial(_nearest_tube, tubes))
     return _model(tubes, pads, nodes, patches, settings, tolerance, size, length_unit)

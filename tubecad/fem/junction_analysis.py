@@ -73,8 +73,8 @@ def junction_step(mesh: FEMesh, tubes: Sequence[JunctionTube], pressure: float, 
     """The pressure step (module docstring); ``tubes``: the main first, as meshed."""
     if ends not in JUNCTION_ENDS:
         raise ParameterError(
-            f"[analysis] ends must be one of {', '.join(JUNCTION_ENDS)} for a junction, got {ends!r:.40}",
-            key="analysis.ends",
+            f"ends must be one of {', '.join(JUNCTION_ENDS)} for a junction, got {ends!r:.40}",
+            key="ends",
         )
     if ends == "fixed":
         fixed = [(int(n), d) for ring, *_ in _ends(mesh, tubes) for n in ring for d in (1, 2, 3)]

@@ -80,11 +80,11 @@ def pressure_step(
     ``surface``: the reference surface (for the axis tangents and circle radii at the ends);
     ``lattice_rings``: the end rings' nodes in order round them."""
     if ends not in ENDS:
-        raise ParameterError(f"[analysis] ends must be one of {', '.join(ENDS)}, got {ends!r:.40}")
+        raise ParameterError(f"ends must be one of {', '.join(ENDS)}, got {ends!r:.40}", key="ends")
     if not (isinstance(pressure, (int, float)) and math.isfinite(pressure)):
-        raise ParameterError(f"[analysis] pressure must be a finite number, got {pressure!r:.40}")
+        raise ParameterError(f"pressure must be a finite number, got {pressure!r:.40}", key="pressure")
     if mesh.closed and ends != "free":
-        raise ParameterError(f"[analysis] ends = {ends!r} needs end rings; a closed tube has none: use ends = 'free'")
+        raise ParameterError(f"ends = {ends!r} needs end rings; a closed tube has none: use ends = 'free'", key="ends")
     if ends == "fixed":
         fixed = [
             (int(n), d)
@@ -96,7 +96,7 @@ def pressure_step(
     loads: list[tuple[int, int, float]] = []
     if ends == "capped":
         if lattice_rings is None:
-            raise ParameterError("[analysis] ends = 'capped' needs the end rings' nodes (lattice_rings)")
+            raise ParameterError("ends = 'capped' needs the end rings' nodes (lattice_rings)", key="lattice_rings")
         s0, s1 = surface.span
         order = 2 if mesh.blocks[0].element.startswith("S8") else 1
         for s, ring, sign in ((s0, lattice_rings[0], -1.0), (s1, lattice_rings[1], 1.0)):

@@ -67,8 +67,9 @@ def shell_mesh(
     if thickness is None:
         if settings.surface != "mid":
             raise ParameterError(
-                f"[mesh] surface = {settings.surface!r} needs a wall ([wall] thickness); "
-                "a tube alone has only its own surface ('mid')"
+                f"surface = {settings.surface!r} needs a wall, a thickness to offset into; "
+                "without one only the surface itself is meshed (surface = 'mid')",
+                key="surface",
             )
         d_in = d_out = 0.0
     else:
@@ -97,10 +98,11 @@ def shell_mesh(
     total = counts[0] * counts[1] * len(references) + beams
     if total > settings.max_elements:
         raise ParameterError(
-            f"[mesh] size_along = {size_along:.6g}, size_around = {size_around:.6g} give {total:,} "
+            f"size_along = {size_along:.6g}, size_around = {size_around:.6g} give {total:,} "
             f"elements ({counts[0]} along x {counts[1]} around x {len(references)} surface(s)"
             f"{f' + {beams:,} beams' if beams else ''}), more than max_elements = "
-            f"{settings.max_elements:,}: use a larger size or raise max_elements"
+            f"{settings.max_elements:,}: use a larger size or raise max_elements",
+            key="size",
         )
     grid = parameter_grid(first, layout.s_rings, layout.stringers_deg, settings.order, size_along, size_around, closing)
 
@@ -195,9 +197,13 @@ def _stiffened(plan: StiffenerPlan | None, layout: NetLayout, closed: bool) -> t
     for key, chosen, count in (("rings", plan.rings, n_r), ("stringers", plan.stringers, n_s)):
         bad = [i for i in chosen if not (isinstance(i, (int, np.integer)) and 0 <= i < count)]
         if bad:
-            raise ParameterError(f"[stiffeners] {key} must be indices in [0, {count - 1}], got {bad}")
+            raise ParameterError(
+                f"the stiffeners' {key} must be indices in [0, {count - 1}], got {bad}", key=f"stiffeners.{key}"
+            )
     if plan.side not in SIDES:
-        raise ParameterError(f"[stiffeners] side must be one of {', '.join(SIDES)}, got {plan.side!r}")
+        raise ParameterError(
+            f"the stiffeners' side must be one of {', '.join(SIDES)}, got {plan.side!r}", key="stiffeners.side"
+        )
     rings = list(dict.fromkeys(0 if closed and i == n_r - 1 else int(i) for i in plan.rings))
     return rings, list(dict.fromkeys(int(j) for j in plan.stringers))
 
@@ -289,9 +295,9 @@ def _panel_sets(
     seams = list(range(n_s)) if seams is None else list(seams)
     rings = sorted(set(range(n_r) if panel_rings is None else panel_rings) | {0, n_r - 1})
     if not seams or any(not 0 <= j < n_s for j in seams):
-        raise ParameterError(f"[panels] seams must be stringer indices in [0, {n_s - 1}], got {seams}")
+        raise ParameterError(f"seams must be stringer indices in [0, {n_s - 1}], got {seams}", key="seams")
     if any(not 0 <= i < n_r for i in rings):
-        raise ParameterError(f"[panels] rings must be ring indices in [0, {n_r - 1}], got {rings}")
+        raise ParameterError(f"panel_rings must be ring indices in [0, {n_r - 1}], got {rings}", key="panel_rings")
     p = grid.order
     cols = len(grid.angles) // p
     starts = sorted(grid.stringer_columns[j] // p for j in set(seams))

@@ -425,54 +425,10 @@ class CanalSectionSurface(TubeSurface):
         """True: a canal surface's section (see :attr:`TubeSurface.canal`)."""
         return True
 
-    def ring(self, s: float) -> tuple[np.ndarray, float, np.ndarray, np.ndarray, float]:
-        """The characteristic circle at ``s``: (centre c - r r' t, radius r q, normal t, the
-        direction e of the origin stringer, chi of the origin stringer)."""
-        exact = self.tube
-        centre, radius, t = exact.circle(np.array([s]))
-        chi_o = float(exact.stringer_angle(math.radians(self.origin_deg), np.array([s]))[0])
-        _, r1, r2 = exact.axis.rotation_minimising_frame(np.array([s]))
-        x_dir = math.cos(chi_o) * r1[0] + math.sin(chi_o) * r2[0]
-        return centre[0], float(radius[0]), t[0], x_dir, chi_o
-
-    def ring_angles(self, s: float, angles: Sequence[float]) -> np.ndarray:
-        """Where the stringers at ``angles`` (chi0 - origin, radians, increasing from 0, the
-        last 2 pi) cross the circle at ``s``: the angles theta from the origin stringer there
-        (increasing: the Moebius map keeps the order; the last 2 pi)."""
-        o = math.radians(self.origin_deg)
-        chi = self.tube.stringer_angle(o + np.asarray(angles[:-1], dtype=float), np.full(len(angles) - 1, s))
-        theta = np.mod(chi - chi[0], 2.0 * math.pi)
-        theta[0] = 0.0
-        return np.append(theta, 2.0 * math.pi)
-
-    def ring_chi0(
-        self,
-        s: float,
-        chi_o: float,
-        chi0_a: float,
-        theta: np.ndarray,
-        theta_mid: float,
-        moebius: np.ndarray | None = None,
-    ) -> np.ndarray:
-        """chi0 (radians, absolute) of the points at angles ``theta`` from the origin stringer
-        on the circle at ``s``, on the arc that starts on the stringer chi0_a: the
-        exact inverse Moebius map, continued from the arc's start through its middle (each
-        step turns the half-angle vector by less than pi). ``moebius``: Mb(s), if already known."""
-        m = self.tube.moebius_matrix(np.array([s]))[0] if moebius is None else moebius
-        inverse = np.array([[m[1, 1], -m[0, 1]], [-m[1, 0], m[0, 0]]])
-
-        def half(angle: np.ndarray) -> np.ndarray:
-            h = 0.5 * (chi_o + np.asarray(angle, dtype=float))
-            return np.stack([np.sin(h), np.cos(h)], axis=-1) @ inverse.T
-
-        def turn(v0: np.ndarray, v1: np.ndarray) -> np.ndarray:
-            return np.arctan2(v0[..., 1] * v1[..., 0] - v0[..., 0] * v1[..., 1], np.einsum("...i,...i", v0, v1))
-
-        v_a = np.array([math.sin(0.5 * chi0_a), math.cos(0.5 * chi0_a)])
-        v_mid = half(np.array(theta_mid))
-        # the start's half-angle vector is +- v_a (chi_o plus the arc's start angle is chi_a only
-        # mod 2 pi, so that angle is not used): the turn to the middle is in (0, pi), so taken mod pi
-        return chi0_a + 2.0 * (np.mod(turn(v_a, v_mid), math.pi) + turn(v_mid, half(theta)))
+    @property
+    def level(self) -> float:
+        """The offset d of this surface (the canal surface of r + d; see :attr:`TubeSurface.level`)."""
+        return self.offset
 
 
 def canal_section_surface(

@@ -20,7 +20,7 @@ from OCP.Geom import Geom_BSplineSurface
 from tubecad.fitting.circle import CircleSpline
 from tubecad.fitting.frame_spline import FrameSpline
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
-from tubecad.surface import CurvatureLineSurface, CurvatureLineTube
+from tubecad.surface import CurvatureLineSurface
 
 
 @dataclass(frozen=True)
@@ -63,14 +63,77 @@ class TubeSurface:
     def canal(self) -> bool:
         """Whether this is a canal surface's section (rings the exact characteristic circles, the
         stringers crossing them at angles the Moebius map moves: :meth:`ring`, :meth:`ring_angles`);
-        False on a tube's, whose rings the frame's circle spline gives with u = theta."""
+        False on a tube's, whose rings the frame's circle spline gives with u = theta (the
+        fast path: one pcurve per stringer interval for every ring)."""
         return False
+
+    @property
+    def level(self) -> float:
+        """Where the surface lies in the family of surfaces one fit serves, as a distance
+        along the normal: a tube's radius rho; a canal section's offset d (the canal surface
+        of r + d). Two surfaces of one wall are ``outer.level - inner.level`` apart."""
+        return self.tube.radius_law.constant_value
+
+    # --- the rings, for every kind (a tube: chi = u, Mb = I, so theta = u - origin) ----------
+    def ring(self, s: float) -> tuple[np.ndarray, float, np.ndarray, np.ndarray, float]:
+        """The ring at ``s`` as an exact circle: (centre c - r r' t, radius r q, normal t, the
+        direction e of the origin stringer, chi of the origin stringer); on a tube (c, rho,
+        t, cos o r1 + sin o r2, o) with o the origin's angle."""
+        exact = self.tube
+        centre, radius, t = exact.circle(np.array([s]))
+        chi_o = float(exact.stringer_angle(math.radians(self.origin_deg), np.array([s]))[0])
+        _, r1, r2 = exact.axis.rotation_minimising_frame(np.array([s]))
+        x_dir = math.cos(chi_o) * r1[0] + math.sin(chi_o) * r2[0]
+        return centre[0], float(radius[0]), t[0], x_dir, chi_o
+
+    def ring_angles(self, s: float, angles: Sequence[float]) -> np.ndarray:
+        """Where the stringers at ``angles`` (chi0 - origin, radians, increasing from 0, the
+        last 2 pi) cross the circle at ``s``: the angles theta from the origin stringer there
+        (increasing: the Moebius map keeps the order; the last 2 pi; a tube's: ``angles``)."""
+        o = math.radians(self.origin_deg)
+        chi = self.tube.stringer_angle(o + np.asarray(angles[:-1], dtype=float), np.full(len(angles) - 1, s))
+        theta = np.mod(chi - chi[0], 2.0 * math.pi)
+        theta[0] = 0.0
+        return np.append(theta, 2.0 * math.pi)
+
+    def ring_chi0(
+        self,
+        s: float,
+        chi_o: float,
+        chi0_a: float,
+        theta: np.ndarray,
+        theta_mid: float,
+        moebius: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """chi0 (radians, absolute) of the points at angles ``theta`` from the origin stringer
+        on the circle at ``s``, on the arc that starts on the stringer chi0_a: the
+        exact inverse Moebius map, continued from the arc's start through its middle (each
+        step turns the half-angle vector by less than pi). ``moebius``: Mb(s), if already known."""
+        m = self.tube.moebius_matrix(np.array([s]))[0] if moebius is None else moebius
+        inverse = np.array([[m[1, 1], -m[0, 1]], [-m[1, 0], m[0, 0]]])
+
+        def half(angle: np.ndarray) -> np.ndarray:
+            h = 0.5 * (chi_o + np.asarray(angle, dtype=float))
+            return np.stack([np.sin(h), np.cos(h)], axis=-1) @ inverse.T
+
+        def turn(v0: np.ndarray, v1: np.ndarray) -> np.ndarray:
+            return np.arctan2(v0[..., 1] * v1[..., 0] - v0[..., 0] * v1[..., 1], np.einsum("...i,...i", v0, v1))
+
+        v_a = np.array([math.sin(0.5 * chi0_a), math.cos(0.5 * chi0_a)])
+        v_mid = half(np.array(theta_mid))
+        # the start's half-angle vector is +- v_a (chi_o plus the arc's start angle is chi_a only
+        # mod 2 pi, so that angle is not used): the turn to the middle is in (0, pi), so taken mod pi
+        return chi0_a + 2.0 * (np.mod(turn(v_a, v_mid), math.pi) + turn(v_mid, half(theta)))
 
 
 def exact_section_surface(
-    tube: CurvatureLineTube, frame: FrameSpline, origin_deg: float = 0.0, stringers_deg: Sequence[float] | None = None
+    tube: CurvatureLineSurface,
+    frame: FrameSpline,
+    origin_deg: float = 0.0,
+    stringers_deg: Sequence[float] | None = None,
 ) -> TubeSurface:
-    """Build the periodic-in-u rational surface of ``tube`` on the fitted ``frame``.
+    """Build the periodic-in-u rational surface of ``tube`` (a surface of constant radius:
+    a tube, or the tube's fast path of a constant law) on the fitted ``frame``.
 
     With ``stringers_deg`` (angles from r1, the face boundaries) the circle's C0 knots are
     chosen among them (:meth:`CircleSpline.for_stringers`) and the first is the origin
@@ -85,7 +148,7 @@ def exact_section_surface(
     C, R1, R2 = F[:, :3], F[:, 3:6], F[:, 6:]
     a = math.radians(origin_deg)
     R1, R2 = math.cos(a) * R1 + math.sin(a) * R2, -math.sin(a) * R1 + math.cos(a) * R2
-    rho = tube.radius
+    rho = tube.radius_law.constant_value  # a ValueError on a varying law (that is canal_section_surface's)
     poles = C[None] + rho * (circle.x[:, None, None] * R1[None] + circle.y[:, None, None] * R2[None])
     s_weights = np.ones(len(C)) if frame.weights is None else frame.weights
     weights = circle.weights[:, None] * s_weights[None, :]  # a product: rational circles in u and (routes) in s

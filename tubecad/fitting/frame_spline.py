@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, cast
 
 import numpy as np
 from scipy.interpolate import BSpline, make_interp_spline
@@ -44,9 +43,6 @@ from tubecad.fitting.frame import (
     measured_cos,
 )
 from tubecad.fitting.route_frame import route_frame
-
-if TYPE_CHECKING:
-    from tubecad.curves.route import RouteAxis
 
 __all__ = ["FitError", "FrameSpline", "SplineSize", "exact_frame", "fit_frame", "refine_spline", "ORTHOGONALITY_ANGLES"]
 
@@ -77,8 +73,7 @@ def fit_frame(
     tolerance = check_tolerance("tolerance", tolerance)
     orthogonality = check_tolerance("orthogonality", orthogonality)
     if axis.pieces is not None:  # lines and bends: the exact rational frame, nothing to fit
-        # only a route has pieces
-        return route_frame(cast("RouteAxis", axis), radius_bound, rings, radii, tolerance, orthogonality)
+        return route_frame(axis, radius_bound, rings, radii, tolerance, orthogonality)
     joints = _joint_multiplicities(axis, degree)
     breaks = _with_rings(_initial_breaks(axis, 8), np.concatenate([np.asarray(rings, dtype=float), list(joints)]))
     radii = tuple(float(r) for r in radii) or (float(radius_bound),)

@@ -124,13 +124,35 @@ def span_grid(knots: FloatArray, lo: float, hi: float, per_span: int) -> FloatAr
 
 def occ_curve(spline: BSpline) -> Geom_BSplineCurve | Geom2d_BSplineCurve:
     """A scipy B-spline of points (coefficients (n, 3) or (n, 2)) as OCCT's 3D or 2D
-    B-spline curve of the same degree, knots and poles (non-rational)."""
-    poles = np.asarray(spline.c, dtype=float)
-    knots, multiplicities = knots_and_multiplicities(spline.t)
-    three = poles.shape[1] == 3
-    array = Array1OfPnt(1, len(poles)) if three else Array1OfPnt2d(1, len(poles))
-    point = gp_Pnt if three else gp_Pnt2d
+    B-spline curve of the same degree, knots and poles (non-rational): :func:`occ_curve_3d`
+    or :func:`occ_curve_2d`, which a caller that knows the dimension calls itself."""
+    return occ_curve_3d(spline) if np.shape(spline.c)[1] == 3 else occ_curve_2d(spline)
+
+
+def occ_curve_3d(spline: BSpline) -> Geom_BSplineCurve:
+    """A scipy B-spline of 3D points (coefficients (n, 3)) as OCCT's Geom_BSplineCurve."""
+    poles = _poles(spline, 3)
+    array = Array1OfPnt(1, len(poles))
     for i, pole in enumerate(poles.tolist()):
-        array.SetValue(i + 1, point(*pole))
-    kind = Geom_BSplineCurve if three else Geom2d_BSplineCurve
-    return kind(array, reals(knots), integers(multiplicities), int(spline.k))
+        array.SetValue(i + 1, gp_Pnt(*pole))
+    knots, multiplicities = knots_and_multiplicities(spline.t)
+    return Geom_BSplineCurve(array, reals(knots), integers(multiplicities), int(spline.k))
+
+
+def occ_curve_2d(spline: BSpline) -> Geom2d_BSplineCurve:
+    """A scipy B-spline of plane points (coefficients (n, 2)) as OCCT's Geom2d_BSplineCurve
+    (a pcurve)."""
+    poles = _poles(spline, 2)
+    array = Array1OfPnt2d(1, len(poles))
+    for i, pole in enumerate(poles.tolist()):
+        array.SetValue(i + 1, gp_Pnt2d(*pole))
+    knots, multiplicities = knots_and_multiplicities(spline.t)
+    return Geom2d_BSplineCurve(array, reals(knots), integers(multiplicities), int(spline.k))
+
+
+def _poles(spline: BSpline, dimension: int) -> FloatArray:
+    """The spline's coefficients as (n, ``dimension``) floats; a ValueError otherwise."""
+    poles = np.asarray(spline.c, dtype=float)
+    if poles.ndim != 2 or poles.shape[1] != dimension:
+        raise ValueError(f"a B-spline of {dimension}D points has coefficients (n, {dimension}), got {poles.shape}")
+    return poles

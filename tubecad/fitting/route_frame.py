@@ -32,7 +32,8 @@ import numpy as np
 from scipy.interpolate import BSpline
 
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, DEFAULT_ORTHOGONALITY
-from tubecad.curves.route import Piece, RouteAxis
+from tubecad.curves.axis import Axis
+from tubecad.curves.route import Piece
 from tubecad.fitting.frame import FitError, FrameSpline, exact_frame, measured_cos
 
 #: the longest sub-arc in s (90 deg: neighbouring weights stay within a factor 2)
@@ -100,7 +101,7 @@ class RouteFrame:
         return out
 
 
-def route_breaks(axis: RouteAxis, rings: Sequence[float]) -> np.ndarray:
+def route_breaks(axis: Axis, rings: Sequence[float]) -> np.ndarray:
     """The span ends, the rings inside it and the joints, increasing and distinct."""
     s0, s1 = axis.span
     inner = [float(r) for r in rings if s0 < r < s1] + [s for s, _ in axis.joints]
@@ -130,14 +131,15 @@ def _affine(piece: Piece):
 
 
 def route_frame(
-    axis: RouteAxis,
+    axis: Axis,
     radius_bound: float,
     rings: Sequence[float] = (),
     radii: Sequence[float] = (),
     tolerance: float = DEFAULT_FIT_TOLERANCE,
     orthogonality: float = DEFAULT_ORTHOGONALITY,
 ) -> FrameSpline:
-    """The exact rational quadratic frame of ``axis`` with breaks at ``rings`` and the joints;
+    """The exact rational quadratic frame of ``axis`` (an axis with :attr:`~Axis.pieces`, a
+    route: each piece by :meth:`~Axis.piece_at`) with breaks at ``rings`` and the joints;
     its deviation from the exact frame and the orthogonality of the surfaces of ``radii``
     built on it are measured (round-off) and checked against the targets."""
     breaks = route_breaks(axis, rings)
@@ -200,7 +202,7 @@ def rational_values(t: np.ndarray, P: np.ndarray, w: np.ndarray, v: np.ndarray, 
 
 
 def _measure(
-    axis: RouteAxis,
+    axis: Axis,
     t: np.ndarray,
     P: np.ndarray,
     w: np.ndarray,

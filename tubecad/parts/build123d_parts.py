@@ -107,12 +107,12 @@ class _CurvatureNetPart(bd.BasePartObject):
         """What was measured on this part (computed on first use, about a second): the fit's
         deviation from the exact surface and the isolines' orthogonality on dense samples,
         poles, validity, OCCT's pre-boolean checks, volume against the exact one
-        (:func:`tubecad.spec.report.build_report`)."""
+        (:func:`tubecad.design.report.build_report`)."""
         return self._report
 
     @cached_property
     def _report(self) -> dict[str, Any]:
-        from tubecad.spec.report import build_report
+        from tubecad.design.report import build_report
 
         return build_report(self._tubecad.build, self._tubecad.surface)
 

@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from tubecad.core.atomic import write_text
 from tubecad.core.dxf import Drawing
 from tubecad.core.errors import ParameterError
 from tubecad.junctions.saddle import SaddleCurve
@@ -62,22 +63,24 @@ class BranchTemplate:
 
 
 def branch_template(
-    branch: CurvatureLineSurface, saddle: SaddleCurve, stringers: int = 8, *, key: str = "branches"
+    branch: CurvatureLineSurface, saddle: SaddleCurve, stringers: int = 8, *, key: str = "branch"
 ) -> BranchTemplate:
     """The saddle ``saddle`` (on ``branch``) unrolled onto the branch's development, with
     ``stringers`` girth marks (stringer_00 at u = 0, evenly round); the strip runs from the
-    branch's first ring to its last. The saddle's u_B runs 0 .. 2 pi: one open line across."""
+    branch's first ring to its last. The saddle's u_B runs 0 .. 2 pi: one open line across.
+    A branch whose radius varies is refused naming ``{key}.radius`` (``key``: the branch's
+    name for the caller, ``branch`` by default)."""
     return _developed(branch, saddle.branch_u, saddle.branch_s, stringers, f"{key}.radius", "a branch")
 
 
 def hole_template(
-    main: CurvatureLineSurface, saddle: SaddleCurve, stringers: int = 8, *, key: str = "tube"
+    main: CurvatureLineSurface, saddle: SaddleCurve, stringers: int = 8, *, key: str = "main"
 ) -> BranchTemplate:
     """The opening the branch's bore cuts in the main tube (``saddle`` the bore's saddle on
     ``main``, e.g. ``saddle_inner``), unrolled onto the main tube's development as one closed
     line (R u_A, s_A - s_0), placed on the strip's girth 0 .. 2 pi R; girth marks at the
     main tube's ``stringers``. A main tube whose radius varies is refused naming
-    ``{key}.radius`` (``key``: the main tube's key, ``tube`` in a spec)."""
+    ``{key}.radius`` (``key``: the main tube's name for the caller, ``main`` by default)."""
     u = saddle.main_u - 2 * math.pi * np.floor(np.mean(saddle.main_u) / (2 * math.pi))
     return _developed(main, u, saddle.main_s, stringers, f"{key}.radius", "a main tube")
 
@@ -100,3 +103,20 @@ def _developed(
     girth = 2 * math.pi * rho
     marks = {f"stringer_{j:02d}": girth * j / stringers for j in range(stringers)}
     return BranchTemplate(np.column_stack([rho * u, s - s0]), girth, s1 - s0, marks, strain)
+
+
+#: the bevel file's columns: the branch's u in degrees, the template's girth position and
+#: height, the dihedral angle between the outer surfaces
+BEVEL_COLUMNS = ("u_deg", "girth_position", "height", "dihedral_deg")
+
+
+def write_bevel_csv(path: str | Path, branch_u: np.ndarray, template: BranchTemplate, dihedral: np.ndarray) -> Path:
+    """The bevel's basis round the saddle as CSV, written atomically: a row per saddle point,
+    its branch angle ``branch_u`` (radians, written in degrees), its position on the cutting
+    ``template`` (girth position, height) and the ``dihedral`` angle (degrees) between the
+    outer surfaces there; floats to 15 significant digits."""
+    rows = [",".join(BEVEL_COLUMNS)] + [
+        f"{math.degrees(u):.15g},{x:.15g},{y:.15g},{a:.15g}"
+        for u, (x, y), a in zip(branch_u, template.points, dihedral)
+    ]
+    return write_text(path, "\n".join(rows) + "\n")

@@ -160,8 +160,9 @@ def nest(pieces: list[WebPiece], fab: Fabrication) -> list[Plate]:
                 break
             if not plate.pieces:
                 raise ParameterError(
-                    f"[fabrication] plate_size {list(fab.plate_size)} is too small for {piece.name} "
-                    f"with a kerf of {fab.kerf:g} at its edges"
+                    f"plate_size {list(fab.plate_size)} is too small for {piece.name} "
+                    f"with a kerf of {fab.kerf:g} at its edges",
+                    key="plate_size",
                 )
     return plates
 

@@ -72,8 +72,8 @@ def shop_data(
         data.pin_jigs = pin_jigs(build, panels, stiffeners, fab, data.warnings)
     else:
         data.warnings.append(
-            "the spec has no [panels] section: no marking lines, panel developments or pin jigs "
-            "(add [panels] seams = [...] to split the wall)"
+            "no panels: no marking lines, panel developments or pin jigs "
+            "(split the wall into panels at seam stringers to have them)"
         )
     return data
 
@@ -91,8 +91,8 @@ def add_stiffener_data(
     unknown = sorted(set(fab.joints) - known)
     if unknown:
         raise ParameterError(
-            f"[fabrication] joints.{unknown[0]}: no such stiffener; the stiffeners are "
-            f"{', '.join(sorted(known)) or 'none'}"
+            f"joints.{unknown[0]}: no such stiffener; the stiffeners are {', '.join(sorted(known)) or 'none'}",
+            key=f"joints.{unknown[0]}",
         )
     for st in stiffeners:
         by_stiffener[st.name] = (
@@ -130,7 +130,7 @@ def flange_pieces(
             pattern = stringer_flange_flat_pattern(st.base, st.value, st.profile, st.side, span=piece.span, name=name)
             ok, why = cuttable(pattern.outline, fab)
             if not ok:
-                warnings.append(f"{name}: {why}; give [fabrication] joints.{st.name} to split it")
+                warnings.append(f"{name}: {why}; give it butt joints (joints.{st.name}) to split it")
             out.append(WebPiece(name, st.name, "flange", piece.span, pattern, piece.joints))
     return out
 

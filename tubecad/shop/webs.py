@@ -8,7 +8,7 @@ a full turn overlaps itself. A web is cuttable when its outline is a simple poly
 (shapely) and its minimum-area rectangle fits the plate less a kerf at each edge; a T or L
 stringer's piece must also have a cuttable flange (tubecad.shop.flanges, developed over the
 same span: web and flange are butt-jointed together). A web that is not is split at butt joints into equal lengths of its base line (chosen joints
-from ``[fabrication] joints`` first, then as few equal pieces between them as make every
+from ``fab.joints`` first, then as few equal pieces between them as make every
 piece cuttable). A joint with a root gap g ends both pieces g / 2 short of it, measured
 along the base line. A stringer piece is the development of the strip over its own span
 (congruent to that part of the whole web), so its lengths and area are exact; a ring
@@ -105,7 +105,7 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
     """The cuttable pieces of stringer ``st``'s web: split at its chosen joints
     (``fab.joints[st.name]``, s strictly inside its span), then each part into the fewest
     equal base-line lengths that are all cuttable; a ParameterError naming
-    ``[fabrication] plate_size`` if even MAX_PIECES pieces are not."""
+    ``plate_size`` (its key) if even MAX_PIECES pieces are not."""
     base, h, side = st.base, st.profile.height, st.side
     s0, s1 = base.span
     _check_height(st, fab)
@@ -116,7 +116,8 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
     for s in chosen:
         if not s0 < s < s1:
             raise ParameterError(
-                f"[fabrication] joints.{st.name}: {s:g} is outside the stringer, whose s runs in ({s0:g}, {s1:g})"
+                f"joints.{st.name}: {s:g} is outside the stringer, whose s runs in ({s0:g}, {s1:g})",
+                key=f"joints.{st.name}",
             )
     half_gap = fab.joint_gap / 2
 
@@ -153,16 +154,18 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
             ]
             if any(lo >= hi for lo, hi, _, _ in parts):
                 raise ParameterError(
-                    f"[fabrication] joint_gap {fab.joint_gap:g} leaves no piece of {st.name}'s web "
-                    f"between its joints ({(b - a) / n:.6g} of base line each)"
+                    f"joint_gap {fab.joint_gap:g} leaves no piece of {st.name}'s web "
+                    f"between its joints ({(b - a) / n:.6g} of base line each)",
+                    key="joint_gap",
                 )
             if all(piece_cuttable(s_at(lo), s_at(hi)) for lo, hi, _, _ in parts):
                 spans += parts
                 break
         else:
             raise ParameterError(
-                f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: "
-                f"no split into up to {MAX_PIECES} pieces is cuttable"
+                f"plate_size {list(fab.plate_size)} is too small for {st.name}'s web: "
+                f"no split into up to {MAX_PIECES} pieces is cuttable",
+                key="plate_size",
             )
     names = piece_names(st.name, len(spans))
     pieces = []
@@ -181,9 +184,10 @@ def _check_height(st: Stiffener, fab: Fabrication) -> None:
     for part, what, size in widths:
         if size > fab.usable[1]:
             raise ParameterError(
-                f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s "
+                f"plate_size {list(fab.plate_size)} is too small for {st.name}'s "
                 f"{part}: its {what} {size:g} exceeds the plate's usable width {fab.usable[1]:g} "
-                f"(the width less a kerf at each edge)"
+                f"(the width less a kerf at each edge)",
+                key="plate_size",
             )
 
 
@@ -203,7 +207,7 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
     for angle in chosen:
         if not 0.0 <= angle < 360.0:
             raise ParameterError(
-                f"[fabrication] joints.{st.name}: {angle:g} is outside the ring's angles [0, 360) degrees"
+                f"joints.{st.name}: {angle:g} is outside the ring's angles [0, 360) degrees", key=f"joints.{st.name}"
             )
     if st.arc_deg is not None:
         return _arc_pieces(st, fab, whole, chosen)
@@ -240,8 +244,9 @@ def _arc_pieces(st: Stiffener, fab: Fabrication, whole: FlatPattern, chosen: lis
         mark = a + (_ring_angle(st, angle) - a) % 360.0
         if not a < mark < b:
             raise ParameterError(
-                f"[fabrication] joints.{st.name}: {angle:g} is not on the ring, which a branch's opening "
-                f"cuts: it runs from {a % 360.0:.6g} round to {b % 360.0:.6g} deg"
+                f"joints.{st.name}: {angle:g} is not on the ring, which a branch's opening "
+                f"cuts: it runs from {a % 360.0:.6g} round to {b % 360.0:.6g} deg",
+                key=f"joints.{st.name}",
             )
         marks.append(mark)
     bays = list(zip([a, *sorted(marks)], [*sorted(marks), b]))
@@ -276,8 +281,9 @@ def _sector_pieces(
             ]
     what = "sectors of its arc" if square else "sectors"
     raise ParameterError(
-        f"[fabrication] plate_size {list(fab.plate_size)} is too small for {st.name}'s web: no split "
-        f"into up to {MAX_PIECES} {what} is cuttable"
+        f"plate_size {list(fab.plate_size)} is too small for {st.name}'s web: no split "
+        f"into up to {MAX_PIECES} {what} is cuttable",
+        key="plate_size",
     )
 
 

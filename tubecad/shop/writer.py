@@ -183,8 +183,7 @@ def _write_panels(data: ShopData, folder: Path, step_schema: str, index: dict, r
         flagged = dev.max_strain > fab.max_strain
         if flagged:
             data.warnings.append(
-                f"{panel.name}: its development strains {dev.max_strain:.3g}, more than "
-                f"[fabrication] max_strain = {fab.max_strain:g}"
+                f"{panel.name}: its development strains {dev.max_strain:.3g}, more than max_strain = {fab.max_strain:g}"
             )
         index["panels"].append(
             {
@@ -319,7 +318,7 @@ def _overview_title(data: ShopData, name: str) -> str:
         f"{len(data.flange_pieces)} flange pieces, {len(data.bending)} bending tables, {len(data.panels)} panels)"
     )
     if not data.developments:
-        why = "the spec has no [panels] section" if data.build is not None else "a junction has no panels yet"
+        why = "the wall is not split into panels" if data.build is not None else "a junction has no panels yet"
         title += f"\nno panel developments or pin jigs: {why}"
     elif not any(len(j.heights) for j in data.pin_jigs):
         title += "\nno pin jig (see the warnings in index.json)"

@@ -3,16 +3,17 @@ and :func:`build_and_export`, the body of ``tubecad build`` for one spec."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-from functools import partial
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from tubecad.brep import TubeBuild, build_tube_solid, build_wall_solid
-from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
+from tubecad.brep import TubeBuild
+from tubecad.core.errors import SpecError
 from tubecad.core.progress import Progress, ProgressCallback
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
-from tubecad.fitting import FitError
+from tubecad.design.result import BuildResult, write_outputs
+from tubecad.design.wall import WallResult
+from tubecad.spec.design import design_of, spec_errors, wall_design
 from tubecad.spec.model import StiffenerSelection
 from tubecad.spec.parse import TubeSpec
 from tubecad.spec.preflight import (  # light: the outputs' checks, made again here for a script's call
@@ -44,34 +45,16 @@ __all__ = [
 
 
 def build_from_spec(spec: TubeSpec, progress: ProgressCallback | None = None) -> TubeBuild:
-    """The wall solid if the spec has [wall], else the capped tube solid; ``progress(step,
-    done, total)`` is called as it is built."""
-    from tubecad.core.tolerance import check_tolerance
+    """The wall solid if the spec has [wall], else the capped tube solid (no stiffeners, no
+    panels); ``progress(step, done, total)`` is called as it is built. A spec with
+    [[branches]] is refused: this makes the main tube alone (:func:`build_spec` builds the
+    junction)."""
+    from tubecad.design.wall import build_solid
 
     refuse_branches(spec)
-    tube = spec.tube
-    try:
-        layout = spec.layout.net(tube)
-    except ParameterError as exc:
-        raise SpecError(f"{spec.source}: [layout] {exc}", key=_within("layout", exc)) from None
-    try:  # parse_spec checked it; a model made by a script is checked here, so the build's own errors are [wall]'s
-        tolerance = check_tolerance("tolerance", spec.fit.tolerance)
-    except ParameterError as exc:
-        raise SpecError(f"{spec.source}: [fit] {exc}", key="fit.tolerance") from None
-    wall = spec.wall
-    try:
-        if wall is None:
-            return build_tube_solid(tube, layout, tolerance, progress)
-        return build_wall_solid(tube, wall.thickness, wall.side, layout, tolerance, progress)
-    except FitError as exc:
-        raise SpecError(f"{spec.source}: [fit] {exc}", key="fit.tolerance") from None
-    except RegularityError as exc:
-        raise SpecError(
-            f"{spec.source}: [wall] the wall's outer surface is not regular: {exc}", key="wall.thickness"
-        ) from None
-    except ParameterError as exc:
-        section = "fit" if exc.key in FIT_KEYS else "wall"
-        raise SpecError(f"{spec.source}: [{section}] {exc}", key=_within(section, exc)) from None
+    design = wall_design(spec)
+    with spec_errors(spec):
+        return build_solid(design, progress)
 
 
 def refuse_branches(spec: TubeSpec) -> None:
@@ -79,23 +62,11 @@ def refuse_branches(spec: TubeSpec) -> None:
     viewer): nothing of a spec is dropped without a word."""
     if spec.branches:
         raise SpecError(
-            f"{spec.source}: [[branches]]: this command does not make junctions yet (tubecad build writes them "
-            "as STEP, IGES or BREP, tubecad mesh and analyse as shell models); remove [[branches]] for the main "
+            f"{spec.source}: [[branches]]: this command does not make junctions yet (tubecad build writes them as CAD files, "
+            "meshes and a PNG, tubecad mesh and analyse as shell models); remove [[branches]] for the main "
             "tube alone",
             key="branches",
         )
-
-
-#: the keys of a ParameterError about the fit's tolerances (a [fit] error, not [wall]'s)
-FIT_KEYS = ("tolerance", "orthogonality", "fit.tolerance")
-
-
-def _within(section: str, exc: TubecadError) -> str:
-    """The spec key of an error about ``section``: ``section.key``, or the section."""
-    key = exc.key
-    if key is None:
-        return section
-    return key if key == section or key.startswith(f"{section}.") else f"{section}.{key}"
 
 
 def stiffener_selection(spec: TubeSpec, build: TubeBuild) -> StiffenerSelection | None:
@@ -115,34 +86,21 @@ def stiffeners_from_spec(
 ) -> tuple[list, StiffenerSelection | None]:
     """The [stiffeners] section's stiffener solids on ``build``'s wall ([] without the section);
     ``progress(name, done, total)`` after each."""
-    from tubecad.stiffeners.assembly import build_stiffeners
+    from tubecad.design.wall import build_wall_stiffeners
 
     selection = stiffener_selection(spec, build)
     if selection is None:
         return [], None
-    try:
-        return build_stiffeners(
-            build, selection.rings, selection.stringers, selection.profile, selection.side, build.tolerance, progress
-        ), selection
-    except (ParameterError, RegularityError, FitError) as exc:
-        raise SpecError(f"{spec.source}: [stiffeners] {exc}", key=_within("stiffeners", exc)) from None
+    with spec_errors(spec):
+        return build_wall_stiffeners(wall_design(spec), build, progress), selection
 
 
 def panels_from_spec(spec: TubeSpec, build: TubeBuild) -> list:
     """The [panels] section's panels of the wall ([] without the section)."""
-    from tubecad.stiffeners.panels import split_into_panels
+    from tubecad.design.wall import build_panels
 
-    section = spec.panels
-    if section is None:
-        return []
-    n_s, n_r = len(build.layout.stringers_deg), len(build.layout.s_rings)
-    try:
-        return split_into_panels(build, section.seam_indices(n_s), section.ring_indices())
-    except ParameterError as exc:
-        raise SpecError(
-            f"{spec.source}: [panels] {exc} (the layout has {n_s} stringers and {n_r} rings)",
-            key=_within("panels", exc),
-        ) from None
+    with spec_errors(spec):
+        return build_panels(wall_design(spec), build)
 
 
 def wall_lines(build: TubeBuild) -> list:
@@ -177,92 +135,54 @@ def check_output(
     raises if it does not hold the build's tolerance, so the file is never moved into place.
     ``shape``: the shape written (or its :class:`~tubecad.export.readback.WrittenShape`);
     ``wall_solids``: for an assembly, how many of its first solids are the wall;
-    ``length_unit``: the model's unit, which the file is read back into."""
-    from tubecad.export.readback import mesh_report, readback_report
+    ``length_unit``: the model's unit, which the file is read back into. (A build result
+    checks its own files: :meth:`tubecad.design.result.BuildResult.check_file`.)"""
+    from tubecad.export.readback import mesh_report, picture_report, readback_report
 
     if fmt.kind == "cad":
         return readback_report(tmp, shape, build, target, wall_solids, length_unit)
     if fmt.kind == "mesh":
         return mesh_report(tmp, fmt.name, build, deflection, target, wall_solids, length_unit, angular)
     if fmt.kind == "picture":
-        from tubecad.export.readback import picture_report
-
         return picture_report(tmp, fmt.name, build)
     return {"bytes": tmp.stat().st_size, "lines": len(wall_lines(build))}
 
 
-@dataclass
-class SpecBuild:
-    """A spec built: the wall (or tube) ``build``, its stiffeners and panels, the ``shape``
-    its files are written from (the named assembly with [stiffeners] or [panels], else the
-    solid) and the ``report`` so far (the tube's measures, the B-rep's, the stiffeners')."""
-
-    spec: TubeSpec
-    build: TubeBuild
-    stiffeners: list = field(default_factory=list)
-    selection: StiffenerSelection | None = None
-    panels: list = field(default_factory=list)
-    shape: Any = None
-    report: dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def named(self) -> bool:
-        """Whether ``shape`` is the named assembly (wall or panels, stiffeners, lines)."""
-        return bool(self.stiffeners or self.panels)
-
-    @property
-    def wall_solids(self) -> int | None:
-        """For the assembly, how many of its first solids are the wall (or its panels)."""
-        return (len(self.panels) or 1) if self.named else None
+#: what :func:`build_spec` returns for a spec without [[branches]] (the name of earlier versions)
+SpecBuild = WallResult
 
 
-def build_spec(spec: TubeSpec, progress: Progress | None = None, grid: tuple[int, int] = (64, 501)) -> SpecBuild:
-    """Build ``spec``'s solid (the wall with [wall], else the capped tube), its [stiffeners]
-    and [panels] (then the named assembly), and measure them: the report of ``tubecad
-    build``, the tube's checks on a ``grid`` = (nu, ns) grid. Nothing is written."""
-    from tubecad.brep.properties import volume
-    from tubecad.core.units import steel_density
-    from tubecad.spec.report import build_report, stiffener_report, tube_report
-    from tubecad.stiffeners import net_lines
-    from tubecad.stiffeners.assembly import named_assembly
+def build_spec(spec: TubeSpec, progress: Progress | None = None, grid: tuple[int, int] = (64, 501)) -> BuildResult:
+    """Build what ``spec`` describes, whatever it is (its design: :func:`tubecad.spec.design.design_of`):
+    the wall with [wall], else the capped tube, its [stiffeners] and [panels] (then the
+    named assembly), or with [[branches]] the junction; and measure it: the report of
+    ``tubecad build``, the exact surface's checks on a ``grid`` = (nu, ns) grid. Nothing is
+    written.
 
-    progress = progress if progress is not None else Progress(enabled=False)
-    unit = spec.length_unit  # [units] length: the model's unit, stated in every file and the report
-    kind = "wall" if spec.wall is not None else "tube"
-    progress.step(f"building the {kind}", 4 if kind == "wall" else 3)
-    result = build_from_spec(spec, progress.update)
-    report = tube_report(spec.tube, *grid, length_unit=unit)
-    report["brep"] = build_report(result, spec.tube)
-    if spec.stiffeners is not None:
-        progress.step("building stiffeners")
-    stiffeners, selection = stiffeners_from_spec(spec, result, progress.update)
-    if spec.panels is not None:
-        progress.step("splitting the wall into panels")
-    panels = panels_from_spec(spec, result)
-    built = SpecBuild(spec, result, stiffeners, selection, panels, result.shape, report)
-    if built.named:
-        fuse = bool(selection and selection.fuse)
-        progress.step("assembling" + (" (fusing the stiffeners into the wall)" if fuse else ""))
-        lines = net_lines(result.surfaces[0], result.layout)
-        built.shape = named_assembly(result, stiffeners, lines, fuse=fuse, panels=panels)
-        density = selection.density if selection else steel_density(unit)
-        report["stiffeners"] = stiffener_report(stiffeners, lines, density, unit)
-        report["panels"] = [
-            {
-                "name": p.name,
-                "s": list(p.s_range),
-                "angles_deg": list(p.angles_deg),
-                "outer_area": p.outer_area,
-                "volume": volume(p.solid),
-                "mass_kg": p.mass(density),
-            }
-            for p in panels
-        ]
-    return built
+    Returns:
+        the :class:`~tubecad.design.result.BuildResult` (shape, solids, named edges, report).
+
+    Raises:
+        SpecError: naming the section and the key of what cannot be built.
+    """
+    design = design_of(spec, grid)
+    with spec_errors(spec):
+        return design.build(progress)
+
+
+def build_wall_spec(spec: TubeSpec, progress: Progress | None = None, grid: tuple[int, int] = (64, 501)) -> WallResult:
+    """:func:`build_spec` of a spec without [[branches]] (refused naming them), typed as what
+    it is: the :class:`~tubecad.design.wall.WallResult` (its B-rep build, stiffeners and panels)."""
+    from tubecad.design.wall import build_wall
+
+    refuse_branches(spec)
+    design = wall_design(spec, grid)
+    with spec_errors(spec):
+        return build_wall(design, progress)
 
 
 def export_build(
-    built: SpecBuild,
+    built: BuildResult,
     outputs,
     step_schema: str = "AP214",
     written: list[Path] | None = None,
@@ -273,43 +193,8 @@ def export_build(
     """Write ``built``'s shape to each of ``outputs`` (the format by extension), each read
     back and measured before it is moved into place; returns what was measured per file
     (also ``built.report["exports"]``, by path). ``deflection``, ``angular``: the mesh
-    outputs' tolerances (default :func:`mesh_tolerance_for`'s)."""
-    from tubecad.export.readback import WrittenShape
-    from tubecad.export.registry import Exportable, OutputFormat, write_output
-
-    written = [] if written is None else written
-    progress = progress if progress is not None else Progress(enabled=False)
-    spec, result, shape = built.spec, built.build, built.shape
-    unit = spec.length_unit
-    if deflection is None or angular is None:
-        default = mesh_tolerance_for(spec)
-        deflection, angular = deflection or default[0], angular or default[1]
-    exports = built.report["exports"] = {}
-    item = Exportable(
-        shape,
-        lambda: wall_lines(result),
-        step_schema,
-        mesh_deflection=deflection,
-        length_unit=unit,
-        mesh_angular=angular,
-        build=result,
-    )
-
-    reference = WrittenShape(shape)  # its area and volume integrated once for all the files
-    if shape is result.shape and "volume" in built.report.get("brep", {}):
-        reference = WrittenShape(shape, {"volume": built.report["brep"]["volume"]})  # build_report's, of this shape
-
-    def check(tmp: Path, fmt: OutputFormat, path: Path) -> dict[str, Any]:
-        progress.advance(1, f"wrote {path.name}")
-        return check_output(tmp, fmt, path, reference, result, built.wall_solids, deflection, unit, angular)
-
-    progress.step("writing and reading back files", 2 * len(outputs))
-    for path in map(Path, outputs):  # STEP of an assembly keeps its names: wall, ring_03, line_ring_03, ...
-        done, info = write_output(item, path, partial(check, path=path))
-        written.append(done)
-        exports[str(path)] = info
-        progress.advance(1, f"checked {path.name}")
-    return exports
+    outputs' tolerances (default :func:`tubecad.design.result.mesh_tolerances`'s)."""
+    return write_outputs(built, outputs, step_schema, deflection, angular, written, progress)
 
 
 def build_and_export(
@@ -322,9 +207,9 @@ def build_and_export(
     mesh_angle: float | None = None,
     progress: Progress | None = None,
 ) -> dict[str, Any]:
-    """Build ``spec``'s solid (the wall with [wall], else the capped tube; the named assembly
-    with [stiffeners] or [panels]), write each of ``outputs``, read each back, and return the
-    report (also written to ``report_path`` if given).
+    """Build ``spec`` (:func:`build_spec`: a tube, a wall, a stiffened or paneled wall, a
+    junction), write each of ``outputs``, read each back, and return the report (also written
+    to ``report_path`` if given).
 
     ``tubecad build`` runs this for its one spec and for every job of a batch. Every file is
     written atomically and read back before it is moved into place: a file that does not
@@ -343,10 +228,6 @@ def build_and_export(
     outputs = [Path(p) for p in outputs]
     # a bad output is refused, naming it, before anything is built or written
     deflection, angular = check_build_outputs(spec, outputs, report_path, mesh_tolerance, mesh_angle)
-    if spec.branches:  # a junction: its own build, assembly and read-back
-        from tubecad.spec.junction import build_and_export_junction
-
-        return build_and_export_junction(spec, outputs, step_schema, report_path, written, progress)
     built = build_spec(spec, progress)
     export_build(built, outputs, step_schema, written, deflection, angular, progress)
     if report_path is not None:

@@ -1,5 +1,6 @@
-"""The grid on which the net is measured (``--nu``/``--ns``): points around the circle and
-along the axis. Its own module so that the command line's options load no numpy."""
+"""The grid the net is measured on, as the command line's ``--nu``/``--ns`` defaults: the
+policy itself lives in :mod:`tubecad.core.grid` (no numpy, so the options load fast)."""
 
-DEFAULT_NU = 256
-DEFAULT_NS = 2001
+from tubecad.core.grid import DEFAULT_NS, DEFAULT_NU
+
+__all__ = ["DEFAULT_NS", "DEFAULT_NU"]

@@ -9,11 +9,12 @@ import math
 from dataclasses import dataclass, replace
 from typing import Any
 
-from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
+from tubecad.core.errors import SpecError, TubecadError
 from tubecad.fem.junction import JunctionTube, PadRegion, junction_mesh_size, junction_shell_mesh
 from tubecad.fem.model import FEMesh
 from tubecad.spec.junction import branch_walls
 from tubecad.spec.parse import TubeSpec
+from tubecad.spec.sections import spec_error
 
 
 @dataclass(frozen=True)
@@ -71,12 +72,10 @@ def junction_model(spec: TubeSpec, settings) -> JunctionModel:
             lengths = add_junction_beams(mesh, tubes, pads, lines, chosen.profile, chosen.side, settings.beam_type)
             mesh.info["beams"] = lengths
             mesh.info["beams_moved_to_pad_edge"] = moved
-    except (ParameterError, RegularityError) as exc:
-        key = exc.key or "branches"
-        where = "" if str(exc).startswith("[") else "[[branches]] "
-        raise SpecError(f"{spec.source}: {where}{exc}", key=key) from None
-    except TubecadError as exc:
-        raise SpecError(f"{spec.source}: [[branches]] {exc}", key=exc.key or "branches") from None
+    except SpecError:
+        raise
+    except TubecadError as exc:  # the mesh's own keys ([mesh] size, surface), else the branches'
+        raise spec_error(spec.source, exc, ("mesh", "stiffeners"), "branches") from None
     return JunctionModel(mesh, tubes, pads)
 
 

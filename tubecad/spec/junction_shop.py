@@ -6,7 +6,6 @@ stiffeners' :mod:`tubecad.stiffeners.junction`)."""
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +14,7 @@ import numpy as np
 from tubecad.core.errors import ParameterError, RegularityError, SpecError
 from tubecad.spec.junction import branch_walls
 from tubecad.spec.parse import TubeSpec
+from tubecad.spec.sections import in_section, spec_error
 
 #: points of the templates round the saddle (every 0.5 deg of the branch's girth)
 TEMPLATE_SAMPLES = 721
@@ -32,25 +32,21 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
     (``webs/``: a ring cut at an opening is the sector of the arc it keeps, a stopped
     stringer each piece's strip), developed flanges, bending tables and the pieces' solids.
     No booleans on the wall are needed: the saddles are solved on the exact surfaces.
-    Written into a staging folder and moved into place once complete."""
+    Written into a staging folder and moved into place once complete
+    (:func:`tubecad.core.atomic.staged_folder`)."""
     import json
-    import shutil
-    import tempfile
 
-    from tubecad.core.atomic import write_text
+    from tubecad.core.atomic import staged_folder, write_text
     from tubecad.junctions import dihedral_angles, saddle_curve
-    from tubecad.shop.branch_template import branch_template, hole_template
+    from tubecad.shop.branch_template import branch_template, hole_template, write_bevel_csv
 
     assert spec.wall is not None
     say = say or (lambda _stage: None)
     unit = spec.length_unit
     main_in, main_out = spec.wall.offsets()
-    output = Path(output)
-    output.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{output.name}.", dir=output.parent))
     name = Path(str(spec.source)).stem
     index: dict[str, Any] = {"name": name, "units": {"length": unit}}
-    try:
+    with staged_folder(output) as staging:
         all_walls = branch_walls(spec)
         if spec.stiffeners is not None:
             index = _stiffener_shop(spec, all_walls, staging, name, say)
@@ -65,19 +61,17 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
                 outer = saddle_curve(main_o, branch_o, TEMPLATE_SAMPLES)
                 inner = saddle_curve(main_i, branch_i, TEMPLATE_SAMPLES)
                 assert walls.layout is not None  # branch_walls gives every branch its net
-                cut = branch_template(branch_o, outer, len(walls.layout.stringers_deg))
-                hole = hole_template(main_i, inner, len(spec.layout.net(spec.tube).stringers_deg))
+                cut = branch_template(branch_o, outer, len(walls.layout.stringers_deg), key="branches")
+                hole = hole_template(main_i, inner, len(spec.layout.net(spec.tube).stringers_deg), key="tube")
             except (ParameterError, RegularityError) as exc:
-                raise SpecError(f"{spec.source}: [[branches]] #{k + 1} {exc}", key=exc.key or "branches") from None
+                raise in_section(
+                    spec.source, "branches", exc, label=f"[[branches]] #{k + 1}", key=exc.key or "branches"
+                ) from None
             angles = dihedral_angles(main_o, branch_o, outer)
             base = staging / "branches" / f"branch_{k}"
             cut.save_dxf(base.with_name(f"branch_{k}_template.dxf"), unit)
             hole.save_dxf(base.with_name(f"branch_{k}_hole.dxf"), unit)
-            rows = ["u_deg,girth_position,height,dihedral_deg"] + [
-                f"{math.degrees(u):.15g},{x:.15g},{y:.15g},{a:.15g}"
-                for u, (x, y), a in zip(outer.branch_u, cut.points, angles)
-            ]
-            base.with_name(f"branch_{k}_bevel.csv").write_text("\n".join(rows) + "\n")
+            write_bevel_csv(base.with_name(f"branch_{k}_bevel.csv"), outer.branch_u, cut, angles)
             files = [f"branches/branch_{k}_{part}" for part in ("template.dxf", "hole.dxf", "bevel.csv")]
             pad = spec.branches[k].pad
             pad_info = None
@@ -88,7 +82,7 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
                 try:
                     pad_s, pad_angles = pad_bounds(main_o, outer, pad.width)
                 except ParameterError as exc:
-                    raise SpecError(f"{spec.source}: [[branches]] #{k + 1} {exc}", key=exc.key) from None
+                    raise in_section(spec.source, "branches", exc, label=f"[[branches]] #{k + 1}") from None
                 development = develop_panel(main_o, pad_s, pad_angles, f"branch_{k}_pad")
                 hole_line = development.map(np.degrees(outer.main_u), outer.main_s)
                 write_panel_dxf([development], {development.name: [("branch", hole_line)]}, staging / "branches", unit)
@@ -111,12 +105,6 @@ def junction_shop(spec: TubeSpec, output: Path, say: Any = None) -> dict[str, An
                 for f in b["files"]
             ]
         write_text(staging / "index.json", json.dumps(index, indent=2) + "\n")
-        for path in sorted(p for p in staging.rglob("*") if p.is_file()):
-            target = output / path.relative_to(staging)
-            target.parent.mkdir(parents=True, exist_ok=True)
-            path.replace(target)
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
     return index
 
 
@@ -136,7 +124,7 @@ def _stiffener_shop(spec: TubeSpec, walls: list, staging: Path, name: str, say: 
     data = ShopData(None, stiffeners, [], fab)
     try:
         add_stiffener_data(data, tuple(spec.layout.net(spec.tube).stringers_deg), spec.fit.tolerance, say)
-    except ParameterError as exc:
-        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "fabrication") from None
+    except ParameterError as exc:  # a [fabrication] value the pieces cannot have (a plate too small, a joint)
+        raise spec_error(spec.source, exc, ("fabrication",)) from None
     say("writing the stiffeners' files")
     return write_shop(data, staging, name)

@@ -9,6 +9,10 @@ from typing import Any
 
 from tubecad.core.errors import ParameterError, RegularityError, SpecError
 from tubecad.spec.parse import TubeSpec
+from tubecad.spec.sections import spec_error
+
+#: :func:`tubecad.fem.shell_mesh`'s parameters named otherwise than the spec's keys
+SHELL_MESH_KEYS = {"thickness": "wall.thickness", "wall_side": "wall.side", "panel_rings": "panels.rings"}
 
 
 #: the FE formats by extension (tubecad.fem.formats)
@@ -66,9 +70,8 @@ def mesh_from_spec(spec: TubeSpec, **overrides: Any):
             settings=settings,
             length_unit=spec.length_unit,
         )
-    except (ParameterError, RegularityError) as exc:
-        text = str(exc)
-        raise SpecError(f"{source}: {text if text.startswith('[') else '[mesh] ' + text}", key=exc.key) from None
+    except (ParameterError, RegularityError) as exc:  # the mesh's own (its size, its surface), else a section's
+        raise spec_error(source, exc, ("mesh", "stiffeners", "panels"), "mesh", SHELL_MESH_KEYS) from None
 
 
 def _mesh_settings(spec: TubeSpec, overrides: dict[str, Any]):
@@ -150,7 +153,11 @@ def material_and_step(spec: TubeSpec, mesh, with_step: bool, junction=None):
         return material, junction_step(spec, junction, settings.pressure), settings
     surface = reference_surface(spec, mesh)
     ends = (mesh.node_sets.get("start_ring"), mesh.node_sets.get("end_ring"))
-    return material, pressure_step(mesh, settings.pressure, settings.ends, surface, ends), settings
+    try:
+        step = pressure_step(mesh, settings.pressure, settings.ends, surface, ends)
+    except ParameterError as exc:
+        raise spec_error(spec.source, exc, ("analysis",), "analysis") from None
+    return material, step, settings
 
 
 def reference_surface(spec: TubeSpec, mesh):
@@ -161,7 +168,8 @@ def reference_surface(spec: TubeSpec, mesh):
 
 def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[Any, list[Path]]:
     """``tubecad mesh``: the mesh written to each output (by extension); a .inp gets the
-    material and, when the spec has [analysis], its pressure step."""
+    material and, when the spec has [analysis], its pressure step. A mesh a format cannot
+    hold (a .inp of ``surface = 'both'``) is refused naming [mesh]."""
     outputs = checked_outputs(outputs)
     mesh, junction = _fe_model(spec, overrides)
     formats = _formats()
@@ -177,7 +185,7 @@ def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[A
                 mesh, path, material=material, step=step, title=Path(str(spec.source)).stem
             )
         except ParameterError as exc:
-            raise SpecError(f"{spec.source}: {exc}") from None
+            raise spec_error(spec.source, exc, ("mesh",)) from None
         written.append(path)
     return mesh, written
 
@@ -185,12 +193,12 @@ def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[A
 def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) -> dict[str, Any]:
     """``tubecad analyse``: the spec's mesh with its [analysis] pressure step solved by
     CalculiX; writes model.inp, model.frd, results.json and ring_stress.png into ``output``
-    (through a staging folder: nothing is left unless all of it is written)."""
+    (through a staging folder, :func:`tubecad.core.atomic.staged_folder`: nothing is left
+    unless all of it is written)."""
     import json
     import shutil
-    import tempfile
 
-    from tubecad.core.atomic import write_text
+    from tubecad.core.atomic import staged_folder, write_text
     from tubecad.fem.analysis import solve
     from tubecad.fem.calculix import CalculixError
     from tubecad.fem.plot import save_deformed
@@ -201,15 +209,14 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
     say("meshing")
     mesh, junction = _fe_model(spec, overrides)
     material, step, settings = material_and_step(spec, mesh, True, junction)
-    output = Path(output)
-    output.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{output.name}.", dir=output.parent))
-    try:
+    with staged_folder(output) as staging:
         say(f"solving {mesh.element_count} elements with CalculiX")
         try:
             result = solve(mesh, material, step, staging, "model")
         except CalculixError as exc:
             raise SpecError(f"{spec.source}: {exc}") from None
+        except ParameterError as exc:  # a mesh CalculiX cannot take (surface = 'both')
+            raise spec_error(spec.source, exc, ("mesh",)) from None
         say("writing results")
         unit = spec.length_unit
         title = (
@@ -236,8 +243,7 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
                 mesh, junction.tubes, result.stress, result.ring_stress, settings.pressure
             )
         write_text(staging / "results.json", json.dumps(summary, indent=2))
-        for name in summary["files"]:
-            (staging / name).replace(output / name)
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
+        for path in staging.iterdir():  # ccx's by-products (.dat, .sta, .cvg, ...) are not results
+            if path.name not in summary["files"]:
+                shutil.rmtree(path) if path.is_dir() else path.unlink()
     return summary

@@ -127,13 +127,13 @@ def write_paper(output: str | Path, nu: int | None = None, ns: int | None = None
     files written, in that order."""
     from tubecad.core.atomic import save_figure, write_text
     from tubecad.export.plots import projection_figure_of_build
-    from tubecad.spec.build import build_spec, export_build
+    from tubecad.spec.build import build_wall_spec, export_build
     from tubecad.spec.grid import DEFAULT_NS, DEFAULT_NU
     from tubecad.spec.outputs import output_folder, render_step_picture
     from tubecad.spec.report import to_json
 
     output = output_folder(output)
-    built = build_spec(paper_spec(), grid=(DEFAULT_NU if nu is None else nu, DEFAULT_NS if ns is None else ns))
+    built = build_wall_spec(paper_spec(), grid=(DEFAULT_NU if nu is None else nu, DEFAULT_NS if ns is None else ns))
     deviation = built.report["brep"]["fit"]["max_deviation"]  # the projections: the wall's net as built
     written = save_figure(projection_figure_of_build(built.build, deviation), output, "projections")
     names = ("paper.step", "paper.iges")  # each file measured as read back before it is moved into place

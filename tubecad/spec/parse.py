@@ -30,7 +30,7 @@ import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
 
@@ -374,8 +374,8 @@ def _check_build_sections(
             (model.analysis or AnalysisSection()).settings(unit, bool(tube.axis.closed))
         except ParameterError as exc:
             raise fail(str(exc), _key("analysis", exc)) from None
-    if canal:  # a varying radius law: only a CanalSurface has one
-        return _check_canal_sections(cast("CanalSurface", tube), model, fail)
+    if canal:  # a varying radius law: its offsets are canal surfaces
+        return _check_canal_sections(tube, model, fail)
     wall = model.wall
     if wall is not None:
         radius = tube.radius_law.constant_value  # a constant radius: the tube's rho
@@ -417,7 +417,7 @@ def _size(tube: CurvatureLineSurface, model: SpecModel) -> float:
     return float(np.abs(tube.axis.position(s)).max()) + tube.radius_law.max_radius + wall
 
 
-def _check_canal_sections(surface: CanalSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
+def _check_canal_sections(surface: CurvatureLineSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
     """A radius law's [wall]: the offsets of the law, the inner one above MIN_SIZE, the outer
     one regular, and a [stiffeners] section's surfaces regular too."""
     from tubecad.core.tolerance import MIN_SIZE

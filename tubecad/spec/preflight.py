@@ -133,19 +133,20 @@ def check_build_outputs(
     """
     from tubecad.core.atomic import check_writable
     from tubecad.export.registry import output_format
+    from tubecad.spec.design import design_class
 
     paths = [Path(p) for p in outputs]
     split_outputs(paths)
     check_mesh_options(paths, mesh_tolerance, mesh_angle)
-    if spec.branches:
-        for path in paths:
-            if output_format(path).kind != "cad" and output_format(path).name != "png":
-                raise SpecError(
-                    f"{spec.source}: output {path.name!r}: a spec with [[branches]] is written as CAD files "
-                    "(.step, .iges, .brep) or a .png picture; meshes, SVG pictures and polylines of a junction "
-                    "are not made yet",
-                    key="output",
-                )
+    kind = design_class(spec)
+    for path in paths:
+        fmt = output_format(path)
+        if not {fmt.kind, fmt.name} & kind.WRITTEN_AS:
+            raise SpecError(
+                f"{spec.source}: output {path.name!r}: {kind.WHAT} is written as "
+                f"{', '.join(sorted(kind.WRITTEN_AS))} files, not {fmt.name.upper()} (not made yet)",
+                key="output",
+            )
     for path in (*paths, *([report_path] if report_path is not None else [])):
         check_writable(path)
     return mesh_tolerance_for(spec, mesh_tolerance, mesh_angle)

@@ -1,24 +1,24 @@
 """``tubecad shop``: from a checked spec to the shop package (tubecad.shop) in a folder.
 
-Everything is written into a temporary folder beside the output and moved into place only
-once complete, so a failure (bad ``[fabrication]`` input, a plate too small for a piece)
-leaves no file behind."""
+Everything is written into a staging folder beside the output and moved into place only
+once complete (:func:`tubecad.core.atomic.staged_folder`), so a failure (bad
+``[fabrication]`` input, a plate too small for a piece) leaves no file behind."""
 
 from __future__ import annotations
 
-import shutil
-import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from tubecad.core.errors import ParameterError, SpecError
+from tubecad.core.errors import ParameterError
 from tubecad.spec.parse import TubeSpec
+from tubecad.spec.sections import spec_error
 
 
 def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None] | None = None) -> dict[str, Any]:
     """Build ``spec``'s wall, stiffeners and panels, compute the shop package with its
     ``[fabrication]`` settings and write it into ``output``; returns the index."""
+    from tubecad.core.atomic import staged_folder
     from tubecad.shop.package import shop_data
     from tubecad.shop.writer import write_shop
     from tubecad.spec.build import build_from_spec, panels_from_spec, stiffeners_from_spec
@@ -39,18 +39,9 @@ def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None]
     panels = panels_from_spec(spec, build)
     try:
         data = shop_data(build, stiffeners, panels, fab, say)
-    except ParameterError as exc:
-        raise SpecError(f"{spec.source}: {exc}") from None
-    output = Path(output)
-    output.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{output.name}.", dir=output.parent))
-    try:
+    except ParameterError as exc:  # a [fabrication] value the pieces cannot have (a plate too small, a joint)
+        raise spec_error(spec.source, exc, ("fabrication",)) from None
+    with staged_folder(output) as staging:
         say("writing files")
         index = write_shop(data, staging, Path(str(spec.source)).stem)
-        for entry in [*index["files"], {"path": "index.json"}]:
-            target = output / entry["path"]
-            target.parent.mkdir(parents=True, exist_ok=True)
-            (staging / entry["path"]).replace(target)
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
     return index

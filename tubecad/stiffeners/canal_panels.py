@@ -29,7 +29,6 @@ angles, both on the closing circle as made at s0 (whose frame its shared edges u
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, cast
 
 import build123d as bd
 import numpy as np
@@ -51,9 +50,6 @@ from tubecad.core.errors import TubecadError
 from tubecad.fitting.occ_arrays import integers, points_2d, reals, reals_2d
 from tubecad.occ_compat import Array1OfPnt
 
-if TYPE_CHECKING:
-    from tubecad.fitting import CanalSectionSurface
-
 #: points per radial segment at which its distance from the cap's cone is measured
 RADIAL_GAP_SAMPLES = 9
 
@@ -68,9 +64,9 @@ class CanalWallEdges:
     def __init__(self, build: TubeBuild):
         self.build = build
         self.outer, self.inner = build.patches
-        # a canal wall's two surfaces
-        self.outer_surface, self.inner_surface = cast("list[CanalSectionSurface]", build.surfaces)
-        self.thickness = float(self.outer_surface.offset - self.inner_surface.offset)
+        # a canal wall's two surfaces, its thickness the distance of their levels (offsets d_out, d_in)
+        self.outer_surface, self.inner_surface = build.surfaces
+        self.thickness = float(self.outer_surface.level - self.inner_surface.level)
         self.n_s = len(build.layout.stringers_deg)
         # the face columns: the stringers and any C0 knot of the circle between them
         # (:func:`tubecad.brep.faces.face_columns`); stringer j is column self.column_of[j]

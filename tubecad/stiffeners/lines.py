@@ -16,7 +16,6 @@ import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import cast
 
 import build123d as bd
 import numpy as np
@@ -24,11 +23,11 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.Geom import Geom_Circle
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 
-from tubecad.brep.faces import ring_circle, seam_angles
+from tubecad.brep.faces import seam_angles
 from tubecad.brep.layout import NetLayout
 from tubecad.core.atomic import write_text
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
-from tubecad.fitting import CanalSectionSurface, TubeSurface
+from tubecad.fitting import TubeSurface
 
 
 @dataclass(frozen=True)
@@ -61,14 +60,12 @@ class CurvatureLine:
         """The line as a build123d Edge: a ring is the exact circle (Geom_Circle, as the
         wall's ring edges), a stringer the fitted surface's isoline."""
         surf = self.surface.surface
-        if self.kind == "ring" and self.canal:  # the characteristic circle
-            centre, radius, t, x_dir, _ = cast(CanalSectionSurface, self.surface).ring(self.value)
+        if self.kind == "ring":  # the exact circle (a canal surface's characteristic circle)
+            centre, radius, t, x_dir, _ = self.surface.ring(self.value)
             circle = Geom_Circle(
                 gp_Ax2(gp_Pnt(*map(float, centre)), gp_Dir(*map(float, t)), gp_Dir(*map(float, x_dir))), radius
             )
             maker = BRepBuilderAPI_MakeEdge(circle)
-        elif self.kind == "ring":
-            maker = BRepBuilderAPI_MakeEdge(ring_circle(self.surface, self.value)[0])
         else:
             s0, s1 = self.surface.tube.span
             maker = BRepBuilderAPI_MakeEdge(surf.UIso(float(self.surface.u_at(self.value))), s0, s1)

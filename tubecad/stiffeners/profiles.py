@@ -20,6 +20,14 @@ StiffenerSide: TypeAlias = Literal["outside", "inside"]
 SIDES: tuple[str, ...] = get_args(StiffenerSide)
 
 
+def as_stiffener_side(side: str) -> StiffenerSide:
+    """``side`` as a :data:`StiffenerSide`; a ParameterError (key ``side``) naming the allowed ones."""
+    for allowed in get_args(StiffenerSide):
+        if side == allowed:
+            return allowed
+    raise ParameterError(f"side must be one of {', '.join(SIDES)}, got {side!r:.80}", key="side")
+
+
 @dataclass(frozen=True)
 class Profile:
     """``kind`` flat | T | L; web ``height`` (from the wall) and ``thickness``; for T and L

@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import cast
 
 import build123d as bd
 import numpy as np
@@ -143,34 +142,11 @@ def stringer_stiffener(
     on a canal surface its angle is chi0 at the span's start, its corner curves fitted to
     the exact points (:func:`tubecad.stiffeners.canal.canal_stringer_strips`)."""
     _check_side(side)
-    base = tube.fast_path()  # a constant law's canal surface: the tube of that radius
-    sign = 1.0 if side == "outside" else -1.0
-    if base.constant_radius:
-        strips, (s0, s1), caps, cuts, corners, base = _tube_stringer_strips(
-            base, theta_deg, profile, side, span, tolerance, name
-        )
-    else:
-        if base.axis.closed and span is None:
-            _clears_its_start(cast(CanalSurface, base), math.radians(theta_deg), profile, side, name)
-        smallest = base.radius_law.min_radius
-        if not profile.thickness < 2 * smallest:
-            raise ParameterError(
-                f"thickness must be < 2 r = {2 * smallest:g} (the wall's smallest radius, at s = "
-                f"{base.radius_law.s_at_min_radius:.6g}), got {profile.thickness:g}"
-            )
-        checked_levels(base, sorted({sign * h for _, h in profile.outline()}), name)  # before anything is fitted
-        try:
-            strips, (s0, s1), caps, cuts, _ = canal_stringer_strips(
-                cast(CanalSurface, base),  # not a constant radius: a canal surface
-                math.radians(theta_deg),
-                profile,
-                side,
-                span or base.span,
-                tolerance,
-            )
-        except FitError as exc:
-            raise FitError(f"{name}: {exc}") from None
-        corners = [(w, sign * v) for w, v in profile.outline()]
+    # the tube's fast path, or a canal surface's geometry: the surface calls back the one for its kind
+    strips, (s0, s1), caps, cuts, corners, base = tube.dispatch(
+        lambda exact: _tube_stringer_strips(exact, theta_deg, profile, side, span, tolerance, name),
+        lambda exact: _canal_stringer_strips(exact, theta_deg, profile, side, span, tolerance, name),
+    )
     # the outline runs counter-clockwise in (w, v), i.e. clockwise about the line's tangent
     # (+t on a tube: E x N = -t), when the stiffener stands outside; mirrored (inside) it
     # runs counter-clockwise
@@ -182,15 +158,54 @@ def stringer_stiffener(
     return Stiffener(name, "stringer", float(theta_deg), bd.Solid(solid), profile, side, base)
 
 
-def _tube_stringer_strips(
-    tube: CurvatureLineSurface,
+#: what a stringer is made of: its strips, the span of its stations, its cap planes (None where it
+#: closes on itself round a closed axis), the C0 cuts along s, the outline's corners, the wall it stands on
+StringerParts = tuple[
+    list[Strip], tuple[float, float], list[CapPlane] | None, list[float], Section, CurvatureLineSurface
+]
+
+
+def _canal_stringer_strips(
+    base: CanalSurface,
     theta_deg: float,
     profile: Profile,
     side: str,
     span: tuple[float, float] | None,
     tolerance: float,
     name: str,
-) -> tuple[list[Strip], tuple[float, float], list[CapPlane] | None, list[float], Section, CurvatureLineTube]:
+) -> StringerParts:
+    """A canal surface's :func:`stringer_stiffener` (a varying law): (strips, span, cap planes,
+    C0 cuts along s, the outline's corners (w, v off the wall), the wall it stands on), as
+    :func:`_tube_stringer_strips` returns them; its angle is chi0 at the span's start."""
+    sign = 1.0 if side == "outside" else -1.0
+    if base.axis.closed and span is None:
+        _clears_its_start(base, math.radians(theta_deg), profile, side, name)
+    smallest = base.radius_law.min_radius
+    if not profile.thickness < 2 * smallest:
+        raise ParameterError(
+            f"thickness must be < 2 r = {2 * smallest:g} (the wall's smallest radius, at s = "
+            f"{base.radius_law.s_at_min_radius:.6g}), got {profile.thickness:g}"
+        )
+    checked_levels(base, sorted({sign * h for _, h in profile.outline()}), name)  # before anything is fitted
+    try:
+        strips, (s0, s1), caps, cuts, _ = canal_stringer_strips(
+            base, math.radians(theta_deg), profile, side, span or base.span, tolerance
+        )
+    except FitError as exc:
+        raise FitError(f"{name}: {exc}") from None
+    corners = [(w, sign * v) for w, v in profile.outline()]
+    return strips, (s0, s1), caps, cuts, corners, base
+
+
+def _tube_stringer_strips(
+    tube: CurvatureLineTube,
+    theta_deg: float,
+    profile: Profile,
+    side: str,
+    span: tuple[float, float] | None,
+    tolerance: float,
+    name: str,
+) -> StringerParts:
     """The tube's fast path of :func:`stringer_stiffener`: (strips, span, cap planes or None
     where it closes on itself round a closed axis, C0 cuts along s, the outline's corners
     (w, distance from the axis), the wall it stands on)."""
@@ -248,7 +263,7 @@ def _closes_on_itself(axis, corners: list[tuple[float, float]], name: str) -> bo
     return False
 
 
-def _clears_its_start(base: CanalSurface, chi0: float, profile: Profile, side: str, name: str) -> None:
+def _clears_its_start(base: CurvatureLineSurface, chi0: float, profile: Profile, side: str, name: str) -> None:
     """Round a closed axis a canal wall's stringer leaving the closing circle at chi0 comes
     back to it at phi(chi0) (the Moebius map, :meth:`CanalSurface.closing_angle`), where its
     end cap must clear its start cap: |phi - chi0| must exceed the section's angular width

@@ -36,8 +36,9 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -52,6 +53,7 @@ from tubecad.surface.forms import FundamentalForms, SurfaceDerivatives
 from tubecad.surface.tube import CurvatureLineTube
 
 FloatArray = np.ndarray
+T = TypeVar("T")
 MAX_FOLD_SAMPLES = 40_000
 #: :attr:`CanalSurface.area_exact` stops doubling its panels when two estimates agree to this (relative)
 AREA_CONVERGED = 1e-14
@@ -296,8 +298,19 @@ class CanalSurface:
         same points, the same operations in the same order; its regularity was checked
         here), any other law the canal surface itself."""
         if self.radius_law.constant:
-            return CurvatureLineTube(self.axis, self.radius_law.constant_value, allow_irregular=True)
+            return self._as_tube()
         return self
+
+    def dispatch(self, tube: Callable[[CurvatureLineTube], T], canal: Callable[[CanalSurface], T]) -> T:
+        """The protocol's double dispatch: ``canal(self)`` on a varying law; a constant law
+        takes the tube's function with the tube of that radius (:meth:`fast_path`)."""
+        if self.radius_law.constant:
+            return tube(self._as_tube())
+        return canal(self)
+
+    def _as_tube(self) -> CurvatureLineTube:
+        """A constant law's surface as the tube of that radius (its regularity checked here)."""
+        return CurvatureLineTube(self.axis, self.radius_law.constant_value, allow_irregular=True)
 
     def circle(self, s: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
         """The characteristic circle at ``s``: (centre c - r r' t, radius r q, plane normal t)."""

@@ -11,7 +11,10 @@ vector (sin(chi/2), cos(chi/2)) moves by the 2 x 2 fundamental matrix Mb(s) (a M
 of the circle). The tube is the case r = rho constant: r' = 0, q = 1, Mb = I, chi = u, so
 X = c + rho e (paper eq. 7) and every member has a closed form; ``constant_radius`` says
 that the tube's fast path applies (the 9-component frame fit instead of the canal's 21,
-the tube's grid and step rules), ``fast_path()`` gives the object that takes it.
+the tube's grid and step rules), ``fast_path()`` gives the object that takes it. Code that
+only one kind can run (a tube's closed-form report, a canal stringer's Newton steps on the
+exact surface) asks :meth:`~CurvatureLineSurface.dispatch` for it: the surface calls back
+the function for its own kind (double dispatch), so no one downcasts it.
 
 :class:`~tubecad.surface.tube.CurvatureLineTube` and :class:`~tubecad.surface.canal.CanalSurface`
 both satisfy :class:`CurvatureLineSurface`; code after the surface asks these members, never
@@ -20,7 +23,8 @@ the concrete class (tests/design/test_architecture.py checks it).
 
 from __future__ import annotations
 
-from typing import Any, Protocol, TypeGuard, runtime_checkable
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, Protocol, TypeGuard, TypeVar, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -29,7 +33,12 @@ from tubecad.curves.axis import Axis
 from tubecad.curves.radius_law import RadiusLaw
 from tubecad.surface.forms import FundamentalForms, SurfaceDerivatives
 
+if TYPE_CHECKING:  # the two kinds, named in :meth:`CurvatureLineSurface.dispatch` only
+    from tubecad.surface.canal import CanalSurface
+    from tubecad.surface.tube import CurvatureLineTube
+
 FloatArray = np.ndarray
+T = TypeVar("T")
 
 
 @runtime_checkable
@@ -74,6 +83,13 @@ class CurvatureLineSurface(Protocol):
     def fast_path(self) -> CurvatureLineSurface:
         """The same surface in the form that takes the fast path: a constant law's canal
         surface as the CurvatureLineTube of that radius, anything else itself."""
+        ...
+
+    def dispatch(self, tube: Callable[[CurvatureLineTube], T], canal: Callable[[CanalSurface], T]) -> T:
+        """Double dispatch on the kind, for what only one kind can do: ``tube(t)`` with the
+        tube that takes the fast path (the CurvatureLineTube itself, or a constant law's
+        canal surface as :meth:`fast_path` gives it), else ``canal(self)`` (a varying law's
+        CanalSurface). Returns what the called function returns."""
         ...
 
     # --- the net -----------------------------------------------------------------------

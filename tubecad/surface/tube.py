@@ -12,6 +12,8 @@ G = (1 - rho kappa_u)^2, L = -rho, M = 0, N = kappa_u (1 - rho kappa_u).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Never, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,6 +27,7 @@ from tubecad.surface.forms import FundamentalForms, SurfaceDerivatives
 from tubecad.surface.regularity import RegularityReport, check_regularity
 
 FloatArray = np.ndarray
+T = TypeVar("T")
 
 
 class CurvatureLineTube:
@@ -98,6 +101,11 @@ class CurvatureLineTube:
     def fast_path(self) -> CurvatureLineTube:
         """The tube itself (it is the fast path)."""
         return self
+
+    def dispatch(self, tube: Callable[[CurvatureLineTube], T], canal: Callable[[Never], object]) -> T:  # noqa: ARG002 - the protocol's signature
+        """``tube(self)``: a tube takes the tube's function (the protocol's double dispatch;
+        ``canal``, the canal surface's function, is never called here)."""
+        return tube(self)
 
     def inside(self, s: ArrayLike) -> FloatArray:
         """``s`` as a float array, checked to lie in the span (:meth:`Axis.inside`)."""

@@ -117,8 +117,8 @@ def test_branches_must_be_tables():
 @pytest.mark.parametrize(
     ("command", "says"),
     [
-        (["build", "{spec}", "-o", "{out}/x.stl"], "output 'x.stl': a spec with [[branches]] is written as CAD"),
-        (["build", "{spec}", "-o", "{out}/x.svg"], "output 'x.svg': a spec with [[branches]] is written as CAD"),
+        (["build", "{spec}", "-o", "{out}/x.svg"], "output 'x.svg': a junction is written as cad, mesh, png files"),
+        (["build", "{spec}", "-o", "{out}/x.csv"], "output 'x.csv': a junction is written as cad, mesh, png files"),
     ],
 )
 def test_what_a_junction_cannot_be_yet_is_refused_with_exit_2_and_no_file(tmp_path, command, says):

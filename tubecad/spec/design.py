@@ -1,0 +1,170 @@
+"""A checked spec as a design value (:mod:`tubecad.design`), and the design's build errors
+in the spec's vocabulary.
+
+:func:`design_of` is the one place that reads the spec's sections into what is built: a
+:class:`~tubecad.design.wall.WallDesign` from [tube], [layout], [fit], [wall],
+[stiffeners] and [panels], a :class:`~tubecad.design.junction.JunctionDesign` when the spec
+has [[branches]]. Every command then builds the design the same way, whatever it is.
+:func:`spec_errors` turns an error of the build (Python terms, tagged with the design
+field that failed: :func:`tubecad.design.stages.stage`) into a SpecError naming the
+section and the key.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import TYPE_CHECKING
+
+from tubecad.core.errors import ParameterError, SpecError, TubecadError
+from tubecad.spec.parse import TubeSpec
+
+if TYPE_CHECKING:
+    from tubecad.design.junction import BranchDesign, JunctionDesign
+    from tubecad.design.wall import WallDesign
+
+#: the keys of a ParameterError about the fit's tolerances (a [fit] error, not [wall]'s)
+FIT_KEYS = ("tolerance", "orthogonality", "fit.tolerance")
+
+
+def design_of(spec: TubeSpec, grid: tuple[int, int] = (64, 501)) -> WallDesign | JunctionDesign:
+    """What ``spec`` builds: its wall (or tube), or with [[branches]] its junction; ``grid``
+    = (nu, ns), where the exact surface's report is measured. A SpecError names the section
+    and the key of what cannot be made."""
+    main = wall_design(spec, grid)
+    if not spec.branches:
+        return main
+    return junction_design(spec, main)
+
+
+def design_class(spec: TubeSpec) -> type[WallDesign] | type[JunctionDesign]:
+    """The kind of design ``spec`` builds, known without building anything (what its
+    outputs are checked against before the kernel loads)."""
+    from tubecad.design.junction import JunctionDesign
+    from tubecad.design.wall import WallDesign
+
+    return JunctionDesign if spec.branches else WallDesign
+
+
+def wall_design(spec: TubeSpec, grid: tuple[int, int] = (64, 501)) -> WallDesign:
+    """The spec's main tube or wall, its stiffeners and panels, as a design."""
+    from tubecad.brep.wall import as_wall_side
+    from tubecad.core.tolerance import check_tolerance
+    from tubecad.design.model import PanelChoice, StiffenerChoice, WallChoice
+    from tubecad.design.wall import WallDesign
+    from tubecad.stiffeners.profiles import as_stiffener_side
+
+    tube = spec.tube
+    try:
+        layout = spec.layout.net(tube)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: [layout] {exc}", key=within("layout", exc)) from None
+    try:  # parse_spec checked it; a model made by a script is checked here
+        tolerance = check_tolerance("tolerance", spec.fit.tolerance)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: [fit] {exc}", key="fit.tolerance") from None
+    wall = None if spec.wall is None else WallChoice(spec.wall.thickness, as_wall_side(spec.wall.side))
+    stiffeners = None
+    if spec.stiffeners is not None:  # the section's one check (the mesh makes it too)
+        chosen = spec.stiffeners.select(layout, spec.source, spec.length_unit)
+        stiffeners = StiffenerChoice(
+            tuple(chosen.rings),
+            tuple(chosen.stringers),
+            chosen.profile,
+            as_stiffener_side(chosen.side),
+            chosen.fuse,
+            chosen.density,
+        )
+    panels = None
+    if spec.panels is not None:
+        rings = spec.panels.ring_indices()
+        panels = PanelChoice(
+            tuple(spec.panels.seam_indices(len(layout.stringers_deg))), None if rings is None else tuple(rings)
+        )
+    return WallDesign(tube, layout, tolerance, wall, stiffeners, panels, spec.length_unit, grid)
+
+
+def junction_design(spec: TubeSpec, main: WallDesign) -> JunctionDesign:
+    """The spec's junction: ``main`` (its wall design) with every [[branches]] table."""
+    from tubecad.design.junction import JunctionDesign
+
+    assert spec.wall is not None  # parse_spec refuses [[branches]] without [wall]
+    branches = tuple(branch_design(spec, k, len(main.layout.stringers_deg)) for k in range(len(spec.branches)))
+    analysis = spec.analysis
+    load = None
+    if analysis is not None and analysis.pressure and analysis.allowable_stress:
+        load = (analysis.pressure, analysis.allowable_stress)
+    return JunctionDesign(main, branches, load)
+
+
+def branch_design(spec: TubeSpec, k: int, main_stringers: int) -> BranchDesign:
+    """The [[branches]] table ``k`` as a design (its wall the main's where it has none)."""
+    from tubecad.brep.wall import as_wall_side
+    from tubecad.design.junction import BranchDesign
+    from tubecad.design.model import PadChoice, WallChoice
+
+    branch = spec.branches[k]
+    surface = branch.surface(spec.tube)
+    section = branch.wall or spec.wall
+    assert section is not None
+    layout = branch.net(surface, main_stringers)
+    pad = None if branch.pad is None else PadChoice(branch.pad.thickness, branch.pad.width)
+    chosen = branch.stiffeners
+    if chosen is None:
+        return BranchDesign(surface, WallChoice(section.thickness, as_wall_side(section.side)), layout, pad)
+    try:
+        rings = tuple(chosen.indices("rings", len(layout.s_rings)))
+        stringers = tuple(chosen.indices("stringers", len(layout.stringers_deg)))
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: [stiffeners] {exc}", key=exc.key or "stiffeners") from None
+    return BranchDesign(
+        surface,
+        WallChoice(section.thickness, as_wall_side(section.side)),
+        layout,
+        pad,
+        True,
+        rings,
+        stringers,
+        chosen.start,
+    )
+
+
+def within(section: str, exc: TubecadError) -> str:
+    """The spec key of an error about ``section``: ``section.key``, or the section."""
+    key = exc.key
+    if key is None:
+        return section
+    return key if key == section or key.startswith(f"{section}.") else f"{section}.{key}"
+
+
+@contextmanager
+def spec_errors(spec: TubeSpec) -> Iterator[None]:
+    """Errors of a design's build as SpecErrors naming ``spec``'s section and key: the
+    stage the error was tagged with (:func:`tubecad.design.stages.stage`) is the section."""
+    from tubecad.fitting import FitError
+
+    try:
+        yield
+    except SpecError:
+        raise
+    except FitError as exc:
+        raise SpecError(f"{spec.source}: [fit] {exc}", key="fit.tolerance") from None
+    except TubecadError as exc:
+        raise as_spec_error(spec, exc) from None
+
+
+def as_spec_error(spec: TubeSpec, exc: TubecadError) -> SpecError:
+    """``exc`` (raised while ``spec``'s design was built) with the spec's section and key."""
+    source, stage = spec.source, exc.stage
+    if stage in ("fit", "wall"):
+        section = "fit" if exc.key in FIT_KEYS else "wall"
+        return SpecError(f"{source}: [{section}] {exc}", key=within(section, exc))
+    if stage in ("stiffeners", "panels", "layout"):
+        return SpecError(f"{source}: [{stage}] {exc}", key=within(stage, exc))
+    if stage == "pads":
+        number = "" if exc.branch is None else f" #{exc.branch + 1}"
+        return SpecError(f"{source}: [[branches]]{number} {exc}", key=exc.key or "branches.pad")
+    if stage == "branches":
+        key = exc.key if exc.key and exc.key.startswith(("branches", "fit")) else "branches"
+        return SpecError(f"{source}: [[branches]] {exc}", key=key)
+    return SpecError(f"{source}: {exc}", key=exc.key)
