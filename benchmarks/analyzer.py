@@ -123,15 +123,15 @@ def peer_sweep():
     """The paper tube as MakePipeShell (CorrectedFrenet) sweeps it along the 1001-point spine."""
     from peers import occt_pipe_shell, spine
 
-    from tubecad import paper_tube
+    from tubecad.spec.paper import paper_tube
 
     tube = paper_tube()
     return occt_pipe_shell("CorrectedFrenet")(tube, spine(tube))[0].wrapped
 
 
 def capped_tube():
-    from tubecad import paper_tube
     from tubecad.brep import NetLayout, build_tube_solid
+    from tubecad.spec.paper import paper_tube
 
     tube = paper_tube()
     return build_tube_solid(tube, NetLayout.equal(tube, 2, 1)).shape

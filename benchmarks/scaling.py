@@ -44,8 +44,8 @@ def _best_of(func, repeats: int) -> float:
 def grid_throughput(sizes=GRID_SIZES, log=print) -> list[dict]:
     from OCP.gp import gp_Pnt
 
-    from tubecad import paper_tube
     from tubecad.brep import NetLayout, build_tube_shell
+    from tubecad.spec.paper import paper_tube
 
     tube = paper_tube()
     build = build_tube_shell(tube, NetLayout.equal(tube, 2, 1))
@@ -100,8 +100,8 @@ def _peak_mb_since(baseline_kb: int) -> float:
 
 def wall_case(rings: int, stringers: int) -> dict:
     """In a fresh process: build the paper wall with this layout; time, peak memory, checks."""
-    from tubecad import paper_tube
     from tubecad.brep import NetLayout, build_wall_solid, properties
+    from tubecad.spec.paper import paper_tube
 
     tube = paper_tube()
     layout = NetLayout.equal(tube, rings, stringers)
@@ -129,9 +129,9 @@ def shell_case(rings: int, stringers: int, sew: bool) -> dict:
     """In a fresh process: one tube's patch faces as a shell, tubecad's way or by sewing."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_Sewing
 
-    from tubecad import paper_tube
     from tubecad.brep import NetLayout, build_tube_shell, properties
     from tubecad.brep.layout import stringer_parameters
+    from tubecad.spec.paper import paper_tube
 
     tube = paper_tube()
     layout = NetLayout.equal(tube, rings, stringers)
@@ -183,11 +183,11 @@ def brep_scaling(wall_layouts=WALL_LAYOUTS, sewing_layouts=SEWING_LAYOUTS, log=p
 def fit_scaling(tolerances=TOLERANCES, peer_tolerances=PEER_TOLERANCES, log=print) -> list[dict]:
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 
-    from tubecad import paper_tube
     from tubecad.brep.measure import net_against_tube, sample_face
     from tubecad.brep.solids import orthogonality_for
     from tubecad.fitting import exact_section_surface, fit_frame, measure_surface
     from tubecad.fitting.generic import grid_surface
+    from tubecad.spec.paper import paper_tube
 
     tube = paper_tube()
     rows = []

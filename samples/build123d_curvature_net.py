@@ -18,8 +18,8 @@ import math
 
 from build123d import Compound, Vector, Wire, export_step
 
-from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_tube_shell
+from tubecad.spec.paper import paper_tube
 
 
 def crossing_cos(ring: Wire, stringer: Wire, point: Vector) -> float:

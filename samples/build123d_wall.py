@@ -14,8 +14,8 @@ import sys
 import numpy as np
 from build123d import Cylinder, Location, Plane, Vector, export_step
 
-from tubecad import paper_tube
 from tubecad.brep import NetLayout, wall_solid
+from tubecad.spec.paper import paper_tube
 
 
 def main() -> None:

@@ -50,16 +50,7 @@ _PUBLIC = {
     "WallSide": "tubecad.brep.wall",
     "StiffenerSide": "tubecad.stiffeners.profiles",
     "Profile": "tubecad.stiffeners.profiles",
-    "saddle_curve": "tubecad.junctions",
-    "fit_saddle": "tubecad.junctions",
-    "build_junction_wall": "tubecad.junctions",
-    "build_branched_wall": "tubecad.junctions",
-    "JunctionWall": "tubecad.junctions",
-    "BranchWall": "tubecad.junctions",
-    "branch_surface": "tubecad.junctions",
     "CurvatureLineTube": "tubecad.surface",
-    "FundamentalForms": "tubecad.surface",
-    "paper_tube": "tubecad.spec.paper",
     "CanalSurface": "tubecad.surface.canal",
     "CurvatureLineSurface": "tubecad.surface.protocol",
     "tube_or_canal": "tubecad.surface.canal",
@@ -71,10 +62,47 @@ _PUBLIC = {
     "RegularityError": "tubecad.core.errors",
     "SpecError": "tubecad.core.errors",
     "show": "tubecad.integrations.viewer",
+    "load_spec": "tubecad.spec.parse",
+    "build_spec": "tubecad.spec.build",
+    "export_shape": "tubecad.export.registry",
+    "WallDesign": "tubecad.design.wall",
+    "JunctionDesign": "tubecad.design.junction",
+    "BuildResult": "tubecad.design.result",
+}
+
+#: names the top level used to offer, moved to the package that owns them (issue 42): still
+#: importable from here with a DeprecationWarning naming their home, left out of ``__all__``
+_MOVED = {
+    "saddle_curve": "tubecad.junctions",
+    "fit_saddle": "tubecad.junctions",
+    "build_junction_wall": "tubecad.junctions",
+    "build_branched_wall": "tubecad.junctions",
+    "JunctionWall": "tubecad.junctions",
+    "BranchWall": "tubecad.junctions",
+    "branch_surface": "tubecad.junctions",
+    "paper_tube": "tubecad.spec.paper",
+    "FundamentalForms": "tubecad.surface",
 }
 
 __all__ = list(_PUBLIC)
-__getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())
+_lazy_getattr, __dir__ = lazy_exports(__name__, _PUBLIC, globals())
+
+
+def __getattr__(name: str) -> object:
+    """A public name, imported on first use; a moved one with a DeprecationWarning."""
+    if name in _MOVED:
+        import warnings
+        from importlib import import_module
+
+        warnings.warn(
+            f"tubecad.{name} moved: import it from {_MOVED[name]} (the top level keeps the parts, axes, "
+            "laws, layouts, profiles, specs, export and errors)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(import_module(_MOVED[name]), name)
+    return _lazy_getattr(name)
+
 
 if TYPE_CHECKING:  # the public names' own types for type checkers and IDEs (nothing is imported at run time)
     from tubecad.brep.layout import NetLayout as NetLayout
@@ -99,6 +127,10 @@ if TYPE_CHECKING:  # the public names' own types for type checkers and IDEs (not
     from tubecad.curves.radius_law import RadiusLaw as RadiusLaw
     from tubecad.curves.radius_law import radius_law as radius_law
     from tubecad.curves.route import RouteAxis as RouteAxis
+    from tubecad.design.junction import JunctionDesign as JunctionDesign
+    from tubecad.design.result import BuildResult as BuildResult
+    from tubecad.design.wall import WallDesign as WallDesign
+    from tubecad.export.registry import export_shape as export_shape
     from tubecad.integrations.viewer import show as show
     from tubecad.junctions import BranchWall as BranchWall
     from tubecad.junctions import JunctionWall as JunctionWall
@@ -114,7 +146,9 @@ if TYPE_CHECKING:  # the public names' own types for type checkers and IDEs (not
     from tubecad.parts import StiffenedCurvatureWall as StiffenedCurvatureWall
     from tubecad.parts.axis_input import AxisLike as AxisLike
     from tubecad.parts.axis_input import RadiusLike as RadiusLike
+    from tubecad.spec.build import build_spec as build_spec
     from tubecad.spec.paper import paper_tube as paper_tube
+    from tubecad.spec.parse import load_spec as load_spec
     from tubecad.stiffeners.profiles import Profile as Profile
     from tubecad.stiffeners.profiles import StiffenerSide as StiffenerSide
     from tubecad.surface import CurvatureLineTube as CurvatureLineTube

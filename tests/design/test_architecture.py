@@ -1,6 +1,8 @@
 """The layout as docs/ARCHITECTURE.md states it: the packages form layers, each importing
-only from the layers below it, and no module imports itself back through another (every
-import counts, also one inside a function). Read from the source, nothing is imported."""
+only from the layers below it (every import counts, also one inside a function or one for
+type checkers only), and no module imports itself back through another at run time (an
+import under ``if TYPE_CHECKING:`` is never executed: a design's builder may name the
+design's class for its annotations). Read from the source, nothing is imported."""
 
 from __future__ import annotations
 
@@ -33,8 +35,20 @@ LAYERS = [
 RANK = {name: i for i, names in enumerate(LAYERS) for name in names}
 
 
-def import_graph() -> dict[str, set[str]]:
-    """module -> the tubecad modules it imports (a package's ``__init__`` as the package)."""
+def type_only_imports(tree: ast.Module) -> set[ast.AST]:
+    """The import statements under ``if TYPE_CHECKING:`` (or ``typing.TYPE_CHECKING``)."""
+    found: set[ast.AST] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and (
+            getattr(node.test, "id", None) == "TYPE_CHECKING" or getattr(node.test, "attr", None) == "TYPE_CHECKING"
+        ):
+            found |= {n for stmt in node.body for n in ast.walk(stmt) if isinstance(n, (ast.Import, ast.ImportFrom))}
+    return found
+
+
+def import_graph(runtime_only: bool = False) -> dict[str, set[str]]:
+    """module -> the tubecad modules it imports (a package's ``__init__`` as the package);
+    with ``runtime_only``, not those imported for type checkers only."""
     modules: dict[str, Path] = {}
     for path in PACKAGE.rglob("*.py"):
         parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
@@ -43,7 +57,11 @@ def import_graph() -> dict[str, set[str]]:
     graph: dict[str, set[str]] = {name: set() for name in modules}
     for name, path in modules.items():
         package = name if path.name == "__init__.py" else name.rpartition(".")[0]
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        skipped = type_only_imports(tree) if runtime_only else set()
+        for node in ast.walk(tree):
+            if node in skipped:
+                continue
             if isinstance(node, ast.ImportFrom):
                 base = node.module or ""
                 if node.level:
@@ -102,7 +120,7 @@ def test_no_upward_import():
 
 
 def test_no_import_circle():
-    cycles = import_circles(import_graph())
+    cycles = import_circles(import_graph(runtime_only=True))
     assert not cycles, "import circles:\n" + "\n".join(" -> ".join(c) for c in cycles)
 
 
@@ -116,12 +134,20 @@ def test_the_checker_sees_a_circle_and_an_upward_import(tmp_path, monkeypatch):
     (pkg / "__init__.py").write_text("")
     (pkg / "core" / "a.py").write_text("def f():\n    from tubecad.cli import b\n")
     (pkg / "cli" / "b.py").write_text("from ..core import a\n")
+    (pkg / "cli" / "c.py").write_text(
+        "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from tubecad.cli import d\n"
+    )
+    (pkg / "cli" / "d.py").write_text("def f():\n    from tubecad.cli import c\n")
     monkeypatch.setattr(sys.modules[__name__], "PACKAGE", pkg)
     graph = import_graph()
     assert graph["tubecad.core.a"] == {"tubecad.cli", "tubecad.cli.b"}
     assert graph["tubecad.cli.b"] == {"tubecad.core", "tubecad.core.a"}
     assert upward_imports(graph) == ["tubecad.core.a -> tubecad.cli", "tubecad.core.a -> tubecad.cli.b"]
     assert ["tubecad.cli.b", "tubecad.core.a", "tubecad.cli.b"] in import_circles(graph)
+    # a type-only import counts as a layer's import, but makes no circle at run time
+    assert graph["tubecad.cli.c"] == {"tubecad.cli.d"}
+    assert import_graph(runtime_only=True)["tubecad.cli.c"] == set()
+    assert not [c for c in import_circles(import_graph(runtime_only=True)) if "tubecad.cli.c" in c]
 
 
 # --- dispatch by the surface protocol, not by the concrete class -----------------------------------
@@ -303,12 +329,9 @@ def test_the_reach_in_checker_sees_another_modules_private_method():
 
 
 # --- no downcast: what a caller needs is a protocol member, never typing.cast -----------------------
-#: casts left in modules outside the change that removed the others (issue 42), as (module, the type
-#: named): the list only shrinks; a cast not in it fails the test, and one removed must leave it too
-PENDING_CASTS = {
-    ("tubecad.stiffeners.panels", "FrameSpline"),  # a tube's build.frame: TubeBuild.frame is FrameSpline | CanalSpline
-    ("tubecad.batch.executors", "int"),  # a busy worker's index (int | None)
-}
+#: casts allowed, as (module, the type named): none since issue 42 (the last two, a tube build's frame
+#: and a busy worker's index, became TubeBuild.section_frame and a narrowing comprehension)
+PENDING_CASTS: set[tuple[str, str]] = set()
 
 
 def typing_casts(modules: dict[str, ast.Module]) -> list[tuple[str, int, str]]:
@@ -373,4 +396,35 @@ def test_the_cast_checker_sees_typing_casts_only():
         ("tubecad.brep.x", 7, "list[CanalSectionSurface]"),
         ("tubecad.brep.x", 8, "int"),
         ("tubecad.brep.x", 9, "CurvatureLineTube"),
+    ]
+
+
+# --- one staging recipe: output folders are staged by tubecad.core.atomic only -------------------
+def temporary_folders(modules: dict[str, ast.Module]) -> list[str]:
+    """Calls of ``mkdtemp`` (``tempfile.mkdtemp``, or imported by name) outside tubecad.core, as
+    "module:line": a folder of outputs is staged by :func:`tubecad.core.atomic.staged_folder`,
+    the one recipe (a scratch folder for an external program is ``TemporaryDirectory``)."""
+    found = []
+    for name, tree in modules.items():
+        if name.startswith("tubecad.core"):
+            continue
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Call):
+                func = node.func
+                called = func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else ""
+                if called == "mkdtemp":
+                    found.append(f"{name}:{node.lineno}")
+    return sorted(found)
+
+
+def test_output_folders_are_staged_in_one_place():
+    found = temporary_folders(_modules())
+    assert not found, "mkdtemp outside tubecad.core (use tubecad.core.atomic.staged_folder):\n" + "\n".join(found)
+
+
+def test_the_staging_checker_sees_mkdtemp():
+    module = ast.parse("import tempfile\nfrom tempfile import mkdtemp\na = tempfile.mkdtemp()\nb = mkdtemp()\n")
+    assert temporary_folders({"tubecad.shop.x": module, "tubecad.core.atomic": module}) == [
+        "tubecad.shop.x:3",
+        "tubecad.shop.x:4",
     ]

@@ -45,7 +45,7 @@ from pathlib import Path
 
 import build123d as bd
 
-from tubecad import paper_tube
+from tubecad.spec.paper import paper_tube
 from tubecad.export.plots import write_projections
 from tubecad.export.render import render_shape_png
 from tubecad.stiffeners.flat import ring_flat_pattern, write_picture

@@ -29,8 +29,41 @@ def type_checking_imports() -> dict[str, str]:
 
 
 def test_every_public_name_has_its_type_for_type_checkers():
-    """The same names, from the same modules, as the lazy table (``_PUBLIC``) imports at run time."""
-    assert type_checking_imports() == tubecad._PUBLIC
+    """The same names, from the same modules, as the lazy table (``_PUBLIC``) and the moved
+    names (``_MOVED``) import at run time."""
+    assert type_checking_imports() == {**tubecad._PUBLIC, **tubecad._MOVED}
+
+
+def test_the_top_level_is_curated_and_a_moved_name_says_where_it_went():
+    """``__all__`` holds the parts, axes, laws, layouts, profiles, specs, export and errors, not
+    the junction internals nor the paper's demo tube; those still import, with a warning
+    naming their package, and are the same objects."""
+    import tubecad.junctions
+    import tubecad.spec.paper
+
+    assert not set(tubecad._MOVED) & set(tubecad.__all__)
+    for name in (
+        "CurvatureWall",
+        "CurvatureJunction",
+        "Helix",
+        "RadiusLaw",
+        "NetLayout",
+        "Profile",
+        "load_spec",
+        "build_spec",
+        "export_shape",
+        "SpecError",
+        "AxisLike",
+        "RadiusLike",
+        "WallSide",
+    ):
+        assert name in tubecad.__all__, name
+    with pytest.warns(DeprecationWarning, match=r"tubecad.saddle_curve moved: import it from tubecad.junctions"):
+        assert tubecad.saddle_curve is tubecad.junctions.saddle_curve
+    with pytest.warns(DeprecationWarning, match=r"from tubecad.spec.paper"):
+        assert tubecad.paper_tube is tubecad.spec.paper.paper_tube
+    with pytest.raises(AttributeError, match="has no attribute 'no_such_name'"):
+        tubecad.no_such_name  # noqa: B018 - the attribute access is the test
 
 
 @pytest.mark.slow

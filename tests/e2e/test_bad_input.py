@@ -33,11 +33,11 @@ from tubecad import (
     ParameterError,
     RegularityError,
     TubecadError,
-    paper_tube,
 )
 from tubecad.brep import NetLayout, tube_solid, wall_solid
 from tubecad.cli.app import cli
 from tubecad.fitting import FitError, fit_frame
+from tubecad.spec.paper import paper_tube
 
 CONSOLE = Path(sys.executable).parent / "tubecad"
 ENV = {**os.environ, "MPLBACKEND": "Agg"}

@@ -14,7 +14,7 @@ from axes import CASES
 from measure import measure
 from peers import METHODS, SWEEPS, spine, spine_deviation
 
-from tubecad import paper_tube
+from tubecad.spec.paper import paper_tube
 
 
 @pytest.fixture(scope="module")

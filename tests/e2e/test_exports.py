@@ -9,12 +9,12 @@ import pytest
 from click.testing import CliRunner
 from conftest import PAPER_SPEC, ROOT, sample_build_outputs
 
-from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
 from tubecad.cli.app import cli
 from tubecad.export.cad import import_shape
 from tubecad.export.registry import export_shape
+from tubecad.spec.paper import paper_tube
 
 SAMPLES = ROOT / "samples"
 

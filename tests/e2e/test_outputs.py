@@ -15,11 +15,11 @@ import pytest
 from click.testing import CliRunner
 from conftest import ROOT
 
-from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.cli.app import cli
 from tubecad.export.cad import step_names
 from tubecad.export.registry import EXTENSIONS, FORMAT_NAMES, allowed, export_shape, markdown_table, output_format
+from tubecad.spec.paper import paper_tube
 
 SAMPLES = ROOT / "samples"
 
@@ -95,7 +95,7 @@ SCHEMA_SCRIPT = textwrap.dedent("""
     from pathlib import Path
     from OCP.Interface import Interface_Static
     from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
-    from tubecad import paper_tube
+    from tubecad.spec.paper import paper_tube
     from tubecad.brep import NetLayout, build_wall_solid
     from tubecad.export.registry import export_shape
     from tubecad.stiffeners import net_lines

@@ -24,7 +24,7 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 from multiprocessing.connection import wait
-from typing import Any, Protocol, cast
+from typing import Any, Protocol
 
 
 @dataclass(frozen=True)
@@ -150,13 +150,12 @@ class ProcessExecutor:
         worker.conn.send((index, job))
 
     def poll(self, timeout: float) -> list[tuple[int, Any]]:
-        busy = [w for w in self._workers if w.index is not None]
+        busy = [(w, i) for w in self._workers if (i := w.index) is not None]  # the workers holding a job
         if not busy:
             return []
-        ready = set(wait([w.conn for w in busy] + [w.process.sentinel for w in busy], timeout))
+        ready = set(wait([w.conn for w, _ in busy] + [w.process.sentinel for w, _ in busy], timeout))
         out: list[tuple[int, Any]] = []
-        for worker in busy:
-            held = cast(int, worker.index)  # busy: the workers holding a job (index not None)
+        for worker, held in busy:
             if worker.conn in ready:
                 try:
                     index, result = worker.conn.recv()

@@ -71,6 +71,9 @@ class TubeBuild:
     frame: FrameSpline | CanalSpline
     tolerance: float
     radii: list[float] = field(default_factory=list)
+    #: a constant radius' frame fit (the same as ``frame``), on which any radius' exact-section
+    #: surface is built (a panel's refit: tubecad.stiffeners.panels); None for a canal surface
+    section_frame: FrameSpline | None = None
 
     def ring_wires(self, surface: int = 0) -> list[bd.Wire]:
         """The ring frames (s = const) on surface ``surface`` (0 outer, 1 inner): closed wires."""
@@ -149,10 +152,12 @@ def build_tube_shell(
     """The tube's shell: faces between rings and stringers (open, or closed round a closed axis)."""
     tube = _as_tube(tube)
     layout = _checked(tube, layout)
-    fit, built = _surfaces(tube, (0.0,), [tube], layout, tolerance)
+    fit, section_frame, built = _surfaces(tube, (0.0,), [tube], layout, tolerance)
     ((surface, patches),) = built
     shell = shell_of(patches.all_faces(), closed=tube.axis.closed)
-    return TubeBuild(bd.Shell(shell), [surface], [patches], layout, fit, tolerance, _radii(tube, [surface]))
+    return TubeBuild(
+        bd.Shell(shell), [surface], [patches], layout, fit, tolerance, _radii(tube, [surface]), section_frame
+    )
 
 
 def build_tube_solid(
@@ -168,12 +173,16 @@ def build_tube_solid(
     tube = _as_tube(tube)
     layout = _checked(tube, layout)
     done = iter(range(1, 3))
-    fit, built = _surfaces(tube, (0.0,), [tube], layout, tolerance, lambda step: report(step, next(done), 3))
+    fit, section_frame, built = _surfaces(
+        tube, (0.0,), [tube], layout, tolerance, lambda step: report(step, next(done), 3)
+    )
     ((surface, patches),) = built
     caps = [] if tube.axis.closed else [_end_cap(tube, built, k, layout.s_rings[k]) for k in (0, -1)]
     solid = _solid([patches.all_faces() + caps], tube)
     report("solid", 3, 3)
-    return TubeBuild(bd.Solid(solid), [surface], [patches], layout, fit, tolerance, _radii(tube, [surface]))
+    return TubeBuild(
+        bd.Solid(solid), [surface], [patches], layout, fit, tolerance, _radii(tube, [surface]), section_frame
+    )
 
 
 def build_wall_solid(
@@ -194,7 +203,9 @@ def build_wall_solid(
     layout = _checked(tube, layout)
     offsets, exact = _wall_surfaces(tube, thickness, side)
     done = iter(range(1, 4))
-    fit, built = _surfaces(tube, offsets, exact, layout, tolerance, lambda step: report(step, next(done), 4))
+    fit, section_frame, built = _surfaces(
+        tube, offsets, exact, layout, tolerance, lambda step: report(step, next(done), 4)
+    )
     (outer, outer_patches), (inner, inner_patches) = built
     if tube.axis.closed:  # no caps: the outer closed shell and the inner one, its cavity
         shells = [outer_patches.all_faces(), inner_patches.all_faces()]
@@ -211,6 +222,7 @@ def build_wall_solid(
         fit,
         tolerance,
         _radii(tube, [outer, inner]),
+        section_frame,
     )
 
 
@@ -247,10 +259,12 @@ def _surfaces(
     layout: NetLayout,
     tolerance: float,
     step: Callable[[str], None] = lambda _: None,
-) -> tuple[FrameSpline | CanalSpline, list[tuple[TubeSurface, PatchFaces]]]:
+) -> tuple[FrameSpline | CanalSpline, FrameSpline | None, list[tuple[TubeSurface, PatchFaces]]]:
     """Fit ``tube`` once for all the surfaces ``exact`` (its normal offsets by ``offsets``,
     outer first) and build the patch faces of each (the second reversed, the inner wall of a
-    solid), calling ``step(name)`` after the fit and each surface.
+    solid), calling ``step(name)`` after the fit and each surface. Returns the fit, the
+    tube's frame fit again (None for a canal surface: :attr:`TubeBuild.section_frame`) and
+    each surface with its faces.
 
     The one place the fit is chosen: a constant radius takes the tube's fast path, the
     9-component frame F = (c, rho r1, rho r2) fitted for the largest radius (every surface
@@ -259,10 +273,13 @@ def _surfaces(
     (:func:`~tubecad.fitting.canal_section.fit_canal`)."""
     orthogonality = orthogonality_for(tolerance)
     fit: FrameSpline | CanalSpline
+    section_frame: FrameSpline | None = None
     if tube.constant_radius:
         radii = tuple(e.radius_law.constant_value for e in exact)
         extra: dict[str, Any] = {"radii": radii} if len(radii) > 1 else {}
-        frame = fit = fit_frame(tube.axis, radii[0], tolerance, orthogonality, rings=layout.s_rings, **extra)
+        frame = fit = section_frame = fit_frame(
+            tube.axis, radii[0], tolerance, orthogonality, rings=layout.s_rings, **extra
+        )
 
         def section(k: int) -> TubeSurface:
             # a constant radius: the surfaces are tubes (fast_path, _wall_surfaces)
@@ -284,7 +301,7 @@ def _surfaces(
             (surface, patch_faces(surface, list(layout.s_rings), layout.stringers_deg, reverse=k > 0, closing=closing))
         )
         step(names[k])
-    return fit, built
+    return fit, section_frame, built
 
 
 def _wall_surfaces(

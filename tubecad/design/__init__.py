@@ -12,7 +12,7 @@ _PUBLIC = {
     "Design": "tubecad.design.model",
     "WallDesign": "tubecad.design.wall",
     "JunctionDesign": "tubecad.design.junction",
-    "BranchDesign": "tubecad.design.junction",
+    "BranchDesign": "tubecad.design.model",
     "WallChoice": "tubecad.design.model",
     "StiffenerChoice": "tubecad.design.model",
     "PanelChoice": "tubecad.design.model",
@@ -21,7 +21,8 @@ _PUBLIC = {
     "write_outputs": "tubecad.design.result",
     "mesh_tolerances": "tubecad.design.result",
     "WallResult": "tubecad.design.wall",
-    "JunctionResult": "tubecad.design.junction",
+    "JunctionResult": "tubecad.design.junction_build",
+    "ShellModel": "tubecad.design.shell",
 }
 
 __all__ = list(_PUBLIC)

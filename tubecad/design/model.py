@@ -4,7 +4,7 @@ The :class:`Design` protocol and the choices designs are made of (a wall, stiffe
 a pad). A :class:`~tubecad.design.wall.WallDesign` is a tube or a wall (the exact surface, its
 net, the fit tolerance, the wall, the stiffeners and the panels); a
 :class:`~tubecad.design.junction.JunctionDesign` is a main wall with
-:class:`~tubecad.design.junction.BranchDesign` s joined on. The spec parses TOML into one (:mod:`tubecad.spec.design`),
+:class:`~tubecad.design.model.BranchDesign` s joined on. The spec parses TOML into one (:mod:`tubecad.spec.design`),
 the build123d parts and the CadQuery plugin build one from keyword arguments
 (:mod:`tubecad.parts.engine`); all three build it the same way, by its own :meth:`build`
 (the :class:`Design` protocol), into a :class:`~tubecad.design.result.BuildResult`.
@@ -17,14 +17,21 @@ spec layer turns into its ``[section]`` (:func:`tubecad.design.stages.stage`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar, Protocol
 
 if TYPE_CHECKING:
+    from tubecad.brep.layout import NetLayout
     from tubecad.brep.wall import WallSide
     from tubecad.core.progress import Progress
     from tubecad.design.result import BuildResult
+    from tubecad.design.shell import ShellModel
+    from tubecad.design.shop import ShopPackage
+    from tubecad.fem.settings import MeshSettings
+    from tubecad.shop.fabrication import Fabrication
     from tubecad.stiffeners.profiles import Profile, StiffenerSide
+    from tubecad.surface.protocol import CurvatureLineSurface
 
 
 class Design(Protocol):
@@ -40,8 +47,26 @@ class Design(Protocol):
         """The unit of the design's lengths (tubecad.core.units), stated by every file."""
         ...
 
+    @property
+    def stiffeners(self) -> StiffenerChoice | None:
+        """The stiffeners on the (main) wall, if any."""
+        ...
+
     def build(self, progress: Progress | None = None) -> BuildResult:
         """Build the design's solids, name their edges and measure them (nothing is written)."""
+        ...
+
+    def shell_model(self, settings: MeshSettings) -> ShellModel:
+        """The design meshed for analysis with ``settings`` (:mod:`tubecad.design.shell`)."""
+        ...
+
+    def shop(self, fab: Fabrication, progress: Callable[[str], None] | None = None) -> ShopPackage:
+        """The design's shop package with the fabrication settings ``fab`` (:mod:`tubecad.design.shop`)."""
+        ...
+
+    def analysis_ends(self, given: str | None, default: str) -> str:
+        """The end condition of its pressure step: ``given`` if the design's model can take
+        it (a ParameterError naming ``ends`` if not), else its default or ``default``."""
         ...
 
 
@@ -89,3 +114,21 @@ class PadChoice:
 
     thickness: float
     width: float
+
+
+@dataclass(frozen=True)
+class BranchDesign:
+    """A branch of a junction: its exact ``surface`` (placed on the main one:
+    :func:`tubecad.junctions.branch_surface`), its ``wall`` and net ``layout``; a ``pad``
+    round its opening; with ``stiffened`` its own stiffeners (the main's profile and side) on
+    its rings ``stiffener_rings`` and stringers ``stiffener_stringers``, the stringers
+    starting ``stiffener_start`` beyond the saddle (None: the profile's height)."""
+
+    surface: CurvatureLineSurface
+    wall: WallChoice
+    layout: NetLayout
+    pad: PadChoice | None = None
+    stiffened: bool = False
+    stiffener_rings: tuple[int, ...] = ()
+    stiffener_stringers: tuple[int, ...] = ()
+    stiffener_start: float | None = None

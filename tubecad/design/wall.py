@@ -3,6 +3,7 @@ and panels, the named assembly its files are written from, and what was measured
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -12,6 +13,8 @@ from tubecad.core.progress import Progress
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.design.model import PanelChoice, StiffenerChoice, WallChoice
+from tubecad.design.shell import ShellModel, WallShellModel
+from tubecad.design.shop import ShopPackage, WallShop
 from tubecad.design.stages import stage
 
 if TYPE_CHECKING:
@@ -19,6 +22,8 @@ if TYPE_CHECKING:
     from tubecad.brep.solids import TubeBuild
     from tubecad.design.result import BuildResult
     from tubecad.export.registry import Exportable, OutputFormat
+    from tubecad.fem.settings import MeshSettings
+    from tubecad.shop.fabrication import Fabrication
     from tubecad.surface.protocol import CurvatureLineSurface
 
 
@@ -45,10 +50,23 @@ class WallDesign:
 
     def build(self, progress: Progress | None = None) -> BuildResult:
         """The tube or wall solid, its stiffeners and panels, named and measured
-        (:func:`tubecad.design.wall.build_wall`)."""
-        from tubecad.design.wall import build_wall
-
+        (:func:`build_wall`)."""
         return build_wall(self, progress)
+
+    def shell_model(self, settings: MeshSettings) -> ShellModel:
+        """The wall (or the surface) meshed for analysis with ``settings``
+        (:func:`tubecad.design.shell.wall_shell_model`); nothing is built in OCCT."""
+        return wall_shell_model(self, settings)
+
+    def shop(self, fab: Fabrication, progress: Callable[[str], None] | None = None) -> ShopPackage:
+        """The wall's shop package with the fabrication settings ``fab`` (:func:`wall_shop`)."""
+        return wall_shop(self, fab, progress)
+
+    def analysis_ends(self, given: str | None, default: str) -> str:
+        """The pressure step's end condition (:func:`tubecad.design.shell.wall_ends`)."""
+        from tubecad.design.shell import wall_ends
+
+        return wall_ends(given, default)
 
 
 @dataclass
@@ -276,3 +294,41 @@ def panel_report(panels: list, density: float) -> list[dict[str, Any]]:
         }
         for p in panels
     ]
+
+
+def wall_shell_model(design: WallDesign, settings: MeshSettings) -> WallShellModel:
+    """``design`` meshed with ``settings``: its wall (or surface), stiffeners as beams, panels
+    as sets (:func:`tubecad.fem.shell_mesh`)."""
+    from tubecad.fem import StiffenerPlan, shell_mesh
+
+    chosen, wall, panels = design.stiffeners, design.wall, design.panels
+    plan = None if chosen is None else StiffenerPlan(chosen.rings, chosen.stringers, chosen.profile, chosen.side)
+    with stage("mesh"):
+        mesh = shell_mesh(
+            design.surface,  # type: ignore[arg-type]
+            design.layout,
+            thickness=None if wall is None else wall.thickness,
+            wall_side="centered" if wall is None else wall.side,
+            stiffeners=plan,
+            seams=None if panels is None else panels.seams,
+            panel_rings=None if panels is None else panels.rings,
+            settings=settings,
+            length_unit=design.length_unit,
+        )
+    return WallShellModel(mesh, design.surface)
+
+
+def wall_shop(design: WallDesign, fab: Fabrication, progress: Callable[[str], None] | None = None) -> WallShop:
+    """``design``'s wall, stiffeners and panels built (no report, no assembly) and their shop
+    package computed with ``fab`` (:func:`tubecad.shop.package.shop_data`); ``progress(stage)``
+    hears of each stage."""
+    from tubecad.shop.package import shop_data
+
+    say = progress or (lambda _stage: None)
+    say("building the wall")
+    build = build_solid(design)
+    say("building stiffeners")
+    stiffeners = build_wall_stiffeners(design, build)
+    panels = build_panels(design, build)
+    with stage("fabrication"):
+        return WallShop(shop_data(build, stiffeners, panels, fab, say))

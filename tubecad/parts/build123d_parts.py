@@ -19,6 +19,13 @@ frames and stringers. Those lines are reachable on the object, labelled::
 The object keeps its curvature lines through its own placement (``align``, ``rotation``,
 ``Locations``); a boolean's result is a new build123d ``Part``, whose faces still carry the
 lines as edges but without the names.
+
+Its solids are its build123d ``children``, labelled as ``tubecad build`` names them:
+``wall`` (on a tube too, as there), then a stiffened wall's ``ring_03``, ``stringer_05``, ...
+in each placed copy, under the part's own label (its class name). So build123d's own
+``export_step(wall, "wall.step")`` writes them as named products, as
+:func:`tubecad.export.cad.export_named_step` does (without its colours); the curvature
+lines are not in it (they are edges of the solids, not solids).
 """
 
 from __future__ import annotations
@@ -48,6 +55,25 @@ class _Engine:
         return self
 
 
+class _Naming:
+    """The part's shape its labelled children were last made of (None: never), and whether
+    they are being made now. A copy of the part starts over: its children are made anew,
+    of the copy's own shape."""
+
+    def __init__(self) -> None:
+        self.shape: Any = None
+        self.busy = False
+
+    def __deepcopy__(self, memo: dict) -> _Naming:
+        return _Naming()
+
+
+#: the ``children`` property of every build123d shape (anytree's NodeMixin's)
+_NODE_CHILDREN: Any = next(vars(c)["children"] for c in bd.Compound.__mro__ if "children" in vars(c))
+#: build123d's ``wrapped`` property
+_SHAPE_WRAPPED: Any = vars(bd.Shape)["wrapped"]
+
+
 class _CurvatureNetPart(bd.BasePartObject):
     """A part whose face edges are curvature lines: ``rings``, ``stringers``, ``seams`` (and on
     a wall ``inner_rings``, ``inner_stringers``, ``inner_seams``) as labelled wires of this
@@ -59,9 +85,70 @@ class _CurvatureNetPart(bd.BasePartObject):
         surface, build = build_part(args)
         self._tubecad = _Engine(surface, build, net_edges(build))
         super().__init__(part=self._part(build), rotation=rotation, align=align, mode=mode)
+        self.label = self.label or type(self).__name__
+        self._naming: _Naming | None = _Naming()
 
-    #: how many solids one placed copy of the part holds (the wall first)
-    _solids_per_copy = 1
+    #: the labels of the solids of one placed copy of the part, in order (the wall first)
+    _solid_names: tuple[str, ...] = ("wall",)
+
+    @property
+    def _solids_per_copy(self) -> int:
+        """How many solids one placed copy of the part holds."""
+        return len(self._solid_names)
+
+    def _get_children(self) -> tuple[bd.Shape, ...]:
+        self._name_solids()
+        return _NODE_CHILDREN.fget(self)
+
+    def _set_children(self, children: Any) -> None:
+        naming = self.__dict__.get("_naming")
+        if naming is not None and not naming.busy:  # the caller's own children: kept as given
+            self._naming = None
+        _NODE_CHILDREN.fset(self, children)
+
+    #: build123d's (anytree's) ``children``, kept to one labelled solid per solid of the part's
+    #: shape, however that shape was set (placed, moved, copied): what ``export_step`` names
+    children = property(_get_children, _set_children, _NODE_CHILDREN.fdel)
+
+    def _get_wrapped(self) -> Any:
+        self._name_solids()
+        return _SHAPE_WRAPPED.fget(self)
+
+    #: the OCCT shape: made the compound of the labelled children first, if it changed since
+    #: (``export_step`` reads the part's shape before its children)
+    wrapped = property(_get_wrapped, _SHAPE_WRAPPED.fset)
+
+    def _name_solids(self) -> None:
+        """Make the children anew if the part's shape is not the one they were made of: a
+        solid each, as placed (the shape becomes the compound of them, the same solids)."""
+        naming = self.__dict__.get("_naming")
+        shape = self.__dict__.get("_wrapped")
+        if naming is None or naming.busy or shape is None:
+            return
+        if naming.shape is not None and naming.shape.IsEqual(shape):
+            return
+        naming.busy = True
+        try:
+            solids = list(self.solids())
+            names = self._solid_names
+            if len(solids) % len(names):  # not the part's own solids any more: no names, no children
+                solids = []
+            for i, solid in enumerate(solids):
+                solid.label = names[i % len(names)]
+            _NODE_CHILDREN.fset(self, solids)
+            if not solids:  # detaching the old children emptied the shape: it stays as it was
+                self._wrapped = shape
+        finally:
+            naming.busy = False
+        shape = _SHAPE_WRAPPED.fget(self)
+        naming.shape = shape.Located(shape.Location())  # a handle of its own: Move() on the shape changes it
+
+    def __deepcopy__(self, memo: dict) -> Any:
+        # the children are made anew of the copy's shape, on first use: not copied too
+        children = self.__dict__.get("_NodeMixin__children")
+        if children is not None:
+            memo[id(children)] = []
+        return super().__deepcopy__(memo)
 
     def _part(self, build: Any) -> bd.Part | bd.Solid:
         """What is placed: the build's solid (a stiffened wall adds its stiffeners)."""
@@ -305,7 +392,7 @@ class StiffenedCurvatureWall(CurvatureWall):
 
         made = stiffener_solids(build, *self._choice)
         self._names = [name for name, _ in made]
-        self._solids_per_copy = 1 + len(made)
+        self._solid_names = ("wall", *self._names)
         wall = bd.Solid(build.shape.wrapped)
         wall.label = "wall"
         parts = [wall]

@@ -18,11 +18,17 @@ from typing import TYPE_CHECKING
 
 from tubecad.core.errors import ParameterError, SpecError, TubecadError
 from tubecad.spec.parse import TubeSpec
+from tubecad.spec.sections import spec_error
 
 if TYPE_CHECKING:
-    from tubecad.design.junction import BranchDesign, JunctionDesign
+    from tubecad.design.junction import JunctionDesign
+    from tubecad.design.model import BranchDesign
     from tubecad.design.wall import WallDesign
 
+#: the mesh's parameters named otherwise than the spec's keys (:func:`tubecad.fem.shell_mesh`'s)
+SHELL_MESH_KEYS = {"thickness": "wall.thickness", "wall_side": "wall.side", "panel_rings": "panels.rings"}
+#: the shop templates' parameters (tubecad.shop.branch_template) under the spec's keys
+TEMPLATE_KEYS = {"branch.radius": "branches.radius", "main.radius": "tube.radius"}
 #: the keys of a ParameterError about the fit's tolerances (a [fit] error, not [wall]'s)
 FIT_KEYS = ("tolerance", "orthogonality", "fit.tolerance")
 
@@ -100,8 +106,7 @@ def junction_design(spec: TubeSpec, main: WallDesign) -> JunctionDesign:
 def branch_design(spec: TubeSpec, k: int, main_stringers: int) -> BranchDesign:
     """The [[branches]] table ``k`` as a design (its wall the main's where it has none)."""
     from tubecad.brep.wall import as_wall_side
-    from tubecad.design.junction import BranchDesign
-    from tubecad.design.model import PadChoice, WallChoice
+    from tubecad.design.model import BranchDesign, PadChoice, WallChoice
 
     branch = spec.branches[k]
     surface = branch.surface(spec.tube)
@@ -164,6 +169,16 @@ def as_spec_error(spec: TubeSpec, exc: TubecadError) -> SpecError:
     if stage == "pads":
         number = "" if exc.branch is None else f" #{exc.branch + 1}"
         return SpecError(f"{source}: [[branches]]{number} {exc}", key=exc.key or "branches.pad")
+    if stage == "mesh":  # the mesh's own keys ([mesh] size, surface), else the section of the key
+        return spec_error(source, exc, ("mesh", "stiffeners", "panels"), "mesh", SHELL_MESH_KEYS)
+    if stage == "analysis":
+        return spec_error(source, exc, ("analysis",), "analysis")
+    if stage == "fabrication":  # a value the pieces cannot have (a plate too small, a joint)
+        return spec_error(source, exc, ("fabrication",), "fabrication")
+    if stage == "templates":  # a branch's or the main tube's radius, under their spec keys
+        number = "" if exc.branch is None else f" #{exc.branch + 1}"
+        key = TEMPLATE_KEYS.get(exc.key or "", exc.key or "branches")
+        return SpecError(f"{source}: [[branches]]{number} {exc}", key=key)
     if stage == "branches":
         key = exc.key if exc.key and exc.key.startswith(("branches", "fit")) else "branches"
         return SpecError(f"{source}: [[branches]] {exc}", key=key)

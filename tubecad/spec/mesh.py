@@ -5,14 +5,17 @@ from __future__ import annotations
 
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from tubecad.core.errors import ParameterError, RegularityError, SpecError
+from tubecad.core.errors import ParameterError, SpecError
+from tubecad.design.stages import stage
+from tubecad.spec.design import design_of, spec_errors
 from tubecad.spec.parse import TubeSpec
 from tubecad.spec.sections import spec_error
 
-#: :func:`tubecad.fem.shell_mesh`'s parameters named otherwise than the spec's keys
-SHELL_MESH_KEYS = {"thickness": "wall.thickness", "wall_side": "wall.side", "panel_rings": "panels.rings"}
+if TYPE_CHECKING:
+    from tubecad.design.model import Design
+    from tubecad.design.shell import ShellModel
 
 
 #: the FE formats by extension (tubecad.fem.formats)
@@ -34,44 +37,22 @@ def checked_outputs(outputs: list[Path]) -> list[Path]:
 
 
 def mesh_from_spec(spec: TubeSpec, **overrides: Any):
-    """The spec's wall (or tube) as an :class:`tubecad.fem.FEMesh` with its [mesh] settings
-    (``overrides`` win: element, size, ...), [stiffeners] as beams and [panels] as sets."""
-    from tubecad.fem import StiffenerPlan, shell_mesh
+    """The spec's design meshed (:func:`fe_model`): its :class:`tubecad.fem.FEMesh`."""
+    return fe_model(spec, **overrides).mesh
 
-    if spec.branches:
-        return _junction(spec, overrides).mesh
-    source = spec.source
+
+def fe_model(spec: TubeSpec, **overrides: Any) -> ShellModel:
+    """The spec's design (:func:`tubecad.spec.design.design_of`: a wall, a tube, a junction)
+    as its shell model with the [mesh] settings (``overrides`` win: element, size, ...):
+    shells on the net, [stiffeners] as beams, [panels] as sets, a junction's pads."""
+    design = design_of(spec)
     settings = _mesh_settings(spec, overrides)
-    tube = spec.tube
-    try:
-        layout = spec.layout.net(tube)
-    except ParameterError as exc:  # parse_spec has checked it
-        raise SpecError(f"{source}: [layout] {exc}", key=exc.key or "layout") from None
-    wall = spec.wall
-    plan = None
-    if spec.stiffeners is not None:  # the section's one check, the build's too: profile, side, indices
-        chosen = spec.stiffeners.select(layout, source, spec.length_unit)
-        plan = StiffenerPlan(chosen.rings, chosen.stringers, chosen.profile, chosen.side)
-        if settings.beams:
-            _check_reach(spec, plan, wall, source)
-    panels = spec.panels
-    seams = rings = None
-    if panels is not None:
-        seams, rings = panels.seam_indices(len(layout.stringers_deg)), panels.ring_indices()
-    try:
-        return shell_mesh(
-            tube,
-            layout,
-            thickness=None if wall is None else wall.thickness,
-            wall_side="centered" if wall is None else wall.side,
-            stiffeners=plan,
-            seams=seams,
-            panel_rings=rings,
-            settings=settings,
-            length_unit=spec.length_unit,
-        )
-    except (ParameterError, RegularityError) as exc:  # the mesh's own (its size, its surface), else a section's
-        raise spec_error(source, exc, ("mesh", "stiffeners", "panels"), "mesh", SHELL_MESH_KEYS) from None
+    if design.stiffeners is not None and settings.beams:
+        _check_reach(spec, design.stiffeners, spec.wall, spec.source)
+    if spec.analysis is not None:  # the ends the model takes, refused before it is meshed
+        analysis_settings(spec, design, closed=spec.tube.axis.closed)
+    with spec_errors(spec):
+        return design.shell_model(settings)
 
 
 def _mesh_settings(spec: TubeSpec, overrides: dict[str, Any]):
@@ -84,21 +65,18 @@ def _mesh_settings(spec: TubeSpec, overrides: dict[str, Any]):
         raise SpecError(f"{spec.source}: {exc}", key=exc.key or "mesh") from None
 
 
-def _junction(spec: TubeSpec, overrides: dict[str, Any]):
-    """A branched spec's shell model (tubecad.spec.junction_fem.JunctionModel)."""
-    from tubecad.spec.junction_fem import junction_ends, junction_model
+def analysis_settings(spec: TubeSpec, design: Design, closed: bool):
+    """The spec's [analysis] settings (tubecad.fem.settings.analysis_settings) with the ends
+    the design's model takes (:meth:`~tubecad.design.model.Design.analysis_ends`)."""
+    from tubecad.spec.model import AnalysisSection
 
-    if spec.analysis is not None:
-        junction_ends(spec)  # refused before the mesh is made
-    return junction_model(spec, _mesh_settings(spec, overrides))
-
-
-def _fe_model(spec: TubeSpec, overrides: dict[str, Any]):
-    """(the mesh, the junction's model or None)."""
-    if spec.branches:
-        model = _junction(spec, overrides)
-        return model.mesh, model
-    return mesh_from_spec(spec, **overrides), None
+    try:
+        settings = (spec.analysis or AnalysisSection()).settings(spec.length_unit, closed)
+    except ParameterError as exc:
+        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "analysis") from None
+    given = spec.analysis.ends if spec.analysis is not None else None
+    with spec_errors(spec), stage("analysis"):
+        return replace(settings, ends=design.analysis_ends(given, settings.ends))
 
 
 def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
@@ -127,18 +105,14 @@ def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
         raise SpecError(f"{source}: [stiffeners] {exc}", key="stiffeners.height") from None
 
 
-def material_and_step(spec: TubeSpec, mesh, with_step: bool, junction=None):
-    """The [analysis] material and, if ``with_step``, the pressure step (tubecad.fem.loads;
-    a junction's, ``junction`` its model: tubecad.spec.junction_fem)."""
+def material_and_step(spec: TubeSpec, model: ShellModel, with_step: bool):
+    """The [analysis] material and, if ``with_step``, the pressure step of the design's shell
+    ``model`` (its own: :meth:`~tubecad.design.shell.ShellModel.pressure_step`), and the
+    analysis settings."""
     from tubecad.core.units import length_unit, steel_density
     from tubecad.fem.inp import Material
-    from tubecad.fem.loads import pressure_step
-    from tubecad.spec.model import AnalysisSection
 
-    try:
-        settings = (spec.analysis or AnalysisSection()).settings(spec.length_unit, mesh.closed)
-    except ParameterError as exc:
-        raise SpecError(f"{spec.source}: {exc}", key=exc.key or "analysis") from None
+    settings = analysis_settings(spec, design_of(spec), model.mesh.closed)
     # kg per cubic unit, in the mass unit that N and the length unit make consistent (kg m / unit: mm gives t)
     given = spec.stiffeners.density if spec.stiffeners is not None else None
     density = steel_density(spec.length_unit) if given is None else given
@@ -146,24 +120,8 @@ def material_and_step(spec: TubeSpec, mesh, with_step: bool, junction=None):
     material = Material(settings.youngs_modulus, settings.poisson_ratio, density)
     if not with_step:
         return material, None, settings
-    if junction is not None:
-        from tubecad.spec.junction_fem import junction_ends, junction_step
-
-        settings = replace(settings, ends=junction_ends(spec))
-        return material, junction_step(spec, junction, settings.pressure), settings
-    surface = reference_surface(spec, mesh)
-    ends = (mesh.node_sets.get("start_ring"), mesh.node_sets.get("end_ring"))
-    try:
-        step = pressure_step(mesh, settings.pressure, settings.ends, surface, ends)
-    except ParameterError as exc:
-        raise spec_error(spec.source, exc, ("analysis",), "analysis") from None
-    return material, step, settings
-
-
-def reference_surface(spec: TubeSpec, mesh):
-    """The surface the mesh's (first) shells lie on."""
-    d = mesh.info["reference_offsets"][0]
-    return spec.tube if d == 0 else spec.tube.offset(d, allow_irregular=True)
+    with spec_errors(spec):
+        return material, model.pressure_step(settings.pressure, settings.ends), settings
 
 
 def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[Any, list[Path]]:
@@ -171,13 +129,14 @@ def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[A
     material and, when the spec has [analysis], its pressure step. A mesh a format cannot
     hold (a .inp of ``surface = 'both'``) is refused naming [mesh]."""
     outputs = checked_outputs(outputs)
-    mesh, junction = _fe_model(spec, overrides)
+    model = fe_model(spec, **overrides)
+    mesh = model.mesh
     formats = _formats()
     material, step = None, None
     if any(p.suffix.lower() == ".inp" for p in outputs):
         if mesh.info["thickness"] is None:
             raise SpecError(f"{spec.source}: a .inp needs the wall's thickness: add a [wall] section", key="wall")
-        material, step, _ = material_and_step(spec, mesh, spec.analysis is not None, junction)
+        material, step, _ = material_and_step(spec, model, spec.analysis is not None)
     written = []
     for path in outputs:
         try:
@@ -207,8 +166,9 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
     check_analysis(spec)
     say = progress or (lambda _stage: None)
     say("meshing")
-    mesh, junction = _fe_model(spec, overrides)
-    material, step, settings = material_and_step(spec, mesh, True, junction)
+    model = fe_model(spec, **overrides)
+    mesh = model.mesh
+    material, step, settings = material_and_step(spec, model, True)
     with staged_folder(output) as staging:
         say(f"solving {mesh.element_count} elements with CalculiX")
         try:
@@ -236,12 +196,9 @@ def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) 
             **result.summary(),
             "files": ["model.inp", "model.frd", "ring_stress.png", "results.json"],
         }
-        if junction is not None:
-            from tubecad.fem.junction_analysis import junction_checks
-
-            summary["junction"] = junction_checks(
-                mesh, junction.tubes, result.stress, result.ring_stress, settings.pressure
-            )
+        checks = model.checks(result.stress, result.ring_stress, settings.pressure)
+        if checks is not None:
+            summary["junction"] = checks
         write_text(staging / "results.json", json.dumps(summary, indent=2))
         for path in staging.iterdir():  # ccx's by-products (.dat, .sta, .cvg, ...) are not results
             if path.name not in summary["files"]:

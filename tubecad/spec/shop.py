@@ -10,38 +10,25 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from tubecad.core.errors import ParameterError
+from tubecad.spec.design import design_of, spec_errors
 from tubecad.spec.parse import TubeSpec
-from tubecad.spec.sections import spec_error
 
 
 def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None] | None = None) -> dict[str, Any]:
-    """Build ``spec``'s wall, stiffeners and panels, compute the shop package with its
-    ``[fabrication]`` settings and write it into ``output``; returns the index."""
+    """``tubecad shop``: the spec's design (a stiffened or paneled wall, a junction) made
+    into its shop package with the ``[fabrication]`` settings
+    (:meth:`~tubecad.design.model.Design.shop`) and written into ``output``; returns the
+    index. Everything is written into a staging folder and moved into place once complete."""
     from tubecad.core.atomic import staged_folder
-    from tubecad.shop.package import shop_data
-    from tubecad.shop.writer import write_shop
-    from tubecad.spec.build import build_from_spec, panels_from_spec, stiffeners_from_spec
     from tubecad.spec.model import FabricationSection
     from tubecad.spec.preflight import check_shop
 
     check_shop(spec, output)
-    if spec.branches:  # a junction: the branches' cutting templates, openings and bevels
-        from tubecad.spec.junction_shop import junction_shop
-
-        return junction_shop(spec, output, progress)
     fab = (spec.fabrication or FabricationSection()).settings(spec.length_unit)  # checked by check_shop
-    say = progress or (lambda _stage: None)
-    say("building the wall")
-    build = build_from_spec(spec)
-    say("building stiffeners")
-    stiffeners, _ = stiffeners_from_spec(spec, build)
-    panels = panels_from_spec(spec, build)
-    try:
-        data = shop_data(build, stiffeners, panels, fab, say)
-    except ParameterError as exc:  # a [fabrication] value the pieces cannot have (a plate too small, a joint)
-        raise spec_error(spec.source, exc, ("fabrication",)) from None
+    design = design_of(spec)
+    with spec_errors(spec):
+        package = design.shop(fab, progress)
     with staged_folder(output) as staging:
-        say("writing files")
-        index = write_shop(data, staging, Path(str(spec.source)).stem)
-    return index
+        if progress is not None:
+            progress("writing files")
+        return package.write(staging, Path(str(spec.source)).stem)

@@ -18,7 +18,6 @@ as caps (:class:`tubecad.stiffeners.canal_panels.CanalWallEdges`).
 from __future__ import annotations
 
 import math
-from typing import cast
 
 import build123d as bd
 
@@ -26,7 +25,7 @@ from tubecad.brep import TubeBuild
 from tubecad.brep import properties as props
 from tubecad.brep.assembled import Strip, c0_knots, strip_solid
 from tubecad.core.errors import ParameterError
-from tubecad.fitting import FrameSpline, exact_section_surface
+from tubecad.fitting import exact_section_surface
 from tubecad.stiffeners.canal_panels import CanalWallEdges
 from tubecad.stiffeners.panel import Panel
 from tubecad.stiffeners.rings import swept_section
@@ -82,7 +81,9 @@ def tube_panel(build: TubeBuild, axis, r_in: float, r_out: float, a_deg: float, 
     a_deg -> b_deg: outer patch a -> b, seam b (r_out -> r_in), inner patch b -> a, seam a
     (r_in -> r_out), counter-clockwise about +t, with shared edges and planar caps
     (:func:`tubecad.brep.assembled.strip_solid`)."""
-    frame = cast(FrameSpline, build.frame)  # a tube's build: the frame fit
+    frame = build.section_frame  # a tube's build: its frame fit
+    if frame is None:
+        raise ParameterError("tube_panel: the build is a canal surface's (a radius law): split it with canal_panel")
     s0, s1 = axis.span
     if not (b_deg - a_deg) % 360:  # one seam: the bay all round, the seam an edge of it
         section = [(s0, r_in), (s1, r_in), (s1, r_out), (s0, r_out)]

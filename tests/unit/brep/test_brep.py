@@ -10,10 +10,11 @@ from conftest import FAMILY_CASES
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.TopAbs import TopAbs_EDGE
 
-from tubecad import CurvatureLineTube, LogSpiral, ParameterError, RegularityError, paper_tube
+from tubecad import CurvatureLineTube, LogSpiral, ParameterError, RegularityError
 from tubecad.brep import NetLayout, build_tube_shell, build_tube_solid, build_wall_solid, tube_solid
 from tubecad.brep import properties as props
 from tubecad.fitting import FitError, fit_frame, measure_surface
+from tubecad.spec.paper import paper_tube
 
 
 def make(name):

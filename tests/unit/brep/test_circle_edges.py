@@ -11,7 +11,7 @@ from OCP.BRepTools import BRepTools
 from OCP.Geom import Geom_BSplineCurve
 from OCP.gp import gp_Pnt, gp_Vec
 
-from tubecad import CircleInvolute, CurvatureLineTube, CustomCurvature, Helix, LogSpiral, paper_tube
+from tubecad import CircleInvolute, CurvatureLineTube, CustomCurvature, Helix, LogSpiral
 from tubecad.brep import NetLayout, build_tube_solid, build_wall_solid
 from tubecad.brep import properties as props
 from tubecad.brep.faces import ring_circle
@@ -20,6 +20,7 @@ from tubecad.export.registry import export_shape
 from tubecad.fitting.circle import CircleSpline
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, reals
 from tubecad.occ_compat import Array1OfPnt
+from tubecad.spec.paper import paper_tube
 from tubecad.surface.checks import distance_to_axis
 
 BREAK_CASES = {

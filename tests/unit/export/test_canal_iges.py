@@ -17,13 +17,14 @@ from click.testing import CliRunner
 from conftest import sample_wall_spec
 from OCP.BRep import BRep_Tool
 
-from tubecad import NaturalAxis, paper_tube, tube_or_canal
+from tubecad import NaturalAxis, tube_or_canal
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep.measure import tube_faces
 from tubecad.brep.properties import topods
 from tubecad.cli.app import cli
 from tubecad.export.cad import import_shape
 from tubecad.export.registry import export_shape
+from tubecad.spec.paper import paper_tube
 
 #: the nozzle and the tapered helix of samples/ (their walls alone, without stiffeners)
 NOZZLE, TAPERED_HELIX = sample_wall_spec("nozzle"), sample_wall_spec("tapered_helix")

@@ -7,9 +7,9 @@ import math
 
 import pytest
 
-from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.export.registry import export_shape
+from tubecad.spec.paper import paper_tube
 
 #: pi (16^2 - 14^2) * 1000: the wall from radius 14 to 16 over the paper's 1000 mm of axis
 PAPER_WALL_VOLUME = math.pi * (16.0**2 - 14.0**2) * 1000.0

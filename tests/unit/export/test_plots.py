@@ -7,10 +7,10 @@ import tomllib
 import numpy as np
 import pytest
 
-from tubecad import paper_tube
 from tubecad.export.labels import overlapping_labels
 from tubecad.export.plots import U_SAMPLES, projection_figure, projection_figure_of_build
 from tubecad.spec.build import build_from_spec
+from tubecad.spec.paper import paper_tube
 from tubecad.spec.parse import parse_spec
 
 HELIX = """

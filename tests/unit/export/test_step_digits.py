@@ -9,12 +9,12 @@ from hypothesis import strategies as st
 from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller, STEPControl_Writer
 from test_canal_iges import surface_gap
 
-from tubecad import paper_tube
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep.measure import face_orthogonality, tube_faces
 from tubecad.brep.properties import topods
 from tubecad.export.cad import FILE_REAL, _shortened_reals, import_shape
 from tubecad.export.registry import export_shape
+from tubecad.spec.paper import paper_tube
 
 finite = st.floats(allow_nan=False, allow_infinity=False)
 

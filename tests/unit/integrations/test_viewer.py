@@ -98,8 +98,8 @@ def tube_bbox(axis, radius: float, span) -> tuple[np.ndarray, np.ndarray]:
 
 @pytest.fixture(scope="module")
 def small_wall():
-    from tubecad import paper_tube
     from tubecad.brep import NetLayout, build_wall_solid
+    from tubecad.spec.paper import paper_tube
     from tubecad.stiffeners.assembly import build_stiffeners
     from tubecad.stiffeners.profiles import Profile
 

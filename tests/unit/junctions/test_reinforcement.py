@@ -7,8 +7,8 @@ import math
 
 import pytest
 
-from tubecad import NaturalAxis, ParameterError, saddle_curve, tube_or_canal
-from tubecad.junctions import area_replacement
+from tubecad import NaturalAxis, ParameterError, tube_or_canal
+from tubecad.junctions import area_replacement, saddle_curve
 
 
 def line(origin, tangent, normal, length, radius):

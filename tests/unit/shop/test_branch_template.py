@@ -9,7 +9,8 @@ import math
 import numpy as np
 import pytest
 
-from tubecad import NaturalAxis, ParameterError, saddle_curve, tube_or_canal
+from tubecad import NaturalAxis, ParameterError, tube_or_canal
+from tubecad.junctions import saddle_curve
 from tubecad.shop.branch_template import branch_template
 
 R, r = 50.0, 20.0

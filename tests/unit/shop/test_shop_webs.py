@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from shapely.geometry import Point, Polygon, box
 
-from tubecad import CurvatureLineTube, paper_tube
+from tubecad import CurvatureLineTube
 from tubecad.brep import build_wall_solid
 from tubecad.brep.properties import analyzer_findings, is_valid, volume
 from tubecad.core.errors import ParameterError
@@ -22,7 +22,7 @@ from tubecad.shop.drawings import write_plate_dxf, write_plate_svg
 from tubecad.shop.fabrication import fabrication_settings
 from tubecad.shop.nesting import check_nesting, nest
 from tubecad.shop.webs import piece_names, piece_solids, ring_pieces, stringer_pieces
-from tubecad.spec.paper import PAPER_LAYOUT, PAPER_STRINGER_PROFILE, PAPER_WALL_THICKNESS, paper_stiffeners
+from tubecad.spec.paper import PAPER_LAYOUT, PAPER_STRINGER_PROFILE, PAPER_WALL_THICKNESS, paper_stiffeners, paper_tube
 from tubecad.stiffeners.assembly import build_stiffeners
 from tubecad.stiffeners.flat import stringer_flat_pattern
 from tubecad.stiffeners.profiles import Profile

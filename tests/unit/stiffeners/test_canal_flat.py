@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 from conftest import fit_circle
 
-from tubecad import CurvatureLineTube, Helix, NaturalAxis, paper_tube
+from tubecad import CurvatureLineTube, Helix, NaturalAxis
 from tubecad.curves.route import RouteAxis
+from tubecad.spec.paper import paper_tube
 from tubecad.spec.parse import load_spec
 from tubecad.stiffeners.flat import (
     canal_ring_flat_pattern,

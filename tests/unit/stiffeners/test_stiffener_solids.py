@@ -9,10 +9,11 @@ from click.testing import CliRunner
 from conftest import PAPER_SPEC, SMALL_STIFFENED_WALL
 from test_stiffeners import section_moments
 
-from tubecad import CurvatureLineTube, ParameterError, paper_tube
+from tubecad import CurvatureLineTube, ParameterError
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
 from tubecad.cli.app import cli
+from tubecad.spec.paper import paper_tube
 from tubecad.stiffeners.assembly import build_stiffeners
 from tubecad.stiffeners.panels import split_into_panels
 from tubecad.stiffeners.profiles import Profile

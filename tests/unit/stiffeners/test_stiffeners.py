@@ -10,12 +10,13 @@ import pytest
 from conftest import SMALL_STIFFENED_WALL, edges_of
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 
-from tubecad import CurvatureLineTube, ParameterError, paper_tube
+from tubecad import CurvatureLineTube, ParameterError
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
 from tubecad.export.cad import import_shape
 from tubecad.export.registry import export_shape
 from tubecad.occ_compat import as_edge
+from tubecad.spec.paper import paper_tube
 from tubecad.stiffeners import lines_compound, net_lines, polylines_csv, polylines_json
 from tubecad.stiffeners.profiles import Profile
 from tubecad.stiffeners.solids import ring_stiffener, stringer_stiffener
@@ -402,9 +403,9 @@ def test_ring_lines_are_true_circles_and_pass_the_continuity_check():
     """FreeCAD's BOP check flagged every line_ring_* (a C0-knotted B-spline); now circles."""
     import build123d as bd
 
-    from tubecad import paper_tube
     from tubecad.brep import NetLayout, build_wall_solid
     from tubecad.brep.properties import analyzer_findings
+    from tubecad.spec.paper import paper_tube
     from tubecad.stiffeners import net_lines
 
     tube = paper_tube()
