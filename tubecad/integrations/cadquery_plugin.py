@@ -145,7 +145,7 @@ def stiffened_curvature_wall(
 def _pushed(
     workplane: cq.Workplane, args: PartArguments, combine: bool, stiffened: tuple | None = None
 ) -> cq.Workplane:
-    _, build = build_part(args)
+    design, build = build_part(args)
     solid = cq.Solid(build.shape.wrapped)
     net = net_edges(build)
     edge_map = edge_map_of(solid.wrapped)
@@ -162,7 +162,7 @@ def _pushed(
     pushed: cq.Shape = solid
     stiffeners: list[cq.Solid] = []
     if stiffened is not None:
-        for label, shape in stiffener_solids(build, *stiffened):
+        for label, shape in stiffener_solids(design, build, *stiffened):
             stiffener = cq.Solid(shape)
             stiffener.label = label
             stiffeners.append(stiffener)

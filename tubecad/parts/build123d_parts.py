@@ -31,7 +31,6 @@ lines are not in it (they are edges of the solids, not solids).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import cached_property
 from typing import Any
 
 import build123d as bd
@@ -39,147 +38,50 @@ import build123d as bd
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
 from tubecad.brep.wall import WallSide
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
+from tubecad.design.wall import WallDesign
 from tubecad.parts.axis_input import AxisLike, RadiusLike
 from tubecad.parts.engine import NetEdges, PartArguments, build_part, net_edges
+from tubecad.parts.named_part import NamedSolidsPart
 from tubecad.stiffeners.profiles import StiffenerSide
 
 
 class _Engine:
-    """What the part was built from: the exact surface, the B-rep build, the lines' edges.
-    Shared, not copied, by the part's copies (OCCT objects do not deep-copy)."""
+    """What the part was built from: its design (:class:`~tubecad.design.wall.WallDesign`, as
+    a spec's), the B-rep build, the lines' edges. Shared, not copied, by the part's copies
+    (OCCT objects do not deep-copy)."""
 
-    def __init__(self, surface: Any, build: Any, net: NetEdges) -> None:
-        self.surface, self.build, self.net = surface, build, net
+    def __init__(self, design: WallDesign, build: Any, net: NetEdges) -> None:
+        self.design, self.build, self.net = design, build, net
+        self.surface, self.layout = design.surface, build.layout
 
     def __deepcopy__(self, memo: dict) -> _Engine:
         return self
 
+    def report(self) -> dict[str, Any]:
+        """The fit's deviation from the exact surface and the isolines' orthogonality on
+        dense samples, poles, validity, OCCT's pre-boolean checks, volume against the exact
+        one (:func:`tubecad.design.report.build_report`)."""
+        from tubecad.design.report import build_report
 
-class _Naming:
-    """The part's shape its labelled children were last made of (None: never), and whether
-    they are being made now. A copy of the part starts over: its children are made anew,
-    of the copy's own shape."""
-
-    def __init__(self) -> None:
-        self.shape: Any = None
-        self.busy = False
-
-    def __deepcopy__(self, memo: dict) -> _Naming:
-        return _Naming()
+        return build_report(self.build, self.surface)
 
 
-#: the ``children`` property of every build123d shape (anytree's NodeMixin's)
-_NODE_CHILDREN: Any = next(vars(c)["children"] for c in bd.Compound.__mro__ if "children" in vars(c))
-#: build123d's ``wrapped`` property
-_SHAPE_WRAPPED: Any = vars(bd.Shape)["wrapped"]
-
-
-class _CurvatureNetPart(bd.BasePartObject):
+class _CurvatureNetPart(NamedSolidsPart):
     """A part whose face edges are curvature lines: ``rings``, ``stringers``, ``seams`` (and on
     a wall ``inner_rings``, ``inner_stringers``, ``inner_seams``) as labelled wires of this
     part's own edges."""
 
-    _applies_to = [bd.BuildPart._tag]
+    _tubecad: _Engine
 
     def __init__(self, args: PartArguments, rotation: bd.RotationLike, align: Any, mode: bd.Mode) -> None:
-        surface, build = build_part(args)
-        self._tubecad = _Engine(surface, build, net_edges(build))
-        super().__init__(part=self._part(build), rotation=rotation, align=align, mode=mode)
-        self.label = self.label or type(self).__name__
-        self._naming: _Naming | None = _Naming()
-
-    #: the labels of the solids of one placed copy of the part, in order (the wall first)
-    _solid_names: tuple[str, ...] = ("wall",)
-
-    @property
-    def _solids_per_copy(self) -> int:
-        """How many solids one placed copy of the part holds."""
-        return len(self._solid_names)
-
-    def _get_children(self) -> tuple[bd.Shape, ...]:
-        self._name_solids()
-        return _NODE_CHILDREN.fget(self)
-
-    def _set_children(self, children: Any) -> None:
-        naming = self.__dict__.get("_naming")
-        if naming is not None and not naming.busy:  # the caller's own children: kept as given
-            self._naming = None
-        _NODE_CHILDREN.fset(self, children)
-
-    #: build123d's (anytree's) ``children``, kept to one labelled solid per solid of the part's
-    #: shape, however that shape was set (placed, moved, copied): what ``export_step`` names
-    children = property(_get_children, _set_children, _NODE_CHILDREN.fdel)
-
-    def _get_wrapped(self) -> Any:
-        self._name_solids()
-        return _SHAPE_WRAPPED.fget(self)
-
-    #: the OCCT shape: made the compound of the labelled children first, if it changed since
-    #: (``export_step`` reads the part's shape before its children)
-    wrapped = property(_get_wrapped, _SHAPE_WRAPPED.fset)
-
-    def _name_solids(self) -> None:
-        """Make the children anew if the part's shape is not the one they were made of: a
-        solid each, as placed (the shape becomes the compound of them, the same solids)."""
-        naming = self.__dict__.get("_naming")
-        shape = self.__dict__.get("_wrapped")
-        if naming is None or naming.busy or shape is None:
-            return
-        if naming.shape is not None and naming.shape.IsEqual(shape):
-            return
-        naming.busy = True
-        try:
-            solids = list(self.solids())
-            names = self._solid_names
-            if len(solids) % len(names):  # not the part's own solids any more: no names, no children
-                solids = []
-            for i, solid in enumerate(solids):
-                solid.label = names[i % len(names)]
-            _NODE_CHILDREN.fset(self, solids)
-            if not solids:  # detaching the old children emptied the shape: it stays as it was
-                self._wrapped = shape
-        finally:
-            naming.busy = False
-        shape = _SHAPE_WRAPPED.fget(self)
-        naming.shape = shape.Located(shape.Location())  # a handle of its own: Move() on the shape changes it
-
-    def __deepcopy__(self, memo: dict) -> Any:
-        # the children are made anew of the copy's shape, on first use: not copied too
-        children = self.__dict__.get("_NodeMixin__children")
-        if children is not None:
-            memo[id(children)] = []
-        return super().__deepcopy__(memo)
+        design, build = build_part(args)
+        engine = _Engine(design, build, net_edges(build))
+        self._tubecad = engine  # before the stiffeners are made on it (_part)
+        super().__init__(engine, self._part(build), rotation, align, mode)
 
     def _part(self, build: Any) -> bd.Part | bd.Solid:
         """What is placed: the build's solid (a stiffened wall adds its stiffeners)."""
         return bd.Solid(build.shape.wrapped)
-
-    def _copies(self) -> list[bd.Solid]:
-        """The wall's solid in each placed copy of the part."""
-        return list(self.solids())[:: self._solids_per_copy]
-
-    @property
-    def surface(self):
-        """The exact curvature-line surface (:class:`~tubecad.surface.CurvatureLineTube` or
-        :class:`~tubecad.surface.canal.CanalSurface`) the faces were fitted to."""
-        return self._tubecad.surface
-
-    @property
-    def layout(self):
-        """The :class:`~tubecad.brep.NetLayout`: ring arc lengths and stringer angles."""
-        return self._tubecad.build.layout
-
-    @property
-    def rings(self) -> bd.ShapeList[bd.Wire]:
-        """The ring frames (s = const lines of curvature) on the outer surface: one closed wire
-        per ring, labelled ``ring_00``, ``ring_01``, ...; N distinct rings on a closed axis."""
-        return self._wires(self._net.rings)
-
-    @property
-    def stringers(self) -> bd.ShapeList[bd.Wire]:
-        """The stringers (the other family of lines of curvature) on the outer surface, from
-        the first ring to the last: ``stringer_00``, ``stringer_01``, ...: as many as asked for."""
-        return self._wires(self._net.stringers)
 
     @property
     def seams(self) -> bd.ShapeList[bd.Wire]:
@@ -188,38 +90,6 @@ class _CurvatureNetPart(bd.BasePartObject):
         (with one stringer, along the line opposite it). Empty with two or more stringers no
         more than 330 deg apart."""
         return self._wires(self._net.seams)
-
-    @property
-    def report(self) -> dict[str, Any]:
-        """What was measured on this part (computed on first use, about a second): the fit's
-        deviation from the exact surface and the isolines' orthogonality on dense samples,
-        poles, validity, OCCT's pre-boolean checks, volume against the exact one
-        (:func:`tubecad.design.report.build_report`)."""
-        return self._report
-
-    @cached_property
-    def _report(self) -> dict[str, Any]:
-        from tubecad.design.report import build_report
-
-        return build_report(self._tubecad.build, self._tubecad.surface)
-
-    @property
-    def _net(self) -> NetEdges:
-        return self._tubecad.net
-
-    def _wires(self, lines: dict[str, list[int]]) -> bd.ShapeList[bd.Wire]:
-        """One wire per line and per placed copy of the part, of the part's own edges."""
-        from tubecad.occ_compat import as_edge
-        from tubecad.parts.engine import edge_map_of
-
-        out = []
-        for copy in self._copies():
-            edge_map = edge_map_of(copy.wrapped)
-            for name, indices in lines.items():
-                wire = bd.Wire([bd.Edge(as_edge(edge_map.FindKey(i))) for i in indices])
-                wire.label = name
-                out.append(wire)
-        return bd.ShapeList(out)
 
 
 class CurvatureTube(_CurvatureNetPart):
@@ -390,7 +260,7 @@ class StiffenedCurvatureWall(CurvatureWall):
     def _part(self, build: Any) -> bd.Part | bd.Solid:
         from tubecad.parts.engine import stiffener_solids
 
-        made = stiffener_solids(build, *self._choice)
+        made = stiffener_solids(self._tubecad.design, build, *self._choice)
         self._names = [name for name, _ in made]
         self._solid_names = ("wall", *self._names)
         wall = bd.Solid(build.shape.wrapped)

@@ -1,21 +1,26 @@
-"""The private engine behind the plugin objects: an axis, a radius (or a radius law) and a
-layout in; the B-rep build and its curvature-line edges out, labelled as tubecad names them.
+"""The keyword arguments of the plugin objects as a design, and its build's edges by name.
 
-Both front ends (:mod:`tubecad.parts.build123d_parts`, the CadQuery plugin) call
-:func:`build_part` and :func:`net_edges`, so their arguments and results are the same.
+An axis, a radius (or a radius law), a wall and a layout in: :func:`part_design` makes the
+:class:`~tubecad.design.wall.WallDesign` that the spec makes from TOML, and the design layer
+builds it (:func:`tubecad.design.wall.build_solid`, :func:`~tubecad.design.wall.build_wall_stiffeners`):
+one engine under the spec, the build123d parts and the CadQuery plugin. Both front ends
+(:mod:`tubecad.parts.build123d_parts`, the CadQuery plugin) call :func:`build_part` and
+:func:`net_edges`, so their arguments and results are the same.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
-from tubecad.brep import NetLayout, TubeBuild, build_tube_solid, build_wall_solid
+from tubecad.brep import NetLayout, TubeBuild
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
-from tubecad.brep.wall import WallSide
+from tubecad.brep.wall import WallSide, as_wall_side
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
+from tubecad.design.model import StiffenerChoice, WallChoice
+from tubecad.design.wall import WallDesign, build_solid, build_wall_stiffeners
 from tubecad.parts.axis_input import AxisLike, RadiusLike, as_axis
 from tubecad.surface import CurvatureLineSurface
 from tubecad.surface.canal import tube_or_canal
@@ -39,15 +44,22 @@ class PartArguments:
     allow_irregular: bool = False
 
 
-def build_part(args: PartArguments) -> tuple[CurvatureLineSurface, TubeBuild]:
-    """(the exact surface, its B-rep build): the capped tube solid, or with a ``thickness``
-    the wall solid between the surfaces offset along the normal (``side``)."""
+def part_design(args: PartArguments) -> WallDesign:
+    """The design the arguments describe: the exact surface about the axis (a tube, or a
+    canal surface for a radius law), its net, and with a ``thickness`` the wall placed
+    ``side`` of it; stiffeners are added by :func:`stiffener_solids`."""
     axis = as_axis(args.axis, bend_radius=args.bend_radius, normal=args.normal, closed=args.closed)
     surface = tube_or_canal(axis, args.radius, allow_irregular=args.allow_irregular)
     layout = layout_of(surface, args.rings, args.stringers)
-    if args.thickness is None:
-        return surface, build_tube_solid(surface, layout, args.tolerance)
-    return surface, build_wall_solid(surface, args.thickness, args.side, layout, args.tolerance)
+    wall = None if args.thickness is None else WallChoice(args.thickness, as_wall_side(args.side))
+    return WallDesign(surface, layout, args.tolerance, wall)
+
+
+def build_part(args: PartArguments) -> tuple[WallDesign, TubeBuild]:
+    """(the design, its B-rep build): the capped tube solid, or with a ``thickness`` the wall
+    solid between the surfaces offset along the normal (``side``)."""
+    design = part_design(args)
+    return design, build_solid(design)
 
 
 def layout_of(surface: CurvatureLineSurface, rings: Any, stringers: Any) -> NetLayout:
@@ -74,17 +86,21 @@ def chosen_indices(name: str, chosen: Any, count: int) -> list[int]:
 
 
 def stiffener_solids(
-    build: TubeBuild, ring_frames: Any, stringer_stiffeners: Any, profile: Any, side: str
+    design: WallDesign, build: TubeBuild, ring_frames: Any, stringer_stiffeners: Any, profile: Any, side: str
 ) -> list[tuple[str, Any]]:
     """(name, OCCT solid) of each stiffener a stiffened part carries: ring frames on the
     layout's rings ``ring_frames`` and stringer stiffeners on ``stringer_stiffeners``
-    (indices or ``"all"``), of ``profile`` (a flat bar when None) on the wall's ``side``."""
-    from tubecad.stiffeners.assembly import build_stiffeners
-    from tubecad.stiffeners.profiles import Profile
+    (indices or ``"all"``), of ``profile`` (a flat bar when None) on the wall's ``side``,
+    built on ``design``'s ``build`` as the spec's [stiffeners] are
+    (:func:`tubecad.design.wall.build_wall_stiffeners`)."""
+    from tubecad.stiffeners.profiles import Profile, as_stiffener_side
 
     rings = chosen_indices("ring_frames", ring_frames, len(build.layout.s_rings))
     stringers = chosen_indices("stringer_stiffeners", stringer_stiffeners, len(build.layout.stringers_deg))
-    made = build_stiffeners(build, rings, stringers, profile if profile is not None else Profile(), side)
+    chosen = StiffenerChoice(
+        tuple(rings), tuple(stringers), profile if profile is not None else Profile(), as_stiffener_side(side)
+    )
+    made = build_wall_stiffeners(replace(design, stiffeners=chosen), build)
     return [(st.name, st.solid.wrapped) for st in made]
 
 

@@ -24,22 +24,14 @@ from typing import Any
 import build123d as bd
 
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
-from tubecad.brep.wall import WallSide
+from tubecad.brep.wall import WallSide, as_wall_side
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
+from tubecad.design.junction import JunctionDesign
+from tubecad.design.model import BranchDesign, PadChoice, WallChoice
+from tubecad.design.wall import WallDesign
 from tubecad.parts.axis_input import AxisLike, RadiusLike, as_axis
 from tubecad.parts.engine import edge_map_of, layout_of
-
-
-class _Shared:
-    """What the part was built from, shared, not copied, by the part's copies (OCCT objects
-    do not deep-copy): the JunctionWall and the named edges' indices in its edge map."""
-
-    def __init__(self, junction: Any, named: dict[str, list[int]], tubes: list, pads: list) -> None:
-        self.junction, self.named = junction, named
-        self.tubes, self.pads = tubes, pads  # the shell model's (tubecad.fem.junction)
-
-    def __deepcopy__(self, memo: dict) -> _Shared:
-        return self
+from tubecad.parts.named_part import NamedSolidsPart
 
 
 @dataclass(frozen=True)
@@ -70,17 +62,33 @@ class Branch:
 
 @dataclass
 class JunctionPart:
-    """What :func:`build_junction_part` made: the junction wall, the main tube and its net,
-    the branches' walls and each pad (name, :class:`~tubecad.stiffeners.pad.Pad`)."""
+    """What :func:`build_junction_part` made: the ``design`` (as a spec's), the junction wall,
+    the branches' walls and their pads by branch index (:class:`~tubecad.stiffeners.pad.Pad`)."""
 
+    design: JunctionDesign
     junction: Any
-    main: Any
-    main_layout: Any
     walls: list
-    pads: list[tuple[str, Any]]
+    pads_by_branch: dict[int, Any]
+
+    @property
+    def pads(self) -> list[tuple[str, Any]]:
+        """Each pad with its name (``pad``; ``pad_0``, ... with several branches)."""
+        from tubecad.stiffeners.pad import pad_name
+
+        return [(pad_name(k, len(self.walls)), pad) for k, pad in sorted(self.pads_by_branch.items())]
+
+    @property
+    def main(self) -> Any:
+        """The main tube's exact surface."""
+        return self.design.main.surface
+
+    @property
+    def main_layout(self) -> Any:
+        """The main tube's net."""
+        return self.design.main.layout
 
 
-def build_junction_part(
+def junction_part_design(
     axis: AxisLike,
     radius: RadiusLike,
     thickness: float,
@@ -93,20 +101,17 @@ def build_junction_part(
     bend_radius: float | Sequence[float] | None = None,
     normal: Sequence[float] | None = None,
     closed: bool | None = None,
-) -> JunctionPart:
-    """The junction of :class:`CurvatureJunction` (its arguments), for the build123d object
-    and the CadQuery plugin alike: the main tube about ``axis``, each :class:`Branch` placed
-    on it (:func:`tubecad.junctions.branch_surface`) with its wall and net, the walls joined
-    (:func:`tubecad.junctions.build_branched_wall`) and each branch's pad
-    (:func:`tubecad.stiffeners.pad.reinforcement_pad`: ``pad``, ``pad_k`` with several)."""
-    from tubecad.brep.wall import wall_offsets
-    from tubecad.junctions import BranchWall, branch_surface, build_branched_wall, saddle_name
-    from tubecad.stiffeners.pad import pad_name, reinforcement_pad
+) -> JunctionDesign:
+    """The :class:`~tubecad.design.junction.JunctionDesign` of :class:`CurvatureJunction`'s
+    arguments (the one a spec with [[branches]] makes): the main wall about ``axis``, each
+    :class:`Branch` placed on it (:func:`tubecad.junctions.branch_surface`) with its wall,
+    net and pad."""
+    from tubecad.junctions import branch_surface
     from tubecad.surface.canal import tube_or_canal
 
     main = tube_or_canal(as_axis(axis, bend_radius=bend_radius, normal=normal, closed=closed), radius)
     main_layout = layout_of(main, rings, stringers)
-    walls = []
+    designs = []
     for branch in branches:
         surface = branch_surface(
             main,
@@ -120,45 +125,94 @@ def build_junction_part(
             tau=branch.tau,
         )
         branch_stringers = branch.stringers if branch.stringers is not None else len(main_layout.stringers_deg)
-        walls.append(
-            BranchWall(
-                surface,
-                thickness if branch.thickness is None else branch.thickness,
-                branch.side,
-                layout_of(surface, branch.rings, branch_stringers),
+        pad = None
+        if branch.pad_thickness is not None or branch.pad_width is not None:  # the missing one refused by name
+            nan = float("nan")
+            pad = PadChoice(
+                branch.pad_thickness if branch.pad_thickness is not None else nan,
+                branch.pad_width if branch.pad_width is not None else nan,
             )
-        )
-    junction = build_branched_wall(main, thickness, walls, main_side=side, main_layout=main_layout, tolerance=tolerance)
-    pads = []
-    main_out = wall_offsets(thickness, side)[1]
-    for k, (branch, wall) in enumerate(zip(branches, walls)):
-        if branch.pad_thickness is None and branch.pad_width is None:
-            continue
-        saddle = junction.saddles[saddle_name("saddle_outer", k, len(branches))].saddle
-        pad = reinforcement_pad(
-            main.offset(main_out),
-            wall.surface.offset(wall.offsets()[1]),
-            saddle,
-            branch.pad_thickness if branch.pad_thickness is not None else float("nan"),
-            branch.pad_width if branch.pad_width is not None else float("nan"),
-            tolerance,
-            key="pad",
-        )
-        pads.append((pad_name(k, len(branches)), pad))
-    return JunctionPart(junction, main, main_layout, walls, pads)
+        wall = WallChoice(thickness if branch.thickness is None else branch.thickness, as_wall_side(branch.side))
+        designs.append(BranchDesign(surface, wall, layout_of(surface, branch.rings, branch_stringers), pad))
+    main_design = WallDesign(main, main_layout, tolerance, WallChoice(thickness, as_wall_side(side)))
+    return JunctionDesign(main_design, tuple(designs))
 
 
-class CurvatureJunction(bd.BasePartObject):
+def build_junction_part(
+    axis: AxisLike,
+    radius: RadiusLike,
+    thickness: float,
+    branches: Sequence[Branch],
+    **options: Any,
+) -> JunctionPart:
+    """The junction of :class:`CurvatureJunction` (its arguments; ``options`` the keyword
+    ones of :func:`junction_part_design`), for the build123d object and the CadQuery plugin
+    alike: its design built as a spec's is (:mod:`tubecad.design.junction_build`), the
+    walls joined (:func:`tubecad.junctions.build_branched_wall`) and each branch's pad
+    (:func:`tubecad.stiffeners.pad.reinforcement_pad`: ``pad``, ``pad_k`` with several)."""
+    from tubecad.design.junction_build import branch_walls, junction_pads, junction_wall
+
+    design = junction_part_design(axis, radius, thickness, branches, **options)
+    walls = branch_walls(design)
+    junction = junction_wall(design, walls)
+    return JunctionPart(design, junction, walls, junction_pads(design, junction, walls))
+
+
+class _JunctionEngine:
+    """What the junction part was built from, shared (not copied) by its copies: its design,
+    the :class:`~tubecad.junctions.JunctionWall`, the branches' walls and pads, and every
+    named edge set as indices into the wall solid's edge map (``named``; the main tube's
+    rings and stringers also as ``net``, as a wall part's)."""
+
+    def __init__(self, built: JunctionPart) -> None:
+        from tubecad.parts.engine import NetEdges, edge_map_of
+
+        self.design, self.junction, self.walls = built.design, built.junction, built.walls
+        self.pads = built.pads_by_branch
+        edge_map = edge_map_of(built.junction.shape.wrapped)
+        self.named = {
+            name: [edge_map.FindIndex(e.wrapped) for e in edges] for name, edges in built.junction.edges.items()
+        }
+        self.surface, self.layout = self.design.main.surface, self.design.main.layout
+
+        def lines(kind: str, suffix: str) -> dict[str, list[int]]:
+            head = f"main_{kind}_"
+            return {
+                name.removeprefix("main_").removesuffix(suffix): found
+                for name, found in sorted(self.named.items())
+                if name.startswith(head) and name.endswith(suffix) and (suffix or not name.endswith("_inner"))
+            }
+
+        self.net = NetEdges(
+            lines("ring", ""), lines("stringer", ""), lines("ring", "_inner"), lines("stringer", "_inner")
+        )
+
+    def __deepcopy__(self, memo: dict) -> _JunctionEngine:
+        return self
+
+    def report(self) -> dict[str, Any]:
+        """The junction's measures (:func:`tubecad.design.junction_build.junction_report`):
+        validity, counts, volume, each saddle's fit and edges, each pad."""
+        from tubecad.design.junction_build import junction_report
+
+        return junction_report(self.design, self.junction, self.walls, self.pads)
+
+
+class CurvatureJunction(NamedSolidsPart):
     """The wall of ``thickness`` round the tube of ``radius`` about ``axis`` (any axis
     :class:`~tubecad.parts.build123d_parts.CurvatureWall` takes) with every branch of
-    ``branches`` (:class:`Branch`) joined on: one solid, W = (A_o u B_o) - (A_i u B_i).
-    ``named_edges`` gives its named edges (``main_ring_03``, ``branch_stringer_05_inner``,
-    ``saddle_outer``, ...; with several branches ``branch1_...`` and ``saddle_outer_1``) for
-    every placed copy; ``saddle_outer`` and ``saddle_inner`` the saddles (one branch), and
-    ``junction`` what was built and measured (:class:`~tubecad.junctions.JunctionWall`).
-    The other arguments are ``CurvatureWall``'s."""
+    ``branches`` (:class:`Branch`) joined on: one solid, W = (A_o u B_o) - (A_i u B_i), and
+    each branch's pad. A part as the others are: ``rings`` and ``stringers`` (the main
+    tube's outer lines, a line cut by an opening as one wire each side of it; ``inner_rings``,
+    ``inner_stringers``), ``surface`` (the main's exact surface), ``report``; ``saddles``
+    the saddles' edges by name; ``named_edges`` every named edge set (``main_ring_03``,
+    ``branch_stringer_05_inner``, ``saddle_outer``, ...; with several branches
+    ``branch1_...`` and ``saddle_outer_1``) for every placed copy; ``junction`` what was
+    built and measured (:class:`~tubecad.junctions.JunctionWall`); ``design`` the
+    :class:`~tubecad.design.junction.JunctionDesign` (a spec with [[branches]] makes the
+    same). The other arguments are ``CurvatureWall``'s."""
 
-    _applies_to = [bd.BuildPart._tag]
+    _tubecad: _JunctionEngine
 
     def __init__(
         self,
@@ -191,25 +245,39 @@ class CurvatureJunction(bd.BasePartObject):
             normal=normal,
             closed=closed,
         )
-        from tubecad.fem.junction import PadRegion, mid_surface_tubes
+        self._pad_names = [name for name, _ in built.pads]
+        self._solid_names = ("wall", *self._pad_names)
+        # the solids are labelled as the part's children (NamedSolidsPart), the part by its class
+        wall = bd.Solid(built.junction.shape.wrapped)
+        pad_solids = [bd.Solid(pad.solid.wrapped) for _, pad in built.pads]
+        part = bd.Part(bd.Compound([wall, *pad_solids]).wrapped) if pad_solids else wall
+        super().__init__(_JunctionEngine(built), part, rotation, align, mode)
 
-        junction, pads = built.junction, built.pads
-        edge_map = edge_map_of(junction.shape.wrapped)
-        named = {name: [edge_map.FindIndex(e.wrapped) for e in edges] for name, edges in junction.edges.items()}
-        regions = [PadRegion(name, pad.s_range, pad.angles_deg, pad.thickness) for name, pad in pads]
-        tubes = mid_surface_tubes(built.main, thickness, built.main_layout, built.walls, side=side)
-        self._tubecad = _Shared(junction, named, tubes, regions)
-        self._tolerance = tolerance
-        wall = bd.Solid(junction.shape.wrapped)
-        wall.label = "wall"
-        self._pad_names = [name for name, _ in pads]
-        pad_solids = []
-        for name, pad in pads:
-            solid = bd.Solid(pad.solid.wrapped)
-            solid.label = name
-            pad_solids.append(solid)
-        part = bd.Part(bd.Compound([wall, *pad_solids]).wrapped) if pads else wall
-        super().__init__(part=part, rotation=rotation, align=align, mode=mode)
+    def _line_wires(self, edges: list[bd.Edge]) -> list[bd.Wire]:
+        """A line's edges as wires: one per run of edges joined end to end (a line an opening
+        cuts is two)."""
+        return list(bd.Wire.combine(edges))
+
+    @property
+    def inner_rings(self) -> bd.ShapeList[bd.Wire]:
+        """The main tube's ring frames on its inner surface (``ring_00``, ...)."""
+        return self._wires(self._net.inner_rings)
+
+    @property
+    def inner_stringers(self) -> bd.ShapeList[bd.Wire]:
+        """The main tube's stringers on its inner surface (``stringer_00``, ...)."""
+        return self._wires(self._net.inner_stringers)
+
+    @property
+    def design(self) -> JunctionDesign:
+        """What the part is: the main wall and the branches (as a spec's [[branches]])."""
+        return self._tubecad.design
+
+    @property
+    def saddles(self) -> dict[str, bd.ShapeList[bd.Edge]]:
+        """The saddles' edges by name (``saddle_outer``, ``saddle_inner``; with several
+        branches ``saddle_outer_0``, ...), on every placed copy."""
+        return {name: edges for name, edges in self.named_edges.items() if name.startswith("saddle_")}
 
     def shell_model(self, size: float | None = None, element: str = "S8R") -> Any:
         """The junction's shell model for a finite-element analysis
@@ -219,22 +287,21 @@ class CurvatureJunction(bd.BasePartObject):
         the smallest tube), in the junction's own coordinates (as built, before ``rotation``,
         ``align`` and any placement). Solve it with :func:`tubecad.fem.analysis.solve` and
         :func:`tubecad.fem.junction_analysis.junction_step` (``tubes``: :attr:`shell_tubes`)."""
-        from tubecad.fem.junction import junction_shell_mesh
         from tubecad.fem.settings import MeshSettings
 
-        tubes, pads = self._tubecad.tubes, self._tubecad.pads
-        settings = MeshSettings(element=element, size_along=size)
-        return junction_shell_mesh(tubes[0], tubes[1:], pads=pads, settings=settings, tolerance=self._tolerance)
+        return self.design.shell_model(MeshSettings(element=element, size_along=size)).mesh
 
     @property
     def shell_tubes(self) -> list[Any]:
         """The shell model's tubes (:class:`tubecad.fem.junction.JunctionTube`: the main first)."""
-        return list(self._tubecad.tubes)
+        from tubecad.design.junction_shell import junction_tubes
+
+        return junction_tubes(self.design.main, self.design.branches)[0]
 
     @property
     def pads(self) -> bd.ShapeList[bd.Solid]:
         """The pads of every placed copy, labelled ``pad`` (``pad_0``, ... with several branches)."""
-        per_copy = 1 + len(self._pad_names)
+        per_copy = self._solids_per_copy
         solids = list(self.solids())
         out = []
         for start in range(0, len(solids), per_copy):
@@ -255,7 +322,7 @@ class CurvatureJunction(bd.BasePartObject):
 
         named = self._tubecad.named
         out: dict[str, list[bd.Edge]] = {name: [] for name in sorted(named)}
-        for copy in list(self.solids())[:: 1 + len(self._pad_names)]:  # each copy's wall, its pads after it
+        for copy in self._copies():  # each copy's wall (its pads after it)
             edge_map = edge_map_of(copy.wrapped)
             for name in out:
                 for index in named[name]:

@@ -168,7 +168,8 @@ def as_spec_error(spec: TubeSpec, exc: TubecadError) -> SpecError:
         return SpecError(f"{source}: [{stage}] {exc}", key=within(stage, exc))
     if stage == "pads":
         number = "" if exc.branch is None else f" #{exc.branch + 1}"
-        return SpecError(f"{source}: [[branches]]{number} {exc}", key=exc.key or "branches.pad")
+        key = f"branches.{exc.key}" if exc.key and exc.key.startswith("pad") else exc.key or "branches.pad"
+        return SpecError(f"{source}: [[branches]]{number} {exc}", key=key)
     if stage == "mesh":  # the mesh's own keys ([mesh] size, surface), else the section of the key
         return spec_error(source, exc, ("mesh", "stiffeners", "panels"), "mesh", SHELL_MESH_KEYS)
     if stage == "analysis":

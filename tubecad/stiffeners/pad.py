@@ -56,7 +56,7 @@ def reinforcement_pad(
     width: float,
     tolerance: float = DEFAULT_FIT_TOLERANCE,
     *,
-    key: str = "branches.pad",
+    key: str = "pad",
 ) -> Pad:
     """The pad on ``outer`` (the main wall's outer surface) round the saddle ``saddle`` where
     ``branch_outer`` leaves it (see the module). A ParameterError names ``key.thickness`` or
@@ -81,7 +81,7 @@ def reinforcement_pad(
 
 
 def pad_bounds(
-    outer: CurvatureLineSurface, saddle: SaddleCurve, width: float, *, key: str = "branches.pad"
+    outer: CurvatureLineSurface, saddle: SaddleCurve, width: float, *, key: str = "pad"
 ) -> tuple[tuple[float, float], tuple[float, float]]:
     """((s_a, s_b), (u_a, u_b) in degrees): the rings and stringers that bound the pad
     ``width`` beyond ``saddle`` on ``outer`` (see the module); refused as

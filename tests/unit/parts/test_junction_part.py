@@ -106,3 +106,38 @@ def test_the_part_gives_its_shell_model_on_the_walls_mid_surfaces(part):
     assert np.abs(fe.nodes[fe.node_sets["main_end"], 0] - 300.0).max() < 1e-9
     assert {s.block: s.thickness for s in fe.shell_sections}["branch"] == 3.0
     assert [t.name for t in part.shell_tubes] == ["main", "branch"]
+
+
+def test_the_junction_is_a_part_like_the_others(part, tmp_path):
+    """Issue 42: rings, stringers, inner ones, saddles, surface, report and design, as a wall
+    part has them. A ring lies on the main's outer cylinder y^2 + z^2 = R_o^2 at its station
+    x = s; a stringer the opening cuts (the one at 90 deg, under the branch) is two wires,
+    each ending on the outer saddle, which lies on both cylinders; build123d's own
+    export_step names the wall."""
+    import re
+
+    from tubecad import JunctionDesign, WallDesign
+
+    rings = part.rings
+    assert [w.label for w in rings] == [f"ring_{i:02d}" for i in range(5)]
+    for wire, s in zip(rings, part.layout.s_rings):
+        p = np.array([tuple(wire.position_at(t)) for t in np.linspace(0, 1, 33)])
+        assert np.abs(np.hypot(p[:, 1], p[:, 2]) - R_OUT).max() < 1e-7  # measured 1e-13
+        assert np.abs(p[:, 0] - s).max() < 1e-7
+    for wire in part.inner_rings:
+        p = np.array([tuple(wire.position_at(t)) for t in np.linspace(0, 1, 33)])
+        assert np.abs(np.hypot(p[:, 1], p[:, 2]) - R_IN).max() < 1e-7
+    under = [w for w in part.stringers if w.label == "stringer_02"]  # 8 stringers: 02 at 90 deg, +z
+    assert len(under) == 2, [w.label for w in part.stringers]
+    saddle = np.array([tuple(e.position_at(t)) for e in part.saddles["saddle_outer"] for t in np.linspace(0, 1, 65)])
+    for wire in under:
+        ends = [np.array(tuple(wire.position_at(t))) for t in (0.0, 1.0)]
+        assert min(np.linalg.norm(saddle - end, axis=1).min() for end in ends) < 0.5  # the saddle's samples' spacing
+    assert set(part.saddles) == {"saddle_outer", "saddle_inner"}
+    assert part.surface.radius_law.constant_value == 50.0
+    assert isinstance(part.design, JunctionDesign) and isinstance(part.design.main, WallDesign)
+    report = part.report
+    assert report["valid"] and report["saddles"]["saddle_outer"]["edges_deviation"] < 1e-6
+    assert report["volume"] == pytest.approx(part.volume, rel=1e-12)
+    bd.export_step(part, tmp_path / "tee.step")
+    assert re.findall(r"PRODUCT\('([^']*)'", (tmp_path / "tee.step").read_text()) == ["CurvatureJunction", "wall"]

@@ -73,4 +73,4 @@ def test_a_pad_too_wide_is_refused_naming_its_key(length, width, says):
     main = tube_or_canal(NaturalAxis("0", "0", (0.0, length), origin=(150 - length / 2, 0, 0), normal=(0, 1, 0)), R)
     with pytest.raises(ParameterError, match=says) as info:
         reinforcement_pad(main, BRANCH, saddle_curve(main, BRANCH, 65), 6.0, width)
-    assert info.value.key == "branches.pad.width" and "\n" not in str(info.value)
+    assert info.value.key == "pad.width" and "\n" not in str(info.value)  # the spec adds [[branches]]
