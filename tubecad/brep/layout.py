@@ -23,7 +23,16 @@ MAX_FACES = 100_000
 @dataclass(frozen=True)
 class NetLayout:
     """Ring frames at arc lengths ``s_rings`` (both span ends included, increasing) and
-    stringers at angles ``stringers_deg`` around the tube (from the RMF normal r1)."""
+    stringers at angles ``stringers_deg`` around the tube (from the RMF normal r1).
+
+    Made with :meth:`equal` or :meth:`explicit`, which check the values against a surface;
+    the constructor takes them as they are.
+
+    Args:
+        s_rings: the rings' arc lengths s, model units, increasing, both span ends included.
+        stringers_deg: the stringers' angles in degrees, in [0, 360), increasing, measured
+            around the tube from the rotation-minimising normal r1.
+    """
 
     s_rings: tuple[float, ...]
     stringers_deg: tuple[float, ...]

@@ -13,8 +13,12 @@ import shutil
 import sys
 from collections.abc import Iterator
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from tubecad.core.errors import ParameterError
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: temporaries of atomic writes in progress: an interrupt that lands between two steps of
 #: the bookkeeping below still leaves none (see :func:`remove_temporaries`)
@@ -166,7 +170,7 @@ def write_text(target: str | Path, text: str) -> Path:
 
 
 def save_figure(
-    fig, folder: str | Path, stem: str, formats: tuple[str, ...] = ("png", "svg"), dpi: int = 150
+    fig: Figure, folder: str | Path, stem: str, formats: tuple[str, ...] = ("png", "svg"), dpi: int = 150
 ) -> list[Path]:
     """Save a matplotlib figure as ``stem``.<format> in ``folder`` for each format, atomically,
     then close it; return the paths.
@@ -186,7 +190,7 @@ def save_figure(
     return paths
 
 
-def close_figure(fig) -> None:
+def close_figure(fig: Figure) -> None:
     """Release ``fig``: pyplot forgets it if it manages it (imported only if already loaded:
     tubecad's own figures are not pyplot's and are simply dropped)."""
     pyplot = sys.modules.get("matplotlib.pyplot")

@@ -25,7 +25,22 @@ from tubecad.curves.slope_curve import FloatArray, SlopeCurve
 
 class CustomCurvature(SlopeCurve):
     """A slope curve whose curvature is any smooth ``k``: a vectorised callable or a string
-    expression in ``s`` (parsed safely, see :mod:`.expression`)."""
+    expression in ``s`` (parsed safely, see :mod:`.expression`).
+
+    Args:
+        k: the curvature k(s), 1 / model units, signed: a string expression in ``s`` (e.g.
+            ``"0.004 + 0.003 * sin(2 * pi * s / 500)"``) or a vectorised callable taking an
+            array of s and returning an array shaped like it (or a scalar).
+        beta_deg: the elevation angle in degrees, in (-90, 90) (see :class:`SlopeCurve`).
+        span: the arc lengths (s0, s1), model units, increasing; the integration starts at s0.
+        psi0_deg: the plan direction angle psi at s0, degrees (default 0: along +x).
+        origin: the axis point c(s0) as [x, y, z], model units (default the origin).
+
+    Raises:
+        ExpressionError: ``k`` is a string that is not a safe arithmetic expression in s.
+        ParameterError: a parameter out of range, ``k`` not callable or not returning real
+            numbers, or a plan that turns too often to integrate to round-off.
+    """
 
     family = "custom"
 

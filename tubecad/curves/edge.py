@@ -50,7 +50,26 @@ def edge_axis(
 ) -> ParametricAxis:
     """The axis along ``curve`` (see the module docstring), from its first parameter to its
     last. ``closed``: a closed loop (None: detected, e.g. a periodic B-spline or a closed
-    wire meeting itself tangentially; True: demanded; False: kept open)."""
+    wire meeting itself tangentially; True: demanded; False: kept open).
+
+    Args:
+        curve: a build123d or CadQuery Edge or Wire, a TopoDS edge or wire, or an OCCT
+            ``Geom_Curve``; bounded and tangent-continuous (no kink), in model units.
+        normal: the initial r1 at the curve's start, made orthogonal to the tangent; None
+            (default): the principal normal (see :class:`~.parametric.ParametricAxis`).
+        source: what the curve was, for :meth:`describe` (default the curve's type name).
+        closed: None (default) to detect a closed loop, True to demand one, False to keep
+            the axis open.
+
+    Returns:
+        The :class:`~.parametric.ParametricAxis` along the curve, in arc length from 0 at
+        its first parameter.
+
+    Raises:
+        ParameterError: an object that is not a curve, an unbounded curve, a kink (the
+            tangent turning at a point: use :class:`~.route.RouteAxis` for straight legs and
+            bends), or ``closed=True`` on a curve whose ends do not meet tangentially.
+    """
     from OCP.GeomAbs import GeomAbs_C1, GeomAbs_C2, GeomAbs_C3
     from OCP.gp import gp_Pnt
 

@@ -25,6 +25,15 @@ class LogSpiral(SlopeCurve):
     x0 = s cb^2 / (a^2 + cb^2) (cb cos psi + a sin psi),
     y0 = s cb^2 / (a^2 + cb^2) (cb sin psi - a cos psi).
     The spiral's pole (s -> 0) is at the origin.
+
+    Args:
+        a: the constant of k = a / s, dimensionless, > 0 (a larger ``a`` winds the spiral
+            tighter).
+        beta_deg: the elevation angle in degrees, in (-90, 90) (see :class:`SlopeCurve`).
+        span: the arc lengths (s0, s1), model units, increasing, with s0 > 0.
+
+    Raises:
+        ParameterError: a parameter out of range, naming it.
     """
 
     family = "log_spiral"
@@ -61,6 +70,16 @@ class Helix(SlopeCurve):
 
     psi = k s / cos b; the helix lies on a cylinder of radius cos^2 b / k with pitch
     2 pi sin b cos b / k.
+
+    Args:
+        k: the constant curvature, 1 / model units, signed (k < 0 turns clockwise in plan):
+            0 for a straight line, else at least ``MIN_CURVATURE`` (1e-9) in magnitude.
+            :meth:`from_radius_pitch` makes the helix from its cylinder radius and pitch.
+        beta_deg: the elevation angle in degrees, in (-90, 90) (see :class:`SlopeCurve`).
+        span: the arc lengths (s0, s1), model units, increasing.
+
+    Raises:
+        ParameterError: a parameter out of range, naming it.
     """
 
     family = "helix"
@@ -121,6 +140,15 @@ class Clothoid(SlopeCurve):
     psi = s^2 / (2 A^2 cos b). With lam = A sqrt(pi cos b) and the Fresnel integrals
     C, S (scipy.special.fresnel): Int cos psi ds = lam C(s / lam), Int sin psi ds = lam S(s / lam).
     s may be negative (the other branch, curving the other way).
+
+    Args:
+        A: the clothoid parameter, a length in model units, > 0: the radius of curvature
+            R = 1 / k at arc length s satisfies R s = A^2.
+        beta_deg: the elevation angle in degrees, in (-90, 90) (see :class:`SlopeCurve`).
+        span: the arc lengths (s0, s1), model units, increasing; negative s is allowed.
+
+    Raises:
+        ParameterError: a parameter out of range, naming it.
     """
 
     family = "clothoid"
@@ -153,6 +181,14 @@ class CircleInvolute(SlopeCurve):
     psi = c sqrt(s) with c = sqrt(2 / a) / cos b, and with w = sqrt(s):
     Int cos psi ds = 2 (w sin(c w) / c + cos(c w) / c^2),
     Int sin psi ds = 2 (-w cos(c w) / c + sin(c w) / c^2).
+
+    Args:
+        a: the radius of the involute's base circle, model units, > 0.
+        beta_deg: the elevation angle in degrees, in (-90, 90) (see :class:`SlopeCurve`).
+        span: the arc lengths (s0, s1), model units, increasing, with s0 > 0.
+
+    Raises:
+        ParameterError: a parameter out of range, naming it.
     """
 
     family = "involute"

@@ -70,7 +70,26 @@ class NaturalAxis(Axis):
     """The curve with curvature ``k`` and torsion ``tau`` (callables of s or expressions in
     s) over ``span``, starting at ``origin`` with Frenet frame (``tangent``, ``normal``).
     ``closed``: a closed loop (None: detected when the ends and their tangents agree; True:
-    demanded; False: kept open, see :func:`~.axis.closing`)."""
+    demanded; False: kept open, see :func:`~.axis.closing`).
+
+    Args:
+        k: the curvature k(s), 1 / model units: a string expression in ``s`` or a
+            vectorised callable of an array of s (k < 0 bends the curve towards -normal).
+        tau: the torsion tau(s), 1 / model units, signed: an expression in ``s`` or a
+            vectorised callable (0 everywhere: a plane curve).
+        span: the arc lengths (s0, s1), model units, increasing.
+        origin: the start point c(s0) as [x, y, z], model units (default the origin).
+        tangent: the unit tangent's direction at s0 (normalised; default +x).
+        normal: the principal normal's direction at s0, made orthogonal to ``tangent``
+            (Gram-Schmidt; default +y); it must not be parallel to ``tangent``.
+        closed: None (default) to detect a closed loop, True to demand one (refused if the
+            ends or their tangents differ), False to keep the axis open.
+
+    Raises:
+        ExpressionError: ``k`` or ``tau`` is a string that is not a safe expression in s.
+        ParameterError: a parameter out of range, a zero or parallel ``tangent`` and
+            ``normal``, or ``closed=True`` on an axis whose ends do not meet tangentially.
+    """
 
     family = "natural"
 

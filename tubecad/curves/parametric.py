@@ -47,7 +47,21 @@ CurveFunction = Callable[[np.ndarray], np.ndarray]
 
 
 def expression_curve(x: str, y: str, z: str) -> CurveFunction:
-    """x(t), y(t), z(t) from three expressions in t, as one vectorised curve."""
+    """x(t), y(t), z(t) from three expressions in t, as one vectorised curve.
+
+    Args:
+        x: the expression of x(t) in ``t`` (parsed safely, see :mod:`.expression`), e.g.
+            ``"100 * cos(t)"``; model units.
+        y: the expression of y(t).
+        z: the expression of z(t).
+
+    Returns:
+        The callable t -> points of shape t.shape + (3,), to give :class:`ParametricAxis`.
+
+    Raises:
+        ExpressionError: an expression that is not a safe arithmetic expression in t,
+            naming x, y or z.
+    """
     parts = [compile_expression(text, name, variable="t") for text, name in ((x, "x"), (y, "y"), (z, "z"))]
 
     def curve(t: np.ndarray) -> np.ndarray:
@@ -63,7 +77,31 @@ class ParametricAxis(Axis):
     :attr:`Axis.joints`). ``normal``: the initial r1 (made orthogonal to the tangent;
     default the principal normal, or any normal where the curve starts straight).
     ``closed``: a closed loop (None: detected when the ends and their tangents agree; True:
-    demanded; False: kept open, see :func:`~.axis.closing`)."""
+    demanded; False: kept open, see :func:`~.axis.closing`).
+
+    Args:
+        curve: the vectorised curve x(t): takes an array of t, returns points of shape
+            t.shape + (3,) in model units (e.g. :func:`expression_curve`'s); its speed
+            |dx/dt| must not vanish on ``t_span``.
+        t_span: the parameter interval (t0, t1), increasing; s = 0 at t0.
+        breaks: parameters where the curve is less smooth (a spline's knots), where the
+            series' panels start; None (default): none.
+        joints: (t, continuity) pairs at such breaks: the frame there is only C^continuity
+            (0 or 1); those outside (t0, t1) are ignored. Default: none.
+        normal: the initial r1 at t0, made orthogonal to the tangent; None (default): the
+            principal normal, or the coordinate axis least along the tangent where the curve
+            starts straight.
+        description: the axis as :meth:`describe` reports it; its ``"curve"`` key becomes
+            the axis' ``family``. None (default): ``{"curve": "parametric", "t": t_span}``.
+        name: what the curve is called in error messages (default ``"the curve x(t)"``).
+        closed: None (default) to detect a closed loop, True to demand one, False to keep
+            the axis open.
+
+    Raises:
+        ParameterError: ``curve`` not callable or not returning real points of the right
+            shape, a degenerate curve (zero speed), a ``normal`` parallel to the tangent, or
+            ``closed=True`` on a curve whose ends do not meet tangentially.
+    """
 
     family = "parametric"
 

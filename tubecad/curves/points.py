@@ -76,7 +76,27 @@ def points_axis(
     """The axis through ``points`` (n x 3), interpolated by a C2 cubic spline. ``closed``: a
     closed loop (None: when the last point repeats the first; True: the first point is
     appended if the last differs; False: an open spline even so), interpolated by the
-    periodic cubic spline through 3 or more distinct points."""
+    periodic cubic spline through 3 or more distinct points.
+
+    Args:
+        points: the points [[x, y, z], ...], model units: 3 to 100,000, finite, each
+            differing from the next.
+        parameterisation: how the spline's parameter steps between points: ``"centripetal"``
+            (default, |P_{i+1} - P_i|^(1/2): no cusps or loops on uneven spacing) or
+            ``"chord"`` (|P_{i+1} - P_i|).
+        normal: the initial r1 at the first point, made orthogonal to the tangent; None
+            (default): the principal normal (see :class:`~.parametric.ParametricAxis`).
+        closed: None (default): a closed loop when the last point repeats the first; True:
+            always a loop; False: an open spline.
+
+    Returns:
+        The :class:`~.parametric.ParametricAxis` along the spline, in arc length from 0 at
+        the first point, with C1 joints at the inner points.
+
+    Raises:
+        ParameterError: bad or repeated points, an unknown ``parameterisation``, or a
+            closed loop of fewer than 3 distinct points.
+    """
     if parameterisation not in PARAMETERISATIONS:
         raise ParameterError(
             f"parameterisation must be one of {', '.join(PARAMETERISATIONS)}, got {parameterisation!r:.80}"

@@ -53,6 +53,26 @@ class RadiusLaw:
     ``kind`` is "constant", "expression", "callable" or "table"; ``breaks`` are the interior
     s where r is less smooth (a table's knots: r''' jumps there), for solvers to start
     panels at. Construct with :func:`radius_law`.
+
+    Args:
+        kind: ``"constant"``, ``"expression"``, ``"callable"`` or ``"table"``.
+        span: the arc lengths (s0, s1) of the axis the law is on, model units.
+        name: the law's name in messages and reports (the spec key, e.g. ``"radius"``).
+        source: what the law was given as: the number, the expression, the callable or the
+            table (an (n, 2) array of [s, r] rows).
+        pieces: the callables of s giving r and its first three derivatives, or None for a
+            constant law.
+        breaks: the s where r is less smooth (a table's inner knots); those outside the open
+            span are dropped. Default: none.
+        resolution: how many pieces the law is checked on (sampled SAMPLES_PER_PIECE times
+            each; at least one per break interval). Default 1.
+        offset: the distance already added to the law by :meth:`shifted` (reported), model
+            units. Default 0.
+        periodic: whether the law is known to close round a closed axis (a periodic table).
+            Default False.
+
+    Raises:
+        ParameterError: r <= 0 or |r'| >= 1 somewhere on the span, naming the law and the s.
     """
 
     def __init__(
@@ -266,7 +286,28 @@ def radius_law(
     """The radius law ``value`` (a number, an expression in s, a callable of s, or a table
     [[s, r], ...]) on ``span``, checked there; ParameterError naming ``name`` otherwise.
     With the ``axis``, an expression may also use x, y, z: the axis point c(s) (a Dupin
-    cyclide's spheres have r = mu - (c/a) x)."""
+    cyclide's spheres have r = mu - (c/a) x).
+
+    Args:
+        value: the radius, model units: a number > 0 (or a numeric string: a constant law),
+            an expression in ``s`` (and x, y, z with the ``axis``), a vectorised callable
+            r(s), a table [[s, r], ...] (s strictly increasing, covering the span, r > 0:
+            the not-a-knot cubic spline through it), or a :class:`RadiusLaw` on ``span``
+            (returned as it is).
+        span: the axis' arc lengths (s0, s1), model units, increasing.
+        name: the key named in messages and reports (default ``"radius"``).
+        axis: the :class:`~tubecad.curves.axis.Axis` the law is for, or None (default): with
+            it an expression may use x, y, z, and on a closed axis a table is the periodic
+            spline (its last r must repeat the first).
+
+    Returns:
+        The checked law: r > 0 and |r'| < 1 over the span.
+
+    Raises:
+        ExpressionError: an expression that is not a safe arithmetic expression.
+        ParameterError: a value of another type, a bad table, a law on another span, or
+            r <= 0 or |r'| >= 1 somewhere on the span, naming ``name`` and the s.
+    """
     span = span_pair("span", span)
     if isinstance(value, RadiusLaw):
         if value.span != span:

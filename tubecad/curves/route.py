@@ -88,7 +88,24 @@ class RouteAxis(Axis):
     point is appended if the last differs; False: an open route even so). Every vertex of a
     loop has a bend, points[0] too (``bend_radius``: one value or one per distinct vertex,
     points[0]..points[n-1]); the axis starts and ends at the end of the bend at points[0],
-    on the leg points[0]-points[1], so the closing is a joint like the others."""
+    on the leg points[0]-points[1], so the closing is a joint like the others.
+
+    Args:
+        points: the route's vertices [[x, y, z], ...], model units: at least 2, each
+            differing from the next; no inner vertex collinear with its neighbours or turning
+            the route back on itself.
+        bend_radius: the bends' radius R_i, model units, > 0: one value for every bend, or
+            one per inner vertex (per distinct vertex on a closed route); each leg must be
+            long enough for the tangent lengths R_i tan(theta_i / 2) of the bends at its ends.
+        normal: r1 at the start, made normal to the first leg; None (default): the first
+            bend's inward normal, or the coordinate axis least along the leg.
+        closed: None (default): a closed loop when the last point repeats the first; True:
+            always a loop; False: an open route.
+
+    Raises:
+        ParameterError: bad points or radii, a collinear or folding vertex, or a leg too
+            short for its bends, naming the point.
+    """
 
     family = "route"
     rings_at_joints = True

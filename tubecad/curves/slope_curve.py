@@ -52,6 +52,17 @@ class SlopeCurve(Axis):
 
     Subclasses implement the natural equation of one family. All evaluation methods take
     arrays of s (any shape) and are vectorised.
+
+    Args:
+        beta_deg: the constant elevation angle beta of the tangent above the xy plane, in
+            degrees, in the open interval (-90, 90); 0 gives a plane curve, a negative angle
+            a descending one.
+        span: the arc lengths (s0, s1) the axis covers, in model units, increasing, both
+            finite and above the family's ``s_lower_bound`` (s > 0 for the log spiral and the
+            involute).
+
+    Raises:
+        ParameterError: ``beta_deg`` or ``span`` out of range, naming the parameter.
     """
 
     #: name used in spec files (``[axis] curve = ...``)

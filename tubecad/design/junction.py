@@ -27,7 +27,14 @@ class JunctionDesign:
     """A main wall (``main``: its surface, net, wall and stiffeners; panels are not split
     round openings) with every branch of ``branches`` joined on: one solid, W = (A_o u B_o) -
     (A_i u B_i); ``reinforcement`` = (pressure, allowable stress) asks for each opening's
-    area-replacement figures in the report."""
+    area-replacement figures in the report.
+
+    Args:
+        main: the main wall's design (its ``wall`` required; ``panels`` are not split round openings).
+        branches: the branches joined on (:class:`~tubecad.design.model.BranchDesign`).
+        reinforcement: (pressure, allowable stress) for each opening's area-replacement
+            figures in the report, or None.
+    """
 
     main: WallDesign
     branches: tuple[BranchDesign, ...]
@@ -36,6 +43,8 @@ class JunctionDesign:
     #: what it is written as: CAD files, meshes and a PNG picture (no SVG projection, no polylines yet)
     WRITTEN_AS: ClassVar[frozenset[str]] = frozenset({"cad", "mesh", "png"})
     WHAT: ClassVar[str] = "a junction"
+    #: a junction's shop package always has its branches' templates
+    SHOP_NEEDS_PARTS: ClassVar[bool] = False
 
     @property
     def length_unit(self) -> str:

@@ -41,6 +41,8 @@ class Design(Protocol):
     WRITTEN_AS: ClassVar[frozenset[str]]
     #: what it is, in messages (``a junction``)
     WHAT: ClassVar[str]
+    #: whether its shop package needs stiffeners or panels to hold anything
+    SHOP_NEEDS_PARTS: ClassVar[bool]
 
     @property
     def length_unit(self) -> str:

@@ -4,8 +4,9 @@ measured checks, the B-rep measured, the stiffeners and lines."""
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from importlib.metadata import PackageNotFoundError, version
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -14,6 +15,11 @@ from tubecad.core.units import DEFAULT_LENGTH_UNIT, density_unit
 from tubecad.surface import CanalSurface, CurvatureLineTube
 from tubecad.surface.checks import area_by_quadrature, axis_distance_errors, net_errors
 from tubecad.surface.protocol import CurvatureLineSurface
+
+if TYPE_CHECKING:
+    from tubecad.brep.solids import TubeBuild
+    from tubecad.stiffeners.lines import CurvatureLine
+    from tubecad.stiffeners.solids import Stiffener
 
 
 def tube_report(
@@ -129,7 +135,7 @@ def _version() -> str:
 
 
 def build_report(
-    build, tube: CurvatureLineSurface, nu: int = 48, ns: int = 1500, self_intersection: bool = False
+    build: TubeBuild, tube: CurvatureLineSurface, nu: int = 48, ns: int = 1500, self_intersection: bool = False
 ) -> dict[str, Any]:
     """What was measured on a built B-rep shape (issue 3): per surface the fit's deviation
     and orthogonality by dense sampling of the OCCT surface, poles; topology and validity;
@@ -144,7 +150,7 @@ def build_report(
     from tubecad.brep.solids import exact_volume
     from tubecad.fitting import measure_surface
 
-    surfaces = []
+    surfaces: list[dict[str, Any]] = []
     for surface, patches, radius in zip(build.surfaces, build.patches, build.radii):
         m = measure_surface(surface, nu, ns)
         faces = patches.all_faces()
@@ -194,7 +200,12 @@ def build_report(
     return out
 
 
-def stiffener_report(stiffeners, lines, density: float, length_unit: str = DEFAULT_LENGTH_UNIT) -> dict[str, Any]:
+def stiffener_report(
+    stiffeners: Sequence[Stiffener],
+    lines: Sequence[CurvatureLine],
+    density: float,
+    length_unit: str = DEFAULT_LENGTH_UNIT,
+) -> dict[str, Any]:
     """Every curvature line (length) and stiffener (position, profile, length along its base
     line, volume, mass at ``density`` kg per cubic ``length_unit``), issue 4."""
     from tubecad.brep import properties as props

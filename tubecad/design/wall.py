@@ -31,7 +31,18 @@ if TYPE_CHECKING:
 class WallDesign:
     """A tube (``wall`` None: the capped tube solid) or a wall about the exact ``surface``,
     its faces bounded by the net ``layout``, fitted to ``tolerance``; with ``stiffeners``
-    and ``panels`` the named assembly of the wall (or its panels) and the stiffeners."""
+    and ``panels`` the named assembly of the wall (or its panels) and the stiffeners.
+
+    Args:
+        surface: the exact curvature-line surface (a tube or a canal surface).
+        layout: its net: the rings' arc lengths and the stringers' angles.
+        tolerance: the fit's tolerance, in model units (tubecad.core.tolerance).
+        wall: the wall's thickness and side (None: the capped tube solid).
+        stiffeners: the stiffeners on the layout's rings and stringers (None: none).
+        panels: the wall split into panels (None: one solid).
+        length_unit: the unit of every length, stated by every file (mm, cm, m, in, ft).
+        report_grid: the (nu, ns) grid the exact surface's report is measured on.
+    """
 
     surface: CurvatureLineSurface
     layout: NetLayout
@@ -47,6 +58,8 @@ class WallDesign:
     WRITTEN_AS: ClassVar[frozenset[str]] = frozenset({"cad", "mesh", "polylines", "picture"})
     #: what it is called in messages
     WHAT: ClassVar[str] = "a tube or wall"
+    #: a wall's shop package is its stiffeners' and panels': it needs one or the other
+    SHOP_NEEDS_PARTS: ClassVar[bool] = True
 
     def build(self, progress: Progress | None = None) -> BuildResult:
         """The tube or wall solid, its stiffeners and panels, named and measured

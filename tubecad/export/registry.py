@@ -161,5 +161,32 @@ def export_shape(
     """Write ``shape`` (OCCT or build123d/CadQuery) to ``path`` in the format of its extension:
     STEP, IGES, BREP, or a mesh for visual use (STL, 3MF, glTF), see :data:`FORMATS`.
     ``name``: the product name in STEP (default: the file's stem); ``length_unit``: the unit of
-    the shape's coordinates, which the file states (mm, cm, m, in, ft; tubecad.core.units)."""
+    the shape's coordinates, which the file states (mm, cm, m, in, ft; tubecad.core.units).
+
+    The file is written beside ``path`` and moved into place when complete: a failed
+    export leaves no file.
+
+    Args:
+        shape: the shape to write: an OCCT ``TopoDS_Shape``, a build123d or CadQuery shape
+            (a solid, a compound, a part such as :class:`~tubecad.parts.CurvatureWall`, or a
+            named assembly, whose names and colours STEP keeps).
+        path: the output file; its extension picks the format: .step/.stp, .iges/.igs,
+            .brep, .stl, .3mf, .gltf, .glb, or .png (a shaded picture). The curvature-line
+            formats (.csv, .json) and .svg need a build, not a shape, and are refused.
+        step_schema: the STEP schema, ``"AP214"`` (default) or ``"AP242"``; ignored by the
+            other formats.
+        name: the product name recorded in STEP (default: the file's stem).
+        length_unit: the unit of the shape's coordinates, stated in the file (STEP, IGES,
+            3MF; glTF is scaled to metres): ``"mm"`` (default), ``"cm"``, ``"m"``, ``"in"``
+            or ``"ft"``. The coordinates are not converted.
+
+    Returns:
+        The path written, as a :class:`~pathlib.Path`.
+
+    Raises:
+        ParameterError: an unknown extension (listing every allowed one), an unknown
+            ``step_schema`` or ``length_unit``, or a format the shape cannot be written to.
+        ExportError: OCCT could not translate or write the shape
+            (:class:`tubecad.export.cad.ExportError`, a :class:`TubecadError`).
+    """
     return write_output(Exportable(shape, step_schema=step_schema, name=name, length_unit=length_unit), path)[0]

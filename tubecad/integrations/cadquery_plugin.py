@@ -38,7 +38,8 @@ from tubecad.core.tolerance import DEFAULT_TOLERANCE
 from tubecad.occ_compat import as_edge
 from tubecad.parts.axis_input import AxisLike, RadiusLike
 from tubecad.parts.engine import PartArguments, build_part, edge_map_of, net_edges, stiffener_solids
-from tubecad.stiffeners.profiles import StiffenerSide
+from tubecad.stiffeners.profiles import Profile, StiffenerSide
+from tubecad.surface.protocol import CurvatureLineSurface
 
 
 def curvature_tube(
@@ -109,7 +110,7 @@ def stiffened_curvature_wall(
     thickness: float,
     ring_frames: Sequence[int] | str = "all",
     stringer_stiffeners: Sequence[int] | str = (),
-    profile: Any = None,
+    profile: Profile | None = None,
     stiffener_side: StiffenerSide = "outside",
     side: WallSide = "centered",
     rings: int | Sequence[float] = DEFAULT_RINGS,
@@ -254,8 +255,12 @@ def _wire(label: str, edges: list) -> cq.Wire:
 
 
 def curvature_line_tube(
-    self: cq.Workplane, tube, rings=DEFAULT_RINGS, stringers=DEFAULT_STRINGERS, tolerance=DEFAULT_TOLERANCE
-):
+    self: cq.Workplane,
+    tube: CurvatureLineSurface,
+    rings: int | Sequence[float] = DEFAULT_RINGS,
+    stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+    tolerance: float = DEFAULT_TOLERANCE,
+) -> cq.Workplane:
     """Deprecated: ``curvatureTube(tube.axis, tube.radius_law, ...)``."""
     warnings.warn(
         "curvatureLineTube(tube, ...) is deprecated: use curvatureTube(axis, radius, ...)",
@@ -267,13 +272,13 @@ def curvature_line_tube(
 
 def curvature_line_wall(
     self: cq.Workplane,
-    tube,
-    thickness,
-    side="centered",
-    rings=DEFAULT_RINGS,
-    stringers=DEFAULT_STRINGERS,
-    tolerance=DEFAULT_TOLERANCE,
-):
+    tube: CurvatureLineSurface,
+    thickness: float,
+    side: WallSide = "centered",
+    rings: int | Sequence[float] = DEFAULT_RINGS,
+    stringers: int | Sequence[float] = DEFAULT_STRINGERS,
+    tolerance: float = DEFAULT_TOLERANCE,
+) -> cq.Workplane:
     """Deprecated: ``curvatureWall(tube.axis, tube.radius_law, thickness, ...)``."""
     warnings.warn(
         "curvatureLineWall(tube, ...) is deprecated: use curvatureWall(axis, radius, thickness, ...)",

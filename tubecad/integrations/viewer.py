@@ -75,7 +75,7 @@ class Shown:
         """Every label in the trees, depth first: wall, ring_01, ..., line_ring_00, ..."""
         out: list[str] = []
 
-        def walk(node) -> None:
+        def walk(node: Any) -> None:
             for child in getattr(node, "children", ()):
                 out.append(child.label)
                 walk(child)
@@ -255,7 +255,41 @@ def show(
     on ``host``:``port`` (default: OCP_PORT, else 3939). The port is checked before anything
     is built: :class:`ViewerUnreachable` if nothing listens. ``viewer_options`` go to
     ``ocp_vscode.show`` (defaults: ``reset_camera=Camera.RESET``, so the model is framed, and
-    ``progress=""``, no tessellation marks on stdout)."""
+    ``progress=""``, no tessellation marks on stdout).
+
+    Args:
+        *items: what to show, at least one, each a tree of its own: a
+            :class:`~tubecad.brep.TubeBuild`, a spec file path (its [wall], [stiffeners] and
+            [panels]), the word ``"paper"`` (the paper's stiffened wall, as ``tubecad
+            paper``), or a named build123d assembly (restyled in place).
+        port: the viewer's port, 1 to 65535; None (default): the environment's OCP_PORT,
+            else 3939.
+        host: the viewer's host (default ``"127.0.0.1"``).
+        stiffeners: with a TubeBuild, its stiffeners (:class:`~tubecad.stiffeners.solids.Stiffener`
+            objects) to show as solids (default none).
+        panels: with a TubeBuild, its panels, shown as the wall's parts (default none: the
+            wall as one solid).
+        lines: with a TubeBuild, the curvature lines: True (default) the layout's lines on
+            every wall surface, False none, or a list of ``CurvatureLine``.
+        fuse: with a TubeBuild, the stiffeners fused into the wall as one solid (default
+            False; not with ``panels``).
+        wall_alpha: the wall's opacity, in (0, 1] (default 0.4: inside stiffeners and lines
+            show through).
+        **viewer_options: passed on to ``ocp_vscode.show``.
+
+    Returns:
+        A :class:`Shown`: the trees sent, the host and port, and (with OCP_VSCODE_PYTEST=1,
+        nothing sent) what would have been sent.
+
+    Raises:
+        ParameterError: no items, an item of another kind, a bad ``port`` or
+            ``wall_alpha``, or ``stiffeners``, ``panels``, ``lines`` or ``fuse`` given with
+            an item that is not a TubeBuild.
+        ViewerUnreachable: nothing listens on ``host``:``port`` (checked before anything is
+            built; the message says how to start a viewer).
+        NothingShown: the viewer took the model but no browser page showed it.
+        SpecError: a spec path that cannot be read or built.
+    """
     if not items:
         raise ParameterError("show needs something to show: a TubeBuild, a spec path or 'paper'")
     port = viewer_port(port)

@@ -6,6 +6,9 @@ One rule for the build123d objects and the CadQuery plugin alike:
   route, ...) is taken as it is;
 - a build123d or CadQuery ``Edge`` or ``Wire``, a ``TopoDS`` edge or wire, or an OCCT
   ``Geom_Curve``: the curve itself (:func:`~tubecad.curves.edge.edge_axis`);
+- build123d's line builder (``with BuildLine() as path: ...``, then ``path``), its ``Curve``
+  (``path.line``) or a list of edges joined end to end (``path.edges()``, a ``BuildPart``'s
+  ``pending_edges``): the wire they make;
 - a sequence of points: with ``bend_radius`` the pipe route of straight legs and circular
   bends through them (:class:`~tubecad.curves.route.RouteAxis`), without it the C2 cubic
   spline through them (:func:`~tubecad.curves.points.points_axis`).
@@ -30,7 +33,9 @@ AXIS_KINDS = "a tubecad Axis, a build123d or CadQuery Edge or Wire, or a sequenc
 #: what the parts take as an axis (see the module): a tubecad Axis, a build123d Edge or Wire
 #: (or a CadQuery one, a TopoDS edge or wire, an OCCT Geom_Curve: typed Any by their
 #: libraries), or (x, y, z) points
-AxisLike: TypeAlias = "Axis | bd.Edge | bd.Wire | Sequence[Sequence[float]] | np.ndarray"
+AxisLike: TypeAlias = (
+    "Axis | bd.Edge | bd.Wire | bd.Curve | bd.BuildLine | Sequence[bd.Edge] | Sequence[Sequence[float]] | np.ndarray"
+)
 #: what the parts take as a radius: a number (a tube), an expression in s or a table of
 #: [s, r] rows (a canal surface's radius law), or a RadiusLaw
 RadiusLike: TypeAlias = "float | str | Sequence[Sequence[float]] | RadiusLaw"
@@ -44,6 +49,7 @@ def as_axis(
     closed: bool | None = None,
 ) -> Axis:
     """The :class:`~tubecad.curves.Axis` that ``axis`` stands for (see the module)."""
+    axis = _joined(axis)
     if isinstance(axis, Axis):
         if bend_radius is not None or normal is not None or closed is not None:
             raise ParameterError(
@@ -67,6 +73,28 @@ def as_axis(
     from tubecad.curves.points import points_axis
 
     return points_axis(axis, normal=normal, closed=closed)
+
+
+def _joined(axis: Any) -> Any:
+    """build123d's pending edges as one wire: a BuildLine builder's line, a Curve (a compound of
+    edges) or a list of build123d edges joined end to end (a ParameterError if they do not
+    join); anything else as it is."""
+    import build123d as bd
+
+    if isinstance(axis, bd.BuildLine):
+        axis = axis.line
+    if isinstance(axis, bd.Curve):
+        edges = list(axis.edges())
+    elif isinstance(axis, Sequence) and axis and all(isinstance(e, bd.Edge) for e in axis):
+        edges = list(axis)
+    else:
+        return axis
+    if not edges:
+        raise ParameterError("axis: the line has no edges")
+    wires = bd.Wire.combine(edges)
+    if len(wires) != 1:
+        raise ParameterError(f"axis: the {len(edges)} edges do not join end to end into one line ({len(wires)} pieces)")
+    return wires[0]
 
 
 def _is_curve(axis: Any) -> bool:

@@ -42,7 +42,7 @@ from tubecad.design.wall import WallDesign
 from tubecad.parts.axis_input import AxisLike, RadiusLike
 from tubecad.parts.engine import NetEdges, PartArguments, build_part, net_edges
 from tubecad.parts.named_part import NamedSolidsPart
-from tubecad.stiffeners.profiles import StiffenerSide
+from tubecad.stiffeners.profiles import Profile, StiffenerSide
 
 
 class _Engine:
@@ -78,6 +78,11 @@ class _CurvatureNetPart(NamedSolidsPart):
         engine = _Engine(design, build, net_edges(build))
         self._tubecad = engine  # before the stiffeners are made on it (_part)
         super().__init__(engine, self._part(build), rotation, align, mode)
+        #: the inputs, kept as given (build123d's parts keep theirs): the axis as the Axis
+        #: it became, the radius (or law) and the fit tolerance
+        self.axis = design.surface.axis
+        self.radius = args.radius
+        self.tolerance = args.tolerance
 
     def _part(self, build: Any) -> bd.Part | bd.Solid:
         """What is placed: the build's solid (a stiffened wall adds its stiffeners)."""
@@ -150,7 +155,25 @@ class CurvatureWall(_CurvatureNetPart):
     ``outside`` the tube), closed by annular caps at the ends (none on a closed axis). Its
     faces are bounded by the ring frames and stringers on both surfaces; ``rings`` and
     ``stringers`` are the outer surface's, ``inner_rings`` and ``inner_stringers`` the
-    inner one's. The other arguments are :class:`CurvatureTube`'s."""
+    inner one's. The other arguments are :class:`CurvatureTube`'s.
+
+    Args:
+        axis: the tube's axis: a tubecad Axis (any kind), a build123d or CadQuery Edge or
+            Wire, a BuildLine or its edges, or (x, y, z) points (see ``CurvatureTube``).
+        radius: a number, or a radius law r(s) (expression, callable, table): a canal surface.
+        thickness: the wall's thickness (model units, > 0).
+        side: where the wall stands: ``centered`` on the tube's surface, ``inside`` or ``outside`` it.
+        rings: how many ring frames, equally spaced in arc length, or their arc lengths.
+        stringers: how many stringers, equally spaced round, or their angles in degrees.
+        tolerance: the fit's tolerance, in model units.
+        bend_radius: for an axis given as points: the bends' radius (a pipe route).
+        normal: for an axis given as points or an edge: the first stringer's direction at its start.
+        closed: for an axis given as points or an edge: whether it closes on itself.
+        allow_irregular: build even where the surface folds (refused by default).
+        rotation: as for build123d's ``Box``.
+        align: as for build123d's ``Box``; None (the default) keeps the part where its axis is.
+        mode: as for build123d's ``Box`` (how it combines in a ``BuildPart``).
+    """
 
     def __init__(
         self,
@@ -184,6 +207,7 @@ class CurvatureWall(_CurvatureNetPart):
             allow_irregular=allow_irregular,
         )
         super().__init__(args, rotation, align, mode)
+        self.thickness, self.side = thickness, side
 
     @property
     def inner_rings(self) -> bd.ShapeList[bd.Wire]:
@@ -215,7 +239,29 @@ class StiffenedCurvatureWall(CurvatureWall):
     each other where they cross, as separate parts of an assembly do; ``Mode.ADD`` in a
     ``BuildPart`` fuses them). ``stiffeners`` gives them, labelled ``ring_03``,
     ``stringer_05``, for every placed copy; ``rings`` and ``stringers`` stay the wall's.
-    The other arguments are :class:`CurvatureWall`'s."""
+    The other arguments are :class:`CurvatureWall`'s.
+
+    Args:
+        axis: the tube's axis: a tubecad Axis (any kind), a build123d or CadQuery Edge or
+            Wire, a BuildLine or its edges, or (x, y, z) points (see ``CurvatureTube``).
+        radius: a number, or a radius law r(s) (expression, callable, table): a canal surface.
+        thickness: the wall's thickness (model units, > 0).
+        ring_frames: the layout's rings that carry a ring frame: indices, or ``"all"``.
+        stringer_stiffeners: the layout's stringers that carry a stiffener: indices, or ``"all"``.
+        profile: the stiffeners' cross-section (a flat bar 10 x 1 when None).
+        stiffener_side: the wall's side the stiffeners stand on: ``outside`` or ``inside``.
+        side: where the wall stands: ``centered`` on the tube's surface, ``inside`` or ``outside`` it.
+        rings: how many ring frames, equally spaced in arc length, or their arc lengths.
+        stringers: how many stringers, equally spaced round, or their angles in degrees.
+        tolerance: the fit's tolerance, in model units.
+        bend_radius: for an axis given as points: the bends' radius (a pipe route).
+        normal: for an axis given as points or an edge: the first stringer's direction at its start.
+        closed: for an axis given as points or an edge: whether it closes on itself.
+        allow_irregular: build even where the surface folds (refused by default).
+        rotation: as for build123d's ``Box``.
+        align: as for build123d's ``Box``; None (the default) keeps the part where its axis is.
+        mode: as for build123d's ``Box`` (how it combines in a ``BuildPart``).
+    """
 
     def __init__(
         self,
@@ -225,7 +271,7 @@ class StiffenedCurvatureWall(CurvatureWall):
         *,
         ring_frames: Sequence[int] | str = "all",
         stringer_stiffeners: Sequence[int] | str = (),
-        profile: Any = None,
+        profile: Profile | None = None,
         stiffener_side: StiffenerSide = "outside",
         side: WallSide = "centered",
         rings: int | Sequence[float] = DEFAULT_RINGS,
@@ -240,6 +286,8 @@ class StiffenedCurvatureWall(CurvatureWall):
         mode: bd.Mode = bd.Mode.ADD,
     ) -> None:
         self._choice = (ring_frames, stringer_stiffeners, profile, stiffener_side)
+        self.ring_frames, self.stringer_stiffeners = ring_frames, stringer_stiffeners
+        self.profile, self.stiffener_side = profile if profile is not None else Profile(), stiffener_side
         super().__init__(
             axis,
             radius,

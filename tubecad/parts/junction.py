@@ -42,7 +42,24 @@ class Branch:
     nozzle); its wall ``thickness`` (None: the main's) placed ``side``; ``rings`` and
     ``stringers`` its net (counts, or arc lengths and angles; None: the main's stringers);
     with ``pad_thickness`` and ``pad_width`` a reinforcement pad round it
-    (:func:`tubecad.stiffeners.pad.reinforcement_pad`), its own solid ``pad``."""
+    (:func:`tubecad.stiffeners.pad.reinforcement_pad`), its own solid ``pad``.
+
+    Args:
+        at: the arc length on the main axis where the branch's axis leaves it.
+        length: the branch's length along its own axis.
+        radius: the branch tube's radius, or a radius law along it.
+        thickness: its wall's thickness (None: the main's).
+        angle: degrees between the branch and the main axis' tangent (90: perpendicular).
+        around: degrees round the main axis from its first stringer, the side it leaves on.
+        offset: sideways offset of the branch's axis from the main axis (a hillside nozzle).
+        side: where its wall stands: ``centered``, ``inside`` or ``outside`` its surface.
+        rings: its ring frames: a count or arc lengths.
+        stringers: its stringers: a count or angles (None: as many as the main's).
+        pad_thickness: a reinforcement pad's thickness (with ``pad_width``).
+        pad_width: how far the pad reaches beyond the saddle (with ``pad_thickness``).
+        k: the branch axis' curvature k(s), an expression in its arc length s ("0": straight).
+        tau: its torsion tau(s), likewise.
+    """
 
     at: float
     length: float
@@ -210,7 +227,24 @@ class CurvatureJunction(NamedSolidsPart):
     ``branch1_...`` and ``saddle_outer_1``) for every placed copy; ``junction`` what was
     built and measured (:class:`~tubecad.junctions.JunctionWall`); ``design`` the
     :class:`~tubecad.design.junction.JunctionDesign` (a spec with [[branches]] makes the
-    same). The other arguments are ``CurvatureWall``'s."""
+    same). The other arguments are ``CurvatureWall``'s.
+
+    Args:
+        axis: the main tube's axis (anything ``CurvatureWall`` takes).
+        radius: the main tube's radius, or a radius law.
+        thickness: the main wall's thickness (model units, > 0).
+        branches: the :class:`Branch` es joined on.
+        side: where the main wall stands: ``centered``, ``inside`` or ``outside`` its surface.
+        rings: the main tube's ring frames: a count or arc lengths.
+        stringers: the main tube's stringers: a count or angles in degrees.
+        tolerance: the fit's tolerance, in model units.
+        bend_radius: for a main axis given as points: the bends' radius (a pipe route).
+        normal: for a main axis given as points or an edge: the first stringer's direction.
+        closed: for a main axis given as points or an edge: whether it closes on itself.
+        rotation: as for build123d's ``Box``.
+        align: as for build123d's ``Box``; None keeps the part where its axis is.
+        mode: as for build123d's ``Box``.
+    """
 
     _tubecad: _JunctionEngine
 
@@ -252,6 +286,10 @@ class CurvatureJunction(NamedSolidsPart):
         pad_solids = [bd.Solid(pad.solid.wrapped) for _, pad in built.pads]
         part = bd.Part(bd.Compound([wall, *pad_solids]).wrapped) if pad_solids else wall
         super().__init__(_JunctionEngine(built), part, rotation, align, mode)
+        #: the inputs, kept as given (the axis as the Axis it became)
+        self.axis = built.design.main.surface.axis
+        self.radius, self.thickness, self.side, self.tolerance = radius, thickness, side, tolerance
+        self.branches = tuple(branches)
 
     def _line_wires(self, edges: list[bd.Edge]) -> list[bd.Wire]:
         """A line's edges as wires: one per run of edges joined end to end (a line an opening

@@ -12,11 +12,15 @@ lines are not in it (they are edges of the solids, not solids).
 from __future__ import annotations
 
 from functools import cached_property
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import build123d as bd
 
 from tubecad.parts.engine import NetEdges
+
+if TYPE_CHECKING:
+    from tubecad.brep.layout import NetLayout
+    from tubecad.surface.protocol import CurvatureLineSurface
 
 
 class PartEngine(Protocol):
@@ -135,13 +139,13 @@ class NamedSolidsPart(bd.BasePartObject):
         return list(self.solids())[:: self._solids_per_copy]
 
     @property
-    def surface(self):
+    def surface(self) -> CurvatureLineSurface:
         """The exact curvature-line surface (:class:`~tubecad.surface.CurvatureLineTube` or
         :class:`~tubecad.surface.canal.CanalSurface`) the faces were fitted to."""
         return self._tubecad.surface
 
     @property
-    def layout(self):
+    def layout(self) -> NetLayout:
         """The :class:`~tubecad.brep.NetLayout`: ring arc lengths and stringer angles."""
         return self._tubecad.layout
 

@@ -159,6 +159,13 @@ def build_spec(spec: TubeSpec, progress: Progress | None = None, grid: tuple[int
     ``tubecad build``, the exact surface's checks on a ``grid`` = (nu, ns) grid. Nothing is
     written.
 
+    Args:
+        spec: the checked spec, as :func:`~tubecad.spec.parse.load_spec` returns it.
+        progress: a :class:`~tubecad.core.progress.Progress` that shows the build's stages
+            as they advance, or None (default) for none.
+        grid: (nu, ns), the numbers of points around and along the surface where the report
+            measures the exact surface (default (64, 501)).
+
     Returns:
         the :class:`~tubecad.design.result.BuildResult` (shape, solids, named edges, report).
 

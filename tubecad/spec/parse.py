@@ -148,7 +148,22 @@ class TubeSpec:
 
 
 def load_spec(path: str | Path) -> TubeSpec:
-    """Read and check a TOML spec file."""
+    """Read and check a TOML spec file.
+
+    Nothing is built in OCCT: the spec's sections are checked and its exact surface made
+    (:func:`parse_spec`); :func:`~tubecad.spec.build.build_spec` builds it.
+
+    Args:
+        path: the spec file (TOML, UTF-8); relative paths inside it (a points file, ...)
+            are read from its folder.
+
+    Returns:
+        The checked :class:`TubeSpec`: its tube (or canal surface) and typed sections.
+
+    Raises:
+        SpecError: the file cannot be read, is not TOML, or has a bad section, key or value;
+            its message and its ``key`` (``"wall.thickness"``) name what is wrong.
+    """
     return parse_spec(read_spec_data(path), str(path), Path(path).parent)
 
 

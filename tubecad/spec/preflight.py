@@ -220,6 +220,7 @@ def check_shop(spec: TubeSpec, output: str | Path) -> None:
         SpecError: a missing section or a bad [fabrication] value, naming it.
         ParameterError: an output folder that cannot be made.
     """
+    from tubecad.spec.design import design_class
     from tubecad.spec.model import FabricationSection
 
     if spec.wall is None:
@@ -227,7 +228,7 @@ def check_shop(spec: TubeSpec, output: str | Path) -> None:
             f"{spec.source}: has no [wall] section; the shop package is made of a wall's stiffeners and panels",
             key="wall",
         )
-    if not spec.branches and spec.stiffeners is None and spec.panels is None:
+    if design_class(spec).SHOP_NEEDS_PARTS and spec.stiffeners is None and spec.panels is None:
         raise SpecError(
             f"{spec.source}: has neither [stiffeners] nor [panels]; there is nothing for the shop", key="stiffeners"
         )

@@ -31,7 +31,18 @@ def as_stiffener_side(side: str) -> StiffenerSide:
 @dataclass(frozen=True)
 class Profile:
     """``kind`` flat | T | L; web ``height`` (from the wall) and ``thickness``; for T and L
-    a flange of ``flange_width`` (total, across) and ``flange_thickness`` at the top."""
+    a flange of ``flange_width`` (total, across) and ``flange_thickness`` at the top.
+
+    Args:
+        kind: ``flat``, ``T`` or ``L``.
+        height: the web's height from the wall (model units, > 0).
+        thickness: the web's thickness (> 0).
+        flange_width: for T and L, the flange's total width across (> ``thickness``).
+        flange_thickness: for T and L, the flange's thickness at the top (in (0, ``height``]).
+
+    Raises:
+        ParameterError: a kind or size out of range, naming it.
+    """
 
     kind: str = "flat"
     height: float = 10.0

@@ -153,6 +153,23 @@ class CanalSurface:
     A surface that folds (r (k q + r'') / q^2 >= 1 somewhere) or whose axis comes back so
     close that a tube of the largest radius self-intersects raises :class:`RegularityError`
     unless ``allow_irregular=True``; the measured facts are in :attr:`regularity` either way.
+
+    Args:
+        axis: the surface's axis, any :class:`~tubecad.curves.axis.Axis`; the surface covers
+            its span.
+        radius_law: the sphere radius r(s), model units: a
+            :class:`~tubecad.curves.radius_law.RadiusLaw` on the axis' span, or anything
+            :func:`~tubecad.curves.radius_law.radius_law` takes (a number, an expression in
+            s and x, y, z, a callable, a table [[s, r], ...]); r > 0 and |r'| < 1, and on a
+            closed axis a law that closes (r and r' equal at both ends).
+        allow_irregular: build the surface even where it is not regular (default False: a
+            :class:`RegularityError` instead).
+        _known: internal, for the surface's own offsets and pieces (its solved net and
+            regularity, reused); callers leave it None.
+
+    Raises:
+        ParameterError: ``axis`` not an Axis, or a bad radius law (see :func:`radius_law`).
+        RegularityError: the surface folds or self-intersects, unless ``allow_irregular``.
     """
 
     def __init__(
@@ -649,7 +666,22 @@ def tube_or_canal(
     axis: Axis, radius: RadiusLaw | RadiusValue, allow_irregular: bool = False
 ) -> CurvatureLineTube | CanalSurface:
     """A constant radius (a number) gives today's :class:`CurvatureLineTube`; any other law
-    (an expression, a callable, a table) the :class:`CanalSurface`."""
+    (an expression, a callable, a table) the :class:`CanalSurface`.
+
+    Args:
+        axis: the surface's axis, any :class:`~tubecad.curves.axis.Axis`.
+        radius: the radius, model units: a number, or anything
+            :func:`~tubecad.curves.radius_law.radius_law` takes (with x, y, z of the axis
+            point in an expression), or a :class:`~tubecad.curves.radius_law.RadiusLaw`.
+        allow_irregular: build the surface even where it is not regular (default False).
+
+    Returns:
+        The :class:`CurvatureLineTube` for a constant law, else the :class:`CanalSurface`.
+
+    Raises:
+        ParameterError: a bad radius or radius law.
+        RegularityError: the surface is not regular, unless ``allow_irregular``.
+    """
     law = radius_law_of(radius, axis.span, axis=axis)
     if law.constant:
         return CurvatureLineTube(axis, law.constant_value, allow_irregular=allow_irregular)

@@ -37,6 +37,18 @@ class CurvatureLineTube:
     A tube that is not regular (rho k >= 1 somewhere, or an axis that comes back within
     2 rho of itself) raises :class:`RegularityError` unless ``allow_irregular=True``;
     the measured facts are kept in :attr:`regularity` either way.
+
+    Args:
+        axis: the tube's axis, any :class:`~tubecad.curves.axis.Axis` (a slope curve, a
+            natural, parametric, points, edge or route axis); the tube covers its span.
+        radius: the tube radius rho, model units, > 0.
+        allow_irregular: build the tube even where it is not regular (default False: a
+            :class:`RegularityError` instead).
+
+    Raises:
+        ParameterError: ``axis`` not an Axis, or ``radius`` not a positive length.
+        RegularityError: rho k >= 1 somewhere, or the axis comes back within 2 rho of
+            itself, unless ``allow_irregular``.
     """
 
     def __init__(self, axis: Axis, radius: float, *, allow_irregular: bool = False) -> None:
