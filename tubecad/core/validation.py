@@ -60,7 +60,7 @@ def flag(name: str, value: object) -> bool:
 
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
-    raise ParameterError(f"{name} must be True or False, got {value!r:.80}")
+    raise ParameterError(f"{name} must be True or False, got {value!r:.80}", key=name)
 
 
 def bounded_length(name: str, value: object, low: float = -math.inf, *, low_open: bool = True) -> float:

@@ -62,7 +62,7 @@ def _size(key: str, value: object) -> float | None:
         or not 0 < value <= MAX_LENGTH
     ):
         raise ParameterError(
-            f"[mesh] {key} must be a finite length in (0, {MAX_LENGTH:g}] (model units), got {value!r:.40}"
+            f"{key} must be a finite length in (0, {MAX_LENGTH:g}] (model units), got {value!r:.40}", key=key
         )
     return float(value)
 
@@ -75,32 +75,35 @@ def mesh_settings(section: dict | None = None, **overrides: object) -> MeshSetti
     known = {"element", "beam", "size", "size_along", "size_around", "surface", "max_elements", "beams"}
     unknown = sorted(set(values) - known)
     if unknown:
-        raise ParameterError(f"[mesh] has unknown key {unknown[0]!r}; allowed: {', '.join(sorted(known))}")
+        raise ParameterError(
+            f"unknown mesh setting {unknown[0]!r}; allowed: {', '.join(sorted(known))}", key=str(unknown[0])
+        )
     element = values.get("element", "S8R")
     if element not in SHELL_TYPES:
-        raise ParameterError(f"[mesh] element must be one of {', '.join(SHELL_TYPES)}, got {element!r:.40}")
+        raise ParameterError(f"element must be one of {', '.join(SHELL_TYPES)}, got {element!r:.40}", key="element")
     beam = values.get("beam")
     if beam is not None and beam not in BEAM_TYPES:
-        raise ParameterError(f"[mesh] beam must be one of {', '.join(BEAM_TYPES)}, got {beam!r:.40}")
+        raise ParameterError(f"beam must be one of {', '.join(BEAM_TYPES)}, got {beam!r:.40}", key="beam")
     order = 2 if element.startswith("S8") else 1
     if beam is not None and (2 if beam.startswith("B32") else 1) != order:
         wanted = "B32 or B32R" if order == 2 else "B31 or B31R"
         raise ParameterError(
-            f"[mesh] beam must be {wanted} with {element} shells (the beams share the shells' "
-            f"nodes, mid-side nodes included), got {beam!r}"
+            f"beam must be {wanted} with {element} shells (the beams share the shells' "
+            f"nodes, mid-side nodes included), got {beam!r}",
+            key="beam",
         )
     size = _size("size", values.get("size"))
     along = _size("size_along", values.get("size_along", size))
     around = _size("size_around", values.get("size_around", size))
     surface = values.get("surface", "mid")
     if surface not in SURFACES:
-        raise ParameterError(f"[mesh] surface must be one of {', '.join(SURFACES)}, got {surface!r:.40}")
+        raise ParameterError(f"surface must be one of {', '.join(SURFACES)}, got {surface!r:.40}", key="surface")
     cap = values.get("max_elements", DEFAULT_MAX_ELEMENTS)
     if isinstance(cap, bool) or not isinstance(cap, int) or not 1 <= cap <= MAX_ELEMENTS_LIMIT:
         raise ParameterError(
-            f"[mesh] max_elements must be a whole number in [1, {MAX_ELEMENTS_LIMIT}], got {cap!r:.40}"
+            f"max_elements must be a whole number in [1, {MAX_ELEMENTS_LIMIT}], got {cap!r:.40}", key="max_elements"
         )
-    beams = flag("[mesh] beams", values.get("beams", True))
+    beams = flag("beams", values.get("beams", True))
     return MeshSettings(element, beam, along, around, surface, cap, beams)
 
 
@@ -130,7 +133,9 @@ def analysis_settings(section: dict | None, length_unit: str = "mm", closed: boo
     known = {"pressure", "ends", "youngs_modulus", "poisson_ratio", "allowable_stress"}
     unknown = sorted(set(values) - known)
     if unknown:
-        raise ParameterError(f"[analysis] has unknown key {unknown[0]!r}; allowed: {', '.join(sorted(known))}")
+        raise ParameterError(
+            f"unknown analysis setting {unknown[0]!r}; allowed: {', '.join(sorted(known))}", key=str(unknown[0])
+        )
 
     def real(key: str, default: float, low: float, high: float, low_open: bool = True) -> float:
         value = values.get(key, default)
@@ -144,7 +149,7 @@ def analysis_settings(section: dict | None, length_unit: str = "mm", closed: boo
         if not ok:
             bracket = "(" if low_open else "["
             raise ParameterError(
-                f"[analysis] {key} must be a finite number in {bracket}{low:g}, {high:g}), got {value!r:.40}"
+                f"{key} must be a finite number in {bracket}{low:g}, {high:g}), got {value!r:.40}", key=key
             )
         return float(value)
 
@@ -156,7 +161,7 @@ def analysis_settings(section: dict | None, length_unit: str = "mm", closed: boo
     nu = real("poisson_ratio", 0.3, -1.0, 0.5)
     ends = values.get("ends", "free" if closed else "fixed")
     if ends not in ENDS:
-        raise ParameterError(f"[analysis] ends must be one of {', '.join(ENDS)}, got {ends!r:.40}")
+        raise ParameterError(f"ends must be one of {', '.join(ENDS)}, got {ends!r:.40}", key="ends")
     if closed and ends != "free":
-        raise ParameterError(f"[analysis] ends = {ends!r} needs end rings; a closed tube has none: use ends = 'free'")
+        raise ParameterError(f"ends = {ends!r} needs end rings; a closed tube has none: use ends = 'free'", key="ends")
     return AnalysisSettings(pressure, ends, modulus, nu)

@@ -63,7 +63,7 @@ def _finite(key: str, value: object, low: float, low_open: bool, what: str) -> f
         or (value <= low if low_open else value < low)
     ):
         bound = f"> {low:g}" if low_open else f">= {low:g}"
-        raise ParameterError(f"[fabrication] {key} must be a finite number {bound} ({what}), got {value!r:.40}")
+        raise ParameterError(f"{key} must be a finite number {bound} ({what}), got {value!r:.40}", key=key)
     return float(value)
 
 
@@ -74,7 +74,9 @@ def fabrication_settings(section: dict | None = None, unit: str = DEFAULT_LENGTH
     mm = length_unit(unit).mm
     plate = section.get("plate_size", [v / mm for v in DEFAULT_PLATE_MM])
     if not (isinstance(plate, (list, tuple)) and len(plate) == 2):
-        raise ParameterError(f"[fabrication] plate_size must be [length, width], two numbers > 0, got {plate!r:.60}")
+        raise ParameterError(
+            f"plate_size must be [length, width], two numbers > 0, got {plate!r:.60}", key="plate_size"
+        )
     plate = tuple(_finite("plate_size", v, 0.0, True, "[length, width] of the stock plate") for v in plate)
     kerf = _finite("kerf", section.get("kerf", DEFAULT_KERF_MM / mm), 0.0, False, "the cut's width")
     gap = _finite(
@@ -95,19 +97,20 @@ def fabrication_settings(section: dict | None = None, unit: str = DEFAULT_LENGTH
     )
     if min(plate) <= 2 * kerf:
         raise ParameterError(
-            f"[fabrication] plate_size {list(plate)} leaves no room inside a kerf of {kerf:g} "
-            f"at its edges: its sides must exceed 2 kerf = {2 * kerf:g}"
+            f"plate_size {list(plate)} leaves no room inside a kerf of {kerf:g} "
+            f"at its edges: its sides must exceed 2 kerf = {2 * kerf:g}",
+            key="plate_size",
         )
     joints = section.get("joints", {})
     if not isinstance(joints, dict):
         raise ParameterError(
-            f"[fabrication] joints must be a table of stiffener name = [positions], got {joints!r:.60}"
+            f"joints must be a table of stiffener name = [positions], got {joints!r:.60}", key="joints"
         )
     checked = {}
     for name, values in joints.items():
         if not (isinstance(values, list) and values):
             raise ParameterError(
-                f"[fabrication] joints.{name} must be a non-empty list of positions, got {values!r:.60}"
+                f"joints.{name} must be a non-empty list of positions, got {values!r:.60}", key=f"joints.{name}"
             )
         checked[name] = tuple(
             _finite(f"joints.{name}", v, -math.inf, True, "s along a stringer, degrees round a ring") for v in values

@@ -14,6 +14,8 @@ Light on purpose (no numpy, no OCCT): the rules behind the methods are imported 
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -57,6 +59,17 @@ class _Table:
     def table(self) -> dict[str, Any]:
         """The keys the spec gives (None: absent), as the spec file has them."""
         return {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name) is not None}  # type: ignore[arg-type]
+
+
+@contextmanager
+def _in_section(section: str) -> Iterator[None]:
+    """A library's settings error (``element must be one of ...``, key ``element``) told in the
+    section's terms: ``[mesh] element must be one of ...``, key ``mesh.element``."""
+    try:
+        yield
+    except ParameterError as exc:
+        key = exc.key if exc.key and exc.key.startswith(f"{section}.") else f"{section}.{exc.key or ''}".rstrip(".")
+        raise ParameterError(f"[{section}] {exc}", key=key) from None
 
 
 @dataclass(frozen=True)
@@ -351,7 +364,8 @@ class FabricationSection(_Table):
         """The checked settings, in ``length_unit`` (a ParameterError names the key)."""
         from tubecad.shop.fabrication import fabrication_settings
 
-        return fabrication_settings(self.table(), length_unit)
+        with _in_section("fabrication"):
+            return fabrication_settings(self.table(), length_unit)
 
 
 @dataclass(frozen=True)
@@ -371,7 +385,8 @@ class MeshSection(_Table):
         """The checked settings; ``overrides`` (not None) win over the section."""
         from tubecad.fem.settings import mesh_settings
 
-        return mesh_settings(self.table(), **overrides)
+        with _in_section("mesh"):
+            return mesh_settings(self.table(), **overrides)
 
 
 @dataclass(frozen=True)
@@ -385,9 +400,11 @@ class AnalysisSection(_Table):
     allowable_stress: float | None = None
 
     def settings(self, length_unit: str = DEFAULT_LENGTH_UNIT, closed: bool = False) -> AnalysisSettings:
+        """The checked settings, in ``length_unit`` (a ParameterError names the key)."""
         from tubecad.fem.settings import analysis_settings
 
-        return analysis_settings(self.table(), length_unit, closed)
+        with _in_section("analysis"):
+            return analysis_settings(self.table(), length_unit, closed)
 
 
 @dataclass(frozen=True)

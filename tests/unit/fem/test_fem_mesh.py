@@ -153,23 +153,34 @@ def test_panel_sets_cover_the_wall_once(torus_mesh):
 
 
 @pytest.mark.parametrize(
-    "section, says",
+    "section, says, key",
     [
-        ({"size": 0.0}, "[mesh] size must be a finite length in (0, 1e+09]"),
-        ({"size": float("nan")}, "[mesh] size must be a finite length"),
-        ({"size_along": -1.0}, "[mesh] size_along must be a finite length"),
-        ({"element": "S3"}, "[mesh] element must be one of S4, S4R, S8, S8R"),
-        ({"beam": "B33"}, "[mesh] beam must be one of B31, B31R, B32, B32R"),
-        ({"element": "S4", "beam": "B32"}, "[mesh] beam must be B31 or B31R with S4 shells"),
-        ({"surface": "middle"}, "[mesh] surface must be one of mid, inner, outer, both"),
-        ({"max_elements": 0}, "[mesh] max_elements must be a whole number in [1, 20000000]"),
-        ({"sizes": 3.0}, "[mesh] has unknown key 'sizes'"),
+        ({"size": 0.0}, "size must be a finite length in (0, 1e+09]", "size"),
+        ({"size": float("nan")}, "size must be a finite length", "size"),
+        ({"size_along": -1.0}, "size_along must be a finite length", "size_along"),
+        ({"element": "S3"}, "element must be one of S4, S4R, S8, S8R", "element"),
+        ({"beam": "B33"}, "beam must be one of B31, B31R, B32, B32R", "beam"),
+        ({"element": "S4", "beam": "B32"}, "beam must be B31 or B31R with S4 shells", "beam"),
+        ({"surface": "middle"}, "surface must be one of mid, inner, outer, both", "surface"),
+        ({"max_elements": 0}, "max_elements must be a whole number in [1, 20000000]", "max_elements"),
+        ({"sizes": 3.0}, "unknown mesh setting 'sizes'", "sizes"),
+        ({"beams": "no"}, "beams must be True or False", "beams"),
     ],
 )
-def test_bad_mesh_settings_name_the_key(section, says):
+def test_bad_mesh_settings_name_the_key(section, says, key):
+    """The library speaks Python terms (the setting's name as its key); the spec's [mesh]
+    section adds its own name (tests/e2e/test_bad_input.py)."""
     with pytest.raises(ParameterError, match=None) as info:
         mesh_settings(section)
-    assert str(info.value).startswith(says), str(info.value)
+    assert str(info.value).startswith(says) and info.value.key == key, (str(info.value), info.value.key)
+
+
+def test_a_spec_section_adds_its_name_to_the_librarys_message():
+    from tubecad.spec.model import MeshSection
+
+    with pytest.raises(ParameterError) as info:
+        MeshSection(element="S3").settings()
+    assert str(info.value).startswith("[mesh] element must be one of S4") and info.value.key == "mesh.element"
 
 
 def test_the_element_cap_is_checked_before_any_node_is_made(torus):
