@@ -31,7 +31,9 @@ def test_wall_of_every_family_is_accurate_valid_and_exact_in_volume(name):
     assert isinstance(wall, bd.Solid)
     assert props.is_valid(wall) and props.free_edges(wall) == 0
     r_out, r_in = tube.radius + d / 2, tube.radius - d / 2
-    assert props.volume(wall) == pytest.approx(math.pi * (r_out**2 - r_in**2) * tube.length, rel=1e-6)
+    assert props.volume(wall) == pytest.approx(
+        math.pi * (r_out**2 - r_in**2) * tube.length, rel=1e-10
+    )  # measured 9.2e-12 (helix)
     for surface, patches, r in zip(build.surfaces, build.patches, (r_out, r_in)):
         m = measure_surface(surface, 24, 600)
         assert m.max_deviation < 1e-8  # the default tolerance, measured on the OCCT surface

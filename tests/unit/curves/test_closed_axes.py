@@ -11,11 +11,9 @@ import math
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 from conftest import ROOT
 from scipy.integrate import quad
 
-from tubecad.cli.app import cli
 from tubecad.core.errors import ParameterError
 from tubecad.curves.natural import NaturalAxis
 from tubecad.curves.parametric import ParametricAxis
@@ -364,27 +362,3 @@ def test_the_closed_samples_are_closed():
     assert knot.closed and knot.describe()["closed"] is True
     route = load_spec(SAMPLES / "route_closed.toml").axis
     assert route.closed and route.describe()["closed"] is True and len(route.bend_radii) == 5
-
-
-SPEC = """
-[axis]
-curve = "points"
-points = [[40, 0, 0], [0, 40, 10], [-40, 0, 0], [0, -40, -10]]
-closed = {closed}
-
-[tube]
-radius = 4.0
-"""
-
-
-def test_the_spec_key_closed(tmp_path):
-    path = tmp_path / "loop.toml"
-    path.write_text(SPEC.format(closed="true"))
-    assert load_spec(path).axis.closed
-    path.write_text(SPEC.format(closed="false"))
-    assert not load_spec(path).axis.closed
-    path.write_text(SPEC.format(closed='"yes"'))
-    result = CliRunner().invoke(cli, ["report", str(path)])
-    assert result.exit_code == 2
-    lines = result.output.strip().splitlines()
-    assert len(lines) == 1 and "[axis] closed must be true or false" in lines[0] and "got a string 'yes'" in lines[0]

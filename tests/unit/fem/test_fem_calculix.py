@@ -9,8 +9,10 @@ section 10): closed forms computed here, not from the code.
 - a capped cone (a canal surface, sphere radius rho(s)): p rho / t and p rho / 2t;
 - the error of linear elements halves (or better) each time the mesh is refined;
 - stringers (beams on the shell's nodes) take their share of the axial load by their area;
-- ring stiffeners take hoop load off the wall;
-- bad input: one line naming the key, exit code 2, no file.
+- ring stiffeners take hoop load off the wall.
+
+The torus sample analysed from the command line, and bad input refused there, are in
+tests/e2e/test_cli_fem.py.
 
 CI installs ccx (.ci/run); elsewhere these tests are skipped when it is missing (the
 ``requires`` mark of tests/conftest.py), and in CI they fail then.
@@ -22,11 +24,8 @@ import math
 
 import numpy as np
 import pytest
-from click.testing import CliRunner, Result
-from conftest import ROOT
 
 from tubecad.brep.layout import NetLayout
-from tubecad.cli.app import cli
 from tubecad.curves.natural import NaturalAxis
 from tubecad.fem import Material, MeshSettings, StiffenerPlan, shell_mesh
 from tubecad.fem.analysis import solve
@@ -188,63 +187,3 @@ def test_stringers_share_the_axial_load_by_their_area():
     sigma_x = res.stringer_stress[wall]  # along the stringer direction: the tube's axis
     assert np.abs(sigma_x / (e_eps + nu * P * r / t) - 1).max() < 0.01  # measured 0.55 % (86.5 against 100 unstiffened)
     assert abs((e_eps + nu * P * r / t) / (P * r / (2 * t)) - 1) > 0.1  # the stringers change it by > 10 %
-
-
-def run_cli(*args: str) -> Result:
-    """``tubecad ARGS`` in this process (the console script's own exit codes and one-line
-    errors are checked once, in tests/e2e/test_bad_input.py)."""
-    return CliRunner().invoke(cli, list(args))
-
-
-def test_the_torus_sample_analyses_from_the_command_line(tmp_path):
-    out = tmp_path / "torus"
-    proc = run_cli("analyse", str(ROOT / "samples" / "torus_pressure.toml"), "-o", str(out))
-    assert proc.exit_code == 0, proc.stderr
-    import json
-
-    summary = json.loads((out / "results.json").read_text())
-    # p r (2R + r) / (2t (R + r)) on the outer equator, (2R - r) / (R - r) on the inner: 183.3 and 225
-    assert summary["ring_stress"]["min"] == pytest.approx(100.0 * 2200 / 1200, rel=0.02)
-    assert summary["ring_stress"]["max"] == pytest.approx(100.0 * 1800 / 800, rel=0.02)
-    assert (out / "ring_stress.png").stat().st_size > 20_000 and (out / "model.frd").stat().st_size > 0
-
-
-BASE = (ROOT / "samples" / "torus_pressure.toml").read_text()
-
-
-@pytest.mark.parametrize(
-    "change, says",
-    [
-        (("size = 40.0", "size = 0.0"), "[mesh] size must be a finite length in (0, 1e+09]"),
-        (
-            ("size = 40.0", "size = 0.5"),
-            "give 38,001,600 elements (15080 along x 2520 around",
-        ),  # 2 pi 1200 / 0.5, 2 pi 200 / 0.5
-        (('element = "S8R"', 'element = "S3"'), "[mesh] element must be one of S4, S4R, S8, S8R"),
-        (('ends = "free"', 'ends = "fixed"'), "[analysis] ends = 'fixed' needs end rings"),
-        (("pressure = 1.0 ", "pressure = nan "), "[analysis] pressure must be finite"),
-        (
-            ("[analysis]", "[stiffeners]\nrings = [1]\nheight = 900.0\nthickness = 2.0\n\n[analysis]"),
-            "[stiffeners] height",
-        ),
-    ],
-)
-def test_bad_input_is_refused_with_one_line_and_no_file(tmp_path, change, says):
-    spec = tmp_path / "bad.toml"
-    spec.write_text(BASE.replace(*change))
-    assert BASE.replace(*change) != BASE
-    commands = [["mesh", str(spec), "-o", str(tmp_path / "model.inp")]]
-    if "ends" in says:  # the analysis' own checks: by the analyse command too
-        commands.append(["analyse", str(spec), "-o", str(tmp_path / "out")])
-    for command in commands:
-        proc = run_cli(*command)
-        assert proc.exit_code == 2, proc.stderr
-        lines = proc.stderr.strip().splitlines()
-        assert len(lines) == 1 and says in lines[0], proc.stderr
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml"]
-
-
-def test_an_unknown_mesh_format_is_refused(tmp_path):
-    proc = run_cli("mesh", str(ROOT / "samples" / "torus_pressure.toml"), "-o", str(tmp_path / "model.stl"))
-    assert proc.exit_code == 2 and "a mesh is written as .inp, .msh, .vtu" in proc.stderr
-    assert not any(tmp_path.iterdir())

@@ -5,14 +5,11 @@ import math
 import build123d as bd
 import numpy as np
 import pytest
-from click.testing import CliRunner
-from conftest import PAPER_SPEC, SMALL_STIFFENED_WALL
 from test_stiffeners import section_moments
 
 from tubecad import CurvatureLineTube, ParameterError
 from tubecad.brep import NetLayout, build_wall_solid
 from tubecad.brep import properties as props
-from tubecad.cli.app import cli
 from tubecad.spec.paper import paper_tube
 from tubecad.stiffeners.assembly import build_stiffeners
 from tubecad.stiffeners.panels import split_into_panels
@@ -149,52 +146,6 @@ def test_outside_stiffeners_beyond_the_limit_are_refused_before_fitting():
     assert props.is_valid(ring) and props.volume(ring) == pytest.approx(math.pi * (19.98**2 - 16**2) * 0.5, rel=1e-9)
     stringer = stringer_stiffener(base, 0.0, Profile("flat", 0.999 * limit, 1.0), "outside", span=(200.0, 260.0)).solid
     assert props.is_valid(stringer)
-
-
-STIFFENED = (
-    SMALL_STIFFENED_WALL
-    + """profile = "T"
-height = HEIGHT
-thickness = 1.0
-flange_width = 4.0
-flange_thickness = 1.0
-side = "SIDE"
-"""
-)
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize(
-    "side, height, says",
-    [
-        (
-            "outside",
-            5.0,
-            "[stiffeners] height must be < 3.89975 for side = 'outside' on this wall: the stringer's outer "
-            "corners, sqrt((R + height)^2 + 2^2) from the axis, times max|k| must stay < 1 (R = 16, "
-            "max|k| = 0.05 at s = 200), got 5",
-        ),
-        ("inside", 14.0, "[stiffeners] height must be < R = 14 for side = 'inside' on this wall"),
-        ("inside", 6.0, None),
-    ],
-)
-def test_stiffener_heights_on_the_command_line(tmp_path, side, height, says):
-    spec = tmp_path / "s.toml"
-    spec.write_text(PAPER_SPEC + STIFFENED.replace("HEIGHT", str(height)).replace("SIDE", side))
-    out = tmp_path / "a.step"
-    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(out)])
-    if says is None:
-        assert result.exit_code == 0, result.output
-        assert [c.label for c in bd.import_step(out).children][1:5] == [
-            "ring_01",
-            "ring_02",
-            "stringer_00",
-            "stringer_02",
-        ]
-    else:
-        assert result.exit_code == 2 and says in result.output, result.output
-        assert len(result.output.strip().splitlines()) == 1 and "Traceback" not in result.output
-        assert not out.exists() and list(tmp_path.iterdir()) == [spec]
 
 
 def test_one_seam_gives_whole_bays():

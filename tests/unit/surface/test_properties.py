@@ -36,8 +36,12 @@ from tubecad.surface.checks import area_by_quadrature
 MAX_RHO_K = 0.8
 ROUND_OFF = 1e-12
 MIN_RHO = 0.2
-#: volumes of the fitted B-rep: the fit is within 1e-8 of the exact tube, rho >= MIN_RHO
+#: volumes of the fitted B-rep through a STEP round trip (the file's against the solid's own):
+#: the fit is within 1e-8 of the exact tube, rho >= MIN_RHO
 VOLUME_REL = 1e-6
+#: the fitted B-rep's volume against the closed form pi rho^2 L (pi (r_out^2 - r_in^2) L):
+#: measured 5.6e-12 at most over the derandomized examples
+EXACT_VOLUME_REL = 1e-10
 
 FAST = settings(
     max_examples=40,
@@ -145,7 +149,8 @@ def test_capped_tube_solid_encloses_pi_rho2_L_and_survives_step(tube):
     solid = build.shape
     assert props.is_valid(solid) and props.free_edges(solid) == 0
     assert props.count(solid, "face") == 2 * 4 + 2  # the patches and two end discs
-    assert props.volume(solid) == pytest.approx(math.pi * tube.radius**2 * tube.length, rel=VOLUME_REL)
+    # measured 5.6e-12 (the largest of the 15 examples)
+    assert props.volume(solid) == pytest.approx(math.pi * tube.radius**2 * tube.length, rel=EXACT_VOLUME_REL)
     with tempfile.TemporaryDirectory() as folder:
         step_round_trip(solid, Path(folder))
 
@@ -168,6 +173,7 @@ def test_wall_solid_encloses_the_annulus_times_L_and_survives_step(tube, fractio
     wall = build.shape
     assert props.is_valid(wall) and props.free_edges(wall) == 0
     assert props.count(wall, "face") == 2 * 2 * 4 + 2  # outer and inner patches, two annular caps
-    assert props.volume(wall) == pytest.approx(math.pi * (r_out**2 - r_in**2) * tube.length, rel=VOLUME_REL)
+    # measured 2.9e-12 (the largest of the 15 examples)
+    assert props.volume(wall) == pytest.approx(math.pi * (r_out**2 - r_in**2) * tube.length, rel=EXACT_VOLUME_REL)
     with tempfile.TemporaryDirectory() as folder:
         step_round_trip(wall, Path(folder))
