@@ -88,6 +88,16 @@ class _CurvatureNetPart(NamedSolidsPart):
         """What is placed: the build's solid (a stiffened wall adds its stiffeners)."""
         return bd.Solid(build.shape.wrapped)
 
+    def _named_lines(self) -> list[bd.Shape]:
+        """The rings, stringers and seams of the (outer) surface; a wall's inner ones too,
+        labelled ``_inner`` as ``tubecad build`` labels them."""
+        lines: list[bd.Shape] = [*self.rings, *self.stringers, *self.seams]
+        if self._net.inner_rings:
+            for wire in [*self._wires(self._net.inner_rings), *self._wires(self._net.inner_stringers)]:
+                wire.label = f"{wire.label}_inner"
+                lines.append(wire)
+        return lines
+
     @property
     def seams(self) -> bd.ShapeList[bd.Wire]:
         """The face edges u = const on the outer surface that are no stringer, labelled

@@ -306,6 +306,10 @@ class CurvatureJunction(NamedSolidsPart):
         """The main tube's stringers on its inner surface (``stringer_00``, ...)."""
         return self._wires(self._net.inner_stringers)
 
+    def _named_lines(self) -> list[bd.Shape]:
+        """Every named edge set (both tubes' nets, the saddles) as a labelled compound of its edges."""
+        return [bd.Compound(label=name, children=list(edges)) for name, edges in self.named_edges.items()]
+
     @property
     def design(self) -> JunctionDesign:
         """What the part is: the main wall and the branches (as a spec's [[branches]])."""

@@ -189,6 +189,29 @@ class NamedSolidsPart(bd.BasePartObject):
                     out.append(wire)
         return bd.ShapeList(out)
 
+    def assembly(self) -> bd.Compound:
+        """The part with every name, as ``tubecad build`` writes it: its solids (``wall``, the
+        stiffeners or pads) labelled, then ``curvature_lines``, a compound of its named lines
+        (each a labelled wire or edge set: ``ring_03``, ``stringer_05``, ``ring_03_inner``,
+        a junction's ``saddle_outer``, ...), in every placed copy. build123d's own
+        ``export_step(part.assembly(), "part.step")`` keeps them all (``export_step(part, ...)``
+        keeps the solids' names: the lines are edges of the solids, not parts of it).
+
+        Returns:
+            a new build123d Compound labelled as the part; the part itself is unchanged.
+        """
+        solids = []
+        for child in self.children:
+            solid = bd.Solid(child.wrapped)  # a node of its own: the part's children stay the part's
+            solid.label = child.label
+            solids.append(solid)
+        lines = bd.Compound(label="curvature_lines", children=self._named_lines())
+        return bd.Compound(label=self.label, children=[*solids, lines])
+
+    def _named_lines(self) -> list[bd.Shape]:
+        """The lines :meth:`assembly` writes, labelled: the rings and stringers."""
+        return [*self.rings, *self.stringers]
+
     def _line_wires(self, edges: list[bd.Edge]) -> list[bd.Wire]:
         """A line's edges as wires: one (a line whose edges join end to end)."""
         return [bd.Wire(edges)]

@@ -187,3 +187,27 @@ def test_algebra_mode_booleans_placements_and_copies(tmp_path):
     assert part.children[0].center().Z == pytest.approx(solids[0].center().Z + 50, abs=1e-9)
     back = round_trip(part, tmp_path / "in_place.step")
     assert back.children[0].center().Z == pytest.approx(solids[0].center().Z + 50, abs=1e-7)
+
+
+def test_the_assembly_keeps_the_lines_names_through_build123ds_export(tmp_path):
+    """``part.assembly()`` adds the curvature lines, labelled as ``tubecad build`` labels them,
+    and build123d's export_step keeps every name. Read back with build123d's import_step and
+    checked on the closed form of a straight wall along z: the outer rings on x^2 + y^2 = 11^2
+    at z = 0, 50, 100, the inner ones on 9^2, the stringers on the same cylinders."""
+    wall = CurvatureWall(bd.Edge.make_line((0, 0, 0), (0, 0, 100)), radius=10.0, thickness=2.0, rings=3, stringers=4)
+    path = tmp_path / "wall.step"
+    bd.export_step(wall.assembly(), path)
+    read = bd.import_step(path)
+    by_label = {child.label: child for child in read.children}
+    assert set(by_label) == {"wall", "curvature_lines"}
+    lines = {child.label: child for child in by_label["curvature_lines"].children}
+    expected = {f"ring_{i:02d}{s}" for i in range(3) for s in ("", "_inner")}
+    expected |= {f"stringer_{j:02d}{s}" for j in range(4) for s in ("", "_inner")}
+    assert set(lines) == expected
+    for name, line in lines.items():
+        points = np.array([tuple(e.position_at(t)) for e in line.edges() for t in np.linspace(0, 1, 9)])
+        radius = 9.0 if name.endswith("_inner") else 11.0
+        assert np.abs(np.hypot(points[:, 0], points[:, 1]) - radius).max() < 1e-7, name  # measured 2e-15
+        if name.startswith("ring_"):
+            assert np.abs(points[:, 2] - 50.0 * int(name[5:7])).max() < 1e-9, name
+    assert wall.children and all(child.parent is wall for child in wall.children)  # the part is unchanged

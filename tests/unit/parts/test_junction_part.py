@@ -141,3 +141,12 @@ def test_the_junction_is_a_part_like_the_others(part, tmp_path):
     assert report["volume"] == pytest.approx(part.volume, rel=1e-12)
     bd.export_step(part, tmp_path / "tee.step")
     assert re.findall(r"PRODUCT\('([^']*)'", (tmp_path / "tee.step").read_text()) == ["CurvatureJunction", "wall"]
+    # with its lines: every named edge set, the saddles on both cylinders as read back
+    bd.export_step(part.assembly(), tmp_path / "tee_lines.step")
+    lines = {c.label: c for c in bd.import_step(tmp_path / "tee_lines.step").children if c.label == "curvature_lines"}
+    sets = {c.label: c for c in lines["curvature_lines"].children}
+    assert set(sets) == set(part.named_edges)
+    assert (
+        on_tee(sets["saddle_outer"].edges()) < 1e-6
+        and on_tee(sets["saddle_inner"].edges(), big=R_IN, small=r_IN) < 1e-6
+    )
