@@ -10,50 +10,22 @@ worker processes on 127.0.0.1, started here.
 
 from __future__ import annotations
 
-import json
 import os
-import signal
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from shared.batch import assert_a_rerun_builds_the_rest, build_command, interrupted, manifest
 
 distributed = pytest.importorskip("distributed")
 
-from conftest import SMALL_BATCH_TUBE
+from shared.batch_dask import SWEEP
+from shared.batch_dask import cluster_fixture as cluster_fixture  # the fixture cluster; `as`: imported for pytest
+from shared.batch_dask import spec_fixture as spec_fixture  # the fixture spec; `as`: imported for pytest
 
 from tubecad.cli.app import cli
 
 # the same on both OCCT generations: CI runs it once; clusters of worker processes: slow
 pytestmark = [pytest.mark.once, pytest.mark.slow]
-
-SMALL = SMALL_BATCH_TUBE
-SWEEP = "tube.radius=4:6:8"
-
-
-@pytest.fixture(scope="module")
-def cluster():
-    os.environ["SOURCE_DATE_EPOCH"] = "1700000000"  # the workers inherit it: stable STEP headers
-    from distributed import LocalCluster
-
-    with LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address="127.0.0.1:0"
-    ) as local:
-        yield local
-    del os.environ["SOURCE_DATE_EPOCH"]
-
-
-@pytest.fixture(scope="module")
-def spec(tmp_path_factory):
-    path = tmp_path_factory.mktemp("dask") / "t.toml"
-    path.write_text(SMALL)
-    return path
-
-
-def manifest(out: Path) -> dict:
-    return json.loads((out / "batch.json").read_text())
 
 
 def test_the_cluster_builds_the_same_files_as_the_local_pool(cluster, spec, tmp_path):
@@ -77,38 +49,13 @@ def test_the_cluster_builds_the_same_files_as_the_local_pool(cluster, spec, tmp_
 
 def test_an_interrupted_cluster_batch_resumes(cluster, spec, tmp_path):
     out = tmp_path / "out"
-    command = [
-        sys.executable,
-        "-m",
-        "tubecad.cli.console",
-        "build",
-        str(spec),
-        "--sweep",
-        SWEEP,
-        "-d",
-        str(out),
-        "--scheduler",
-        cluster.scheduler_address,
-    ]
+    command = build_command(spec, SWEEP, out, "--scheduler", cluster.scheduler_address)
     env = {**os.environ, "SOURCE_DATE_EPOCH": "1700000000"}
-    proc = subprocess.Popen(command, stderr=subprocess.PIPE, text=True, env=env)
-    finished = 0
-    for line in proc.stderr:
-        finished += line.startswith("[")
-        if finished == 3:
-            proc.send_signal(signal.SIGINT)
-            break
-    rest = proc.stderr.read()
-    assert proc.wait(60) == 130, rest
+    code, rest = interrupted(command, 3, env)
+    assert code == 130, rest
     done = manifest(out)["ok"]
     assert 3 <= done < 8 and not list(out.glob(".*.part*"))
-    again = subprocess.run(command, capture_output=True, text=True, env=env)
-    assert again.returncode == 0, again.stderr
-    assert (
-        f"building {8 - done} jobs" in again.stderr
-        and f"({done} of 8 already built and unchanged: skipped)" in again.stderr
-    )
-    assert manifest(out)["ok"] == 8
+    assert_a_rerun_builds_the_rest(command, out, done, env)
 
 
 def test_workers_sharing_a_file_system_write_the_files_themselves(cluster, spec, tmp_path):

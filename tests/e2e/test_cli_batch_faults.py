@@ -11,16 +11,12 @@ worker processes:
 
 from __future__ import annotations
 
-import json
-import signal
-import subprocess
-import sys
 import time
-from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
 from conftest import SMALL_BATCH_TUBE
+from shared.batch import assert_a_rerun_builds_the_rest, build_command, interrupted, manifest
 
 from tubecad.batch.manifest import content_hash, file_hash
 from tubecad.cli.app import cli
@@ -34,10 +30,6 @@ SWEEP = "tube.radius=4:6:6"  # six small tubes
 
 def run(*args):
     return CliRunner().invoke(cli, [str(a) for a in args])
-
-
-def manifest(out: Path) -> dict:
-    return json.loads((out / "batch.json").read_text())
 
 
 @pytest.fixture(scope="module")
@@ -103,41 +95,16 @@ def test_ctrl_c_keeps_what_finished_and_a_rerun_builds_the_rest(tmp_path):
     spec = tmp_path / "t.toml"
     spec.write_text(SMALL)
     out = tmp_path / "out"
-    command = [
-        sys.executable,
-        "-m",
-        "tubecad.cli.console",
-        "build",
-        str(spec),
-        "--sweep",
-        "tube.radius=4:6:8",
-        "-d",
-        str(out),
-        "-j",
-        "2",
-    ]
-    proc = subprocess.Popen(command, stderr=subprocess.PIPE, text=True)
-    finished = 0
-    for line in proc.stderr:
-        finished += line.startswith("[")
-        if finished == 3:
-            proc.send_signal(signal.SIGINT)
-            break
-    rest = proc.stderr.read()
-    assert proc.wait(60) == 130, rest
+    command = build_command(spec, "tube.radius=4:6:8", out, "-j", "2")
+    code, rest = interrupted(command, 3)
+    assert code == 130, rest
     record = manifest(out)
     done = record["ok"]
     assert 3 <= done < 8 and record["interrupted"]
     assert not list(out.glob(".*.part*"))  # no partial file
     files = {p.name for p in out.iterdir()} - {"batch.json"}
     assert files == {n for j in record["jobs"] if j["status"] == "ok" for n in j["hashes"]}
-    again = subprocess.run(command, capture_output=True, text=True)
-    assert again.returncode == 0, again.stderr
-    assert (
-        f"building {8 - done} jobs" in again.stderr
-        and f"({done} of 8 already built and unchanged: skipped)" in again.stderr
-    )
-    assert manifest(out)["ok"] == 8
+    assert_a_rerun_builds_the_rest(command, out, done)
 
 
 def test_a_job_past_the_timeout_is_stopped_retried_and_fails_without_files(tmp_path):

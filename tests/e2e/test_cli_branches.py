@@ -9,32 +9,9 @@ import math
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from shared.branches import BRANCH, spec_text
 
 from tubecad.cli.app import cli
-
-MAIN = """
-[axis]
-curve = "natural"
-k = "0"
-tau = "0"
-s = [0.0, 400.0]
-
-[tube]
-radius = 50.0
-
-[wall]
-thickness = 4.0
-"""
-BRANCH = """
-[[branches]]
-at = 150.0
-length = 150.0
-radius = 30.0
-"""
-
-
-def spec_text(branch: str = BRANCH, main: str = MAIN) -> str:
-    return main + branch
 
 
 @pytest.mark.parametrize(

@@ -13,19 +13,9 @@ import math
 import pytest
 from click.testing import CliRunner
 from scipy.integrate import quad
+from shared.canal_spec import NOZZLE
 
 from tubecad.cli.app import cli
-
-NOZZLE = """
-[axis]
-curve = "natural"
-k = "0"
-tau = "0"
-s = [0.0, 200.0]
-
-[tube]
-radius = "40 - 25 * (s / 200)**2 * (3 - 2 * s / 200)"
-"""
 
 
 def nozzle_law(s: float) -> tuple[float, float, float]:

@@ -3,12 +3,11 @@ refused in one line, exit 2, no file; samples/saddle_canal_closed.toml builds to
 stringer that would touch its own start is refused; ring frames all round the closed wall.
 """
 
-import math
-
-import numpy as np
 import pytest
 from click.testing import CliRunner
 from conftest import ROOT
+from shared.closed_canal import CLOSED_TREFOIL
+from shared.closed_tubes import TWO_PI, trefoil
 
 from tubecad.brep import properties as props
 from tubecad.cli.app import cli
@@ -16,40 +15,14 @@ from tubecad.core.errors import ParameterError
 from tubecad.curves.parametric import ParametricAxis
 from tubecad.surface import CanalSurface
 
-TWO_PI = 2 * math.pi
 SAMPLE = ROOT / "samples" / "saddle_canal_closed.toml"
 #: every check of OCCT's pre-boolean analyzer but the self-intersection one (minutes on the
 #: trefoil's walls; the torus-like wall below gets every check)
 CHECKS = tuple(mode for mode in props.ANALYZER_MODES if mode != "SelfInterMode")
 
 
-def trefoil(t: np.ndarray) -> np.ndarray:
-    return np.stack([np.sin(t) + 2 * np.sin(2 * t), np.cos(t) - 2 * np.cos(2 * t), -np.sin(3 * t)], axis=-1)
-
-
 def run(*args):
     return CliRunner().invoke(cli, [str(a) for a in args])
-
-
-CLOSED_TREFOIL = """
-[axis]
-curve = "parametric"
-x = "40 * (sin(t) + 2 * sin(2 * t))"
-y = "40 * (cos(t) - 2 * cos(2 * t))"
-z = "-40 * sin(3 * t)"
-t = [0.0, 6.283185307179586]
-closed = true
-
-[tube]
-radius = {radius}
-
-[layout]
-rings = 5
-stringers = 4
-
-[wall]
-thickness = 1.0
-"""
 
 
 @pytest.mark.parametrize(

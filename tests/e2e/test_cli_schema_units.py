@@ -18,6 +18,7 @@ from types import SimpleNamespace
 import pytest
 from click.testing import CliRunner
 from conftest import ROOT
+from shared.schema_units import SMALL, STIFFENED, with_units
 
 from tubecad.cli.app import cli
 from tubecad.core.units import LENGTH_UNITS
@@ -58,29 +59,6 @@ def test_schema_command_loads_neither_numpy_nor_occt():
     assert done.returncode == 0, done.stderr
     assert json.loads(done.stdout.rsplit("LOADED", 1)[0])["title"] == "tubecad spec"
     assert done.stdout.strip().splitlines()[-1] == "LOADED []"
-
-
-SMALL = """
-[axis]
-curve = "helix"
-k = 0.01
-beta_deg = 10.0
-s = [0.0, 300.0]
-
-[tube]
-radius = 10.0
-
-[layout]
-rings = 3
-stringers = 4
-
-[wall]
-thickness = 1.0
-"""
-
-
-def with_units(text: str, unit: str | None) -> str:
-    return text if unit is None else f'{text}\n[units]\nlength = "{unit}"\n'
 
 
 @pytest.fixture(scope="module")
@@ -206,18 +184,6 @@ def test_meshes_polylines_and_report_state_the_unit(built):
             assert info.get("max_deviation", 0) < 1e-8 and info.get("max_vertex_deviation", 0) < info.get(
                 "deflection", 1
             )
-
-
-STIFFENED = (
-    SMALL
-    + """
-[stiffeners]
-rings = [1]
-profile = "flat"
-height = 2.0
-thickness = 1.0
-"""
-)
 
 
 @pytest.mark.slow

@@ -134,6 +134,19 @@ def stop(process: subprocess.Popen) -> None:
             process.wait(10)
 
 
+def start_viewer(port: int, env: dict[str, str], log: Path) -> subprocess.Popen:
+    """The standalone viewer, `python -m ocp_viewer` on 127.0.0.1:PORT, started in its own
+    process group (stop() ends it) with its output written to ``log``."""
+    with open(log, "w") as out:
+        return subprocess.Popen(
+            [sys.executable, "-m", "ocp_viewer", "--host", "127.0.0.1", "--port", str(port)],
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            env=env,
+            start_new_session=True,
+        )
+
+
 class DevTools:
     """The least of the Chrome DevTools protocol: one page, calls answered in order."""
 
@@ -192,14 +205,7 @@ def test_view_paper_in_the_standalone_viewer(tmp_path):
     viewer_log = tmp_path / "viewer.log"
     processes: list[subprocess.Popen] = []
     try:
-        with open(viewer_log, "w") as log:
-            viewer = subprocess.Popen(
-                [sys.executable, "-m", "ocp_viewer", "--host", "127.0.0.1", "--port", str(port)],
-                stdout=log,
-                stderr=subprocess.STDOUT,
-                env=env,
-                start_new_session=True,
-            )
+        viewer = start_viewer(port, env, viewer_log)
         processes.append(viewer)
         url = f"http://127.0.0.1:{port}/viewer"
         wait_for(lambda: "OCP Viewer runs at" in viewer_log.read_text(), "the viewer starts", process=viewer)
@@ -289,14 +295,7 @@ def test_a_viewer_with_no_browser_page_is_told_not_sent(tmp_path):
     viewer_log = tmp_path / "viewer.log"
     spec = tmp_path / "small.toml"
     spec.write_text('[axis]\ncurve = "helix"\nk = 0.01\nbeta_deg = 10.0\ns = [0.0, 200.0]\n\n[tube]\nradius = 5.0\n')
-    with open(viewer_log, "w") as log:
-        viewer = subprocess.Popen(
-            [sys.executable, "-m", "ocp_viewer", "--host", "127.0.0.1", "--port", str(port)],
-            stdout=log,
-            stderr=subprocess.STDOUT,
-            env=env,
-            start_new_session=True,
-        )
+    viewer = start_viewer(port, env, viewer_log)
     try:
         wait_for(lambda: "OCP Viewer runs at" in viewer_log.read_text(), "the viewer starts", process=viewer)
         done = subprocess.run(

@@ -19,6 +19,9 @@ import pytest
 distributed = pytest.importorskip("distributed")
 
 from conftest import SMALL_BATCH_TUBE
+from shared.batch_dask import SWEEP
+from shared.batch_dask import cluster_fixture as cluster_fixture  # the fixture cluster; `as`: imported for pytest
+from shared.batch_dask import spec_fixture as spec_fixture  # the fixture spec; `as`: imported for pytest
 
 from tubecad.batch.dask_executor import DaskExecutor
 from tubecad.batch.jobs import JobResult, parse_sweep, plan_jobs
@@ -28,26 +31,6 @@ from tubecad.batch.runner import run_batch
 pytestmark = [pytest.mark.once, pytest.mark.slow]
 
 SMALL = SMALL_BATCH_TUBE
-SWEEP = "tube.radius=4:6:8"
-
-
-@pytest.fixture(scope="module")
-def cluster():
-    os.environ["SOURCE_DATE_EPOCH"] = "1700000000"  # the workers inherit it: stable STEP headers
-    from distributed import LocalCluster
-
-    with LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address="127.0.0.1:0"
-    ) as local:
-        yield local
-    del os.environ["SOURCE_DATE_EPOCH"]
-
-
-@pytest.fixture(scope="module")
-def spec(tmp_path_factory):
-    path = tmp_path_factory.mktemp("dask") / "t.toml"
-    path.write_text(SMALL)
-    return path
 
 
 def test_a_worker_killed_mid_batch_loses_no_result(cluster, spec, tmp_path):

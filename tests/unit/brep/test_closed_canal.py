@@ -18,6 +18,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp
 from scipy.interpolate import CubicSpline
+from shared.closed_canal import CLOSED_TREFOIL
+from shared.closed_tubes import TWO_PI, trefoil
 
 from tubecad.brep import NetLayout, build_tube_shell, build_tube_solid, build_wall_solid
 from tubecad.brep import properties as props
@@ -26,7 +28,6 @@ from tubecad.curves.parametric import ParametricAxis
 from tubecad.surface import CanalSurface, CurvatureLineTube, tube_or_canal
 from tubecad.surface.checks import envelope_distance
 
-TWO_PI = 2 * math.pi
 #: every check of OCCT's pre-boolean analyzer but the self-intersection one (minutes on the
 #: trefoil's walls; the torus-like wall below gets every check)
 CHECKS = tuple(mode for mode in props.ANALYZER_MODES if mode != "SelfInterMode")
@@ -36,10 +37,6 @@ T_R0, T_AMPLITUDE = 0.3, 0.05  # the trefoil's law
 
 def circle(t: np.ndarray) -> np.ndarray:
     return np.stack([R_TORUS * np.cos(t), R_TORUS * np.sin(t), 0.0 * t], axis=-1)
-
-
-def trefoil(t: np.ndarray) -> np.ndarray:
-    return np.stack([np.sin(t) + 2 * np.sin(2 * t), np.cos(t) - 2 * np.cos(2 * t), -np.sin(3 * t)], axis=-1)
 
 
 def cosine_law(r0: float, a: float, length: float):
@@ -199,27 +196,6 @@ def test_the_trefoil_canal_wall(trefoil_canal):
         )
         distance, _ = envelope_distance(exact, points)
         assert np.abs(distance).max() < wall.tolerance
-
-
-CLOSED_TREFOIL = """
-[axis]
-curve = "parametric"
-x = "40 * (sin(t) + 2 * sin(2 * t))"
-y = "40 * (cos(t) - 2 * cos(2 * t))"
-z = "-40 * sin(3 * t)"
-t = [0.0, 6.283185307179586]
-closed = true
-
-[tube]
-radius = {radius}
-
-[layout]
-rings = 5
-stringers = 4
-
-[wall]
-thickness = 1.0
-"""
 
 
 @pytest.mark.slow

@@ -8,33 +8,10 @@ import math
 
 import numpy as np
 import pytest
+from shared.branches import BRANCH, MAIN, spec_text
 
 from tubecad import SpecError
 from tubecad.spec.parse import parse_spec
-
-MAIN = """
-[axis]
-curve = "natural"
-k = "0"
-tau = "0"
-s = [0.0, 400.0]
-
-[tube]
-radius = 50.0
-
-[wall]
-thickness = 4.0
-"""
-BRANCH = """
-[[branches]]
-at = 150.0
-length = 150.0
-radius = 30.0
-"""
-
-
-def spec_text(branch: str = BRANCH, main: str = MAIN) -> str:
-    return main + branch
 
 
 def parsed(text: str):

@@ -3,16 +3,7 @@ laws as expressions and tables, measured by `tubecad report` against the surface
 of their profile, and refused in one line when bad, are in tests/e2e/test_cli_canal_spec.py.
 """
 
-NOZZLE = """
-[axis]
-curve = "natural"
-k = "0"
-tau = "0"
-s = [0.0, 200.0]
-
-[tube]
-radius = "40 - 25 * (s / 200)**2 * (3 - 2 * s / 200)"
-"""
+from shared.canal_spec import NOZZLE
 
 
 def test_a_constant_radius_is_the_tube_of_today(tmp_path):

@@ -19,6 +19,7 @@ from types import SimpleNamespace
 import pytest
 from conftest import ROOT
 from jsonschema import Draft202012Validator
+from shared.schema_units import SMALL, STIFFENED, with_units
 
 from tubecad import SpecError
 from tubecad.core.units import steel_density
@@ -230,40 +231,6 @@ def test_the_schema_limits_are_the_rules_own():
 
 # ---------------------------------------------------------------------------------------------
 # units in the files
-
-SMALL = """
-[axis]
-curve = "helix"
-k = 0.01
-beta_deg = 10.0
-s = [0.0, 300.0]
-
-[tube]
-radius = 10.0
-
-[layout]
-rings = 3
-stringers = 4
-
-[wall]
-thickness = 1.0
-"""
-
-
-def with_units(text: str, unit: str | None) -> str:
-    return text if unit is None else f'{text}\n[units]\nlength = "{unit}"\n'
-
-
-STIFFENED = (
-    SMALL
-    + """
-[stiffeners]
-rings = [1]
-profile = "flat"
-height = 2.0
-thickness = 1.0
-"""
-)
 
 
 @pytest.mark.slow
