@@ -10,7 +10,17 @@ Import these names from here, never from OCP directly.
 
 from __future__ import annotations
 
-try:  # OCP 8
+from typing import TYPE_CHECKING, TypeVar
+
+try:
+    import OCP.collections  # noqa: F401  (OCP 8 has it, OCP 7.9 not)
+
+    OCP_GENERATION = 8
+except ImportError:
+    OCP_GENERATION = 7
+
+# mypy reads the OCP 8 branch only (OCP's type stubs, cadquery-ocp-stubs, describe OCP 8)
+if TYPE_CHECKING or OCP_GENERATION == 8:
     from OCP.collections import (
         Array1_double as Array1OfReal,
     )
@@ -41,9 +51,7 @@ try:  # OCP 8
     from OCP.collections import (
         Sequence_TDF_Label as LabelSequence,
     )
-
-    OCP_GENERATION = 8
-except ImportError:  # OCP 7.9
+else:  # OCP 7.9
     from OCP.TColgp import TColgp_Array1OfPnt as Array1OfPnt
     from OCP.TColgp import TColgp_Array1OfPnt2d as Array1OfPnt2d
     from OCP.TColgp import TColgp_Array2OfPnt as Array2OfPnt
@@ -55,9 +63,37 @@ except ImportError:  # OCP 7.9
     from OCP.TopTools import TopTools_IndexedMapOfShape as IndexedMapOfShape
     from OCP.TopTools import TopTools_ListOfShape as ListOfShape
 
-    OCP_GENERATION = 7
-
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Solid, TopoDS_Vertex, TopoDS_Wire
+
+if TYPE_CHECKING:
+    from OCP.Geom import Geom_Geometry
+    from OCP.Geom2d import Geom2d_Geometry
+
+_T = TypeVar("_T")
+_Geometry = TypeVar("_Geometry", bound="Geom_Geometry | Geom2d_Geometry")
+
+
+def downcast(value: object, kind: type[_T]) -> _T:
+    """``value``, an OCCT handle that OCCT (and so OCP's type stubs) declares as a base class
+    (Geom_Surface from BRep_Tool.Surface_s, Geom_Geometry from Copy()), as the subclass ``kind``
+    it is. OCP has no DownCast: it hands every handle to Python as its dynamic class already,
+    on OCP 7.9 and 8 alike; this only checks that class (a TypeError otherwise) and tells the
+    type checker."""
+    if not isinstance(value, kind):
+        raise TypeError(f"expected an OCCT {kind.__name__}, got {type(value).__name__}")
+    return value
+
+
+def topods(shape: object) -> TopoDS_Shape:
+    """The OCCT shape of a build123d or CadQuery object (its ``wrapped``), or ``shape`` itself
+    if it is one (a TypeError otherwise)."""
+    return downcast(getattr(shape, "wrapped", shape), TopoDS_Shape)
+
+
+def copy_of(geometry: _Geometry) -> _Geometry:
+    """A copy (OCCT's Copy()) of a Geom or Geom2d object, as its own class: OCCT declares
+    Copy() to return the base class Geom_Geometry (Geom2d_Geometry)."""
+    return downcast(geometry.Copy(), type(geometry))
 
 
 def _downcast(name: str):
@@ -116,7 +152,7 @@ def box_corners(shape: object) -> tuple[tuple[float, float, float], tuple[float,
     from OCP.BRepBndLib import BRepBndLib
 
     box = Bnd_Box()
-    BRepBndLib.Add_s(getattr(shape, "wrapped", shape), box)
+    BRepBndLib.Add_s(topods(shape), box)  # a build123d or CadQuery object's OCCT shape, or the shape
     if box.IsVoid():
         return None
     return box.CornerMin().Coord(), box.CornerMax().Coord()
@@ -141,4 +177,6 @@ __all__ = [
     "shapes_in",
     "as_wire",
     "box_corners",
+    "copy_of",
+    "downcast",
 ]

@@ -67,6 +67,7 @@ from tubecad.occ_compat import (
     box_corners,
     shapes_in,
 )
+from tubecad.occ_compat import topods as topods
 
 #: BOPAlgo_ArgumentAnalyzer's checks, all switched on (FreeCAD's "Check geometry" with
 #: "BOP check" and every option): what OCCT tests before a boolean operation
@@ -95,10 +96,6 @@ CELL_PAIRS = 400_000
 #: the cost of a face's own checks (against itself, its edges among themselves) in units of one
 #: face pair's intersection, for the grouping
 FACE_COST = 0.5
-
-
-def topods(shape: object) -> TopoDS_Shape:
-    return getattr(shape, "wrapped", shape)
 
 
 # --- the analyzer ---------------------------------------------------------------------------------

@@ -16,7 +16,7 @@ direction x S_s, so its face is the natural one (S_u x S_s) exactly when u0 < u1
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,6 +31,7 @@ from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid, Top
 
 from tubecad.core.errors import TubecadError
 from tubecad.core.tolerance import EDGE_TOLERANCE
+from tubecad.occ_compat import as_face, copy_of
 
 #: edge, vertex and face tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = EDGE_TOLERANCE
@@ -54,6 +55,8 @@ def iso_pcurve(u: float | None = None, s: float | None = None) -> Geom2d_Line:
     """The parameter-plane line u = const (parameter s) or s = const (parameter u)."""
     if u is not None:
         return Geom2d_Line(gp_Pnt2d(u, 0.0), gp_Dir2d(0.0, 1.0))
+    if s is None:
+        raise TypeError("iso_pcurve: u or s")
     return Geom2d_Line(gp_Pnt2d(0.0, s), gp_Dir2d(1.0, 0.0))
 
 
@@ -78,7 +81,7 @@ def patch_face(
     The face lies on a Segment()-ed copy of the surface (fewer poles for everything after);
     its normal is S_u x S_s, or the opposite with ``reverse``."""
     builder = BRep_Builder()
-    piece = surface.Copy()
+    piece = copy_of(surface)
     piece.Segment(u0, u1, s0, s1)
     face = TopoDS_Face()
     builder.MakeFace(face, piece, TOLERANCE)
@@ -101,7 +104,7 @@ def patch_face(
         builder.Add(wire, e.Oriented(orientation))
     wire.Closed(True)
     builder.Add(face, wire)
-    return TopoDS_Face.Reversed(face) if reverse else face
+    return as_face(face.Reversed()) if reverse else face
 
 
 def plane_face(
@@ -129,6 +132,8 @@ def c0_knots(surface: Geom_BSplineSurface, direction: str = "u") -> list[float]:
     """The u-knots (or v-knots) where ``surface`` is only C0 (multiplicity >= its degree in
     that direction): a face should end there (OCCT's pre-boolean check reports a face or
     edge across one)."""
+    knot: Callable[[int], float]
+    multiplicity: Callable[[int], int]
     if direction == "u":
         degree, count, knot, multiplicity = surface.UDegree(), surface.NbUKnots(), surface.UKnot, surface.UMultiplicity
     else:
@@ -247,8 +252,8 @@ def _strip_faces(
         lo, hi = (st.u0, st.u1) if forward else (st.u1, st.u0)
         own = []
         for c in range(rows):
-            a, b = (corners[k][c], corners[nxt][c]) if forward else (corners[nxt][c], corners[k][c])
-            own.append(edge(st.surface.VIso(bands[c]), a, b, lo, hi))
+            start, end = (corners[k][c], corners[nxt][c]) if forward else (corners[nxt][c], corners[k][c])
+            own.append(edge(st.surface.VIso(bands[c]), start, end, lo, hi))
         crosses.append([own[at[c]] for c in range(len(bands))])
     for k, st in enumerate(strips):
         nxt = (k + 1) % n
@@ -278,7 +283,7 @@ def _band(strip: Strip, s0: float, s1: float) -> Geom_BSplineSurface:
     _, _, v0, v1 = strip.surface.Bounds()
     if s0 <= v0 and s1 >= v1:
         return strip.surface
-    piece = strip.surface.Copy()
+    piece = copy_of(strip.surface)
     u0, u1, _, _ = strip.surface.Bounds()
     piece.Segment(u0, u1, s0, s1)
     return piece

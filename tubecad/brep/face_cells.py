@@ -19,12 +19,13 @@ from __future__ import annotations
 
 import numpy as np
 from OCP.BRep import BRep_Tool
+from OCP.Geom import Geom_BSplineSurface, Geom_Plane, Geom_RectangularTrimmedSurface
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS_Shape
+from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
 
 from tubecad.fitting.nurbs import SurfaceArrays
-from tubecad.occ_compat import as_edge, as_face, as_vertex
+from tubecad.occ_compat import as_edge, as_face, as_vertex, copy_of, downcast
 
 
 def sub_shapes(shape: TopoDS_Shape, kind) -> list[TopoDS_Shape]:
@@ -127,7 +128,7 @@ class FaceCells:
         return self.children[level]
 
 
-def _pcurve_hulls(face) -> list[tuple[object, list[tuple[float, float]]]] | None:
+def _pcurve_hulls(face) -> list[tuple[TopoDS_Edge, list[tuple[float, float]]]] | None:
     """Each edge of the face with points whose convex hull holds its pcurve (None: some pcurve
     cannot be bounded, or the face has no edge)."""
     out = []
@@ -141,7 +142,9 @@ def _pcurve_hulls(face) -> list[tuple[object, list[tuple[float, float]]]] | None
     return out or None
 
 
-def _box(pcurves: list[tuple[object, list[tuple[float, float]]]] | None) -> tuple[float, float, float, float] | None:
+def _box(
+    pcurves: list[tuple[TopoDS_Edge, list[tuple[float, float]]]] | None,
+) -> tuple[float, float, float, float] | None:
     """The box of the pcurves' hull points: it holds the face's parameters."""
     if pcurves is None:
         return None
@@ -184,17 +187,18 @@ def _first_cells(owner: FaceCells, face) -> Cells | None:
     surface = BRep_Tool.Surface_s(face)
     name = surface.DynamicType().Name()
     if name == "Geom_RectangularTrimmedSurface":
-        surface = surface.BasisSurface()
+        surface = downcast(surface, Geom_RectangularTrimmedSurface).BasisSurface()
         name = surface.DynamicType().Name()
     box = owner.box
     if name == "Geom_Plane":
         if box is None:
             return None
         u1, u2, v1, v2 = box
-        corners = [surface.Value(u, v).Coord() for u in (u1, u2) for v in (v1, v2)]
+        plane = downcast(surface, Geom_Plane)
+        corners = [plane.Value(u, v).Coord() for u in (u1, u2) for v in (v1, v2)]
         zero = np.zeros(1)
         cells = Cells(np.array([corners], dtype=float), zero, zero, zero, zero)
-        cells.normal = np.array([surface.Axis().Direction().Coord()], dtype=float)
+        cells.normal = np.array([plane.Axis().Direction().Coord()], dtype=float)
         cells.corners = cells.points.copy()  # (u1, v1), (u1, v2), (u2, v1), (u2, v2)
         return cells
     if name not in ("Geom_BSplineSurface", "Geom_BezierSurface"):
@@ -202,17 +206,21 @@ def _first_cells(owner: FaceCells, face) -> Cells | None:
     from OCP.GeomConvert import GeomConvert
 
     # a copy, as Bezier patches: every inner knot raised to the degree (OCCT does this exactly)
-    surface = GeomConvert.SurfaceToBSplineSurface_s(surface) if name == "Geom_BezierSurface" else surface.Copy()
-    if surface.IsUPeriodic():
-        surface.SetUNotPeriodic()
-    if surface.IsVPeriodic():
-        surface.SetVNotPeriodic()
-    p, q = surface.UDegree(), surface.VDegree()
-    if surface.NbUKnots() > 2:
-        surface.IncreaseUMultiplicity(2, surface.NbUKnots() - 1, p)
-    if surface.NbVKnots() > 2:
-        surface.IncreaseVMultiplicity(2, surface.NbVKnots() - 1, q)
-    arrays = SurfaceArrays.from_occ(surface)  # poles, weights, flat knots (it is not periodic now)
+    spline = (
+        GeomConvert.SurfaceToBSplineSurface_s(surface)
+        if name == "Geom_BezierSurface"
+        else copy_of(downcast(surface, Geom_BSplineSurface))
+    )
+    if spline.IsUPeriodic():
+        spline.SetUNotPeriodic()
+    if spline.IsVPeriodic():
+        spline.SetVNotPeriodic()
+    p, q = spline.UDegree(), spline.VDegree()
+    if spline.NbUKnots() > 2:
+        spline.IncreaseUMultiplicity(2, spline.NbUKnots() - 1, p)
+    if spline.NbVKnots() > 2:
+        spline.IncreaseVMultiplicity(2, spline.NbVKnots() - 1, q)
+    arrays = SurfaceArrays.from_occ(spline)  # poles, weights, flat knots (it is not periodic now)
     nu, nv = arrays.weights.shape
     if arrays.weights.min() <= 0:
         return None
@@ -220,7 +228,7 @@ def _first_cells(owner: FaceCells, face) -> Cells | None:
     uk, vk = np.unique(arrays.u_knots), np.unique(arrays.v_knots)
     if (nu - 1) != p * (len(uk) - 1) or (nv - 1) != q * (len(vk) - 1):
         return None  # not in Bezier form (an unexpected knot structure): nothing proven
-    u0, u1, v0, v1 = surface.Bounds()
+    u0, u1, v0, v1 = spline.Bounds()
     if box is not None:  # the face's parameters, within the surface's
         u0, u1, v0, v1 = max(u0, box[0]), min(u1, box[1]), max(v0, box[2]), min(v1, box[3])
     su = np.nonzero((uk[1:] >= u0) & (uk[:-1] <= u1))[0]

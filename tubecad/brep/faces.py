@@ -48,6 +48,7 @@ from tubecad.core.tolerance import EDGE_TOLERANCE
 from tubecad.fitting import TubeSurface
 from tubecad.fitting.circle import CircleSpline
 from tubecad.fitting.nurbs import occ_curve_2d
+from tubecad.occ_compat import copy_of, downcast
 
 #: edge and vertex tolerance: Precision::Confusion(); the geometry is far tighter
 TOLERANCE = EDGE_TOLERANCE
@@ -125,7 +126,8 @@ def patch_faces(
         else:
             circle, gap = ring_circle(tube_surface, s)
             tolerance = max(TOLERANCE, 2.0 * gap)
-            cuts, pcurves = angles, [to_u[j].Translated(gp_Vec2d(0.0, s)) for j in range(n_stringers)]
+            cuts = angles
+            pcurves = [downcast(to_u[j].Translated(gp_Vec2d(0.0, s)), Geom2d_BSplineCurve) for j in range(n_stringers)]
         # a vertex is the surface's point; the exact circle passes within the ring's gap of it,
         # so the vertex tolerance covers the gap as the edge's does (round-off: the fit is exact at rings)
         vertices.append([_vertex(builder, surface.Value(u_cuts[j], s), tolerance) for j in range(n_stringers)])
@@ -151,7 +153,7 @@ def patch_faces(
         vertices.append(end_vertices)
     bands = []  # the surface between two rings, cut once: patches and stringer edges copy far fewer poles
     for s0, s1 in zip(s_rings[:-1], s_rings[1:]):
-        band = surface.Copy()
+        band = copy_of(surface)
         band.Segment(u_cuts[0], u_cuts[-1], s0, s1)
         bands.append(band)
     stringers = [
@@ -168,7 +170,7 @@ def patch_faces(
         s0, s1 = s_rings[i], s_rings[i + 1]
         for j in range(n_stringers):
             u0, u1 = u_cuts[j], u_cuts[j + 1]
-            piece = band if seam else band.Copy()
+            piece = band if seam else copy_of(band)
             if not seam:
                 piece.Segment(u0, u1, s0, s1)
             face = TopoDS_Face()

@@ -14,21 +14,17 @@ from OCP.BRepGProp import BRepGProp
 from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SOLID, TopAbs_VERTEX
 from OCP.TopExp import TopExp
-from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
+from OCP.TopoDS import TopoDS_Compound
 
 # OCCT's pre-boolean check (BOPAlgo_ArgumentAnalyzer) lives in tubecad.brep.analyzer; its names stay here
 from tubecad.brep.analyzer import ANALYZER_MODES as ANALYZER_MODES
 from tubecad.brep.analyzer import analyzer_findings as analyzer_findings
 from tubecad.brep.analyzer import sub_shapes as sub_shapes
 from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge, box_corners
+from tubecad.occ_compat import topods as topods
 
 EPS = 1e-10
 KINDS = {"solid": TopAbs_SOLID, "face": TopAbs_FACE, "edge": TopAbs_EDGE, "vertex": TopAbs_VERTEX}
-
-
-def topods(shape: object) -> TopoDS_Shape:
-    """The OCCT shape of a build123d/CadQuery object, or the shape itself."""
-    return getattr(shape, "wrapped", shape)
 
 
 def is_valid(shape: object) -> bool:

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepTools import BRepTools_ReShape
+from OCP.Geom import Geom_BSplineSurface
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopExp import TopExp
@@ -39,8 +40,8 @@ from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
 from scipy.interpolate import BSpline, make_interp_spline
 
 from tubecad.core.tolerance import EDGE_TOLERANCE
-from tubecad.fitting.nurbs import SurfaceArrays, occ_curve
-from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, as_edge, as_face, shapes_in
+from tubecad.fitting.nurbs import SurfaceArrays, occ_curve_2d, occ_curve_3d
+from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, as_edge, as_face, downcast, shapes_in
 
 #: the interpolants' degree
 DEGREE = 5
@@ -118,7 +119,7 @@ class _Surface:
     def __init__(self, face) -> None:
         self.occt = BRep_Tool.Surface_s(face)
         bspline = self.occt.DynamicType().Name() == "Geom_BSplineSurface"
-        self.spline = SurfaceArrays.from_occ(self.occt) if bspline else None
+        self.spline = SurfaceArrays.from_occ(downcast(self.occt, Geom_BSplineSurface)) if bspline else None
 
     def d1(self, uv: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(S, S_u, S_v) at the rows of ``uv``, each (rows, 3)."""
@@ -272,12 +273,12 @@ def _edge(
     tolerance = max(EDGE_TOLERANCE, 2.0 * deviation)
     first, last = float(curve.t[0]), float(curve.t[-1])
     builder, edge = BRep_Builder(), TopoDS_Edge()
-    builder.MakeEdge(edge, occ_curve(curve), tolerance)
+    builder.MakeEdge(edge, occ_curve_3d(curve), tolerance)
     builder.Add(edge, TopExp.FirstVertex_s(old).Oriented(TopAbs_FORWARD))
     builder.Add(edge, TopExp.LastVertex_s(old).Oriented(TopAbs_REVERSED))
     builder.Range(edge, first, last)
     for face, pcurve in ((face_1, pcurve_1), (face_2, pcurve_2)):
-        builder.UpdateEdge(edge, occ_curve(pcurve), face, tolerance)
+        builder.UpdateEdge(edge, occ_curve_2d(pcurve), face, tolerance)
         builder.Range(edge, face, first, last)
     builder.SameParameter(edge, True)
     builder.SameRange(edge, True)

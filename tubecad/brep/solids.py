@@ -49,6 +49,7 @@ from tubecad.core.errors import ParameterError, RegularityError
 from tubecad.core.tolerance import DEFAULT_TOLERANCE, MIN_SIZE, orthogonality_for  # re-exported
 from tubecad.fitting import FrameSpline, TubeSurface, exact_section_surface, fit_frame
 from tubecad.fitting.canal_section import CanalSpline, canal_section_surface, fit_canal
+from tubecad.occ_compat import as_face
 from tubecad.surface import CanalSurface, CurvatureLineSurface, CurvatureLineTube, is_surface
 
 #: progress(step, done, total), called as a build advances (the library never prints)
@@ -544,4 +545,4 @@ def normal_cone_face(
     point, normal = gp_Pnt(), gp_Vec()  # the cone's own normal is sign(r') m, m = q t + r' e the stringers'
     BRepGProp_Face(face).Normal(0.5 * math.pi, 0.5 * v_high, point, normal)
     pointing_out = normal.Dot(gp_Vec(*map(float, t))) > 0
-    return face if pointing_out == outward else TopoDS_Face.Reversed(face)
+    return face if pointing_out == outward else as_face(face.Reversed())

@@ -44,7 +44,7 @@ from OCP.Interface import Interface_Static
 from OCP.Message import Message, Message_PrinterOStream
 from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Reader, STEPCAFControl_Writer
 from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller, STEPControl_Reader, STEPControl_Writer
-from OCP.StepData import StepData_StepWriter
+from OCP.StepData import StepData_Protocol, StepData_StepWriter
 from OCP.TCollection import TCollection_ExtendedString, TCollection_HAsciiString
 from OCP.TDataStd import TDataStd_Name
 from OCP.TDF import TDF_Label
@@ -58,7 +58,7 @@ from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.core.units import length_unit as unit_of
 from tubecad.export.formats import cad_format
-from tubecad.occ_compat import LabelSequence
+from tubecad.occ_compat import LabelSequence, downcast
 
 if TYPE_CHECKING:
     import build123d as bd
@@ -185,7 +185,7 @@ def _print_step(writer: STEPControl_Writer, path: Path) -> None:
     step = StepData_StepWriter(writer.Model())
     step.FloatWriter().SetFormat(FILE_REAL, True)  # True: no second format for 0.1 <= |x| < 1000
     step.FloatWriter().SetZeroSuppress(False)  # it would cut 17 digits short
-    step.SendModel(writer.WS().Protocol())
+    step.SendModel(downcast(writer.WS().Protocol(), StepData_Protocol))
     buffer = io.BytesIO()
     if not step.Print(buffer):
         raise ExportError(f"OCCT could not write STEP to {str(path)!r}")
@@ -324,7 +324,8 @@ def _write_iges(shape: TopoDS_Shape, path: Path, length_unit: str = DEFAULT_LENG
             raise OSError("no entities")
         iges.SendModel(IGESSelect_WorkLibrary.DefineProtocol_s())
         with open(path, "wb") as stream:
-            if not iges.Print(stream):
+            # the stubs type OCP's std::ostream as io.BytesIO; OCP writes to any binary file object
+            if not iges.Print(stream):  # type: ignore[arg-type]
                 raise OSError("IGESData_IGESWriter.Print failed")
     except OSError as exc:
         raise ExportError(f"OCCT could not write IGES to {str(path)!r}") from exc

@@ -446,10 +446,10 @@ def _tube_face(
     tri = _triangulation(points.reshape(-1, 3), uv, triangles, tolerance)
     builder.UpdateFace(as_face(face), tri)
     n_stringers = len(patches.columns)
-    bottom, top = patches.rings[i][j], patches.rings[i + 1][j]
+    lower, upper = patches.rings[i][j], patches.rings[i + 1][j]
     left, right = patches.columns[j][i], patches.columns[(j + 1) % n_stringers][i]
-    _polygon(builder, bottom, [index[:, 0]], tri)
-    _polygon(builder, top, [index[:, -1]], tri)
+    _polygon(builder, lower, [index[:, 0]], tri)
+    _polygon(builder, upper, [index[:, -1]], tri)
     if n_stringers == 1:  # one seam edge: its forward use is u = 2 pi, the reversed one u = 0
         _polygon(builder, right, [index[-1, :], index[0, :]], tri)
     else:
@@ -699,7 +699,11 @@ def _polygon(builder: BRep_Builder, edge: TopoDS_Edge, node_lists: list[np.ndarr
         for i, node in enumerate(nodes.tolist(), 1):
             polygon.SetNode(i, node)
         polygons.append(polygon)
-    builder.UpdateEdge(edge, *polygons, tri, TopLoc_Location())
+    if len(polygons) == 2:  # a seam edge: its forward use, then its reversed one
+        builder.UpdateEdge(edge, polygons[0], polygons[1], tri, TopLoc_Location())
+    else:
+        (polygon,) = polygons
+        builder.UpdateEdge(edge, polygon, tri, TopLoc_Location())
 
 
 def mesh_deviation(

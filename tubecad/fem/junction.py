@@ -35,6 +35,7 @@ from functools import partial
 from pathlib import Path
 
 import numpy as np
+from OCP.TopoDS import TopoDS_Face
 
 from tubecad.brep.layout import NetLayout
 from tubecad.brep.wall import wall_offsets
@@ -212,7 +213,7 @@ def _with_pads(main: JunctionTube, pads: Sequence[PadRegion], clearance: float) 
     return replace(main, layout=layout)
 
 
-def _joined_faces(tubes: list[JunctionTube], tolerance: float) -> list[object]:
+def _joined_faces(tubes: list[JunctionTube], tolerance: float) -> list[TopoDS_Face]:
     """The faces of the union of the tubes' capped solids, less the end discs (planes)."""
     from OCP.BRepAdaptor import BRepAdaptor_Surface
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
@@ -250,14 +251,14 @@ def _joined_faces(tubes: list[JunctionTube], tolerance: float) -> list[object]:
     return faces
 
 
-def _area(faces: list[object]) -> float:
+def _area(faces: list[TopoDS_Face]) -> float:
     from tubecad.brep.properties import faces_area
 
     return faces_area(faces)
 
 
 def _gmsh_mesh(
-    faces: list[object], size: float, order: int, tube_of: Callable[[np.ndarray], np.ndarray]
+    faces: list[TopoDS_Face], size: float, order: int, tube_of: Callable[[np.ndarray], np.ndarray]
 ) -> tuple[np.ndarray, list[tuple[int, np.ndarray]]]:
     """gmsh's mesh of the faces (module docstring): nodes (n, 3) and per face and element
     type (gmsh's type number, connectivity (m, k) 0-based in gmsh's node order);

@@ -27,7 +27,7 @@ from OCP.gp import gp_Pnt, gp_Pnt2d
 from scipy.interpolate import BSpline, NdBSpline
 
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, reals
-from tubecad.occ_compat import Array1OfPnt, Array1OfPnt2d
+from tubecad.occ_compat import Array1OfPnt, Array1OfPnt2d, copy_of
 
 FloatArray = NDArray[np.float64]
 
@@ -48,7 +48,7 @@ class SurfaceArrays:
     def from_occ(cls, surface: Geom_BSplineSurface) -> SurfaceArrays:
         """The arrays of an OCCT surface (1-based poles, distinct knots with multiplicities)."""
         if surface.IsUPeriodic() or surface.IsVPeriodic():
-            surface = surface.Copy()  # (OCP returns the Geom_BSplineSurface itself)
+            surface = copy_of(surface)
             if surface.IsUPeriodic():
                 surface.SetUNotPeriodic()
             if surface.IsVPeriodic():

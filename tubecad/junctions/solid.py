@@ -59,7 +59,7 @@ from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, EDGE_TOLERANCE
 from tubecad.junctions.edges import SaddleEdge, wall_saddles
-from tubecad.occ_compat import ListOfShape, as_edge, as_face, box_corners, shapes_in
+from tubecad.occ_compat import ListOfShape, as_edge, as_face, as_wire, box_corners, shapes_in
 from tubecad.surface.protocol import CurvatureLineSurface
 
 #: points sampled on each edge of W to tell whether it lies on a saddle
@@ -336,7 +336,7 @@ def _annulus(outer: TopoDS_Face, inner: TopoDS_Face) -> TopoDS_Face:
         BRepAdaptor_Surface(inner).Plane().Axis().Direction().Coord(),
     )
     if same > 0:
-        hole = hole.Reversed()
+        hole = as_wire(hole.Reversed())
     builder, face = BRep_Builder(), TopoDS_Face()
     builder.MakeFace(face, BRep_Tool.Surface_s(forward), BRep_Tool.Tolerance_s(forward))
     for wire in (BRepTools.OuterWire_s(forward), hole):

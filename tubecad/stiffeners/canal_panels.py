@@ -48,7 +48,7 @@ from tubecad.brep.faces import TOLERANCE
 from tubecad.brep.solids import FLAT_CAP_SLOPE, normal_cone_face
 from tubecad.core.errors import TubecadError
 from tubecad.fitting.occ_arrays import integers, points_2d, reals, reals_2d
-from tubecad.occ_compat import Array1OfPnt
+from tubecad.occ_compat import Array1OfPnt, as_face, downcast
 
 #: points per radial segment at which its distance from the cap's cone is measured
 RADIAL_GAP_SAMPLES = 9
@@ -93,13 +93,13 @@ class CanalWallEdges:
         outer, inner, n_s = self.outer, self.inner, self.n_s
         if jb - ja == n_s:
             wall = [f for patches in (outer, inner) for row in patches.faces[ia:ib] for f in row]
-            solid = closed_solid(wall + [TopoDS_Face.Reversed(self.annulus(ia)), self.annulus(ib)])
+            solid = closed_solid(wall + [as_face(self.annulus(ia).Reversed()), self.annulus(ib)])
             return bd.Solid(solid), props.faces_area([f for row in outer.faces[ia:ib] for f in row])
         columns = [c % self.n_c for c in range(self.column(ja), self.column(jb))]
         faces = [patches.faces[row][j] for patches in (outer, inner) for row in range(ia, ib) for j in columns]
         for row in range(ia, ib):
-            faces += [self.seam_face(jb % n_s, row), TopoDS_Face.Reversed(self.seam_face(ja, row))]
-        faces += [TopoDS_Face.Reversed(self.cap(ia, ja, jb)), self.cap(ib, ja, jb)]
+            faces += [self.seam_face(jb % n_s, row), as_face(self.seam_face(ja, row).Reversed())]
+        faces += [as_face(self.cap(ia, ja, jb).Reversed()), self.cap(ib, ja, jb)]
         area = props.faces_area([outer.faces[row][j] for row in range(ia, ib) for j in columns])
         return bd.Solid(closed_solid(faces)), area
 
@@ -173,7 +173,8 @@ class CanalWallEdges:
         stringer edge to the outer's: S(s, d - d_in), its normal S_s x S_d towards +chi."""
         if (j, i) not in self._seam:
             e_in, e_out = self.inner.stringers[j][i], self.outer.stringers[j][i]
-            c_in, c_out = BRep_Tool.Curve_s(e_in, 0.0, 0.0), BRep_Tool.Curve_s(e_out, 0.0, 0.0)
+            c_in = downcast(BRep_Tool.Curve_s(e_in, 0.0, 0.0), Geom_BSplineCurve)
+            c_out = downcast(BRep_Tool.Curve_s(e_out, 0.0, 0.0), Geom_BSplineCurve)
             s0, s1 = BRep_Tool.Range_s(e_in)
             surface = _ruled(c_in, c_out, self.thickness)
             builder = BRep_Builder()
@@ -259,7 +260,7 @@ class CanalWallEdges:
         builder.Add(face, wire)
         point, normal = gp_Pnt(), gp_Vec()
         BRepGProp_Face(face).Normal(0.5 * (theta_a + theta_b), 0.5 * v_high, point, normal)
-        return face if normal.Dot(gp_Vec(*map(float, t))) > 0 else TopoDS_Face.Reversed(face)
+        return face if normal.Dot(gp_Vec(*map(float, t))) > 0 else as_face(face.Reversed())
 
 
 def _ruled(c_in: Geom_BSplineCurve, c_out: Geom_BSplineCurve, thickness: float) -> Geom_BSplineSurface:

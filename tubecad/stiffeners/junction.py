@@ -195,8 +195,8 @@ def _ring_cut(
             f"stiffeners.rings: {ring.name} at s = {s:.6g} lies all round an opening", key="stiffeners.rings"
         )
     wedge = ring_wedge(base, s, u_lo, u_hi, reach, profile)
-    cut, _, _ = refine_section_edges(ring.solid.cut(wedge).wrapped)
-    solids = bd.Shape.cast(cut).solids()
+    pieces, _, _ = refine_section_edges(ring.solid.cut(wedge).wrapped)
+    solids = bd.Shape.cast(pieces).solids()
     if len(solids) != 1 or not solids[0].is_valid:
         raise ParameterError(
             f"stiffeners.rings: {ring.name} at s = {s:.6g} cut at the opening gave {len(solids)} pieces",

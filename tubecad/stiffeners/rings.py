@@ -34,7 +34,7 @@ from collections.abc import Callable
 
 import numpy as np
 from OCP.Geom import Geom_Circle
-from OCP.Geom2d import Geom2d_Curve
+from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Curve
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Vec2d
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Solid, TopoDS_Vertex
 
@@ -46,6 +46,7 @@ from tubecad.core.tolerance import MIN_SIZE, orthogonality_for
 from tubecad.curves.axis import Axis
 from tubecad.fitting import FitError, TubeSurface, exact_section_surface, fit_frame
 from tubecad.fitting.canal_section import canal_section_surface, fit_canal
+from tubecad.occ_compat import downcast
 from tubecad.stiffeners.limits import checked_levels, checked_reach, fit_failure, max_curvature
 from tubecad.stiffeners.profiles import Profile
 from tubecad.surface import CurvatureLineTube
@@ -253,7 +254,7 @@ class _Arcs:
 
     def pcurve(self, j: int, s: float) -> Geom2d_Curve:
         """The pcurve (u(theta), s) of arc j of the circle at ``s``."""
-        return self._pcurves[j].Translated(gp_Vec2d(0.0, s))
+        return downcast(self._pcurves[j].Translated(gp_Vec2d(0.0, s)), Geom2d_BSplineCurve)
 
 
 class _Circle:

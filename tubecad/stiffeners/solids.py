@@ -38,6 +38,7 @@ from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, orthogonality_for
 from tubecad.fitting import FitError, exact_section_surface, fit_frame
 from tubecad.fitting.occ_arrays import integers, knots_and_multiplicities, points_2d, reals, reals_2d
+from tubecad.occ_compat import copy_of
 from tubecad.stiffeners.canal import canal_stringer_strips
 from tubecad.stiffeners.limits import checked_levels, checked_reach, fit_failure
 from tubecad.stiffeners.profiles import SIDES, Profile
@@ -295,7 +296,7 @@ def cap_plane(frame, s: float) -> CapPlane:
 def surface_part(surface: Geom_BSplineSurface, u0: float, u1: float) -> Geom_BSplineSurface:
     """The part u0 <= u <= u1 of a surface periodic in u, as a non-periodic B-spline (its
     isolines then have no knots outside the part)."""
-    piece = surface.Copy()
+    piece = copy_of(surface)
     _, _, v0, v1 = surface.Bounds()
     piece.Segment(u0, u1, v0, v1)
     return piece
