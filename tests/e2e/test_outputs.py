@@ -327,8 +327,8 @@ def test_step_at_large_coordinates_is_refused_or_passes_honestly(tmp_path):
     else:
         assert result.exit_code == 2 and "Traceback" not in result.output
         line = result.output.strip().splitlines()[-1]
-        assert line.startswith("Error: far.step: STEP holds the surface only to ")
-        assert "above [fit] tolerance 2.7e-07; use BREP" in line
+        assert line.startswith("Error: ") and "far.toml: [fit] far.step: STEP holds the surface only to " in line
+        assert "above the fit tolerance 2.7e-07; use BREP" in line
         assert 2.7e-7 < float(line.split("only to ")[1].split()[0]) < 1e-5  # 4.0e-7 measured
         assert sorted(p.name for p in tmp_path.iterdir()) == ["far.toml"]  # neither file, nor the report, is left
     result = run("build", spec, "-o", tmp_path / "far.brep", "--report", tmp_path / "r.json")

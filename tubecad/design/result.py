@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
 from tubecad.core.progress import Progress
+from tubecad.design.stages import stage
 
 if TYPE_CHECKING:
     from tubecad.export.registry import Exportable, OutputFormat
@@ -133,7 +134,8 @@ def write_outputs(
 
     progress.step("writing and reading back files", 2 * len(outputs))
     for path in map(Path, outputs):  # STEP of an assembly keeps its names: wall, ring_03, line_ring_03, ...
-        done, info = write_output(item, path, partial(check, path=path))
+        with stage("export"):  # a file that does not hold the build: the fit tolerance or the unit at fault
+            done, info = write_output(item, path, partial(check, path=path))
         written.append(done)
         exports[str(path)] = info
         progress.advance(1, f"checked {path.name}")

@@ -111,8 +111,8 @@ def _invalid_file(name: str, target: Path, shape: object) -> FileAccuracyError:
     if fmt in ("step", "iges") and held > EDGE_TOLERANCE / 10:
         return FileAccuracyError(
             f"{message}: {fmt.upper()}'s {WRITTEN_DIGITS} digits hold coordinates up to {size:.3g} only to {held:.1g}, "
-            f"near the edge tolerance {EDGE_TOLERANCE:g}; {ALTERNATIVES[fmt]}, or a larger [units] length",
-            key="units.length",
+            f"near the edge tolerance {EDGE_TOLERANCE:g}; {ALTERNATIVES[fmt]}, or a larger length unit",
+            key="length_unit",
         )
     return FileAccuracyError(message)
 
@@ -145,7 +145,7 @@ def measure_file(shape: TopoDS_Shape, build: TubeBuild, target: Path, wall_solid
     fmt = cad_format(target)
     name, what = target.name, fmt.upper()
     better = (
-        f"{ALTERNATIVES[fmt]}, or a looser [fit] tolerance" if fmt in ALTERNATIVES else "use a looser [fit] tolerance"
+        f"{ALTERNATIVES[fmt]}, or a looser fit tolerance" if fmt in ALTERNATIVES else "use a looser fit tolerance"
     )
     if (expected is not None and m.faces < expected) or len(m.per_radius) < len(set(levels)):
         raise FileAccuracyError(
@@ -154,15 +154,15 @@ def measure_file(shape: TopoDS_Shape, build: TubeBuild, target: Path, wall_solid
         )
     if m.max_deviation > limit_dev:
         raise FileAccuracyError(
-            f"{name}: {what} holds the surface only to {m.max_deviation:.2g} at this size, above [fit] tolerance "
+            f"{name}: {what} holds the surface only to {m.max_deviation:.2g} at this size, above the fit tolerance "
             f"{limit_dev:g}; {better}",
-            key="fit.tolerance",
+            key="tolerance",
         )
     if m.max_orthogonality > limit_orth:
         raise FileAccuracyError(
             f"{name}: {what} holds the isolines orthogonal only to |cos| {m.max_orthogonality:.2g} at this size, above "
-            f"the fitted {limit_orth:g} (from [fit] tolerance {limit_dev:g}); {better}",
-            key="fit.tolerance",
+            f"the fitted {limit_orth:g} (from the fit tolerance {limit_dev:g}); {better}",
+            key="tolerance",
         )
     return out
 

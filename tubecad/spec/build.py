@@ -236,7 +236,8 @@ def build_and_export(
     # a bad output is refused, naming it, before anything is built or written
     deflection, angular = check_build_outputs(spec, outputs, report_path, mesh_tolerance, mesh_angle)
     built = build_spec(spec, progress)
-    export_build(built, outputs, step_schema, written, deflection, angular, progress)
+    with spec_errors(spec):  # a file that does not hold the build names [fit] tolerance or [units] length
+        export_build(built, outputs, step_schema, written, deflection, angular, progress)
     if report_path is not None:
         written.append(write_text(report_path, to_json(built.report)))
     return built.report

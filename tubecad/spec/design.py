@@ -27,6 +27,8 @@ if TYPE_CHECKING:
 
 #: the mesh's parameters named otherwise than the spec's keys (:func:`tubecad.fem.shell_mesh`'s)
 SHELL_MESH_KEYS = {"thickness": "wall.thickness", "wall_side": "wall.side", "panel_rings": "panels.rings"}
+#: the written files' refusals (tubecad.export.readback) under the spec's section and key
+EXPORT_KEYS = {"tolerance": ("fit", "fit.tolerance"), "length_unit": ("units", "units.length")}
 #: the shop templates' parameters (tubecad.shop.branch_template) under the spec's keys
 TEMPLATE_KEYS = {"branch.radius": "branches.radius", "main.radius": "tube.radius"}
 #: the keys of a ParameterError about the fit's tolerances (a [fit] error, not [wall]'s)
@@ -174,6 +176,9 @@ def as_spec_error(spec: TubeSpec, exc: TubecadError) -> SpecError:
         return spec_error(source, exc, ("mesh", "stiffeners", "panels"), "mesh", SHELL_MESH_KEYS)
     if stage == "analysis":
         return spec_error(source, exc, ("analysis",), "analysis")
+    if stage == "export" and exc.key in EXPORT_KEYS:  # a file that does not hold the build
+        section, key = EXPORT_KEYS[exc.key]
+        return SpecError(f"{source}: [{section}] {exc}", key=key)
     if stage == "fabrication":  # a value the pieces cannot have (a plate too small, a joint)
         return spec_error(source, exc, ("fabrication",), "fabrication")
     if stage == "templates":  # a branch's or the main tube's radius, under their spec keys
