@@ -43,6 +43,8 @@ RESIDUAL = 1e-13
 NEWTON_STEPS = 40
 #: samples of the first, sequential march round the branch
 COARSE = 12
+#: the shortest step (rad of the branch's turn) the march halves down to before it gives up
+MIN_STEP = 1e-6
 #: |J|'s reciprocal condition number below which the surfaces are taken as tangent
 TANGENCY = 1e-6
 
@@ -199,10 +201,16 @@ def saddle_curve(
     scale = _scale(main, branch)
     if near is None:
         near = _march(main, branch, scale, key)
-    guess = _interpolated(near, u_b)
-    x, size, jac, _ = _solve(main, branch, u_b, guess, scale)
-    _check(size, jac, u_b, scale, key)
-    return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], main.points(x[:, 0], x[:, 1]), float(size.max()))
+    sol = _corrected(main, branch, u_b, _interpolated(near, u_b), scale)  # all samples at once
+    if sol is not None:
+        x, size, jac, _ = sol
+        _check(size, jac, u_b, scale, key)
+        return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], main.points(x[:, 0], x[:, 1]), float(size.max()))
+    # the interpolated start left a span or Newton did not converge from it (a saddle that turns
+    # fast, near tangency): march through the samples one by one instead
+    start = _interpolated(near, u_b[:1])[0]
+    _, x, residual = _follow(main, branch, u_b, start, scale, key)
+    return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], main.points(x[:, 0], x[:, 1]), residual)
 
 
 def _scale(main: CurvatureLineSurface, branch: CurvatureLineSurface) -> float:
@@ -253,18 +261,82 @@ def saddle_distance(
 
 
 def _march(main: CurvatureLineSurface, branch: CurvatureLineSurface, scale: float, key: str) -> SaddleCurve:
-    """The saddle at COARSE + 1 samples, marched one at a time from the start (the tangent
-    J^-1 dX_B/du_B predicts the next sample, Newton corrects it)."""
-    coarse = np.linspace(0.0, 2.0 * np.pi, COARSE + 1)
-    x = _start(main, branch, 0.0, key)[None, :]
-    marched, residual = np.empty((COARSE + 1, 3)), 0.0
-    for i, u in enumerate(coarse):
-        x, size, jac, b_u = _solve(main, branch, coarse[i : i + 1], x, scale)
-        _check(size, jac, u, scale, key)
-        marched[i], residual = x[0], max(residual, float(size[0]))
-        x = x + np.linalg.solve(jac, b_u[..., None])[..., 0] * (2.0 * np.pi / COARSE)
+    """The saddle at COARSE + 1 samples and every sample the march took between them
+    (:func:`_follow` from the first point of the branch's stringer 0 outside the main)."""
+    targets = np.linspace(0.0, 2.0 * np.pi, COARSE + 1)
+    branch_u, marched, residual = _follow(main, branch, targets, _start(main, branch, 0.0, key), scale, key, True)
     points = main.points(marched[:, 0], marched[:, 1])
-    return SaddleCurve(coarse, marched[:, 2], np.unwrap(marched[:, 0]), marched[:, 1], points, residual)
+    return SaddleCurve(branch_u, marched[:, 2], np.unwrap(marched[:, 0]), marched[:, 1], points, residual)
+
+
+def _follow(
+    main: CurvatureLineSurface,
+    branch: CurvatureLineSurface,
+    targets: FloatArray,
+    start: FloatArray,
+    scale: float,
+    key: str,
+    keep_all: bool = False,
+) -> tuple[FloatArray, FloatArray, float]:
+    """(u_B, (u_A, s_A, s_B), largest residual) at each of ``targets`` (increasing from 0),
+    marched from ``start`` (the point at targets[0]): the tangent J^-1 dX_B/du_B predicts the
+    next point, Newton corrects it. The step is halved where the prediction leaves either
+    surface's span or Newton does not converge from it (near tangency, r -> R, the saddle's
+    s_B moves fast as the branch grazes the main wall), down to MIN_STEP, and doubled again
+    after a step that went through; with ``keep_all`` every point reached is returned, not
+    only the targets'. The march never evaluates a surface outside its span."""
+    u = float(targets[0])
+    sol = _corrected(main, branch, np.array([u]), start[None, :], scale)
+    if sol is None:
+        raise ParameterError(f"{key}: the saddle curve did not converge at the branch's stringer {u:.4g} rad", key=key)
+    x, size, jac, b_u = sol
+    _check(size, jac, np.array([u]), scale, key)
+    us, xs, residual = [u], [x[0]], float(size[0])
+    h = float(targets[1] - targets[0])
+    for target in targets[1:]:
+        while u < target:
+            h = min(h, target - u)
+            predicted = x + np.linalg.solve(jac, b_u[..., None])[..., 0] * h
+            sol = _corrected(main, branch, np.array([u + h]), predicted, scale)
+            if sol is None:
+                if h < MIN_STEP:
+                    raise ParameterError(
+                        f"{key}: the saddle curve cannot be followed past the branch's stringer {u:.4g} rad "
+                        "(the branch leaves the main surface's span there, or grazes it)",
+                        key=key,
+                    )
+                h /= 2.0
+                continue
+            x, size, jac, b_u = sol
+            u = float(target) if target - (u + h) < 1e-15 else u + h
+            _check(size, jac, np.array([u]), scale, key)
+            residual = max(residual, float(size[0]))
+            if keep_all or u == target:
+                us.append(u)
+                xs.append(x[0])
+            h *= 2.0  # a step that went through: try a longer one next
+    return np.array(us), np.array(xs), residual
+
+
+def _corrected(
+    main: CurvatureLineSurface, branch: CurvatureLineSurface, u_b: FloatArray, x: FloatArray, scale: float
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray] | None:
+    """:func:`_solve` from ``x``, or None where the prediction or a Newton step leaves a
+    surface's span or Newton does not converge (the caller shortens its step)."""
+    if not (_within(main, x[:, 1]) and _within(branch, x[:, 2])):
+        return None
+    try:
+        x, size, jac, b_u = _solve(main, branch, u_b, x, scale)
+    except ParameterError:  # a Newton step out of a span: evaluating there is refused
+        return None
+    if not (size.max() <= RESIDUAL * scale and _within(main, x[:, 1]) and _within(branch, x[:, 2])):
+        return None
+    return x, size, jac, b_u
+
+
+def _within(surface: CurvatureLineSurface, s: FloatArray) -> bool:
+    s0, s1 = surface.span
+    return bool(np.all((s >= s0) & (s <= s1)))
 
 
 def _interpolated(curve: SaddleCurve, u_b: FloatArray) -> FloatArray:
