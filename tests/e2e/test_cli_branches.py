@@ -170,3 +170,22 @@ def test_a_curved_branch_builds_a_valid_junction(tmp_path):
     assert junction["valid"] and junction["solids"] == 1
     for saddle in junction["saddles"].values():
         assert saddle["edges_deviation"] < 1e-6 and abs(saddle["coverage"] - 1) < 1e-8
+
+
+@pytest.mark.slow
+def test_a_near_equal_spec_tee_builds_as_the_python_api_does(tmp_path):
+    """Issue 43: r = 49 on R = 50 with 4 mm walls (r / R = 0.98, refused by the old spec rule
+    r + t_b/2 < R - t/2): one valid junction written to STEP and read back, its saddles on
+    the exact ones (the report's edges' distance from the Newton-solved saddle)."""
+    import json
+
+    spec = tmp_path / "tee.toml"
+    spec.write_text(spec_text(BRANCH.replace("radius = 30.0", "radius = 49.0")))
+    result = CliRunner().invoke(
+        cli, ["build", str(spec), "-o", str(tmp_path / "tee.step"), "--report", str(tmp_path / "r.json")]
+    )
+    assert result.exit_code == 0, result.output
+    junction = json.loads((tmp_path / "r.json").read_text())["junction"]
+    assert junction["valid"] and junction["solids"] == 1
+    for name in ("saddle_outer", "saddle_inner"):
+        assert junction["saddles"][name]["edges_deviation"] < 1e-8  # measured 1e-10

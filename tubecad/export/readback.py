@@ -144,9 +144,7 @@ def measure_file(shape: TopoDS_Shape, build: TubeBuild, target: Path, wall_solid
     }
     fmt = cad_format(target)
     name, what = target.name, fmt.upper()
-    better = (
-        f"{ALTERNATIVES[fmt]}, or a looser fit tolerance" if fmt in ALTERNATIVES else "use a looser fit tolerance"
-    )
+    better = f"{ALTERNATIVES[fmt]}, or a looser fit tolerance" if fmt in ALTERNATIVES else "use a looser fit tolerance"
     if (expected is not None and m.faces < expected) or len(m.per_radius) < len(set(levels)):
         raise FileAccuracyError(
             f"{name}: {what} read back without the wall's tube faces ({m.faces} found on the "

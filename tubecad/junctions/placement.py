@@ -72,3 +72,52 @@ def branch_surface(
         if exc.key is None:
             exc.key = "radius"
         raise
+
+
+def branch_start_problem(
+    main: CurvatureLineSurface,
+    main_offsets: tuple[float, float],
+    branch: CurvatureLineSurface,
+    branch_offsets: tuple[float, float],
+    at: float,
+) -> tuple[str, str] | None:
+    """Why a branch wall cannot be joined to the main wall at arc length ``at``, or None: the
+    one rule of the spec and the builder alike (issue 43).
+
+    The junction W = (A_o u B_o) - (A_i u B_i) needs each branch surface to start inside its
+    main surface and leave it through the wall: the branch's outer surface B_o (offset
+    ``branch_offsets[1]``) inside the main's outer surface A_o (``main_offsets[1]``) at the
+    branch's first ring, and its bore B_i (``branch_offsets[0]``) inside the main's bore A_i
+    (``main_offsets[0]``). Then B_o's start lies in the main wall or its bore (fused away or
+    bored out) and each saddle is one closed curve. (B_o may start inside the main wall itself:
+    r + t_b/2 < R - t/2 is not needed; the equal tee, where the surfaces are tangent, is
+    refused by the saddle's own tangency test.)
+
+    Args:
+        main: the main tube's exact surface.
+        main_offsets: (d_in, d_out) of the main wall (tubecad.brep.wall.wall_offsets).
+        branch: the branch tube's exact surface (placed: :func:`branch_surface`).
+        branch_offsets: (d_in, d_out) of the branch's wall.
+        at: the arc length on the main axis where the branch starts.
+
+    Returns:
+        None, or (what is wrong, the branch's parameter at fault: ``radius``) for the
+        caller's message and key.
+    """
+    u = np.linspace(0.0, 2.0 * np.pi, 73)
+    s_main = np.clip(np.array([at]), *main.span)
+    centre = main.axis.position(s_main)[0]
+    r_main = float(main.radius_law.r(s_main)[0])
+    for which, k in (("outer surface", 1), ("bore", 0)):
+        start = branch.offset(branch_offsets[k]).points(u, np.full_like(u, branch.span[0]))
+        reach = float(np.linalg.norm(start - centre, axis=1).max())
+        limit = r_main + main_offsets[k]
+        if reach >= limit:
+            main_surface = "outer surface" if k else "bore"
+            return (
+                f"the branch's {which} must start inside the main tube's {main_surface}: it reaches {reach:.6g} "
+                f"from the main axis there, the main's {main_surface} {limit:.6g} (a smaller radius or offset, "
+                "or a thinner branch wall)",
+                "radius",
+            )
+    return None

@@ -387,7 +387,8 @@ BRANCH_KEYS = {
     ),
     "radius": Key(
         "radius",
-        help="the branch's radius rho > 0, its wall inside the main tube's bore; or a radius law r(s) along the branch",
+        help="the branch's radius rho > 0, its outer surface starting inside the main's outer surface and its bore "
+        "inside the main's bore; or a radius law r(s) along the branch",
     ),
     "angle": Key(
         "number",
@@ -408,8 +409,8 @@ BRANCH_KEYS = {
         "number",
         required=False,
         default=0.0,
-        help="the branch axis' sideways offset from the main axis (a hillside nozzle); the branch's wall must stay "
-        "inside the main tube's bore where it starts (default 0)",
+        help="the branch axis' sideways offset from the main axis (a hillside nozzle); the branch's surfaces must "
+        "start inside the main's (default 0)",
     ),
     "axis": Key(
         "table",

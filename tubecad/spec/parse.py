@@ -271,17 +271,17 @@ def _numbered(fail: Callable[..., SpecError], name: str, index: int) -> Callable
 
 def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable[..., SpecError]) -> None:
     """[[branches]]: a main [wall] to join (and no [panels]: not built on a junction yet);
-    branch stiffeners with the main [stiffeners] and indices in the branch's layout; each branch placed inside the main axis' span, its tube regular, its wall
-    inside the main tube's bore where it starts (so it leaves through the main wall)."""
-    import numpy as np
-
+    branch stiffeners with the main [stiffeners] and indices in the branch's layout; each branch placed inside the main axis' span, its tube regular, its
+    surfaces starting inside the main's (:func:`tubecad.junctions.placement.branch_start_problem`,
+    the builder's rule too)."""
     from tubecad.core.tolerance import MIN_SIZE
+    from tubecad.junctions.placement import branch_start_problem
 
     if model.wall is None:
         raise fail("[[branches]] join the branch's wall to the main tube's: the spec needs a [wall] section", "wall")
     if model.panels is not None:
         raise fail("[panels] on a wall with [[branches]] is not built yet: remove one of them", "panels")
-    main_in = model.wall.offsets()[0]
+    main_offsets = model.wall.offsets()
     for i, branch in enumerate(model.branches):
         where = f"[[branches]] #{i + 1}"
         try:
@@ -327,20 +327,10 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
             raise fail(
                 f"{where} wall: thickness {wall.thickness:g} leaves no bore in the branch", "branches.wall.thickness"
             )
-        # the branch's first ring, on its outer surface, must lie inside the main tube's bore
-        u = np.linspace(0.0, 2.0 * np.pi, 73)
-        start = surface.offset(b_out).points(u, np.full_like(u, surface.span[0]))
-        s_main = np.clip(np.array([branch.at]), *tube.span)
-        centre = tube.axis.position(s_main)[0]
-        reach = float(np.linalg.norm(start - centre, axis=1).max())
-        inner = float(tube.radius_law.r(s_main)[0]) + main_in
-        if reach >= inner:
-            raise fail(
-                f"{where} the branch's wall must start inside the main tube's bore: its outer surface reaches "
-                f"{reach:.6g} from the main axis there, the bore's radius is {inner:.6g} (a smaller radius or "
-                "offset, or a thinner wall)",
-                "branches.radius" if abs(branch.offset) == 0 else "branches.offset",
-            )
+        # each branch surface starts inside its main surface: the builder's own rule
+        problem = branch_start_problem(tube, main_offsets, surface, (b_in, b_out), branch.at)
+        if problem is not None:
+            raise fail(f"{where} {problem[0]}", "branches.radius" if abs(branch.offset) == 0 else "branches.offset")
 
 
 def _check_build_sections(

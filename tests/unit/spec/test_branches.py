@@ -42,8 +42,20 @@ def test_a_branch_is_placed_where_its_keys_say():
         (BRANCH + "angle = 0.0\n", MAIN, "branches.angle", "angle must be in (0, 180)"),
         (BRANCH + "angle = 180.0\n", MAIN, "branches.angle", "angle must be in (0, 180)"),
         (BRANCH.replace("length = 150.0", "length = -1.0"), MAIN, "branches.length", "length must be > 0"),
-        (BRANCH.replace("radius = 30.0", "radius = 47.0"), MAIN, "branches.radius", "must start inside the main"),
-        (BRANCH + "offset = 20.0\n", MAIN, "branches.offset", "must start inside the main tube's bore"),
+        # the builder's rule (tubecad.junctions.placement.branch_start_problem): outer in outer, bore in bore
+        (
+            BRANCH.replace("radius = 30.0", "radius = 50.5"),
+            MAIN,
+            "branches.radius",
+            "the branch's outer surface must start inside the main tube's outer surface: it reaches 52.5",
+        ),
+        (
+            BRANCH.replace("radius = 30.0", "radius = 49.5") + "wall = { thickness = 0.5 }\n",
+            MAIN,
+            "branches.radius",
+            "the branch's bore must start inside the main tube's bore: it reaches 49.25",
+        ),
+        (BRANCH + "offset = 25.0\n", MAIN, "branches.offset", "must start inside the main tube's outer surface"),
         (BRANCH.replace("radius = 30.0", "radius = 0.0"), MAIN, "branches.radius", "radius"),
         (BRANCH + "flange = 1.0\n", MAIN, "branches", "unknown key [[branches]] #1 flange"),
         (BRANCH + 'axis = { k = "foo(s)" }\n', MAIN, "branches.axis.k", "function 'foo' is not allowed"),
@@ -123,3 +135,13 @@ def test_a_curved_branch_follows_its_natural_equations():
     got = spec.branches[0].surface(spec.tube).axis.position(s)
     want = np.column_stack([150 + 200 * (1 - np.cos(s / 200)), np.zeros_like(s), 200 * np.sin(s / 200)])
     assert np.abs(got - want).max() < 1e-9
+
+
+@pytest.mark.parametrize("radius", [46.5, 48.0, 49.0])
+def test_the_spec_takes_the_near_equal_branches_the_builder_builds(radius):
+    """Issue 43: one rule for the spec and the builder. With 4 mm walls on R = 50 the old rule
+    r + t_b/2 < R - t/2 stopped spec tees at r/R < 0.92; the builder makes r = 49 (one valid
+    solid, its saddles 1e-10 from the exact ones: tests/unit/junctions/test_near_equal.py),
+    so the spec takes it too."""
+    spec = parsed(spec_text(BRANCH.replace("radius = 30.0", f"radius = {radius}")))
+    assert spec.branches[0].radius == radius
