@@ -15,6 +15,7 @@ normal (towards the main axis' forward end), so its stringer 0 starts in the pla
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,6 +23,9 @@ from tubecad.core.errors import ParameterError
 from tubecad.curves.natural import NaturalAxis
 from tubecad.surface.canal import tube_or_canal
 from tubecad.surface.protocol import CurvatureLineSurface
+
+if TYPE_CHECKING:
+    from tubecad.junctions.saddle import SaddleCurve
 
 
 def branch_surface(
@@ -121,3 +125,27 @@ def branch_start_problem(
                 "radius",
             )
     return None
+
+
+def opening_clearance(main: CurvatureLineSurface, first: SaddleCurve, second: SaddleCurve) -> float:
+    """The clearance between two openings in the main tube: the shortest distance between the
+    two saddles' regions unrolled onto the main's surface (girth r u_A by arc length s_A, u_A
+    taken round either way), 0 where they touch or overlap, measured with shapely.
+
+    Args:
+        main: the main tube's surface the saddles lie on (its outer surface for the openings).
+        first: one branch's saddle on it (:func:`tubecad.junctions.saddle.saddle_curve`).
+        second: the other branch's.
+
+    Returns:
+        The clearance in model units (>= 0; 0: the openings meet).
+    """
+    from shapely.geometry import Polygon
+
+    def unrolled(saddle: SaddleCurve, turn: float) -> Polygon:
+        s = saddle.main_s
+        girth = main.radius_law.r(s) * (saddle.main_u + turn)
+        return Polygon(np.column_stack([girth, s])).buffer(0)
+
+    one = unrolled(first, 0.0)
+    return float(min(one.distance(unrolled(second, turn)) for turn in (-2.0 * np.pi, 0.0, 2.0 * np.pi)))

@@ -59,6 +59,7 @@ from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, EDGE_TOLERANCE
 from tubecad.junctions.edges import SaddleEdge, wall_saddles
+from tubecad.junctions.saddle import SaddleCurve
 from tubecad.occ_compat import ListOfShape, as_edge, as_face, as_wire, box_corners, shapes_in
 from tubecad.surface.protocol import CurvatureLineSurface
 
@@ -200,6 +201,7 @@ def build_branched_wall(
         rings, stringers = list(layout.s_rings), list(layout.stringers_deg)
         outers.append(solid(branch.surface, b_out, rings, stringers, f"branch{tag}", ""))
         inners.append(solid(branch.surface, b_in, rings, stringers, f"branch{tag}", "_inner"))
+    _check_openings_apart(main.offset(main_out), [e.saddle for e in saddles[::2]], key)
     rings, stringers = list(main_layout.s_rings), list(main_layout.stringers_deg)
     a_o = solid(main, main_out, rings, stringers, "main", "")
     a_i = solid(main, main_in, rings, stringers, "main", "_inner")
@@ -431,3 +433,19 @@ def _exact_deviation(saddle: SaddleEdge, found: list[_OnSaddle]) -> float:
         points += [edge.curve.Value(float(t)).Coord() for t in probes]
         guesses.append(edge.guesses(probes))
     return float(saddle.exact_distance(np.array(points), np.concatenate(guesses)).max())
+
+
+def _check_openings_apart(outer: CurvatureLineSurface, saddles: list[SaddleCurve], key: str) -> None:
+    """Refuse two branches whose openings in the main's outer surface ``outer`` meet (their
+    outer saddles, :func:`~tubecad.junctions.placement.opening_clearance`): the branches would
+    cut into each other, which the union would silently make one odd opening of."""
+    from tubecad.junctions.placement import opening_clearance
+
+    for k in range(len(saddles)):
+        for m in range(k + 1, len(saddles)):
+            if opening_clearance(outer, saddles[k], saddles[m]) <= 0.0:
+                raise ParameterError(
+                    f"{key}: the openings of branches {k} and {m} meet in the main tube's outer surface "
+                    "(their outer saddles overlap): move them apart (at, around) or make them smaller",
+                    key=key,
+                )
