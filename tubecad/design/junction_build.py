@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from tubecad.export.registry import Exportable, OutputFormat
     from tubecad.junctions import BranchWall, JunctionWall
     from tubecad.stiffeners.pad import Pad
+    from tubecad.surface.protocol import CurvatureLineSurface
 
 
 @dataclass
@@ -190,7 +191,33 @@ def junction_pads(design: JunctionDesign, junction: JunctionWall, walls: list[Br
                 branch.pad.width,
                 main.tolerance,
             )
+    _check_pads_apart(main.surface.offset(main_out), junction, pads, len(walls))
     return pads
+
+
+def _check_pads_apart(outer: CurvatureLineSurface, junction: JunctionWall, pads: dict[int, Pad], n: int) -> None:
+    """Refuse a pad that reaches another branch's opening or pad on the main's outer surface
+    ``outer`` (both unrolled: :mod:`tubecad.junctions.placement`), naming its width and the
+    clearance it would need."""
+    from tubecad.junctions import saddle_name
+    from tubecad.junctions.placement import region_clearance, unrolled_opening, unrolled_patch
+
+    openings = {
+        m: unrolled_opening(outer, junction.saddles[saddle_name("saddle_outer", m, n)].saddle) for m in range(n)
+    }
+    patches = {k: unrolled_patch(outer, pad.s_range, pad.angles_deg) for k, pad in pads.items()}
+    for k, patch in patches.items():
+        others = [(f"the opening of branch {m}", region) for m, region in openings.items() if m != k]
+        others += [(f"the pad of branch {m}", region) for m, region in patches.items() if m > k]
+        for what, region in others:
+            if region_clearance(outer, patch, region) <= 0.0:
+                overlap = patch.intersection(region).area
+                with stage("pads", k):
+                    raise ParameterError(
+                        f"pad.width: the pad of branch {k} (width {pads[k].width:g}) reaches {what} on the main "
+                        f"tube (they overlap over {overlap:.4g} square units): a narrower pad, or the branches apart",
+                        key="pad.width",
+                    )
 
 
 def junction_stiffeners(

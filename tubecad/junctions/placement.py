@@ -25,6 +25,8 @@ from tubecad.surface.canal import tube_or_canal
 from tubecad.surface.protocol import CurvatureLineSurface
 
 if TYPE_CHECKING:
+    from shapely.geometry import Polygon
+
     from tubecad.junctions.saddle import SaddleCurve
 
 
@@ -140,12 +142,34 @@ def opening_clearance(main: CurvatureLineSurface, first: SaddleCurve, second: Sa
     Returns:
         The clearance in model units (>= 0; 0: the openings meet).
     """
+    return region_clearance(main, unrolled_opening(main, first), unrolled_opening(main, second))
+
+
+def unrolled_opening(main: CurvatureLineSurface, saddle: SaddleCurve) -> Polygon:
+    """The region a saddle bounds on ``main``, unrolled: (girth r u_A, arc length s_A)."""
     from shapely.geometry import Polygon
 
-    def unrolled(saddle: SaddleCurve, turn: float) -> Polygon:
-        s = saddle.main_s
-        girth = main.radius_law.r(s) * (saddle.main_u + turn)
-        return Polygon(np.column_stack([girth, s])).buffer(0)
+    s = saddle.main_s
+    return Polygon(np.column_stack([main.radius_law.r(s) * saddle.main_u, s])).buffer(0)
 
-    one = unrolled(first, 0.0)
-    return float(min(one.distance(unrolled(second, turn)) for turn in (-2.0 * np.pi, 0.0, 2.0 * np.pi)))
+
+def unrolled_patch(
+    main: CurvatureLineSurface, s_range: tuple[float, float], angles_deg: tuple[float, float]
+) -> Polygon:
+    """The patch between the rings ``s_range`` and the stringer angles ``angles_deg`` of
+    ``main`` (a pad's bounds), unrolled as :func:`unrolled_opening` unrolls a saddle (the
+    girth at the patch's middle radius)."""
+    from shapely.geometry import box
+
+    r = float(main.radius_law.r(np.array([0.5 * (s_range[0] + s_range[1])]))[0])
+    return box(r * math.radians(angles_deg[0]), s_range[0], r * math.radians(angles_deg[1]), s_range[1])
+
+
+def region_clearance(main: CurvatureLineSurface, first: Polygon, second: Polygon) -> float:
+    """The shortest distance between two unrolled regions of ``main``, the second taken round
+    either way (its girth shifted by +-2 pi r); 0 where they meet."""
+    from shapely.affinity import translate
+
+    s0, s1 = first.bounds[1], first.bounds[3]
+    turn = 2.0 * math.pi * float(main.radius_law.r(np.array([0.5 * (s0 + s1)]))[0])
+    return float(min(first.distance(translate(second, xoff=k * turn)) for k in (-1, 0, 1)))

@@ -439,13 +439,16 @@ def _check_openings_apart(outer: CurvatureLineSurface, saddles: list[SaddleCurve
     """Refuse two branches whose openings in the main's outer surface ``outer`` meet (their
     outer saddles, :func:`~tubecad.junctions.placement.opening_clearance`): the branches would
     cut into each other, which the union would silently make one odd opening of."""
-    from tubecad.junctions.placement import opening_clearance
+    from tubecad.junctions.placement import region_clearance, unrolled_opening
 
+    regions = [unrolled_opening(outer, saddle) for saddle in saddles]
     for k in range(len(saddles)):
         for m in range(k + 1, len(saddles)):
-            if opening_clearance(outer, saddles[k], saddles[m]) <= 0.0:
+            if region_clearance(outer, regions[k], regions[m]) <= 0.0:
+                overlap = regions[k].intersection(regions[m]).area
                 raise ParameterError(
                     f"{key}: the openings of branches {k} and {m} meet in the main tube's outer surface "
-                    "(their outer saddles overlap): move them apart (at, around) or make them smaller",
+                    f"(they overlap over {overlap:.4g} square units): move them apart (at, around) or make them "
+                    "smaller",
                     key=key,
                 )

@@ -30,7 +30,9 @@ def test_the_clearance_between_two_openings_is_the_closed_form():
 
 
 def test_openings_that_meet_are_refused_naming_the_key():
-    with pytest.raises(ParameterError, match=r"^branches: the openings of branches 0 and 1 meet") as info:
+    with pytest.raises(
+        ParameterError, match=r"^branches: the openings of branches 0 and 1 meet .* overlap over"
+    ) as info:
         CurvatureJunction(
             bd.Edge.make_line((0, 0, 0), (300, 0, 0)),
             radius=50.0,
@@ -60,3 +62,29 @@ def test_a_cross_and_a_wye_are_one_valid_solid(arounds):
     assert tee.is_valid and len(tee.solids()) == 1 and report["valid"]
     assert set(report["saddles"]) == {"saddle_outer_0", "saddle_inner_0", "saddle_outer_1", "saddle_inner_1"}
     assert max(s["edges_deviation"] for s in report["saddles"].values()) < 1e-8
+
+
+def test_a_pad_reaching_another_opening_is_refused_naming_its_width():
+    """Openings 17 apart (a2 - a1 - 2 r_o, as above): a 20 wide pad round the first reaches
+    the second's opening; a 5 wide one does not."""
+    main_axis = bd.Edge.make_line((0, 0, 0), (400, 0, 0))
+
+    def tee(width: float) -> CurvatureJunction:
+        return CurvatureJunction(
+            main_axis,
+            radius=50.0,
+            thickness=4.0,
+            normal=(0, 1, 0),
+            rings=5,
+            branches=[
+                Branch(at=150.0, length=120.0, radius=30.0, thickness=3.0, pad_thickness=4.0, pad_width=width),
+                Branch(at=230.0, length=120.0, radius=30.0, thickness=3.0),
+            ],
+        )
+
+    with pytest.raises(
+        ParameterError, match=r"^pad\.width: the pad of branch 0 \(width 20\) reaches the opening of branch 1"
+    ) as info:
+        tee(20.0)
+    assert info.value.key == "pad.width" and info.value.stage == "pads" and info.value.branch == 0
+    assert tee(5.0).is_valid
