@@ -1,8 +1,7 @@
 """The layout as docs/ARCHITECTURE.md states it: the packages form layers, each importing
-only from the layers below it (every import counts, also one inside a function or one for
-type checkers only), and no module imports itself back through another at run time (an
-import under ``if TYPE_CHECKING:`` is never executed: a design's builder may name the
-design's class for its annotations). Read from the source, nothing is imported."""
+only from the layers below it, and no module imports itself back through another (every
+import counts, also one inside a function or for type checkers only). Read from the source,
+nothing is imported."""
 
 from __future__ import annotations
 
@@ -35,20 +34,8 @@ LAYERS = [
 RANK = {name: i for i, names in enumerate(LAYERS) for name in names}
 
 
-def type_only_imports(tree: ast.Module) -> set[ast.AST]:
-    """The import statements under ``if TYPE_CHECKING:`` (or ``typing.TYPE_CHECKING``)."""
-    found: set[ast.AST] = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.If) and (
-            getattr(node.test, "id", None) == "TYPE_CHECKING" or getattr(node.test, "attr", None) == "TYPE_CHECKING"
-        ):
-            found |= {n for stmt in node.body for n in ast.walk(stmt) if isinstance(n, (ast.Import, ast.ImportFrom))}
-    return found
-
-
-def import_graph(runtime_only: bool = False) -> dict[str, set[str]]:
-    """module -> the tubecad modules it imports (a package's ``__init__`` as the package);
-    with ``runtime_only``, not those imported for type checkers only."""
+def import_graph() -> dict[str, set[str]]:
+    """module -> the tubecad modules it imports (a package's ``__init__`` as the package)."""
     modules: dict[str, Path] = {}
     for path in PACKAGE.rglob("*.py"):
         parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
@@ -57,11 +44,7 @@ def import_graph(runtime_only: bool = False) -> dict[str, set[str]]:
     graph: dict[str, set[str]] = {name: set() for name in modules}
     for name, path in modules.items():
         package = name if path.name == "__init__.py" else name.rpartition(".")[0]
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        skipped = type_only_imports(tree) if runtime_only else set()
-        for node in ast.walk(tree):
-            if node in skipped:
-                continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.ImportFrom):
                 base = node.module or ""
                 if node.level:
@@ -120,7 +103,7 @@ def test_no_upward_import():
 
 
 def test_no_import_circle():
-    cycles = import_circles(import_graph(runtime_only=True))
+    cycles = import_circles(import_graph())
     assert not cycles, "import circles:\n" + "\n".join(" -> ".join(c) for c in cycles)
 
 
@@ -134,20 +117,12 @@ def test_the_checker_sees_a_circle_and_an_upward_import(tmp_path, monkeypatch):
     (pkg / "__init__.py").write_text("")
     (pkg / "core" / "a.py").write_text("def f():\n    from tubecad.cli import b\n")
     (pkg / "cli" / "b.py").write_text("from ..core import a\n")
-    (pkg / "cli" / "c.py").write_text(
-        "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from tubecad.cli import d\n"
-    )
-    (pkg / "cli" / "d.py").write_text("def f():\n    from tubecad.cli import c\n")
     monkeypatch.setattr(sys.modules[__name__], "PACKAGE", pkg)
     graph = import_graph()
     assert graph["tubecad.core.a"] == {"tubecad.cli", "tubecad.cli.b"}
     assert graph["tubecad.cli.b"] == {"tubecad.core", "tubecad.core.a"}
     assert upward_imports(graph) == ["tubecad.core.a -> tubecad.cli", "tubecad.core.a -> tubecad.cli.b"]
     assert ["tubecad.cli.b", "tubecad.core.a", "tubecad.cli.b"] in import_circles(graph)
-    # a type-only import counts as a layer's import, but makes no circle at run time
-    assert graph["tubecad.cli.c"] == {"tubecad.cli.d"}
-    assert import_graph(runtime_only=True)["tubecad.cli.c"] == set()
-    assert not [c for c in import_circles(import_graph(runtime_only=True)) if "tubecad.cli.c" in c]
 
 
 # --- dispatch by the surface protocol, not by the concrete class -----------------------------------

@@ -21,7 +21,7 @@ _PUBLIC = {
     "write_outputs": "tubecad.design.result",
     "mesh_tolerances": "tubecad.design.result",
     "WallResult": "tubecad.design.wall",
-    "JunctionResult": "tubecad.design.junction_build",
+    "JunctionResult": "tubecad.design.junction",
     "ShellModel": "tubecad.design.shell",
 }
 

@@ -6,7 +6,7 @@ No booleans on the wall are needed: the saddles are solved on the exact surfaces
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -16,7 +16,8 @@ from tubecad.design.stages import stage
 if TYPE_CHECKING:
     import numpy as np
 
-    from tubecad.design.junction import JunctionDesign
+    from tubecad.design.model import BranchDesign
+    from tubecad.design.wall import WallDesign
     from tubecad.shop.branch_template import BranchTemplate
     from tubecad.shop.fabrication import Fabrication
     from tubecad.shop.package import ShopData
@@ -114,42 +115,45 @@ class JunctionShop:
 
 
 def junction_shop(
-    design: JunctionDesign, fab: Fabrication, progress: Callable[[str], None] | None = None
+    main: WallDesign,
+    branches: Sequence[BranchDesign],
+    fab: Fabrication,
+    progress: Callable[[str], None] | None = None,
 ) -> JunctionShop:
-    """``design``'s shop package with the fabrication settings ``fab``: with stiffeners, the
-    main's ring frames and stringers stopped at the openings (or pads) and the branches' own
-    (:func:`tubecad.shop.package.add_stiffener_data`: a ring cut at an opening is the sector
-    of the arc it keeps, a stopped stringer each piece's strip); per branch its templates
-    (:func:`branch_shop`). ``progress(stage)`` hears of each stage."""
-    from tubecad.design.junction_build import branch_walls, junction_stiffeners
+    """The shop package of the ``main`` wall with ``branches`` joined on, with the fabrication
+    settings ``fab``: with stiffeners, the main's ring frames and stringers stopped at the
+    openings (or pads) and the branches' own (:func:`tubecad.shop.package.add_stiffener_data`:
+    a ring cut at an opening is the sector of the arc it keeps, a stopped stringer each
+    piece's strip); per branch its templates (:func:`branch_shop`). ``progress(stage)``
+    hears of each stage."""
+    from tubecad.design.junction_parts import branch_walls, junction_stiffeners
     from tubecad.shop.package import ShopData, add_stiffener_data
 
     say = progress or (lambda _stage: None)
-    walls = branch_walls(design)
+    walls = branch_walls(branches)
     data = None
-    if design.stiffeners is not None:
+    if main.stiffeners is not None:
         say("stiffeners stopped at the openings")
-        data = ShopData(None, junction_stiffeners(design, walls), [], fab)
-        main = design.main
+        data = ShopData(None, junction_stiffeners(main, branches, walls), [], fab)
         with stage("fabrication"):
             add_stiffener_data(data, tuple(main.layout.stringers_deg), main.tolerance, say)
-    branches = []
-    for k in range(len(design.branches)):
+    shops = []
+    for k, branch in enumerate(branches):
         say(f"branch {k}: saddles and templates")
-        branches.append(branch_shop(design, k))
-    return JunctionShop(branches, data, design.length_unit)
+        shops.append(branch_shop(main, branch, k))
+    return JunctionShop(shops, data, main.length_unit)
 
 
-def branch_shop(design: JunctionDesign, k: int) -> BranchShop:
-    """Branch ``k``'s templates: the exact saddles solved densely (every polyline point on
-    both surfaces to round-off), the cut unrolled onto the branch, the hole onto the main, the
-    dihedral angles, and the pad's development (:func:`tubecad.shop.panel_development.develop_panel`)."""
+def branch_shop(main: WallDesign, branch: BranchDesign, k: int) -> BranchShop:
+    """Branch ``k``'s (``branch`` on ``main``) templates: the exact saddles solved densely
+    (every polyline point on both surfaces to round-off), the cut unrolled onto the branch,
+    the hole onto the main, the dihedral angles, and the pad's development
+    (:func:`tubecad.shop.panel_development.develop_panel`)."""
     import numpy as np
 
     from tubecad.junctions import dihedral_angles, saddle_curve
     from tubecad.shop.branch_template import branch_template, hole_template
 
-    main, branch = design.main, design.branches[k]
     assert main.wall is not None  # a junction joins walls
     main_in, main_out = main.wall.offsets()
     b_in, b_out = branch.wall.offsets()

@@ -66,7 +66,8 @@ class Design(Protocol):
         """The design's shop package with the fabrication settings ``fab`` (:mod:`tubecad.design.shop`)."""
         ...
 
-    def analysis_ends(self, given: str | None, default: str) -> str:
+    @classmethod
+    def analysis_ends(cls, given: str | None, default: str) -> str:
         """The end condition of its pressure step: ``given`` if the design's model can take
         it (a ParameterError naming ``ends`` if not), else its default or ``default``."""
         ...

@@ -2,7 +2,7 @@
 
 Every design builds into a :class:`BuildResult` (a tube or wall:
 :class:`~tubecad.design.wall.WallResult`; a junction:
-:class:`~tubecad.design.junction_build.JunctionResult`), so export, read-back, the report, the
+:class:`~tubecad.design.junction.JunctionResult`), so export, read-back, the report, the
 parts and batches each have one path: :func:`write_outputs` writes every output of any of
 them, each read back by the result's own :meth:`BuildResult.check_file` before it is moved
 into place.

@@ -75,7 +75,8 @@ class WallDesign:
         """The wall's shop package with the fabrication settings ``fab`` (:func:`wall_shop`)."""
         return wall_shop(self, fab, progress)
 
-    def analysis_ends(self, given: str | None, default: str) -> str:
+    @classmethod
+    def analysis_ends(cls, given: str | None, default: str) -> str:
         """The pressure step's end condition (:func:`tubecad.design.shell.wall_ends`)."""
         from tubecad.design.shell import wall_ends
 

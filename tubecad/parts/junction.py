@@ -164,15 +164,15 @@ def build_junction_part(
 ) -> JunctionPart:
     """The junction of :class:`CurvatureJunction` (its arguments; ``options`` the keyword
     ones of :func:`junction_part_design`), for the build123d object and the CadQuery plugin
-    alike: its design built as a spec's is (:mod:`tubecad.design.junction_build`), the
+    alike: its design built as a spec's is (:mod:`tubecad.design.junction_parts`), the
     walls joined (:func:`tubecad.junctions.build_branched_wall`) and each branch's pad
     (:func:`tubecad.stiffeners.pad.reinforcement_pad`: ``pad``, ``pad_k`` with several)."""
-    from tubecad.design.junction_build import branch_walls, junction_pads, junction_wall
+    from tubecad.design.junction_parts import branch_walls, junction_pads, junction_wall
 
     design = junction_part_design(axis, radius, thickness, branches, **options)
-    walls = branch_walls(design)
-    junction = junction_wall(design, walls)
-    return JunctionPart(design, junction, walls, junction_pads(design, junction, walls))
+    walls = branch_walls(design.branches)
+    junction = junction_wall(design.main, design.branches, walls)
+    return JunctionPart(design, junction, walls, junction_pads(design.main, design.branches, junction, walls))
 
 
 class _JunctionEngine:
@@ -208,9 +208,9 @@ class _JunctionEngine:
         return self
 
     def report(self) -> dict[str, Any]:
-        """The junction's measures (:func:`tubecad.design.junction_build.junction_report`):
+        """The junction's measures (:func:`tubecad.design.junction.junction_report`):
         validity, counts, volume, each saddle's fit and edges, each pad."""
-        from tubecad.design.junction_build import junction_report
+        from tubecad.design.junction import junction_report
 
         return junction_report(self.design, self.junction, self.walls, self.pads)
 

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from tubecad.core.errors import ParameterError, SpecError
 from tubecad.design.stages import stage
-from tubecad.spec.design import design_of, spec_errors
+from tubecad.spec.design import design_class, design_of, spec_errors
 from tubecad.spec.parse import TubeSpec
 from tubecad.spec.sections import spec_error
 
@@ -50,7 +50,7 @@ def fe_model(spec: TubeSpec, **overrides: Any) -> ShellModel:
     if design.stiffeners is not None and settings.beams:
         _check_reach(spec, design.stiffeners, spec.wall, spec.source)
     if spec.analysis is not None:  # the ends the model takes, refused before it is meshed
-        analysis_settings(spec, design, closed=spec.tube.axis.closed)
+        analysis_settings(spec, type(design), closed=spec.tube.axis.closed)
     with spec_errors(spec):
         return design.shell_model(settings)
 
@@ -65,7 +65,7 @@ def _mesh_settings(spec: TubeSpec, overrides: dict[str, Any]):
         raise SpecError(f"{spec.source}: {exc}", key=exc.key or "mesh") from None
 
 
-def analysis_settings(spec: TubeSpec, design: Design, closed: bool):
+def analysis_settings(spec: TubeSpec, kind: type[Design], closed: bool):
     """The spec's [analysis] settings (tubecad.fem.settings.analysis_settings) with the ends
     the design's model takes (:meth:`~tubecad.design.model.Design.analysis_ends`)."""
     from tubecad.spec.model import AnalysisSection
@@ -76,7 +76,7 @@ def analysis_settings(spec: TubeSpec, design: Design, closed: bool):
         raise SpecError(f"{spec.source}: {exc}", key=exc.key or "analysis") from None
     given = spec.analysis.ends if spec.analysis is not None else None
     with spec_errors(spec), stage("analysis"):
-        return replace(settings, ends=design.analysis_ends(given, settings.ends))
+        return replace(settings, ends=kind.analysis_ends(given, settings.ends))
 
 
 def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
@@ -112,7 +112,7 @@ def material_and_step(spec: TubeSpec, model: ShellModel, with_step: bool):
     from tubecad.core.units import length_unit, steel_density
     from tubecad.fem.inp import Material
 
-    settings = analysis_settings(spec, design_of(spec), model.mesh.closed)
+    settings = analysis_settings(spec, design_class(spec), model.mesh.closed)
     # kg per cubic unit, in the mass unit that N and the length unit make consistent (kg m / unit: mm gives t)
     given = spec.stiffeners.density if spec.stiffeners is not None else None
     density = steel_density(spec.length_unit) if given is None else given
