@@ -34,6 +34,9 @@ pytestmark = [pytest.mark.requires("gmsh"), pytest.mark.slow]
         # the torus main within 0.32 % (its crown's boundary layer: 1.8 % at a node); the 100 mm
         # nozzle has no ring 4 sqrt(r t) from both its saddle and its end; SCF 2.6
         ("nozzle_on_torus", ("main",), (2.0, 3.5)),
+        # the equal tee (issue 43): the main's ring means within 0.53 %; SCF 2.2 near the crotch,
+        # where the mid-surfaces touch
+        ("equal_tee", ("main",), (1.5, 3.0)),
     ],
 )
 def test_a_junction_sample_analyses_from_the_command_line(tmp_path, sample, checked, concentration):
@@ -52,7 +55,7 @@ def test_a_junction_sample_analyses_from_the_command_line(tmp_path, sample, chec
     assert sorted(p.name for p in out.iterdir()) == sorted(summary["files"])
 
 
-@pytest.mark.parametrize("sample", ["tee", "lateral", "nozzle_on_torus"])
+@pytest.mark.parametrize("sample", ["tee", "lateral", "nozzle_on_torus", "equal_tee"])
 def test_a_junction_sample_meshes_with_its_sets(tmp_path, sample):
     """tubecad mesh writes the .inp, .msh and .vtu; meshio reads the .vtu back with every
     element; the deck names the saddle, the ends (and the tee's pad) and gives every element
@@ -66,8 +69,15 @@ def test_a_junction_sample_meshes_with_its_sets(tmp_path, sample):
     deck = files[0].read_text()
     sets = {line.split("NSET=")[1].strip() for line in deck.splitlines() if line.startswith("*NSET, NSET=")}
     assert {"saddle", "main_start", "main_end", "branch_end"} <= sets
-    assert ("pad" in sets) == (sample == "tee")
-    assert ("*BEAM SECTION" in deck) == (sample == "tee")  # the tee's stiffeners, as beams
+    assert ("pad" in sets) == (sample in ("tee", "equal_tee"))
+    assert ("*BEAM SECTION" in deck) == (sample in ("tee", "equal_tee"))  # the stiffeners, as beams
+    # an equal tee's crotch: the two saddle nodes where the mid-surfaces touch, (300, +-50, 0)
+    assert ("crotch" in sets) == (sample == "equal_tee")
+    if sample == "equal_tee":
+        nodes = _nodes(deck)
+        crotch = np.array(sorted((nodes[n] for n in _set(deck, "crotch")), key=lambda p: p[1]))
+        assert np.abs(crotch - [[300.0, -50.0, 0.0], [300.0, 50.0, 0.0]]).max() < 1e-9  # measured 5.2e-15
+        assert set(_set(deck, "crotch")) <= set(_set(deck, "saddle").tolist())
     saddle = _set(deck, "saddle")
     normals = deck.split("*NORMAL\n", 1)[1].split("*", 1)[0].strip().splitlines()
     rows = np.array([[float(v) for v in line.split(",")] for line in normals])
@@ -76,6 +86,12 @@ def test_a_junction_sample_meshes_with_its_sets(tmp_path, sample):
     spread = {int(n): at_saddle[at_saddle[:, 1] == n, 2:] for n in saddle[:5]}
     for n, vectors in spread.items():
         assert np.ptp(vectors, axis=0).max() > 0.1, n  # the main's and the branch's normals meet at an angle
+
+
+def _nodes(deck: str) -> dict[int, np.ndarray]:
+    block = deck.split("*NODE", 1)[1].split("\n", 1)[1].split("*", 1)[0]
+    rows = (line.split(",") for line in block.strip().splitlines())
+    return {int(r[0]): np.array([float(v) for v in r[1:4]]) for r in rows}
 
 
 def _set(deck: str, name: str) -> np.ndarray:

@@ -16,7 +16,7 @@ from conftest import SAMPLES
 pytestmark = pytest.mark.slow
 
 #: the samples `tubecad shop` runs on in the tests (tests/e2e/test_shop_cli.py)
-SHOP_SAMPLES = ["shop_duct", "tee"]
+SHOP_SAMPLES = ["shop_duct", "tee", "equal_tee"]
 
 
 def said_warnings(output: str) -> list[str]:

@@ -225,6 +225,11 @@ def _remade(edge: TopoDS_Edge, face_1, face_2, pair: _Pair, target: float) -> tu
     ends = pair.solve(params[[0, -1]], planes=(at, normal))
     if ends is None:
         return "Newton did not reach the intersection at an end"
+    reached = 0.5 * np.add(*pair.evaluate(ends)[:2])
+    if any(np.linalg.norm(reached[j] - at[j]) > BRep_Tool.Tolerance_s(vertices[j]) for j in (0, 1)):
+        # where the surfaces touch (an equal tee's crotch) the intersection near the vertex is
+        # ill-conditioned: Newton's end may leave the vertex's tolerance, which would break the solid
+        return "the intersection's end is off its vertex (the surfaces touch there)"
     low, high = sign * ends[:, k]  # the new edge's parameter: sigma = sign * x[k]
     if not high > low:
         return "the ends' parameters are not in order"
@@ -263,13 +268,28 @@ def _remade(edge: TopoDS_Edge, face_1, face_2, pair: _Pair, target: float) -> tu
         sigma = np.linspace(low, high, 2 * intervals + 1)
         exact = np.empty((len(sigma), 4))
         exact[::2] = known
-    return _edge(edge, face_1, face_2, curve, pcurve_1, pcurve_2, deviation), deviation
+    return section_edge(edge, face_1, face_2, curve, pcurve_1, pcurve_2, deviation), deviation
 
 
-def _edge(
+def section_edge(
     old: TopoDS_Edge, face_1, face_2, curve: BSpline, pcurve_1: BSpline, pcurve_2: BSpline, deviation: float
 ) -> TopoDS_Edge:
-    """The new edge: the 3D curve, both pcurves, the old edge's vertices."""
+    """An edge between two faces made of ``curve`` (3D) and its pcurves on ``face_1`` and
+    ``face_2`` (scipy B-splines of one parameter), with ``old``'s vertices and a tolerance of twice
+    ``deviation`` (at least EDGE_TOLERANCE): what replaces ``old``.
+
+    Args:
+        old: the edge replaced (its vertices are kept).
+        face_1: one face it bounds.
+        face_2: the other.
+        curve: the 3D curve.
+        pcurve_1: its pcurve on ``face_1``.
+        pcurve_2: its pcurve on ``face_2``.
+        deviation: the largest distance measured between the three.
+
+    Returns:
+        The edge.
+    """
     tolerance = max(EDGE_TOLERANCE, 2.0 * deviation)
     first, last = float(curve.t[0]), float(curve.t[-1])
     builder, edge = BRep_Builder(), TopoDS_Edge()

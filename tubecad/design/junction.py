@@ -265,6 +265,7 @@ def junction_report(
         "saddles": {
             name: {
                 "poles": saddle.poles,
+                "curves": saddle.kind,
                 "fit_deviation": saddle.deviation,
                 "edges_in_solid": len(junction.edges.get(name, [])),
                 "edges_deviation": junction.deviation[name],

@@ -16,7 +16,8 @@ directions; an element takes the normals of its own tube at its nodes (``element
 a saddle node carries the main's normal in the main's elements and the branch's in the
 branch's; CalculiX joins the two by a knot, as at any shell intersection).
 
-Sets: ``saddle`` (the nodes both tubes share), ``pad`` (the nodes of the pad's elements;
+Sets: ``saddle`` (the nodes both tubes share), ``crotch`` (an equal tee's: the two saddle nodes
+where the mid-surfaces touch), ``pad`` (the nodes of the pad's elements;
 ``pad_0``, ``pad_1``... with several branches, one per pad),
 ``main_start``, ``main_end``, ``branch_end`` (``branch_1_end``...), element blocks ``main``,
 ``branch`` (``branch_1``...), ``pad`` (a pad's elements: the main's and the pad's
@@ -46,6 +47,9 @@ from tubecad.junctions.coordinates import surface_coordinates
 from tubecad.junctions.solid import BranchWall
 from tubecad.surface.protocol import CurvatureLineSurface
 
+#: a saddle node is an equal tee's crotch node within this of its radius from the crotch point
+#: (the mesh's node at the joined mid-surfaces' vertex there: measured 1e-15 of it)
+CROTCH_NODE = 1e-4
 #: gmsh's element types used here -> (corner count, CalculiX element for order 1 / 2)
 GMSH_ELEMENTS = {3: (4, 1), 16: (4, 2), 2: (3, 1), 9: (3, 2)}
 #: a quad side is on a ring or stringer when s or u agree at its ends to this (relative; radians)
@@ -515,6 +519,7 @@ def _node_sets(mesh: FEMesh, tubes: list[JunctionTube], pads: Sequence[PadRegion
     main_nodes = users[0]
     shared = set().union(*(main_nodes & other for other in users[1:]))
     sets["saddle"] = np.array(sorted(shared), dtype=np.int64)
+    sets.update(_crotch_nodes(mesh, tubes, sets["saddle"]))
     for pad in pads:  # pad (one branch), pad_0, pad_1 ... (several): each pad's elements' nodes
         blocks = [b.connectivity.ravel() for b in mesh.shell_blocks if b.name.removesuffix("_tri") == pad.name]
         if blocks:
@@ -527,6 +532,28 @@ def _node_sets(mesh: FEMesh, tubes: list[JunctionTube], pads: Sequence[PadRegion
             sets["main_start"], sets["main_end"] = own[ends[0]], own[ends[1]]
         else:
             sets[f"{tube.name}_end"] = own[ends[1]]
+    return sets
+
+
+def _crotch_nodes(mesh: FEMesh, tubes: list[JunctionTube], saddle: np.ndarray) -> dict[str, np.ndarray]:
+    """``crotch`` (``crotch_1``... per branch with several): the saddle nodes at an equal tee's
+    two crotch points (:func:`~tubecad.junctions.crotch.crotch`, where the mid-surfaces touch),
+    each the saddle node nearest to the point, within CROTCH_NODE of the branch's radius."""
+    from tubecad.junctions.crotch import crotch
+
+    sets: dict[str, np.ndarray] = {}
+    if not saddle.size:
+        return sets
+    points = mesh.nodes[saddle]
+    scale = float(np.abs(mesh.nodes).max())
+    for k, tube in enumerate(tubes[1:], start=1):
+        touch = crotch(tubes[0].surface, tube.surface, scale)
+        if touch is None:
+            continue
+        distance = np.linalg.norm(points[None, :, :] - touch.points[:, None, :], axis=-1)
+        nearest = np.argmin(distance, axis=1)
+        if (distance[[0, 1], nearest] <= CROTCH_NODE * tube.radius).all():
+            sets["crotch" if len(tubes) == 2 else f"crotch_{k - 1}"] = np.unique(saddle[nearest])
     return sets
 
 

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import build123d as bd
 import numpy as np
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-from OCP.Geom import Geom_BSplineCurve
+from OCP.Geom import Geom_BSplineCurve, Geom_Curve, Geom_TrimmedCurve
 from OCP.gp import gp_Pnt
 from OCP.TopoDS import TopoDS_Edge
 from scipy.interpolate import make_interp_spline
@@ -30,6 +30,7 @@ from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, check_tolerance
 from tubecad.fitting.occ_arrays import integers, reals
+from tubecad.junctions.crotch_edges import fit_crotched
 from tubecad.junctions.saddle import SaddleCurve, saddle_curve, saddle_distance
 from tubecad.occ_compat import Array1OfPnt
 from tubecad.surface.protocol import CurvatureLineSurface
@@ -42,14 +43,19 @@ FIRST_INTERVALS, MOST_INTERVALS = 32, 4096
 
 @dataclass(frozen=True)
 class SaddleEdge:
-    """A saddle curve as an OCCT edge: ``name`` (``saddle_outer``, ``saddle_inner``), the
-    periodic B-spline ``curve`` (parameter u_B), its ``edge``, the exact ``saddle`` at its
-    knots, the largest distance ``deviation`` from the exact saddle measured at the
-    midpoints between them, and the exact surfaces ``main`` and ``branch`` that meet on it."""
+    """A saddle curve as OCCT edges: ``name`` (``saddle_outer``, ``saddle_inner``), its
+    ``curves`` and their ``edges``, the exact ``saddle`` at the knots, the largest distance
+    ``deviation`` from the exact saddle measured at the midpoints between them, and the exact
+    surfaces ``main`` and ``branch`` that meet on it.
+
+    A smooth saddle is one periodic B-spline (parameter u_B); an equal tee's is two curves from
+    crotch point to crotch point (:mod:`~tubecad.junctions.crotch`), edges sharing the crotch
+    vertices: ellipse arcs where they are conics (two equal straight tubes), else B-splines
+    (parameter u_B) fitted as the periodic one is."""
 
     name: str
-    curve: Geom_BSplineCurve
-    edge: TopoDS_Edge
+    curves: tuple[Geom_Curve, ...]
+    edges: tuple[TopoDS_Edge, ...]
     saddle: SaddleCurve
     deviation: float
     tolerance: float
@@ -57,8 +63,32 @@ class SaddleEdge:
     branch: CurvatureLineSurface
 
     @property
+    def curve(self) -> Geom_Curve:
+        """The saddle's curve: a smooth saddle's only one; an equal tee's first (see :attr:`curves`)."""
+        return self.curves[0]
+
+    @property
+    def edge(self) -> TopoDS_Edge:
+        """The saddle's edge: a smooth saddle's only one; an equal tee's first (see :attr:`edges`)."""
+        return self.edges[0]
+
+    @property
     def poles(self) -> int:
-        return self.curve.NbPoles()
+        """The B-spline poles of its curves (an ellipse arc has none)."""
+        return sum(c.NbPoles() for c in self.curves if isinstance(c, Geom_BSplineCurve))
+
+    @property
+    def kind(self) -> str:
+        """What its curves are: ``periodic B-spline`` (a smooth saddle), ``2 ellipse arcs`` or
+        ``2 B-splines`` (an equal tee's, through the crotch points)."""
+        if len(self.curves) == 1:
+            return "periodic B-spline"
+        return f"{len(self.curves)} {'ellipse arcs' if self.conic else 'B-splines'}"
+
+    @property
+    def conic(self) -> bool:
+        """Whether its curves are exact ellipse arcs (an equal tee of straight tubes)."""
+        return all(isinstance(c, Geom_TrimmedCurve) for c in self.curves)
 
     def exact_distance(self, points: np.ndarray, u_b: np.ndarray) -> np.ndarray:
         """How far ``points`` (n, 3) lie from the exact saddle, the intersection of the exact
@@ -71,13 +101,37 @@ class SaddleEdge:
         Returns:
             (n,) distances.
         """
-        return saddle_distance(self.main, self.branch, points, u_b, self.saddle)
+        distance = saddle_distance(self.main, self.branch, points, u_b, self.saddle)
+        near_crotch = np.isnan(distance)
+        if near_crotch.any():  # an equal tee's crotch: see saddle_distance
+            distance[near_crotch] = self._crotch_distance(points[near_crotch])
+        return distance
 
-    def to_build123d(self) -> bd.Edge:
-        """The edge as a build123d Edge labelled with its name (``saddle_outer``...)."""
-        edge = bd.Edge(self.edge)
-        edge.label = self.name
-        return edge
+    def _crotch_distance(self, points: np.ndarray) -> np.ndarray:
+        """Near an equal tee's crotch, where Newton's feet are ill-conditioned: each point's
+        distance from this saddle's curves plus their measured :attr:`deviation` from the exact
+        saddle (an upper bound of the distance from it; the ellipse arcs of two straight tubes
+        are its closed form, 1e-13 off Newton's points)."""
+        from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
+
+        out = np.full(len(points), np.inf)
+        for curve in self.curves:
+            projector = GeomAPI_ProjectPointOnCurve()
+            projector.Init(curve, curve.FirstParameter(), curve.LastParameter())
+            for i, p in enumerate(points):
+                projector.Perform(gp_Pnt(*map(float, p)))
+                if projector.NbPoints():
+                    out[i] = min(out[i], projector.LowerDistance())
+        return out + self.deviation
+
+    def to_build123d(self) -> bd.Edge | bd.Wire:
+        """The saddle as a build123d Edge (an equal tee's: a Wire of its two edges) labelled with
+        its name (``saddle_outer``...)."""
+        shape: bd.Edge | bd.Wire = (
+            bd.Edge(self.edges[0]) if len(self.edges) == 1 else bd.Wire(list(map(bd.Edge, self.edges)))
+        )
+        shape.label = self.name
+        return shape
 
 
 def periodic_bspline(u: np.ndarray, points: np.ndarray, degree: int = DEGREE) -> Geom_BSplineCurve:
@@ -108,6 +162,11 @@ def fit_saddle(
     ``intervals``: the first number of intervals tried (the other saddle's)."""
     tolerance = check_tolerance("tolerance", tolerance)
     exact = near
+    if near is None or near.corners:  # an equal tee's saddle is two curves (crotch.py)
+        exact = saddle_curve(main, branch, 2 * intervals + 1, key=key, near=near)
+        if exact.corners:
+            curves, edges, knots, deviation = fit_crotched(main, branch, exact, tolerance, key=key)
+            return SaddleEdge(name, curves, edges, knots, deviation, tolerance, main, branch)
     while True:
         exact = saddle_curve(main, branch, 2 * intervals + 1, key=key, near=exact)
         nodes = exact.points[::2].copy()
@@ -135,7 +194,7 @@ def fit_saddle(
         exact.residual,
     )
     edge = BRepBuilderAPI_MakeEdge(curve).Edge()
-    return SaddleEdge(name, curve, edge, knots, deviation, tolerance, main, branch)
+    return SaddleEdge(name, (curve,), (edge,), knots, deviation, tolerance, main, branch)
 
 
 def wall_saddles(

@@ -21,6 +21,7 @@ import numpy as np
 
 from tubecad.core.errors import ParameterError
 from tubecad.curves.natural import NaturalAxis
+from tubecad.junctions.crotch import TOUCHING
 from tubecad.surface.canal import tube_or_canal
 from tubecad.surface.protocol import CurvatureLineSurface
 
@@ -118,7 +119,7 @@ def branch_start_problem(
         start = branch.offset(branch_offsets[k]).points(u, np.full_like(u, branch.span[0]))
         reach = float(np.linalg.norm(start - centre, axis=1).max())
         limit = r_main + main_offsets[k]
-        if reach >= limit:
+        if reach > limit * (1.0 + TOUCHING):  # touching (to TOUCHING) is an equal tee: built
             main_surface = "outer surface" if k else "bore"
             return (
                 f"the branch's {which} must start inside the main tube's {main_surface}: it reaches {reach:.6g} "

@@ -33,6 +33,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from tubecad.core.errors import ParameterError
+from tubecad.junctions.crotch import Crotch, crotch
 from tubecad.surface.protocol import CurvatureLineSurface
 
 FloatArray = np.ndarray
@@ -54,6 +55,9 @@ EXTENT_STEPS = 8
 #: at most this many Gauss-Newton steps for a point's foot on the saddle (:func:`saddle_distance`),
 #: which stop where they are below FOOT_CONVERGED radians of u_B
 FOOT_STEPS, FOOT_CONVERGED = 12, 1e-14
+#: how near (rad of u_B) an equal tee's crotch points a point's distance from the saddle is taken
+#: as its distance from the two surfaces (:func:`_crotched_distance`)
+CROTCH_BAND = 0.05
 
 
 @dataclass(frozen=True)
@@ -68,6 +72,9 @@ class SaddleCurve:
     main_s: FloatArray
     points: FloatArray
     residual: float
+    #: the samples at the crotch points of an equal tee (their first, the other, the first
+    #: again at the end), where the saddle's two curves cross: () for a smooth closed saddle
+    corners: tuple[int, ...] = ()
 
     def __len__(self) -> int:
         return len(self.branch_u)
@@ -101,7 +108,20 @@ class SaddleCurve:
                     break
             return float(sign * max(sign * f[start], sign * derivatives(x)[0]))  # never short of the sample
 
+        if self.corners:
+            return self._piecewise_extent(np.asarray(values, dtype=float))
         return extreme(int(np.argmin(f)), -1.0), extreme(int(np.argmax(f)), 1.0)
+
+    def _piecewise_extent(self, values: FloatArray) -> tuple[float, float]:
+        """:meth:`extent` of a saddle with corners: each smooth curve between two crotch points
+        interpolated by a cubic spline (not-a-knot), evaluated 32 times per sample interval."""
+        low, high = float(values.min()), float(values.max())
+        for a, b in zip(self.corners[:-1], self.corners[1:]):
+            u = self.branch_u[a : b + 1]
+            fine = np.linspace(u[0], u[-1], 32 * (b - a) + 1)
+            between = CubicSpline(u, values[a : b + 1])(fine)
+            low, high = min(low, float(between.min())), max(high, float(between.max()))
+        return low, high
 
 
 def _ring_coordinates(main: CurvatureLineSurface, points: FloatArray, samples: int = 2001):
@@ -197,8 +217,11 @@ def saddle_curve(
     surface and leave it through its wall, or where the surfaces are tangent on the curve."""
     if samples < 8:
         raise ParameterError(f"samples must be at least 8, got {samples}", key="samples")
-    u_b = np.linspace(0.0, 2.0 * np.pi, samples)
     scale = _scale(main, branch)
+    touch = crotch(main, branch, scale)
+    if touch is not None:
+        return _crotched(main, branch, touch, samples, scale, key, near)
+    u_b = np.linspace(0.0, 2.0 * np.pi, samples)
     if near is None:
         near = _march(main, branch, scale, key)
     sol = _corrected(main, branch, u_b, _interpolated(near, u_b), scale)  # all samples at once
@@ -211,6 +234,48 @@ def saddle_curve(
     start = _interpolated(near, u_b[:1])[0]
     _, x, residual = _follow(main, branch, u_b, start, scale, key)
     return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], main.points(x[:, 0], x[:, 1]), residual)
+
+
+def _crotched(
+    main: CurvatureLineSurface,
+    branch: CurvatureLineSurface,
+    touch: Crotch,
+    samples: int,
+    scale: float,
+    key: str,
+    near: SaddleCurve | None,
+) -> SaddleCurve:
+    """The saddle of an equal tee (:mod:`~tubecad.junctions.crotch`): its two curves from
+    crotch point to crotch point, each sampled at (samples - 1) / 2 even steps of u_B, the
+    crotch points themselves exact (their own closed form) and the samples between them by
+    Newton, from ``near``'s interpolation (a saddle with the same corners) or marched (each
+    curve from its first point after the crotch, :func:`_start`)."""
+    m = max(4, (samples - 1) // 2)
+    ends = [float(touch.branch_u[0]), float(touch.branch_u[1]), float(touch.branch_u[0]) + 2.0 * np.pi]
+    u_b = np.concatenate([np.linspace(ends[k], ends[k + 1], m + 1)[:-1] for k in (0, 1)] + [ends[2:]])
+    corners = (0, m, 2 * m)
+    interior = np.setdiff1d(np.arange(2 * m + 1), corners)
+    x = np.empty((2 * m + 1, 3))
+    for i, c in zip(corners, (0, 1, 0)):
+        x[i] = (touch.main_u[c], touch.main_s[c], touch.branch_s)
+    sol = None
+    if near is not None and near.corners:
+        sol = _corrected(main, branch, u_b[interior], _interpolated(near, u_b[interior]), scale)
+    if sol is not None:
+        x[interior], size, jac, _ = sol
+        _check(size, jac, u_b[interior], scale, key)
+        residual = float(size.max())
+    else:
+        residual = 0.0
+        for k in (0, 1):
+            inside = u_b[k * m + 1 : (k + 1) * m]
+            _, x[k * m + 1 : (k + 1) * m], piece = _follow(
+                main, branch, inside, _start(main, branch, float(inside[0]), key), scale, key
+            )
+            residual = max(residual, piece)
+    points = main.points(x[:, 0], x[:, 1])
+    points[list(corners)] = touch.points[[0, 1, 0]]
+    return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], points, residual, corners)
 
 
 def _scale(main: CurvatureLineSurface, branch: CurvatureLineSurface) -> float:
@@ -247,6 +312,21 @@ def saddle_distance(
     points = np.asarray(points, dtype=float).reshape(-1, 3)
     u = np.asarray(u_b, dtype=float).ravel().copy()
     scale = _scale(main, branch)
+    if near.corners:
+        return _crotched_distance(main, branch, points, u, near, scale)
+    return _foot_distance(main, branch, points, u, near, scale)
+
+
+def _foot_distance(
+    main: CurvatureLineSurface,
+    branch: CurvatureLineSurface,
+    points: FloatArray,
+    u: FloatArray,
+    near: SaddleCurve,
+    scale: float,
+    bounds: tuple[FloatArray, FloatArray] | None = None,
+) -> FloatArray:
+    """:func:`saddle_distance`'s Gauss-Newton feet, u kept within ``bounds`` (per point) if given."""
     x = _interpolated(near, u)
     for _ in range(FOOT_STEPS):
         x, _, jac, b_u = _solve(main, branch, u, x, scale)
@@ -254,10 +334,40 @@ def saddle_distance(
         tangent = jac[:, :, 0] * rate[:, :1] + jac[:, :, 1] * rate[:, 1:2]  # X'(u)
         gap = main.points(x[:, 0], x[:, 1]) - points
         step = -np.einsum("pk,pk->p", gap, tangent) / np.einsum("pk,pk->p", tangent, tangent)
+        if bounds is not None:
+            step = np.clip(u + step, *bounds) - u
         if np.abs(step).max() <= FOOT_CONVERGED:
             break
         u, x = u + step, x + rate * step[:, None]
     return np.linalg.norm(gap, axis=-1)
+
+
+def _crotched_distance(
+    main: CurvatureLineSurface,
+    branch: CurvatureLineSurface,
+    points: FloatArray,
+    u: FloatArray,
+    near: SaddleCurve,
+    scale: float,
+) -> FloatArray:
+    """:func:`saddle_distance` on an equal tee's saddle (``near`` has corners): each point's foot
+    looked for on the curve its first guess lies on, kept CROTCH_BAND of u_B from the crotch
+    points. Near them the saddle's two curves cross where the surfaces touch and the crossing
+    is ill-conditioned (the Jacobian's least singular value vanishes there, and a point within
+    e of both surfaces may lie sqrt(e r) from it): a point whose foot would come nearer to a
+    crotch point than CROTCH_BAND gets NaN, for the caller to measure against the saddle's
+    closed form there (:meth:`~tubecad.junctions.edges.SaddleEdge.exact_distance`)."""
+    u0 = near.branch_u[0]
+    u = u0 + np.mod(u - u0, 2.0 * np.pi)
+    corner_u = near.branch_u[list(near.corners)]
+    piece = np.searchsorted(corner_u[1:-1], u)
+    low, high = corner_u[piece] + CROTCH_BAND, corner_u[piece + 1] - CROTCH_BAND
+    result = np.empty(len(points))
+    far = (u > low) & (u < high)
+    if far.any():
+        result[far] = _foot_distance(main, branch, points[far], u[far], near, scale, (low[far], high[far]))
+    result[~far] = np.nan
+    return result
 
 
 def _march(main: CurvatureLineSurface, branch: CurvatureLineSurface, scale: float, key: str) -> SaddleCurve:
@@ -342,12 +452,27 @@ def _within(surface: CurvatureLineSurface, s: FloatArray) -> bool:
 def _interpolated(curve: SaddleCurve, u_b: FloatArray) -> FloatArray:
     """(u_A, s_A, s_B) at ``u_b`` from ``curve``'s samples: periodic cubic splines, u_A's
     winding (how often it turns round the main tube per turn of the branch) taken out first."""
+    if curve.corners:
+        return _interpolated_piecewise(curve, u_b)
     turns = np.round((curve.main_u[-1] - curve.main_u[0]) / (2.0 * np.pi))
     values = np.column_stack([curve.main_u - turns * curve.branch_u, curve.main_s, curve.branch_s])
     values[-1] = values[0]  # the same point, to Newton's round-off
     guess = CubicSpline(curve.branch_u, values, bc_type="periodic")(u_b)
     guess[:, 0] += turns * u_b
     return guess
+
+
+def _interpolated_piecewise(curve: SaddleCurve, u_b: FloatArray) -> FloatArray:
+    """:func:`_interpolated` for a saddle with corners: a cubic spline (not-a-knot) along
+    each of its curves between two crotch points (``u_b`` taken round into its turn)."""
+    u0 = curve.branch_u[0]
+    u = u0 + np.mod(np.asarray(u_b, dtype=float) - u0, 2.0 * np.pi)
+    values = np.column_stack([curve.main_u, curve.main_s, curve.branch_s])
+    out = np.empty((len(u), 3))
+    for a, b in zip(curve.corners[:-1], curve.corners[1:]):
+        inside = (u >= curve.branch_u[a]) & (u <= curve.branch_u[b])
+        out[inside] = CubicSpline(curve.branch_u[a : b + 1], values[a : b + 1])(u[inside])
+    return out
 
 
 def _check(size: FloatArray, jac: FloatArray, u_b: FloatArray, scale: float, key: str) -> None:

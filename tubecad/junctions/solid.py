@@ -37,6 +37,7 @@ Newton, :func:`~tubecad.junctions.saddle.saddle_distance`), is measured and repo
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import build123d as bd
@@ -44,6 +45,7 @@ import numpy as np
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepAlgoAPI import BRepAlgoAPI_BooleanOperation, BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
+from OCP.BRepTools import BRepTools_ReShape
 from OCP.GCPnts import GCPnts_AbscissaPoint
 from OCP.GeomAbs import GeomAbs_BSplineCurve
 from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
@@ -60,6 +62,7 @@ from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, EDGE_TOLERANCE
 from tubecad.junctions.edges import SaddleEdge, wall_saddles
 from tubecad.junctions.saddle import SaddleCurve
+from tubecad.junctions.touching import exact_saddle_edges, touching_union
 from tubecad.occ_compat import ListOfShape, as_edge, as_face, as_wire, box_corners, shapes_in
 from tubecad.surface.protocol import CurvatureLineSurface
 
@@ -70,6 +73,9 @@ EDGE_SAMPLES = 17
 ON_SADDLE = 10.0
 #: points per knot span at which a saddle edge of W is measured against the exact saddle
 PROBES_PER_SPAN = 8
+#: the relative tolerance of the saddle edges' lengths (OCCT's default, 1e-6 of an ellipse arc, would
+#: show as a gap in the coverage)
+LENGTH_TOLERANCE = 1e-12
 
 
 @dataclass
@@ -182,7 +188,8 @@ def build_branched_wall(
         return built.shape.wrapped
 
     saddles: list[SaddleEdge] = []
-    outers, inners = [], []
+    outers: list[tuple[TopoDS_Shape, _Touching | None]] = []
+    inners: list[tuple[TopoDS_Shape, _Touching | None]] = []
     for k, branch in enumerate(branches):
         tag = "" if len(branches) == 1 else str(k)
         outer, inner = wall_saddles(
@@ -199,14 +206,17 @@ def build_branched_wall(
         b_in, b_out = branch.offsets()
         layout = branch.layout or NetLayout.equal(branch.surface)
         rings, stringers = list(layout.s_rings), list(layout.stringers_deg)
-        outers.append(solid(branch.surface, b_out, rings, stringers, f"branch{tag}", ""))
-        inners.append(solid(branch.surface, b_in, rings, stringers, f"branch{tag}", "_inner"))
+        for offset, side, edge, joined in ((b_out, "", outer, outers), (b_in, "_inner", inner, inners)):
+            tube = solid(branch.surface, offset, rings, stringers, f"branch{tag}", side)
+            # an equal tee's saddle (two curves through the crotch points): joined on it (touching.py)
+            touches = _Touching(branch.surface.offset(offset), list(edge.edges)) if edge.saddle.corners else None
+            joined.append((tube, touches))
     _check_openings_apart(main.offset(main_out), [e.saddle for e in saddles[::2]], key)
     rings, stringers = list(main_layout.s_rings), list(main_layout.stringers_deg)
     a_o = solid(main, main_out, rings, stringers, "main", "")
     a_i = solid(main, main_in, rings, stringers, "main", "_inner")
-    outside, history_o = _boolean(BRepAlgoAPI_Fuse(), a_o, outers, key)
-    bore, history_i = _boolean(BRepAlgoAPI_Fuse(), a_i, inners, key)
+    outside, history_o = _union(a_o, main.offset(main_out), outers, key)
+    bore, history_i = _union(a_i, main.offset(main_in), inners, key)
     between = _between(outside, bore)
     if between is not None:  # no boolean: the faces of both unions and the annular ends
         cut, history_w = between, _unchanged
@@ -216,6 +226,12 @@ def build_branched_wall(
     if between is None:
         cut, history_w = _boolean(BRepAlgoAPI_Cut(), outside, [bore], key)
         result, remade, _ = refine_section_edges(cut)
+    crotch_curves = [c for e in saddles if e.saddle.corners for c in e.curves]
+    if crotch_curves:  # the equal tee's saddle edges on the exact saddle (touching.py)
+        result, remade_on_saddle, _ = exact_saddle_edges(result, crotch_curves)
+        history_r: BRepTools_ReShape | _Chained = _Chained(remade, remade_on_saddle)
+    else:
+        history_r = remade
     solids = bd.Shape.cast(result).solids()
     if len(solids) != 1 or (between is None and not is_valid(solids[0].wrapped)):
         raise TubecadError(
@@ -231,7 +247,7 @@ def build_branched_wall(
     for name, (net_edges, in_outside) in net.items():
         first = history_o if in_outside else history_i
         for piece in history_w(*first(*net_edges)):
-            piece = remade.Value(piece)
+            piece = history_r.Value(piece)
             labels.setdefault(hash(piece), []).append((piece, name))
     named: dict[str, list[bd.Edge]] = {}
     for edge in edges:
@@ -241,6 +257,49 @@ def build_branched_wall(
             named.setdefault(label, []).append(edge)
     on_saddles, deviation, coverage = _name_saddle_edges([e for e in edges if not e.label], saddles)
     return JunctionWall(shape, {**on_saddles, **named}, {e.name: e for e in saddles}, deviation, coverage)
+
+
+@dataclass(frozen=True)
+class _Touching:
+    """A branch surface that touches the main's at its start (an equal tee) and the exact
+    saddle's edges it is joined along."""
+
+    surface: CurvatureLineSurface
+    saddle: list[TopoDS_Edge]
+
+
+def _union(
+    base: TopoDS_Shape,
+    base_surface: CurvatureLineSurface,
+    branches: list[tuple[TopoDS_Shape, _Touching | None]],
+    key: str,
+) -> tuple[TopoDS_Shape, Callable[..., list[TopoDS_Shape]]]:
+    """``base`` united with the branches' solids, and the history (input edges -> their pieces):
+    OCCT's fuse for the branches that cross the main surface, then each that touches it joined
+    along its exact saddle (:func:`~tubecad.junctions.touching.touching_union`)."""
+    crossing = [tube for tube, touches in branches if touches is None]
+    shape, history = _boolean(BRepAlgoAPI_Fuse(), base, crossing, key) if crossing else (base, _unchanged)
+    for tube, touches in branches:
+        if touches is not None:
+            shape, more = touching_union(shape, base_surface, tube, touches.surface, touches.saddle, key)
+            history = _then(history, more)
+    return shape, history
+
+
+def _then(
+    first: Callable[..., list[TopoDS_Shape]], second: Callable[..., list[TopoDS_Shape]]
+) -> Callable[..., list[TopoDS_Shape]]:
+    return lambda *edges: second(*first(*edges))
+
+
+class _Chained:
+    """Two re-shapers one after the other: ``.Value(edge)`` of the second of the first's."""
+
+    def __init__(self, first: BRepTools_ReShape | _Chained, second: BRepTools_ReShape) -> None:
+        self.first, self.second = first, second
+
+    def Value(self, shape: TopoDS_Shape) -> TopoDS_Shape:  # OCCT's name
+        return self.second.Value(self.first.Value(shape))
 
 
 def _boolean(operation: BRepAlgoAPI_BooleanOperation, argument: TopoDS_Shape, tools: list[TopoDS_Shape], key: str):
@@ -352,14 +411,18 @@ def _name_saddle_edges(
     edges: list[bd.Edge], saddles: list[SaddleEdge]
 ) -> tuple[dict[str, list[bd.Edge]], dict[str, float], dict[str, float]]:
     """Label those of ``edges`` that lie on each saddle (within the limit of the fitted saddle
-    edge); their largest distance from the exact saddle, the intersection of the exact
+    edges); their largest distance from the exact saddle, the intersection of the exact
     surfaces (:meth:`SaddleEdge.exact_distance`), and their total length over the saddle's."""
     named: dict[str, list[bd.Edge]] = {s.name: [] for s in saddles}
-    found: dict[str, list[_OnSaddle]] = {s.name: [] for s in saddles}
+    found: dict[str, list[BRepAdaptor_Curve]] = {s.name: [] for s in saddles}
     length = {s.name: 0.0 for s in saddles}
-    projectors = {s.name: GeomAPI_ProjectPointOnCurve() for s in saddles}
+    projectors: dict[str, list[GeomAPI_ProjectPointOnCurve]] = {}
     for saddle in saddles:
-        projectors[saddle.name].Init(saddle.curve, saddle.curve.FirstParameter(), saddle.curve.LastParameter())
+        projectors[saddle.name] = []
+        for piece in saddle.curves:
+            projector = GeomAPI_ProjectPointOnCurve()
+            projector.Init(piece, piece.FirstParameter(), piece.LastParameter())
+            projectors[saddle.name].append(projector)
     for edge in edges:
         curve = BRepAdaptor_Curve(edge.wrapped)
         t = np.linspace(curve.FirstParameter(), curve.LastParameter(), EDGE_SAMPLES)
@@ -368,71 +431,61 @@ def _name_saddle_edges(
         for saddle in saddles:
             # the faces' intersection lies within about the fit tolerance of the exact saddle
             limit = ON_SADDLE * max(BRep_Tool.Tolerance_s(edge.wrapped), EDGE_TOLERANCE, saddle.tolerance)
-            feet = _feet(projectors[saddle.name], points, limit)
-            if feet is not None:
+            if _near(projectors[saddle.name], points, limit):
                 edge.label = saddle.name
                 named[saddle.name].append(edge)
-                found[saddle.name].append(_OnSaddle(curve, t[order], np.array(feet)))
-                length[saddle.name] += GCPnts_AbscissaPoint.Length_s(curve)
+                found[saddle.name].append(curve)
+                length[saddle.name] += GCPnts_AbscissaPoint.Length_s(curve, LENGTH_TOLERANCE)
                 break
     deviation = {s.name: _exact_deviation(s, found[s.name]) for s in saddles}
-    coverage = {s.name: length[s.name] / GCPnts_AbscissaPoint.Length_s(BRepAdaptor_Curve(s.edge)) for s in saddles}
+    coverage = {
+        s.name: length[s.name]
+        / sum(GCPnts_AbscissaPoint.Length_s(BRepAdaptor_Curve(e), LENGTH_TOLERANCE) for e in s.edges)
+        for s in saddles
+    }
     return named, deviation, coverage
 
 
-def _feet(projector: GeomAPI_ProjectPointOnCurve, points: list[gp_Pnt], limit: float) -> list[float] | None:
-    """The parameters of ``points``' feet on the projector's curve; None as soon as one is
-    farther than ``limit`` or does not project (most edges: at the first point)."""
-    feet = []
+def _near(projectors: list[GeomAPI_ProjectPointOnCurve], points: list[gp_Pnt], limit: float) -> bool:
+    """Whether every one of ``points`` lies within ``limit`` of one of the projectors' curves
+    (False as soon as one does not: most edges, at the first point)."""
     for point in points:
-        projector.Perform(point)
-        if projector.NbPoints() == 0 or projector.LowerDistance() > limit:
-            return None
-        feet.append(projector.LowerDistanceParameter())
-    return feet
+        closest = math.inf
+        for projector in projectors:
+            projector.Perform(point)
+            if projector.NbPoints():
+                closest = min(closest, projector.LowerDistance())
+        if closest > limit:
+            return False
+    return True
 
 
-@dataclass(frozen=True)
-class _OnSaddle:
-    """An edge of W labelled with a saddle: its ``curve``, the parameters ``t`` it was tested
-    at and their feet's parameters u_B on the fitted saddle edge."""
-
-    curve: BRepAdaptor_Curve
-    t: np.ndarray
-    feet: np.ndarray
-
-    def probes(self) -> np.ndarray:
-        """Where the edge is measured: evenly, PROBES_PER_SPAN points to its shortest knot
-        span (a B-spline interpolant is exact at its nodes and farthest off between them,
-        which samples at the nodes alone would hide; its end spans, without interior knots,
-        hold nodes too), or to each of EDGE_SAMPLES - 1 even steps on another curve."""
-        first, last = self.curve.FirstParameter(), self.curve.LastParameter()
-        spans = EDGE_SAMPLES - 1
-        if self.curve.GetType() == GeomAbs_BSplineCurve:
-            spline = self.curve.BSpline()
-            knots = np.unique(np.clip([spline.Knot(i) for i in range(1, spline.NbKnots() + 1)], first, last))
-            if len(knots) > 1:
-                spans = max(spans, math.ceil((last - first) / float(np.diff(knots).min())))
-        return np.linspace(first, last, PROBES_PER_SPAN * spans + 1)
-
-    def guesses(self, probes: np.ndarray) -> np.ndarray:
-        """u_B of the probes' feet on the fitted saddle, interpolated from the tested points'
-        (unwrapped: an edge may cross the periodic curve's seam)."""
-        order = np.argsort(self.t)
-        return np.interp(probes, self.t[order], np.unwrap(self.feet[order]))
+def _probes(curve: BRepAdaptor_Curve) -> np.ndarray:
+    """Where an edge of W on a saddle is measured: evenly, PROBES_PER_SPAN points to its
+    shortest knot span (a B-spline interpolant is exact at its nodes and farthest off between
+    them, which samples at the nodes alone would hide; its end spans, without interior knots,
+    hold nodes too), or to each of EDGE_SAMPLES - 1 even steps on another curve."""
+    first, last = curve.FirstParameter(), curve.LastParameter()
+    spans = EDGE_SAMPLES - 1
+    if curve.GetType() == GeomAbs_BSplineCurve:
+        spline = curve.BSpline()
+        knots = np.unique(np.clip([spline.Knot(i) for i in range(1, spline.NbKnots() + 1)], first, last))
+        if len(knots) > 1:
+            spans = max(spans, math.ceil((last - first) / float(np.diff(knots).min())))
+    return np.linspace(first, last, PROBES_PER_SPAN * spans + 1)
 
 
-def _exact_deviation(saddle: SaddleEdge, found: list[_OnSaddle]) -> float:
+def _exact_deviation(saddle: SaddleEdge, found: list[BRepAdaptor_Curve]) -> float:
     """The largest distance of the edges ``found`` on ``saddle`` from the exact saddle, at
-    their probes (0 without any)."""
+    their probes (0 without any); each probe's foot looked for first at u_B of the exact
+    saddle's sample nearest to it."""
     if not found:
         return 0.0
-    points, guesses = [], []
-    for edge in found:
-        probes = edge.probes()
-        points += [edge.curve.Value(float(t)).Coord() for t in probes]
-        guesses.append(edge.guesses(probes))
-    return float(saddle.exact_distance(np.array(points), np.concatenate(guesses)).max())
+    from scipy.spatial import cKDTree
+
+    points = np.array([curve.Value(float(t)).Coord() for curve in found for t in _probes(curve)])
+    _, nearest = cKDTree(saddle.saddle.points).query(points)
+    return float(saddle.exact_distance(points, saddle.saddle.branch_u[nearest]).max())
 
 
 def _check_openings_apart(outer: CurvatureLineSurface, saddles: list[SaddleCurve], key: str) -> None:

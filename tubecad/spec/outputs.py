@@ -177,7 +177,8 @@ def junction_summary(junction: dict[str, Any]) -> list[str]:
     for name, saddle in junction["saddles"].items():
         lines.append(
             f"{name}: {saddle['edges_in_solid']} edges in the solid, {saddle['edges_deviation']:.1e} from the exact "
-            f"saddle (fitted edge: {saddle['poles']} poles, {saddle['fit_deviation']:.1e})"
+            f"saddle (fitted: {saddle.get('curves', 'periodic B-spline')}, {saddle['poles']} poles, "
+            f"{saddle['fit_deviation']:.1e})"
         )
     for name, pad in junction.get("pads", {}).items():
         lines.append(

@@ -1,8 +1,8 @@
 """Near-equal tees (issue 43): where the branch's radius r approaches the main's R the saddle
 turns fast round the branch's sides (the branch grazes the main wall there) and the march
 used to leave the branch's span ("s must lie in the span", no key). Now every r/R below 1
-is followed to round-off, and r = R (tangent surfaces: the equal tee) is refused naming
-the key. Checked on the closed form of perpendicular cylinders: main y^2 + z^2 = R^2 along
+is followed to round-off; r = R (tangent surfaces: the equal tee) has its saddle as two curves
+through the crotch points (tests/unit/junctions/test_equal_tee*.py). Checked on the closed form of perpendicular cylinders: main y^2 + z^2 = R^2 along
 x, branch (x - 150)^2 + y^2 = r^2 along z."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tubecad import NaturalAxis, ParameterError
+from tubecad import NaturalAxis
 from tubecad.junctions import branch_surface
 from tubecad.junctions.saddle import saddle_curve
 from tubecad.surface.canal import tube_or_canal
@@ -33,10 +33,15 @@ def test_a_near_equal_saddle_lies_on_both_cylinders(main, r):
     assert p[:, 2].min() == pytest.approx(np.sqrt(R**2 - r**2), abs=1e-6)
 
 
-def test_the_equal_tee_is_refused_naming_the_branch_radius(main):
-    with pytest.raises(ParameterError, match=r"^branches\.radius: the branch and the main surface are tangent") as info:
-        saddle_curve(main, branch_surface(main, 150.0, 150.0, R))
-    assert info.value.key == "branches.radius"
+def test_the_one_rule_takes_a_touching_branch_and_refuses_a_wider_one(main):
+    """r = R starts on the main surface (touching: the equal tee, built); r a hair wider starts
+    outside it: refused naming the radius, by the spec's rule."""
+    from tubecad.junctions.placement import branch_start_problem
+
+    walls = (-2.0, 2.0)
+    assert branch_start_problem(main, walls, branch_surface(main, 150.0, 150.0, R), walls, 150.0) is None
+    problem = branch_start_problem(main, walls, branch_surface(main, 150.0, 150.0, R * (1 + 1e-6)), walls, 150.0)
+    assert problem is not None and problem[1] == "radius" and "must start inside" in problem[0]
 
 
 @pytest.mark.slow

@@ -142,3 +142,29 @@ def test_a_junction_carries_its_named_saddles_and_pads():
     assert props.volume(wall.wrapped) == pytest.approx(props.volume(twin.solids()[0].wrapped), rel=1e-12)
     plate = cq.Workplane().box(400, 200, 10).curvatureJunction(axis, 50.0, 4.0, [branch], rings=7, stringers=8)
     assert len(plate.solids().vals()) == 1 and plate.val().isValid()
+
+
+def test_an_equal_tee_from_the_workplane_is_the_build123d_ones():
+    """curvatureJunction with the branch's radius and wall the main's (issue 43): one valid
+    solid whose outer saddle lies on both outer cylinders (radius 52; the branch's axis along
+    the saddle's mean direction in the yz plane, as above) and in the planes bisecting the
+    axes, the build123d object's volume to 1e-12."""
+    import build123d as bd
+    import numpy as np
+
+    from tubecad import Branch, CurvatureJunction
+
+    branch = Branch(at=150.0, length=120.0, radius=50.0, thickness=4.0)
+    axis = cq.Edge.makeLine(cq.Vector(0, 0, 0), cq.Vector(300, 0, 0))
+    tee = cq.Workplane().curvatureJunction(axis, 50.0, 4.0, [branch], rings=7, stringers=8).val()
+    wall = tee.Solids()[0]
+    assert wall.isValid()
+    points = np.array([tuple(e.positionAt(t)) for e in tee.named_edges["saddle_outer"] for t in np.linspace(0, 1, 9)])
+    assert np.abs(np.hypot(points[:, 1], points[:, 2]) - 52.0).max() < 1e-12 * 52
+    up = np.array([0.0, *points[:, 1:].mean(axis=0)])
+    up /= np.linalg.norm(up)
+    x = points[:, 0] - 150.0
+    height = points @ up
+    assert np.minimum(np.abs(x - height), np.abs(x + height)).max() < 1e-11 * 52
+    twin = CurvatureJunction(bd.Edge(axis.wrapped), 50.0, 4.0, [branch], rings=7, stringers=8)
+    assert props.volume(wall.wrapped) == pytest.approx(props.volume(twin.solids()[0].wrapped), rel=1e-12)

@@ -150,3 +150,32 @@ def test_the_junction_is_a_part_like_the_others(part, tmp_path):
         on_tee(sets["saddle_outer"].edges()) < 1e-6
         and on_tee(sets["saddle_inner"].edges(), big=R_IN, small=r_IN) < 1e-6
     )
+
+
+def test_an_equal_tee_part_in_builder_and_algebra_mode():
+    """radius = the main's (issue 43): the saddles are two ellipse arcs each, on both cylinders
+    (measured 9e-14); the part moves with its names in algebra mode and is placed in a BuildPart."""
+
+    def equal(**placement) -> CurvatureJunction:
+        return CurvatureJunction(
+            bd.Edge.make_line((0, 0, 0), (300, 0, 0)),
+            radius=50.0,
+            thickness=4.0,
+            normal=(0, 1, 0),
+            rings=5,
+            branches=[Branch(at=150.0, length=120.0, radius=50.0, thickness=4.0)],
+            **placement,
+        )
+
+    part = equal()
+    assert is_valid(part.wrapped) and len(part.solids()) == 1
+    assert on_tee(part.saddle_outer, big=R_OUT, small=R_OUT) < 1e-12 * R_OUT
+    assert on_tee(part.saddle_inner, big=R_IN, small=R_IN) < 1e-12 * R_IN
+    assert part.report["saddles"]["saddle_outer"]["curves"] == "2 ellipse arcs"
+    moved = bd.Pos(0, 0, 100) * part
+    assert on_tee(moved.saddle_outer, (0.0, 0.0, 100.0), R_OUT, R_OUT) < 1e-11
+    with bd.BuildPart() as builder:
+        with bd.Locations((0, 0, 0), (0, 400, 0)):
+            placed = equal(mode=bd.Mode.ADD)
+    assert is_valid(builder.part.wrapped) and len(builder.part.solids()) == 2
+    assert len(placed.saddle_outer) == 2 * len(part.saddle_outer)

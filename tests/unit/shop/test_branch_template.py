@@ -119,3 +119,33 @@ def test_the_dihedral_angle_of_a_tee_is_the_closed_form():
     expected = np.degrees(np.arccos(r * np.sin(saddle.branch_u) ** 2 / R))
     assert np.abs(phi - expected).max() < 1e-12  # degrees; measured 1.3e-13
     assert phi.min() == pytest.approx(np.degrees(np.arccos(r / R)), abs=1e-10) and phi.max() == pytest.approx(90.0)
+
+
+def test_the_equal_tees_templates_are_the_closed_forms(tmp_path):
+    """r = R (issue 43): the branch's cut y = sqrt(R^2 - R^2 sin^2(x / R)) = R |cos(x / R)|,
+    from crotch (y = 0) to crotch, two arches; the hole on the main unrolled to (R chi, s_A)
+    with chi = atan2(R |cos u|, R sin u), its area int_0^pi 2 R^2 sin(chi) dchi = 4 R^2; the
+    dihedral angle arccos(sin^2 u), 0 at the crotch where the tubes touch."""
+    import ezdxf
+    from shapely.geometry import Polygon
+
+    from tubecad.junctions import dihedral_angles
+    from tubecad.shop.branch_template import hole_template
+
+    equal = line((0.0, 0.0, 0.0), (0, 0, 1), (1, 0, 0), 120.0, R)
+    saddle = saddle_curve(MAIN, equal, 721)
+    template = branch_template(equal, saddle, stringers=8)
+    xy = template.points
+    assert np.abs(xy[:, 1] - R * np.abs(np.cos(xy[:, 0] / R))).max() < 1e-12 * R  # measured 1.2e-13 R
+    assert np.abs(xy[list(saddle.corners), 1]).max() < 1e-12 * R  # the crotch points: height 0
+    hole = hole_template(MAIN, saddle)
+    u = saddle.branch_u
+    chi = np.arctan2(R * np.abs(np.cos(u)), R * np.sin(u))
+    assert np.abs(hole.points - np.column_stack([R * chi, R * np.cos(u) + 100.0])).max() < 1e-11
+    doc = ezdxf.readfile(hole.save_dxf(tmp_path / "hole.dxf"))
+    (outline,) = doc.modelspace().query('LWPOLYLINE[layer=="saddle"]')
+    area = Polygon([(x, y) for x, y, *_ in outline.get_points()]).area
+    assert area == pytest.approx(4 * R**2, rel=1e-5)  # the 720-sided polygon's chords: measured 6.3e-6
+    phi = dihedral_angles(MAIN, equal, saddle)
+    # arccos near 1 turns round-off e into sqrt(2 e): measured 2.4e-6 deg at the crotch
+    assert np.abs(phi - np.degrees(np.arccos(np.sin(u) ** 2))).max() < 1e-5
