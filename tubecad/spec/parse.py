@@ -316,8 +316,6 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
                 value = getattr(branch.pad, name)
                 if not (value > 0 and math.isfinite(value)):
                     raise fail(f"{where} pad {name} must be > 0, got {value:g}", f"branches.pad.{name}")
-            if not tube.constant_radius:
-                raise fail(f"{where} pad: a pad on a main tube with a radius law is not made yet", "branches.pad")
         wall = branch.wall or model.wall
         try:
             b_in, b_out = wall.offsets()

@@ -99,25 +99,25 @@ def main_stiffeners(
     tolerance: float = DEFAULT_FIT_TOLERANCE,
 ) -> list[Stiffener]:
     """The main tube's ring frames (index, s) and stringers (index, angle) on ``base`` (the
-    wall surface they stand on, of constant radius), each stopped at every keepout it
-    crosses (module docstring). A ParameterError names ``stiffeners.rings`` or
-    ``stiffeners.stringers`` for a stiffener no piece of which is left."""
-    if not base.constant_radius:
-        raise ParameterError(
-            "stiffeners on a junction's main tube with a radius law are not made yet", key="stiffeners"
-        )
-    radius = base.radius_law.constant_value
+    wall surface they stand on: a tube, or a canal surface with its radius law), each stopped
+    at every keepout it crosses (module docstring; on a canal surface the stringer's band is
+    taken at the smallest radius, and the ring's wedge at the stringers' angles round that
+    ring). A ParameterError names ``stiffeners.rings`` or ``stiffeners.stringers`` for a
+    stiffener no piece of which is left."""
+    law = base.radius_law
+    smallest = float(law.min_radius)
+    reach = float(law.max_radius) + profile.height
     out: list[Stiffener] = []
     for i, s in rings_s:
         ring = ring_stiffener(base, s, profile, side, tolerance, f"ring_{i:02d}")
         for keepout in keepouts:
             cut = keepout.along_ring(s, 0.5 * profile.thickness)
             if cut is not None:
-                ring = _ring_cut(base, ring, s, cut, radius + profile.height, profile)
+                ring = _ring_cut(base, ring, s, cut, reach, profile)
         out.append(ring)
     for j, angle in stringers_deg:
         u = math.radians(angle)
-        cuts = [c for k in keepouts if (c := k.along_stringer(u, 0.5 * profile.thickness / radius)) is not None]
+        cuts = [c for k in keepouts if (c := k.along_stringer(u, 0.5 * profile.thickness / smallest)) is not None]
         for span, tag in _pieces(base.span, cuts, profile.height, f"stringer {j} at {angle:g} deg", "stringers"):
             out.append(stringer_stiffener(base, angle, profile, side, span, tolerance, f"stringer_{j:02d}{tag}"))
     return out
@@ -136,10 +136,9 @@ def branch_stiffeners(
 ) -> list[Stiffener]:
     """The branch's stringers from its saddle (on ``base``, the branch's wall surface they
     stand on) to its end, and its rings, each at least ``start`` beyond the saddle's highest
-    point (else a ParameterError naming ``branches.stiffeners.rings``)."""
-    if not base.constant_radius:
-        raise ParameterError("stiffeners on a branch with a radius law are not made yet", key="branches.stiffeners")
-    radius = base.radius_law.constant_value
+    point (else a ParameterError naming ``branches.stiffeners.rings``). On a branch with a
+    radius law the stringers' bands are taken at its smallest radius."""
+    radius = float(base.radius_law.min_radius)
     top = float(saddle.branch_s.max())
     out: list[Stiffener] = []
     for i, s in rings_s:
@@ -194,7 +193,9 @@ def _ring_cut(
         raise ParameterError(
             f"stiffeners.rings: {ring.name} at s = {s:.6g} lies all round an opening", key="stiffeners.rings"
         )
-    wedge = ring_wedge(base, s, u_lo, u_hi, reach, profile)
+    # the stringers' angles round this ring (a canal surface's turn by the Moebius map; u on a tube)
+    chi_lo, chi_hi = (float(base.stringer_angle(np.array(u), np.array(s))) for u in (u_lo, u_hi))
+    wedge = ring_wedge(base, s, chi_lo, chi_hi, reach, profile)
     pieces, _, _ = refine_section_edges(ring.solid.cut(wedge).wrapped)
     solids = bd.Shape.cast(pieces).solids()
     if len(solids) != 1 or not solids[0].is_valid:

@@ -1,5 +1,6 @@
 """A reinforcement pad: a plate on the main wall round a branch, bounded by lines of curvature
-(issue 25; here beside the panels it is made as, above :mod:`tubecad.junctions`).
+(issue 25; here beside the panels it is made as, above :mod:`tubecad.junctions`; on a main
+with a radius law, issue 43).
 
 The pad lies on the main tube's outer wall surface X(u, s) (radius R_o) and reaches ``width``
 beyond the branch's outer saddle every way: it is the panel of the wall between the radii R_o
@@ -7,7 +8,9 @@ and R_o + thickness over the rings s_a = min s_A - width, s_b = max s_A + width 
 stringers u_a = min u_A - width / R_o, u_b = max u_A + width / R_o (the saddle's (u_A, s_A) on
 the main, :mod:`~tubecad.junctions.saddle`), with the branch's outer tube cut out of it. Its
 four edges are curvature lines of the main wall (two rings, two stringers), so it develops
-like any panel of the wall: exactly (strain 0) where the main axis is straight.
+like any panel of the wall: exactly (strain 0) where the main axis is straight. On a canal
+surface (a radius law) R_o is the smallest outer radius over the pad's rings, and the plate is
+the canal wall's panel between the two stringers (:func:`~tubecad.stiffeners.panels.split_into_panels`).
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from tubecad.brep.solids import build_tube_solid, build_wall_solid
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE
 from tubecad.junctions.saddle import SaddleCurve
-from tubecad.stiffeners.panels import panel
+from tubecad.stiffeners.panels import panel, split_into_panels
 from tubecad.surface.protocol import CurvatureLineSurface
 
 
@@ -65,11 +68,17 @@ def reinforcement_pad(
     if not (thickness > 0 and math.isfinite(thickness)):
         raise ParameterError(f"{key}.thickness must be > 0, got {thickness!r:.40}", key=f"{key}.thickness")
     (s_a, s_b), (u_a, u_b) = pad_bounds(outer, saddle, width, key=key)
-    radius = outer.radius_law.constant_value
     piece = outer.restricted((s_a, s_b))
-    layout = NetLayout.explicit(piece, [s_a, s_b], [u_a % 360.0])
-    wall = build_wall_solid(piece, thickness, "outside", layout, tolerance)
-    plate = panel(wall, piece.axis, radius, radius + thickness, u_a, u_b, "pad").solid
+    if outer.constant_radius:  # the fast path: the exact section's patches between the stringers
+        radius = outer.radius_law.constant_value
+        layout = NetLayout.explicit(piece, [s_a, s_b], [u_a % 360.0])
+        wall = build_wall_solid(piece, thickness, "outside", layout, tolerance)
+        plate = panel(wall, piece.axis, radius, radius + thickness, u_a, u_b, "pad").solid
+    else:  # a radius law: the canal wall's panel between the two stringers (its own faces)
+        layout = NetLayout.explicit(piece, [s_a, s_b], [u_a % 360.0, u_b % 360.0])
+        wall = build_wall_solid(piece, thickness, "outside", layout, tolerance)
+        start = round(u_a % 360.0, 12)  # the bay from u_a counter-clockwise to u_b
+        plate = next(p for p in split_into_panels(wall, [0, 1]) if abs(p.angles_deg[0] - start) < 1e-9).solid
     # two stringers: each face of the hole a C1 half turn (one stringer leaves a C0 knot inside
     # its face, which OCCT's pre-boolean check reports on the pad's hole)
     hole = build_tube_solid(branch_outer, NetLayout.equal(branch_outer, 2, 2), tolerance).shape
@@ -86,14 +95,15 @@ def pad_bounds(
     """((s_a, s_b), (u_a, u_b) in degrees): the rings and stringers that bound the pad
     ``width`` beyond ``saddle`` on ``outer`` (see the module); refused as
     :func:`reinforcement_pad` says."""
-    if not outer.constant_radius:
-        raise ParameterError(f"{key}: a pad on a main tube with a radius law is not made yet", key=key)
     if not (width > 0 and math.isfinite(width)):
         raise ParameterError(f"{key}.width must be > 0, got {width!r:.40}", key=f"{key}.width")
-    radius = outer.radius_law.constant_value
     s0, s1 = outer.span
     (s_lo, s_hi), (u_lo, u_hi) = saddle.extent(saddle.main_s), saddle.extent(saddle.main_u)
     s_a, s_b = s_lo - width, s_hi + width
+    # width / r beyond the saddle round the axis: at the smallest radius over the pad's rings (a
+    # radius law), so that it is at least width everywhere
+    inside = np.linspace(max(s_a, s0), min(s_b, s1), 257)
+    radius = float(outer.radius_law.r(inside).min())
     u_a, u_b = math.degrees(u_lo - width / radius), math.degrees(u_hi + width / radius)
     if not (s0 < s_a and s_b < s1):
         raise ParameterError(

@@ -93,3 +93,57 @@ def test_a_stringer_inside_the_opening_over_its_length_is_refused(tee):
         main_stiffeners(outer, [], [(2, 90.0)], BAR, "outside", [everywhere])
     assert info.value.key == "stiffeners.stringers"
     assert np.isfinite(outer.length)
+
+
+@pytest.fixture(scope="module")
+def cone_tee():
+    """Issue 43: the main a cone, r(s) = 60 - 0.05 s (outer surface 61.5 - 0.05 s), the branch
+    r 20 (outer 21) square at s = 150."""
+    main = tube_or_canal(NaturalAxis("0", "0", (0.0, 300.0), normal=(0, 1, 0)), "60 - 0.05 * s")
+    branch = branch_surface(main, 150.0, 150.0, 20.0)
+    outer, branch_outer = main.offset(1.5), branch.offset(1.0)
+    return outer, branch_outer, saddle_curve(outer, branch_outer)
+
+
+def ring_plane_s(x: float) -> float:
+    """The ring whose plane is x on the cone's outer surface: a canal ring at s lies in the plane
+    x = s - r r' = s + 0.05 (61.5 - 0.05 s)."""
+    return (x - 0.05 * 61.5) / (1 - 0.05**2)
+
+
+def test_on_a_conical_main_a_stringer_stops_on_the_branch_cylinder(cone_tee):
+    """The top stringer's pieces end square in the ring planes where the branch's outer cylinder
+    (x - 150)^2 + y^2 = 21^2 crosses the top, x = 150 -+ 21, at their base; their webs stand
+    on the cone's normal, which leans 0.05 (its slope) along x: the first piece's top edge
+    reaches 10 x 0.05 beyond its base, the second's starts there."""
+    outer, _, saddle = cone_tee
+    a, b = main_stiffeners(outer, [], [(2, 90.0)], BAR, "outside", [Keepout(saddle=saddle)])
+    assert is_valid(a.solid.wrapped) and is_valid(b.solid.wrapped)
+    assert a.solid.bounding_box().max.X == pytest.approx(150.0 - 21.0 + 10.0 * 0.05, abs=1e-6)
+    # measured 4.7e-4 short: its base corners, a half thickness either side of the stringer, lie
+    # (w / 2)^2 |r'| / (2 rho) inside the ring plane on the cone
+    assert b.solid.bounding_box().min.X == pytest.approx(150.0 + 21.0, abs=1e-3)
+
+
+def test_on_a_conical_main_a_ring_loses_the_openings_angle(cone_tee):
+    """The ring frame whose base band (2 wide) holds the plane x = 150 loses the widest angle the
+    opening spans over that band: in the ring plane x (radius rho(x) = r sqrt(1 - r'^2)) the
+    branch cylinder holds |y| < sqrt(21^2 - (x - 150)^2), the angle pi - 2 acos(sqrt(21^2 -
+    (x - 150)^2) / rho(x)), widest at x = 150.4 as the cone narrows (sampled here, 20001
+    planes); its ends lie in planes through the axis."""
+    outer, _, saddle = cone_tee
+    s = ring_plane_s(150.0)
+    (whole,) = main_stiffeners(outer, [(3, s)], [], BAR, "outside", [])
+    (cut,) = main_stiffeners(outer, [(3, s)], [], BAR, "outside", [Keepout(saddle=saddle)])
+    assert is_valid(cut.solid.wrapped)
+    x = np.linspace(ring_plane_s(149.0), ring_plane_s(151.0), 20001) * (1 - 0.05**2) + 0.05 * 61.5
+    rho = (61.5 - 0.05 * ring_plane_s(x)) * math.sqrt(1 - 0.05**2)
+    lost = float((math.pi - 2 * np.arccos(np.sqrt(21.0**2 - (x - 150.0) ** 2) / rho)).max())
+    # measured 2.0e-6: the widest angle is taken from the saddle's 257 samples in the band, O(h^2)
+    # short of the exact extreme (1e-5 rad: the frame's ends reach 5e-4 into the opening)
+    assert cut.solid.volume == pytest.approx(whole.solid.volume * (1 - lost / (2 * math.pi)), rel=1e-5)
+    ends = [f for f in cut.solid.faces() if f.geom_type.name == "PLANE" and abs(f.normal_at().X) < 1e-9]
+    assert len(ends) == 2
+    for face in ends:
+        n, p = face.normal_at(), face.center()
+        assert abs(n.Y * p.Y + n.Z * p.Z) < 1e-6  # the plane holds the axis

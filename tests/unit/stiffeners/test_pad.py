@@ -74,3 +74,56 @@ def test_a_pad_too_wide_is_refused_naming_its_key(length, width, says):
     with pytest.raises(ParameterError, match=says) as info:
         reinforcement_pad(main, BRANCH, saddle_curve(main, BRANCH, 65), 6.0, width)
     assert info.value.key == "pad.width" and "\n" not in str(info.value)  # the spec adds [[branches]]
+
+
+def test_a_pad_on_a_conical_main_is_the_cone_shells_sector_less_the_branch():
+    """Issue 43: the main a cone, its outer surface the envelope of spheres of radius
+    r(s) = 61.5 - 0.05 s about the x axis (half-angle phi, sin phi = 0.05), a branch of outer
+    radius 21 up z at x = 150. In a meridian half-plane the pad's section is a rectangle, the
+    meridian between its rings (their points at x = s - r r', radius r cos phi) by the
+    thickness t along the normal (sin phi, cos phi): Pappus gives the sector's volume
+    angle x length x t x (its centroid's radius); less the branch's hole,
+    int int [sqrt(rho_t(x)^2 - y^2) - sqrt(rho(x)^2 - y^2)] over (x - 150)^2 + y^2 < 21^2,
+    rho(x) = (61.5 - 0.05 x) / cos phi the cone's radius at x (scipy's quadrature). It is
+    bounded by the saddle's extent plus the width, round the axis at the smallest radius."""
+    from scipy.integrate import dblquad
+
+    cone = tube_or_canal(NaturalAxis("0", "0", (0.0, 300.0), normal=(0, 1, 0)), "61.5 - 0.05 * s")
+    branch = tube_or_canal(
+        NaturalAxis("0", "0", (0.0, 150.0), origin=(150, 0, 0), tangent=(0, 0, 1), normal=(1, 0, 0)), 21.0
+    )
+    saddle = saddle_curve(cone, branch, 257)
+    t, width = 4.0, 15.0
+    pad = reinforcement_pad(cone, branch, saddle, t, width)
+    assert is_valid(pad.solid.wrapped)
+    (s_lo, s_hi), (u_lo, u_hi) = saddle.extent(saddle.main_s), saddle.extent(saddle.main_u)
+    s_a, s_b = pad.s_range
+    assert (s_a, s_b) == pytest.approx((s_lo - width, s_hi + width), abs=1e-12)
+    smallest = 61.5 - 0.05 * s_b
+    assert pad.angles_deg == pytest.approx(
+        (math.degrees(u_lo - width / smallest), math.degrees(u_hi + width / smallest)), rel=1e-6
+    )
+    cos_phi = math.sqrt(1 - 0.05**2)
+
+    def ring_point(s: float) -> tuple[float, float]:  # (x, radius) of the outer ring at s
+        r = 61.5 - 0.05 * s
+        return s + 0.05 * r, r * cos_phi
+
+    (xa, ra), (xb, rb) = ring_point(s_a), ring_point(s_b)
+    length = math.hypot(xb - xa, rb - ra)
+    angle = math.radians(pad.angles_deg[1] - pad.angles_deg[0])
+    sector = angle * length * t * (0.5 * (ra + rb) + 0.5 * t * cos_phi)
+
+    def rho(x: float, d: float) -> float:
+        return (61.5 + d - 0.05 * x) / cos_phi
+
+    hole, _ = dblquad(
+        lambda y, x: math.sqrt(rho(x, t) ** 2 - y**2) - math.sqrt(rho(x, 0.0) ** 2 - y**2),
+        150.0 - 21.0,
+        150.0 + 21.0,
+        lambda x: -math.sqrt(max(21.0**2 - (x - 150.0) ** 2, 0.0)),
+        lambda x: math.sqrt(max(21.0**2 - (x - 150.0) ** 2, 0.0)),
+        epsabs=1e-10,
+        epsrel=1e-12,
+    )
+    assert volume(pad.solid.wrapped) == pytest.approx(sector - hole, rel=1e-12)  # measured 2.0e-15
