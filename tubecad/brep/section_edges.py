@@ -124,7 +124,10 @@ class _Surface:
     def d1(self, uv: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(S, S_u, S_v) at the rows of ``uv``, each (rows, 3)."""
         if self.spline is not None:
-            return self.spline.points_d1(uv)
+            # Newton may step off a rational patch (a weight of 0 there): inf or nan, which the
+            # caller takes as no convergence, not a warning to the user
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return self.spline.points_d1(uv)
         out = np.empty((3, len(uv), 3))
         p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
         for m, (u, v) in enumerate(uv.tolist()):

@@ -236,6 +236,8 @@ def junction_assembly(
         plates.append(plate)
     groups = []
     for name in sorted(junction.edges):
+        if not junction.edges[name]:  # a blended branch's outer saddle: no edge of the wall
+            continue
         group = bd.Compound(children=[bd.Edge(e.wrapped) for e in junction.edges[name]])
         group.label = name
         groups.append(group)
@@ -272,8 +274,22 @@ def junction_report(
                 "coverage": junction.coverage[name],
             }
             for name, saddle in junction.saddles.items()
+            if name not in junction.blended
         },
     }
+    if junction.blends:
+        n = len(design.branches)
+        report["blends"] = {
+            ("blend" if n == 1 else f"blend_{k}"): {
+                "radius": ball.radius,
+                "contact_deviation": ball.deviation,
+                "edges_in_solid": {
+                    name: len(junction.edges.get(name, []))
+                    for name in (("blend_main", "blend_branch") if n == 1 else (f"blend_main_{k}", f"blend_branch_{k}"))
+                },
+            }
+            for k, ball in junction.blends.items()
+        }
     if pads:
         from tubecad.shop.panel_development import develop_panel
 

@@ -25,7 +25,7 @@ def branch_walls(branches: Sequence[BranchDesign]) -> list[BranchWall]:
     """The branches as :class:`~tubecad.junctions.BranchWall` s (the junction library's input)."""
     from tubecad.junctions import BranchWall
 
-    return [BranchWall(b.surface, b.wall.thickness, b.wall.side, b.layout) for b in branches]
+    return [BranchWall(b.surface, b.wall.thickness, b.wall.side, b.layout, b.blend) for b in branches]
 
 
 def junction_wall(
@@ -61,6 +61,9 @@ def junction_pads(
     for k, (branch, wall) in enumerate(zip(branches, walls)):
         if branch.pad is None:
             continue
+        if branch.blend is not None:
+            with stage("branches", k):
+                raise ParameterError("blend: a blend with a pad round the branch is not made yet", key="blend")
         with stage("pads", k):
             pads[k] = reinforcement_pad(
                 main.surface.offset(main_out),
@@ -123,7 +126,11 @@ def junction_stiffeners(
         branch_base = wall.surface.offset(wall.offsets()[1 if outside else 0])
         known = saddle_name("saddle_outer" if outside else "saddle_inner", k, len(walls))
         near = junction.saddles[known].saddle if junction is not None else None
-        saddle = saddle_curve(main_base, branch_base, near=near)
+        if outside and junction is not None and k in junction.blends:
+            # a crotch blend: the stiffeners stop on its edges (its spine's parameters are the contacts')
+            saddle = junction.outer_boundary(k, len(walls))
+        else:
+            saddle = saddle_curve(main_base, branch_base, near=near)
         saddles.append((branch_base, saddle))
         if outside and branch.pad is not None:
             s_range, angles = pad_bounds(main_base, saddle, branch.pad.width)

@@ -127,8 +127,10 @@ def junction_shop(
     piece's strip); per branch its templates (:func:`branch_shop`). ``progress(stage)``
     hears of each stage."""
     from tubecad.design.junction_parts import branch_walls, junction_stiffeners
+    from tubecad.design.junction_shell import refuse_blends
     from tubecad.shop.package import ShopData, add_stiffener_data
 
+    refuse_blends(branches, "the shop package (the templates are cut on the saddle)")
     say = progress or (lambda _stage: None)
     walls = branch_walls(branches)
     data = None

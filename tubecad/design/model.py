@@ -135,3 +135,5 @@ class BranchDesign:
     stiffener_rings: tuple[int, ...] = ()
     stiffener_stringers: tuple[int, ...] = ()
     stiffener_start: float | None = None
+    #: the radius of a crotch blend along its outer saddle (:mod:`tubecad.junctions.blend`), or None
+    blend: float | None = None

@@ -236,6 +236,27 @@ def saddle_curve(
     return SaddleCurve(u_b, x[:, 2], np.unwrap(x[:, 0]), x[:, 1], main.points(x[:, 0], x[:, 1]), residual)
 
 
+def saddle_parameters(
+    main: CurvatureLineSurface, branch: CurvatureLineSurface, u_b: FloatArray, near: SaddleCurve
+) -> FloatArray | None:
+    """(u_A, s_A, s_B) of the saddle at the branch's stringer angles ``u_b``, by Newton from
+    ``near``'s interpolation (the same saddle sampled), to round-off; None where Newton does not
+    converge or leaves a span.
+
+    Args:
+        main: the main surface.
+        branch: the branch surface.
+        u_b: the branch's stringer angles (any turn: taken modulo 2 pi).
+        near: the saddle sampled.
+
+    Returns:
+        (n, 3) parameters, or None.
+    """
+    u = np.mod(np.asarray(u_b, dtype=float).ravel(), 2.0 * np.pi)
+    solved = _corrected(main, branch, u, _interpolated(near, u), _scale(main, branch))
+    return None if solved is None else solved[0]
+
+
 def _crotched(
     main: CurvatureLineSurface,
     branch: CurvatureLineSurface,

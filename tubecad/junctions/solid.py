@@ -38,7 +38,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
+from typing import Protocol
 
 import build123d as bd
 import numpy as np
@@ -60,6 +61,7 @@ from tubecad.brep.solids import build_tube_solid
 from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.tolerance import DEFAULT_FIT_TOLERANCE, EDGE_TOLERANCE
+from tubecad.junctions.blend import BLEND_RINGS, BLEND_STRINGERS, RollingBall, rolling_ball
 from tubecad.junctions.edges import SaddleEdge, wall_saddles
 from tubecad.junctions.saddle import SaddleCurve
 from tubecad.junctions.touching import exact_saddle_edges, touching_union
@@ -76,6 +78,9 @@ PROBES_PER_SPAN = 8
 #: the relative tolerance of the saddle edges' lengths (OCCT's default, 1e-6 of an ellipse arc, would
 #: show as a gap in the coverage)
 LENGTH_TOLERANCE = 1e-12
+#: an edge of W lies on a blend's contact curve where its points are within this of it (the
+#: contact edges are made again on the curve: round-off)
+CONTACT = 1e-7
 
 
 @dataclass
@@ -92,6 +97,31 @@ class JunctionWall:
     saddles: dict[str, SaddleEdge]
     deviation: dict[str, float]
     coverage: dict[str, float]
+    #: the crotch blends by branch index (:mod:`~tubecad.junctions.blend`): where one joins a
+    #: branch, its outer saddle is no edge of the shape; the blend's contact curves are
+    #: (``blend_main``, ``blend_branch``), and its rings (``blend_ring_03``)
+    blends: dict[int, RollingBall] = field(default_factory=dict)
+
+    @property
+    def blended(self) -> set[str]:
+        """The outer saddles a blend took the place of (no edges of the shape)."""
+        return {saddle_name("saddle_outer", k, len(self.saddles) // 2) for k in self.blends}
+
+    def outer_boundary(self, k: int, branches: int) -> SaddleCurve:
+        """Where branch ``k`` (of ``branches``) leaves the main's outer surface: its blend's
+        spine (whose main and branch parameters are the contact curves') where it has one,
+        else its outer saddle.
+
+        Args:
+            k: the branch's index.
+            branches: how many branches the junction has.
+
+        Returns:
+            The curve, sampled in both surfaces' parameters.
+        """
+        if k in self.blends:
+            return self.blends[k].spine
+        return self.saddles[saddle_name("saddle_outer", k, branches)].saddle
 
     @property
     def saddle_outer(self) -> list[bd.Edge]:
@@ -104,12 +134,14 @@ class JunctionWall:
 
 @dataclass(frozen=True)
 class BranchWall:
-    """A branch for :func:`build_branched_wall`: its surface, its wall and its net."""
+    """A branch for :func:`build_branched_wall`: its surface, its wall and its net, and the
+    radius of a crotch ``blend`` along its outer saddle (None: none)."""
 
     surface: CurvatureLineSurface
     thickness: float
     side: str = "centered"
     layout: NetLayout | None = None
+    blend: float | None = None
 
     def offsets(self) -> tuple[float, float]:
         """(d_in, d_out): the branch wall's surfaces as offsets of its surface."""
@@ -188,8 +220,9 @@ def build_branched_wall(
         return built.shape.wrapped
 
     saddles: list[SaddleEdge] = []
-    outers: list[tuple[TopoDS_Shape, _Touching | None]] = []
-    inners: list[tuple[TopoDS_Shape, _Touching | None]] = []
+    outers: list[tuple[TopoDS_Shape, _Joint | None]] = []
+    inners: list[tuple[TopoDS_Shape, _Joint | None]] = []
+    blends: dict[int, RollingBall] = {}
     for k, branch in enumerate(branches):
         tag = "" if len(branches) == 1 else str(k)
         outer, inner = wall_saddles(
@@ -209,7 +242,24 @@ def build_branched_wall(
         for offset, side, edge, joined in ((b_out, "", outer, outers), (b_in, "_inner", inner, inners)):
             tube = solid(branch.surface, offset, rings, stringers, f"branch{tag}", side)
             # an equal tee's saddle (two curves through the crotch points): joined on it (touching.py)
-            touches = _Touching(branch.surface.offset(offset), list(edge.edges)) if edge.saddle.corners else None
+            touches: _Joint | None = (
+                _Touching(branch.surface.offset(offset), list(edge.edges)) if edge.saddle.corners else None
+            )
+            if side == "" and branch.blend is not None:  # a crotch blend along the outer saddle (blend.py)
+                if edge.saddle.corners:
+                    raise ParameterError(
+                        f"{key}.blend.radius: a blend on an equal tee (the surfaces touch) is not made yet",
+                        key=f"{key}.blend.radius",
+                    )
+                ball = rolling_ball(
+                    main.offset(main_out), branch.surface.offset(offset), branch.blend, tolerance, key=f"{key}.blend"
+                )
+                blends[k] = ball
+                net_of_ball = NetLayout.equal(ball.surface, BLEND_RINGS, BLEND_STRINGERS)
+                ball_solid = solid(
+                    ball.surface, 0.0, list(net_of_ball.s_rings), list(net_of_ball.stringers_deg), f"blend{tag}", ""
+                )
+                touches = _Blended(ball, ball_solid)
             joined.append((tube, touches))
     _check_openings_apart(main.offset(main_out), [e.saddle for e in saddles[::2]], key)
     rings, stringers = list(main_layout.s_rings), list(main_layout.stringers_deg)
@@ -227,6 +277,7 @@ def build_branched_wall(
         cut, history_w = _boolean(BRepAlgoAPI_Cut(), outside, [bore], key)
         result, remade, _ = refine_section_edges(cut)
     crotch_curves = [c for e in saddles if e.saddle.corners for c in e.curves]
+    crotch_curves += [c for ball in blends.values() for c in ball.contacts]
     if crotch_curves:  # the equal tee's saddle edges on the exact saddle (touching.py)
         result, remade_on_saddle, _ = exact_saddle_edges(result, crotch_curves)
         history_r: BRepTools_ReShape | _Chained = _Chained(remade, remade_on_saddle)
@@ -255,8 +306,24 @@ def build_branched_wall(
         if label is not None:
             edge.label = label
             named.setdefault(label, []).append(edge)
-    on_saddles, deviation, coverage = _name_saddle_edges([e for e in edges if not e.label], saddles)
-    return JunctionWall(shape, {**on_saddles, **named}, {e.name: e for e in saddles}, deviation, coverage)
+    blended = {saddle_name("saddle_outer", k, len(branches)) for k in blends}
+    on_saddles, deviation, coverage = _name_saddle_edges(
+        [e for e in edges if not e.label], [e for e in saddles if e.name not in blended]
+    )
+    for name in blended:  # the blend took the outer saddle's place: none of its edges is in W
+        deviation[name], coverage[name] = 0.0, 0.0
+    on_contacts = _name_contact_edges([e for e in edges if not e.label], blends, len(branches))
+    return JunctionWall(
+        shape, {**on_saddles, **on_contacts, **named}, {e.name: e for e in saddles}, deviation, coverage, blends
+    )
+
+
+class _Joint(Protocol):
+    """How a branch's solid is joined to the main's without OCCT's fuse (touching.py, blend.py)."""
+
+    def join(
+        self, base: TopoDS_Shape, base_surface: CurvatureLineSurface, tube: TopoDS_Shape, key: str
+    ) -> tuple[TopoDS_Shape, Callable[..., list[TopoDS_Shape]]]: ...
 
 
 @dataclass(frozen=True)
@@ -267,21 +334,40 @@ class _Touching:
     surface: CurvatureLineSurface
     saddle: list[TopoDS_Edge]
 
+    def join(
+        self, base: TopoDS_Shape, base_surface: CurvatureLineSurface, tube: TopoDS_Shape, key: str
+    ) -> tuple[TopoDS_Shape, Callable[..., list[TopoDS_Shape]]]:
+        return touching_union(base, base_surface, tube, self.surface, self.saddle, key)
+
+
+@dataclass(frozen=True)
+class _Blended:
+    """A branch joined on through a crotch blend: the rolling ball and its tube's solid."""
+
+    ball: RollingBall
+    solid: TopoDS_Shape
+
+    def join(
+        self, base: TopoDS_Shape, base_surface: CurvatureLineSurface, tube: TopoDS_Shape, key: str
+    ) -> tuple[TopoDS_Shape, Callable[..., list[TopoDS_Shape]]]:
+        return self.ball.join(base, base_surface, tube, self.solid, key)
+
 
 def _union(
     base: TopoDS_Shape,
     base_surface: CurvatureLineSurface,
-    branches: list[tuple[TopoDS_Shape, _Touching | None]],
+    branches: list[tuple[TopoDS_Shape, _Joint | None]],
     key: str,
 ) -> tuple[TopoDS_Shape, Callable[..., list[TopoDS_Shape]]]:
     """``base`` united with the branches' solids, and the history (input edges -> their pieces):
-    OCCT's fuse for the branches that cross the main surface, then each that touches it joined
-    along its exact saddle (:func:`~tubecad.junctions.touching.touching_union`)."""
-    crossing = [tube for tube, touches in branches if touches is None]
+    OCCT's fuse for the branches that cross the main surface, then each that touches it (along
+    its exact saddle, :func:`~tubecad.junctions.touching.touching_union`) or has a blend
+    (:meth:`~tubecad.junctions.blend.RollingBall.join`) joined by its own joint."""
+    crossing = [tube for tube, joint in branches if joint is None]
     shape, history = _boolean(BRepAlgoAPI_Fuse(), base, crossing, key) if crossing else (base, _unchanged)
-    for tube, touches in branches:
-        if touches is not None:
-            shape, more = touching_union(shape, base_surface, tube, touches.surface, touches.saddle, key)
+    for tube, joint in branches:
+        if joint is not None:
+            shape, more = joint.join(shape, base_surface, tube, key)
             history = _then(history, more)
     return shape, history
 
@@ -444,6 +530,27 @@ def _name_saddle_edges(
         for s in saddles
     }
     return named, deviation, coverage
+
+
+def _name_contact_edges(
+    edges: list[bd.Edge], blends: dict[int, RollingBall], branches: int
+) -> dict[str, list[bd.Edge]]:
+    """Label those of ``edges`` that lie on a blend's contact curves (within CONTACT of them):
+    ``blend_main`` and ``blend_branch`` (``..._k`` with several branches)."""
+    named: dict[str, list[bd.Edge]] = {}
+    for k, ball in blends.items():
+        tag = "" if branches == 1 else f"_{k}"
+        for name, curve in zip((f"blend_main{tag}", f"blend_branch{tag}"), ball.contacts):
+            projector = GeomAPI_ProjectPointOnCurve()
+            projector.Init(curve, curve.FirstParameter(), curve.LastParameter())
+            named[name] = []
+            for edge in edges:
+                adaptor = BRepAdaptor_Curve(edge.wrapped)
+                t = np.linspace(adaptor.FirstParameter(), adaptor.LastParameter(), EDGE_SAMPLES)
+                if not edge.label and _near([projector], [adaptor.Value(float(x)) for x in t], CONTACT):
+                    edge.label = name
+                    named[name].append(edge)
+    return named
 
 
 def _near(projectors: list[GeomAPI_ProjectPointOnCurve], points: list[gp_Pnt], limit: float) -> bool:

@@ -93,28 +93,54 @@ def touching_union(
     Raises:
         TubecadError: where the split pieces do not sew into one closed shell.
     """
+    return split_and_sewn(
+        [
+            (base, saddle, lambda p: not _inside(branch_surface, p, strict_span=True)),
+            (branch, saddle, lambda p: not _inside(base_surface, p, strict_span=False)),
+        ],
+        key,
+    )
+
+
+def split_and_sewn(
+    parts: list[tuple[TopoDS_Shape, list[TopoDS_Edge], Callable[[np.ndarray], bool]]], key: str
+) -> tuple[TopoDS_Shape, Pieces]:
+    """The solid bounded by the pieces of several solids' faces: each solid's faces split by
+    its edges (lying on them), the pieces whose inner point (OCCT's ``PointInFace``) the
+    solid's test keeps, sewn (copies of an edge in two solids become one) into one closed
+    shell; and the history (input edges -> their pieces).
+
+    Args:
+        parts: per solid: the solid, the edges its faces are split by, and the test of a
+            piece's inner point (True: kept).
+        key: the key a failure names.
+
+    Returns:
+        (the solid, the history).
+
+    Raises:
+        TubecadError: where the pieces kept do not sew into one closed shell.
+    """
     context = IntTools_Context()
     kept: list[TopoDS_Face] = []
     splits = []
-    for shape, other, dropped in ((base, branch_surface, True), (branch, base_surface, False)):
-        splitter = _split(shape, saddle, key)
+    for shape, edges, keep in parts:
+        splitter = _split(shape, edges, key)
         splits.append(splitter)
         for face in map(as_face, sub_shapes(splitter.Shape(), TopAbs_FACE)):
-            if not _inside(other, _point_in(face, context), strict_span=dropped):
+            if keep(_point_in(face, context)):
                 kept.append(face)
     sewing = BRepBuilderAPI_Sewing(SEWING)
     for face in kept:
         sewing.Add(face)
     sewing.Perform()
-    sewn = sewing.SewedShape()
-    faces = [as_face(f) for f in sub_shapes(sewn, TopAbs_FACE)]
+    faces = [as_face(f) for f in sub_shapes(sewing.SewedShape(), TopAbs_FACE)]
     if sewing.NbFreeEdges() or sewing.NbMultipleEdges() or len(faces) != len(kept):
         raise TubecadError(
-            f"{key}: the branch touching the main surface (an equal tee) did not close: {sewing.NbFreeEdges()} free "
-            f"and {sewing.NbMultipleEdges()} multiple edges after sewing its faces",
+            f"{key}: the branch's faces joined on the main's did not close: {sewing.NbFreeEdges()} free "
+            f"and {sewing.NbMultipleEdges()} multiple edges after sewing them",
             key=key,
         )
-    union = closed_solid(faces)
 
     def pieces(*edges: TopoDS_Shape) -> list[TopoDS_Shape]:
         out: list[TopoDS_Shape] = []
@@ -127,7 +153,7 @@ def touching_union(
                     out.append(sewing.ModifiedSubShape(piece) if sewing.IsModifiedSubShape(piece) else piece)
         return out
 
-    return union, pieces
+    return closed_solid(faces), pieces
 
 
 def _split(shape: TopoDS_Shape, edges: list[TopoDS_Edge], key: str) -> BRepAlgoAPI_Splitter:
@@ -237,6 +263,10 @@ def _remade(
     as ``edge``; and its measured deviation. None where a projection fails."""
     first, last = TopExp.FirstVertex_s(edge), TopExp.LastVertex_s(edge)
     feet = [_foot(curve, projector, BRep_Tool.Pnt_s(vertex))[0] for vertex in (first, last)]
+    if curve.IsPeriodic():  # a closed curve: the edge may run across its seam
+        adaptor = BRepAdaptor_Curve(edge)
+        middle = _foot(curve, projector, adaptor.Value(0.5 * (adaptor.FirstParameter() + adaptor.LastParameter())))[0]
+        feet = _through(feet[0], feet[1], middle, curve.Period())
     flipped = feet[0] > feet[1]
     (t0, t1), (v0, v1) = (feet[::-1], (last, first)) if flipped else (feet, (first, last))
     t = np.linspace(t0, t1, REMADE_SAMPLES)
@@ -275,6 +305,16 @@ def _remade(
     builder.SameParameter(new, True)
     builder.SameRange(new, True)
     return (new.Reversed() if flipped else new), deviation
+
+
+def _through(t0: float, t1: float, middle: float, period: float) -> list[float]:
+    """The ends t0, t1 (t1 moved by a period if need be) of the arc of a periodic curve that
+    holds ``middle`` (a point of the edge between them), shorter than a period."""
+    for shift in (0.0, period, -period):
+        a, b = sorted((t0, t1 + shift))
+        if b - a < period and any(a <= middle + k * period <= b for k in (-1, 0, 1)):
+            return [t0, t1 + shift]
+    return [t0, t1]
 
 
 def _in_range(curve: Geom_Curve, t: float) -> float:

@@ -59,6 +59,8 @@ class Branch:
         pad_width: how far the pad reaches beyond the saddle (with ``pad_thickness``).
         k: the branch axis' curvature k(s), an expression in its arc length s ("0": straight).
         tau: its torsion tau(s), likewise.
+        blend_radius: a crotch blend along its outer saddle: the rolling ball's radius
+            (:mod:`tubecad.junctions.blend`; None: no blend).
     """
 
     at: float
@@ -75,6 +77,7 @@ class Branch:
     pad_width: float | None = None
     k: str = "0"
     tau: str = "0"
+    blend_radius: float | None = None
 
 
 @dataclass
@@ -150,7 +153,8 @@ def junction_part_design(
                 branch.pad_width if branch.pad_width is not None else nan,
             )
         wall = WallChoice(thickness if branch.thickness is None else branch.thickness, as_wall_side(branch.side))
-        designs.append(BranchDesign(surface, wall, layout_of(surface, branch.rings, branch_stringers), pad))
+        net = layout_of(surface, branch.rings, branch_stringers)
+        designs.append(BranchDesign(surface, wall, net, pad, blend=branch.blend_radius))
     main_design = WallDesign(main, main_layout, tolerance, WallChoice(thickness, as_wall_side(side)))
     return JunctionDesign(main_design, tuple(designs))
 

@@ -116,9 +116,12 @@ def branch_design(spec: TubeSpec, k: int, main_stringers: int) -> BranchDesign:
     assert section is not None
     layout = branch.net(surface, main_stringers)
     pad = None if branch.pad is None else PadChoice(branch.pad.thickness, branch.pad.width)
+    blend = None if branch.blend is None else branch.blend.radius
     chosen = branch.stiffeners
     if chosen is None:
-        return BranchDesign(surface, WallChoice(section.thickness, as_wall_side(section.side)), layout, pad)
+        return BranchDesign(
+            surface, WallChoice(section.thickness, as_wall_side(section.side)), layout, pad, blend=blend
+        )
     try:
         rings = tuple(chosen.indices("rings", len(layout.s_rings)))
         stringers = tuple(chosen.indices("stringers", len(layout.stringers_deg)))
@@ -133,6 +136,7 @@ def branch_design(spec: TubeSpec, k: int, main_stringers: int) -> BranchDesign:
         rings,
         stringers,
         chosen.start,
+        blend,
     )
 
 
@@ -186,6 +190,9 @@ def as_spec_error(spec: TubeSpec, exc: TubecadError) -> SpecError:
         key = TEMPLATE_KEYS.get(exc.key or "", exc.key or "branches")
         return SpecError(f"{source}: [[branches]]{number} {exc}", key=key)
     if stage == "branches":
+        number = "" if exc.branch is None else f" #{exc.branch + 1}"
+        if exc.key and exc.key.startswith("blend"):  # a branch's own blend table
+            return SpecError(f"{source}: [[branches]]{number} {exc}", key=f"branches.{exc.key}")
         key = exc.key if exc.key and exc.key.startswith(("branches", "fit")) else "branches"
-        return SpecError(f"{source}: [[branches]] {exc}", key=key)
+        return SpecError(f"{source}: [[branches]]{number} {exc}", key=key)
     return SpecError(f"{source}: {exc}", key=exc.key)

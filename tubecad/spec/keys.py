@@ -357,6 +357,15 @@ PAD_KEYS = {
     "width": Key("number", help="how far the pad reaches beyond the branch's outer saddle every way, > 0", low=0.0),
 }
 
+BLEND_KEYS = {
+    "radius": Key(
+        "number",
+        help="the rolling ball's radius > 0: the blend along the branch's outer saddle (a forged tee's crotch "
+        "radius, a weld fillet), a canal surface tangent to both walls",
+        low=0.0,
+    ),
+}
+
 #: a branch's own stiffeners: its rings and stringers with the main [stiffeners] profile and side
 BRANCH_STIFFENER_KEYS = {
     "rings": Key("selection", required=False, help='ring indices into the branch\'s layout, or "all" (default none)'),
@@ -444,6 +453,13 @@ BRANCH_KEYS = {
         keys=PAD_KEYS,
         help="a reinforcement pad round the branch, { thickness = ..., width = ... }: its own solid `pad`, "
         "bounded by two rings and two stringers of the main wall (no pad by default)",
+    ),
+    "blend": Key(
+        "table",
+        required=False,
+        keys=BLEND_KEYS,
+        help="a crotch blend along the branch's outer saddle, { radius = ... }: the rolling ball's canal surface, "
+        "tangent to both walls along its edges blend_main and blend_branch (no blend by default)",
     ),
 }
 

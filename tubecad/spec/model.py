@@ -149,6 +149,13 @@ class PadSection:
     width: float
 
 
+@dataclass(frozen=True)
+class BlendSection:
+    """A [[branches]] table's crotch blend: the rolling ball's ``radius``."""
+
+    radius: float
+
+
 #: a branch's rings when its [[branches]] table has no layout
 DEFAULT_BRANCH_RINGS = 3
 
@@ -191,6 +198,7 @@ class BranchSection:
     layout: LayoutSection | None = None
     pad: PadSection | None = None
     stiffeners: BranchStiffenersSection | None = None
+    blend: BlendSection | None = None
 
     def __post_init__(self) -> None:
         for name, kind in (
@@ -198,6 +206,7 @@ class BranchSection:
             ("layout", LayoutSection),
             ("pad", PadSection),
             ("stiffeners", BranchStiffenersSection),
+            ("blend", BlendSection),
         ):
             value = getattr(self, name)
             if isinstance(value, dict):  # the checked inline table, typed

@@ -180,6 +180,12 @@ def junction_summary(junction: dict[str, Any]) -> list[str]:
             f"saddle (fitted: {saddle.get('curves', 'periodic B-spline')}, {saddle['poles']} poles, "
             f"{saddle['fit_deviation']:.1e})"
         )
+    for name, blend in junction.get("blends", {}).items():
+        edges = ", ".join(f"{count} {edge}" for edge, count in blend["edges_in_solid"].items())
+        lines.append(
+            f"{name}: radius {blend['radius']:g}, its edges in the solid {edges} (the contact curves, fitted to "
+            f"{blend['contact_deviation']:.1e})"
+        )
     for name, pad in junction.get("pads", {}).items():
         lines.append(
             f"{name}: thickness {pad['thickness']:g}, volume {pad['volume']:.6g}, valid={pad['valid']}, "

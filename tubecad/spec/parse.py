@@ -316,6 +316,11 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
                 value = getattr(branch.pad, name)
                 if not (value > 0 and math.isfinite(value)):
                     raise fail(f"{where} pad {name} must be > 0, got {value:g}", f"branches.pad.{name}")
+        if branch.blend is not None:
+            if not (branch.blend.radius > 0 and math.isfinite(branch.blend.radius)):
+                raise fail(f"{where} blend radius must be > 0, got {branch.blend.radius:g}", "branches.blend.radius")
+            if branch.pad is not None:
+                raise fail(f"{where} blend: a blend with a pad round the branch is not made yet", "branches.blend")
         wall = branch.wall or model.wall
         try:
             b_in, b_out = wall.offsets()
