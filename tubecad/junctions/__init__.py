@@ -6,6 +6,10 @@ junction's faces share (``saddle_outer``, ``saddle_inner``); :mod:`~tubecad.junc
 joins a branch wall to a main wall as one solid with the saddles as named edges;
 :mod:`~tubecad.junctions.placement` places a straight branch on the main axis.
 
+:mod:`~tubecad.junctions.crotch` and :mod:`~tubecad.junctions.crotch_edges` give an equal tee's saddle
+(two curves through the crotch points), :mod:`~tubecad.junctions.touching` joins faces along
+exact curves without intersecting them, :mod:`~tubecad.junctions.blend` makes the crotch blend.
+
 Exports are lazy (tubecad.core.lazy): the spec checker places a branch without loading OCCT.
 """
 
@@ -16,6 +20,7 @@ from tubecad.core.lazy import lazy_exports
 _PUBLIC = {
     **{name: ".edges" for name in ("SaddleEdge", "fit_saddle", "periodic_bspline", "wall_saddles")},
     "branch_surface": ".placement",
+    **{name: ".blend" for name in ("RollingBall", "rolling_ball")},
     **{name: ".reinforcement" for name in ("AreaReplacement", "area_replacement")},
     **{name: ".saddle" for name in ("SaddleCurve", "dihedral_angles", "saddle_curve")},
     **{
@@ -29,6 +34,8 @@ __getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, globals())
 
 
 if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported here at run time)
+    from tubecad.junctions.blend import RollingBall as RollingBall
+    from tubecad.junctions.blend import rolling_ball as rolling_ball
     from tubecad.junctions.edges import SaddleEdge as SaddleEdge
     from tubecad.junctions.edges import fit_saddle as fit_saddle
     from tubecad.junctions.edges import periodic_bspline as periodic_bspline
