@@ -37,6 +37,9 @@ pytestmark = [pytest.mark.requires("gmsh"), pytest.mark.slow]
         # the equal tee (issue 43): the main's ring means within 0.53 %; SCF 2.2 near the crotch,
         # where the mid-surfaces touch
         ("equal_tee", ("main",), (1.5, 3.0)),
+        # the cross and the wye: both branches' ring means within 0.57 % and 0.63 %; SCF 3.9 and 4.8
+        ("cross", ("main", "branch_0", "branch_1"), (3.0, 5.0)),
+        ("wye", ("main", "branch_0", "branch_1"), (4.0, 6.0)),
     ],
 )
 def test_a_junction_sample_analyses_from_the_command_line(tmp_path, sample, checked, concentration):

@@ -168,3 +168,18 @@ def test_an_equal_tee_from_the_workplane_is_the_build123d_ones():
     assert np.minimum(np.abs(x - height), np.abs(x + height)).max() < 1e-11 * 52
     twin = CurvatureJunction(bd.Edge(axis.wrapped), 50.0, 4.0, [branch], rings=7, stringers=8)
     assert props.volume(wall.wrapped) == pytest.approx(props.volume(twin.solids()[0].wrapped), rel=1e-12)
+
+
+def test_a_blended_tee_from_the_workplane():
+    """A Branch with ``blend_radius`` (issue 43): one valid solid whose blend edges lie on the
+    outer cylinders (52 and 31.5), no outer saddle edge left."""
+    import numpy as np
+
+    from tubecad import Branch
+
+    branch = Branch(at=150.0, length=120.0, radius=30.0, thickness=3.0, blend_radius=5.0)
+    axis = cq.Edge.makeLine(cq.Vector(0, 0, 0), cq.Vector(300, 0, 0))
+    tee = cq.Workplane().curvatureJunction(axis, 50.0, 4.0, [branch], rings=7, stringers=8).val()
+    assert tee.Solids()[0].isValid() and "saddle_outer" not in tee.named_edges
+    on_main = np.array([tuple(e.positionAt(t)) for e in tee.named_edges["blend_main"] for t in np.linspace(0, 1, 9)])
+    assert np.abs(np.hypot(on_main[:, 1], on_main[:, 2]) - 52.0).max() < 1e-8
