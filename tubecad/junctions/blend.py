@@ -35,7 +35,7 @@ from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
 
 from tubecad.core.errors import ParameterError
 from tubecad.junctions.coordinates import surface_coordinates
-from tubecad.junctions.edges import FIRST_INTERVALS, MOST_INTERVALS, periodic_bspline
+from tubecad.junctions.edges import FIRST_INTERVALS, MOST_INTERVALS, fit_periodic
 from tubecad.junctions.saddle import SaddleCurve, saddle_curve, saddle_parameters
 from tubecad.junctions.touching import Pieces, split_and_sewn
 from tubecad.surface.protocol import CurvatureLineSurface
@@ -76,9 +76,10 @@ class RollingBall:
         Returns:
             (centres, contacts on the main, contacts on the branch), each (n, 3).
         """
-        x = _spine_parameters(self.main.offset(self.radius), self.branch.offset(self.radius), self.spine, u_b)
+        main_off = self.main.offset(self.radius)
+        x = _spine_parameters(main_off, self.branch.offset(self.radius), self.spine, u_b)
         u = np.mod(np.asarray(u_b, dtype=float), 2.0 * math.pi)
-        centre = self.main.offset(self.radius).points(x[:, 0], x[:, 1])
+        centre = main_off.points(x[:, 0], x[:, 1])
         return centre, self.main.points(x[:, 0], x[:, 1]), self.branch.points(u, x[:, 2])
 
     def join(
@@ -97,8 +98,8 @@ class RollingBall:
         Returns:
             (the union, the history: input edges -> their pieces).
         """
-        on_main = surface_coordinates(base_surface, self._main_contact_samples())
-        opening = _periodic_polygon(np.unwrap(on_main.u), on_main.s)
+        # the contact curve on the main in its (u_A, s_A): the spine's own main parameters
+        opening = _periodic_polygon(self.spine.main_u, self.spine.main_s)
         floor_u, floor_s = self.spine.branch_u, self.spine.branch_s
         in_blend = self._in_blend()
 
@@ -120,9 +121,6 @@ class RollingBall:
             ],
             key,
         )
-
-    def _main_contact_samples(self) -> np.ndarray:
-        return self.main.points(self.spine.main_u, self.spine.main_s)
 
     def _in_blend(self):
         """A test of a point on the blend's tube: whether it lies on its ring's short arc
@@ -193,14 +191,8 @@ def rolling_ball(
         u = np.linspace(0.0, 2.0 * math.pi, 2 * intervals + 1)
         x = _spine_parameters(main_off, branch_off, spine, u)
         exact = (main.points(x[:, 0], x[:, 1]), branch.points(u, x[:, 2]))
-        curves, deviation = [], 0.0
-        for points in exact:
-            nodes = points[::2].copy()
-            nodes[-1] = nodes[0]
-            curve = periodic_bspline(u[::2], nodes)
-            fitted = np.array([curve.Value(float(v)).Coord() for v in u[1::2]])
-            deviation = max(deviation, float(np.linalg.norm(fitted - points[1::2], axis=1).max()))
-            curves.append(curve)
+        fits = [fit_periodic(u, points) for points in exact]
+        curves, deviation = [c for c, _ in fits], max(d for _, d in fits)
         if deviation <= tolerance or intervals >= MOST_INTERVALS:
             break
         intervals *= 2

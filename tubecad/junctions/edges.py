@@ -146,6 +146,25 @@ def periodic_bspline(u: np.ndarray, points: np.ndarray, degree: int = DEGREE) ->
     return Geom_BSplineCurve(poles, reals(u), integers([1] * len(u)), degree, True)
 
 
+def fit_periodic(u: np.ndarray, points: np.ndarray) -> tuple[Geom_BSplineCurve, float]:
+    """The periodic B-spline through the even samples of a closed curve (``points`` at ``u``,
+    an odd number over one turn, the last the first again) and its largest distance from the
+    odd ones, the midpoints between its nodes.
+
+    Args:
+        u: the samples' parameters, increasing over one period.
+        points: (len(u), 3) the curve's points there.
+
+    Returns:
+        (the curve, the measured deviation).
+    """
+    nodes = points[::2].copy()
+    nodes[-1] = nodes[0]
+    curve = periodic_bspline(u[::2], nodes)
+    fitted = np.array([curve.Value(float(v)).Coord() for v in u[1::2]])
+    return curve, float(np.linalg.norm(fitted - points[1::2], axis=1).max())
+
+
 def fit_saddle(
     main: CurvatureLineSurface,
     branch: CurvatureLineSurface,
@@ -169,12 +188,7 @@ def fit_saddle(
             return SaddleEdge(name, curves, edges, knots, deviation, tolerance, main, branch)
     while True:
         exact = saddle_curve(main, branch, 2 * intervals + 1, key=key, near=exact)
-        nodes = exact.points[::2].copy()
-        nodes[-1] = nodes[0]
-        curve = periodic_bspline(exact.branch_u[::2], nodes)
-        mids = exact.branch_u[1::2]
-        fitted = np.array([curve.Value(float(u)).Coord() for u in mids])
-        deviation = float(np.linalg.norm(fitted - exact.points[1::2], axis=1).max())
+        curve, deviation = fit_periodic(exact.branch_u, exact.points)
         if deviation <= tolerance:
             break
         if intervals >= MOST_INTERVALS:

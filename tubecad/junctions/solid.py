@@ -105,7 +105,7 @@ class JunctionWall:
     @property
     def blended(self) -> set[str]:
         """The outer saddles a blend took the place of (no edges of the shape)."""
-        return {saddle_name("saddle_outer", k, len(self.saddles) // 2) for k in self.blends}
+        return _blended_saddles(self.blends, len(self.saddles) // 2)  # two saddles a branch
 
     def outer_boundary(self, k: int, branches: int) -> SaddleCurve:
         """Where branch ``k`` (of ``branches``) leaves the main's outer surface: its blend's
@@ -146,6 +146,11 @@ class BranchWall:
     def offsets(self) -> tuple[float, float]:
         """(d_in, d_out): the branch wall's surfaces as offsets of its surface."""
         return wall_offsets(self.thickness, self.side)
+
+
+def _blended_saddles(blends: dict[int, RollingBall], branches: int) -> set[str]:
+    """The names of the outer saddles of the ``blends``' branches (of ``branches``)."""
+    return {saddle_name("saddle_outer", k, branches) for k in blends}
 
 
 def saddle_name(base: str, k: int, branches: int) -> str:
@@ -306,7 +311,7 @@ def build_branched_wall(
         if label is not None:
             edge.label = label
             named.setdefault(label, []).append(edge)
-    blended = {saddle_name("saddle_outer", k, len(branches)) for k in blends}
+    blended = _blended_saddles(blends, len(branches))
     on_saddles, deviation, coverage = _name_saddle_edges(
         [e for e in edges if not e.label], [e for e in saddles if e.name not in blended]
     )

@@ -73,12 +73,10 @@ def test_the_blends_rings_are_circles_of_the_ball_touching_both_walls(blended):
 
 @pytest.mark.slow
 def test_the_blended_tee_is_clean_and_reads_back(blended, tmp_path):
-    import build123d as bd
+    from shared.step_read_back import step_read_back
 
     assert analyzer_findings(blended.shape.wrapped) == {}
-    path = tmp_path / "blend.step"
-    bd.export_step(blended.shape, str(path))
-    back = bd.import_step(str(path))
+    back = step_read_back(blended.shape, tmp_path / "blend.step")
     assert len(back.solids()) == 1 and is_valid(back.wrapped)
     assert analyzer_findings(back.solids()[0].wrapped) == {}
     assert volume(back.wrapped) == pytest.approx(volume(blended.shape.wrapped), rel=1e-12)

@@ -96,13 +96,12 @@ def test_the_nets_stay_named_round_the_opening(tee):
 
 @pytest.mark.slow
 def test_the_equal_tee_is_clean_and_reads_back_from_step_and_gmsh(tee, tmp_path):
-    import build123d as bd
     from conftest import gmsh_initialized
+    from shared.step_read_back import step_read_back
 
     assert analyzer_findings(tee.shape.wrapped) == {}
     path = tmp_path / "equal_tee.step"
-    bd.export_step(tee.shape, str(path))
-    back = bd.import_step(str(path))
+    back = step_read_back(tee.shape, path)
     assert len(back.solids()) == 1 and is_valid(back.wrapped)
     # the reader gives every edge 1e-7: OCCT's own section edges at the crotch failed that (8
     # InvalidCurveOnSurface), the edges on the exact saddle hold it
