@@ -1,6 +1,7 @@
 """[[branches]] in a spec (issue 25), from the command line: the commands that cannot make a
 junction yet refuse it with exit code 2 and no file; shop writes a tee's templates, bevels
-and webs; a batch and a curved branch build valid junctions."""
+and webs, and a nozzle's opening on a conical main on a panel's development; a batch and a
+curved branch build valid junctions."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import math
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from shared.branches import BRANCH, spec_text
+from shared.branches import BRANCH, MAIN, spec_text
 
 from tubecad.cli.app import cli
 
@@ -189,3 +190,53 @@ def test_a_near_equal_spec_tee_builds_as_the_python_api_does(tmp_path):
     assert junction["valid"] and junction["solids"] == 1
     for name in ("saddle_outer", "saddle_inner"):
         assert junction["saddles"][name]["edges_deviation"] < 1e-8  # measured 1e-10
+
+
+@pytest.mark.slow
+def test_shop_on_a_nozzle_on_a_cone_develops_the_opening_on_a_panel(tmp_path):
+    """The main a cone (spheres of radius 55 - 0.05 s about the x axis, wall 4: the bore's
+    surface the cone of 53 - 0.05 s, apex at x = 1060, half-angle a with sin a = 0.05), the
+    branch r 20 up z at x = 150: the opening's template is the bore's saddle (on the cone and
+    on the cylinder (x - 150)^2 + y^2 = 18^2) developed on the panel of the cone round it,
+    one closed polyline that ezdxf reads back, whose vertices' pairwise distances are those
+    of the cone's exact development (rho, theta sin a) of the saddle's points (rigid-motion
+    blind), inside the panel's outline; the index says it is a panel's, strain 0."""
+    import json
+
+    import ezdxf
+    from scipy.spatial.distance import pdist
+    from shapely.geometry import Polygon
+
+    from tubecad.junctions import saddle_curve
+    from tubecad.spec.design import design_of
+    from tubecad.spec.parse import load_spec
+
+    spec = tmp_path / "cone.toml"
+    main = MAIN.replace("radius = 50.0", 'radius = "55 - 0.05 * s"')
+    spec.write_text(spec_text(BRANCH.replace("radius = 30.0", "radius = 20.0"), main))
+    result = CliRunner().invoke(cli, ["shop", str(spec), "-o", str(tmp_path / "shop")])
+    assert result.exit_code == 0, result.output
+    assert "the opening's template (on the main's panel" in result.output
+    entry = json.loads((tmp_path / "shop" / "index.json").read_text())["branches"][0]
+    assert entry["hole"]["developed"] == "panel" and entry["hole"]["strain"] < 1e-14  # measured 9.0e-16
+    assert "branches/branch_0_hole.dxf" in entry["files"]
+    space = ezdxf.readfile(tmp_path / "shop" / "branches" / "branch_0_hole.dxf").modelspace()
+    (line,) = space.query('LWPOLYLINE[layer=="saddle"]')
+    (outline,) = space.query('LWPOLYLINE[layer=="outline"]')
+    assert line.closed and outline.closed
+    drawn = np.array([p[:2] for p in line.get_points()])
+
+    design = design_of(load_spec(spec))  # the bore's saddle on the exact surfaces, as the shop solves it
+    (inside, _), (bore, _) = design.main.wall.offsets(), design.branches[0].wall.offsets()
+    saddle = saddle_curve(
+        design.main.surface.offset(inside), design.branches[0].surface.offset(bore), len(drawn) + 1
+    ).points[:-1]
+    x, y, z = saddle.T
+    slant = np.linalg.norm(saddle - [1060.0, 0.0, 0.0], axis=1)
+    # on both surfaces: measured 8.5e-14 and 1.3e-13
+    assert np.abs(np.hypot(x - 150.0, y) - 18.0).max() < 1e-12 and np.abs(0.05 * slant - np.hypot(y, z)).max() < 1e-12
+    theta = 0.05 * np.unwrap(np.arctan2(z, y))
+    exact = np.column_stack([slant * np.cos(theta), slant * np.sin(theta)])
+    got, want = pdist(drawn), pdist(exact)
+    assert np.abs(got - want).max() < 2e-13 * want.max()  # measured 1.4e-14
+    assert Polygon([p[:2] for p in outline.get_points()]).contains(Polygon(drawn))

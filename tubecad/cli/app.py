@@ -499,12 +499,22 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
         )
     if "branches" in index:  # a junction: its templates and bevels
         for row in index["branches"]:
-            dihedral = row["dihedral_deg"]
+            dihedral, hole = row["dihedral_deg"], row["hole"]
             click.echo(
                 f"branch {row['branch']}: cutting template {row['template']['girth']:.6g} x "
-                f"{row['template']['height']:.6g} (strain {row['template']['strain']:.2g}), the opening's template, "
+                f"{row['template']['height']:.6g} (strain {row['template']['strain']:.2g}), the opening's template "
+                f"(on the main's {hole['developed']}, strain {hole['strain']:.2g}), "
                 f"bevel basis: dihedral angle {dihedral['min']:.2f} to {dihedral['max']:.2f} deg"
             )
+            if row["blend"] is not None:
+                blend, strips = row["blend"], row["blend"]["strips"]
+                worst = max(strip["max_strain"] for strip in strips)
+                developing = sum(strip["develops"] for strip in strips)
+                click.echo(
+                    f"branch {row['branch']}: crotch blend (ball radius {blend['radius']:.6g}): its toes on the cutting "
+                    f"template and the main's template, {len(strips)} strips developed, largest strain {worst:.3g} "
+                    f"({developing} of {len(strips)} within max_strain; the rest are formed)"
+                )
             if "files" not in index:
                 for path in row["files"]:
                     click.echo(str(output / path))

@@ -65,8 +65,7 @@ def junction_tubes(main: WallDesign, branches: Sequence[BranchDesign]) -> tuple[
     from tubecad.stiffeners.pad import pad_bounds, pad_name
 
     assert main.wall is not None  # a junction joins walls (JunctionDesign's contract)
-    refuse_blends(branches, "its shell model (the mid-surfaces joined on the saddle)")
-    walls = [BranchWall(b.surface, b.wall.thickness, b.wall.side, b.layout) for b in branches]
+    walls = [BranchWall(b.surface, b.wall.thickness, b.wall.side, b.layout, blend=b.blend) for b in branches]
     with stage("branches"):
         tubes = mid_surface_tubes(main.surface, main.wall.thickness, main.layout, walls, side=main.wall.side)
         outer = main.surface.offset(main.wall.offsets()[1])
@@ -78,17 +77,6 @@ def junction_tubes(main: WallDesign, branches: Sequence[BranchDesign]) -> tuple[
                 s_range, angles = pad_bounds(outer, saddle, branch.pad.width)
             pads.append(PadRegion(pad_name(k, len(walls)), s_range, angles, branch.pad.thickness))
     return tubes, pads
-
-
-def refuse_blends(branches: Sequence[BranchDesign], what: str) -> None:
-    """Refuse a junction with a crotch blend where ``what`` does not take one yet (key
-    ``blend``, the branch's stage): rather than drop the blend."""
-    from tubecad.core.errors import ParameterError
-
-    for k, branch in enumerate(branches):
-        if branch.blend is not None:
-            with stage("branches", k):
-                raise ParameterError(f"blend: {what} with a crotch blend is not made yet", key="blend")
 
 
 def stiffener_lines(

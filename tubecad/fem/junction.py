@@ -16,11 +16,20 @@ directions; an element takes the normals of its own tube at its nodes (``element
 a saddle node carries the main's normal in the main's elements and the branch's in the
 branch's; CalculiX joins the two by a knot, as at any shell intersection).
 
-Sets: ``saddle`` (the nodes both tubes share), ``crotch`` (an equal tee's: the two saddle nodes
+A branch with a crotch blend (:mod:`tubecad.junctions.blend`) is joined through the rolling
+ball on the mid-surfaces (:class:`JunctionBlend`): of radius rb + (t + t_b) / 4, so that with
+equal walls its outer face, half a thickness in, is the solid's blend of radius rb exactly; its
+shells the walls' mean thickness, their normals away from the ball's centre curve's side (the
+pressure pushes outward); the solid's extra material in the bore's sharp corner is no shell's.
+Its faces join the main's and the branch's along the ball's contact curves, not by OCCT's fuse
+(:meth:`~tubecad.junctions.blend.RollingBall.join`, the wall's own).
+
+Sets: ``saddle`` (the nodes both tubes share; a blended branch's: those on the blend's contact
+lines, also ``blend_main`` and ``blend_branch``, ``blend_main_1``... per branch with several), ``crotch`` (an equal tee's: the two saddle nodes
 where the mid-surfaces touch), ``pad`` (the nodes of the pad's elements;
 ``pad_0``, ``pad_1``... with several branches, one per pad),
 ``main_start``, ``main_end``, ``branch_end`` (``branch_1_end``...), element blocks ``main``,
-``branch`` (``branch_1``...), ``pad`` (a pad's elements: the main's and the pad's
+``branch`` (``branch_1``...), ``blend`` (``blend_1``...), ``pad`` (a pad's elements: the main's and the pad's
 thickness, offset outward). A pad is bounded by two rings and two stringers of the main,
 which are added to the main's faces so that its boundary is a line of elements.
 """
@@ -36,13 +45,14 @@ from functools import partial
 from pathlib import Path
 
 import numpy as np
-from OCP.TopoDS import TopoDS_Face
+from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
 
 from tubecad.brep.layout import NetLayout
 from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.fem.model import ElementBlock, FEMesh, ShellSection
 from tubecad.fem.settings import DEFAULT_SIZE_PER_RADIUS, MeshSettings
+from tubecad.junctions.blend import RollingBall
 from tubecad.junctions.coordinates import surface_coordinates
 from tubecad.junctions.solid import BranchWall
 from tubecad.surface.protocol import CurvatureLineSurface
@@ -54,6 +64,9 @@ CROTCH_NODE = 1e-4
 GMSH_ELEMENTS = {3: (4, 1), 16: (4, 2), 2: (3, 1), 9: (3, 2)}
 #: a quad side is on a ring or stringer when s or u agree at its ends to this (relative; radians)
 NET_TOLERANCE = 1e-7
+#: the rings a blend's faces are bounded by in the shell model (its closing ring and the one
+#: half way round): few vertices on the toes, none a short edge away from a wall's net line
+MESH_BLEND_RINGS = 3
 #: a face is taken as a tube's when its nodes are within this many fit tolerances of it
 ON_TUBE = 100.0
 
@@ -71,11 +84,30 @@ class JunctionTube:
     thickness: float
     layout: NetLayout
     stiffened: tuple[tuple[float, ...], tuple[float, ...]] = ((), ())
+    #: a branch's crotch blend: the ball's radius on the mid-surfaces (None: none)
+    blend: float | None = None
 
     @property
     def radius(self) -> float:
         """The smallest radius of the reference surface."""
         return float(self.surface.radius_law.min_radius)
+
+
+@dataclass(frozen=True)
+class JunctionBlend:
+    """A branch's crotch blend in the shell model (module docstring): its block's ``name``
+    (``blend``, ``blend_1``...), the ``branch`` it joins (its index among the tubes), the
+    rolling ``ball`` on the mid-surfaces and the shells' ``thickness``."""
+
+    name: str
+    branch: int
+    ball: RollingBall
+    thickness: float
+
+    @property
+    def surface(self) -> CurvatureLineSurface:
+        """The blend's canal surface (the tube about the ball's centre curve)."""
+        return self.ball.surface
 
 
 @dataclass(frozen=True)
@@ -106,14 +138,18 @@ def mid_surface_tubes(
     """The shell model's tubes of a junction wall (:func:`tubecad.junctions.build_branched_wall`'s
     arguments): the main (``main`` with its wall ``thickness`` placed ``side``, its ``layout``)
     and each branch wall, each at its wall's mid-surface, named ``main``, ``branch`` (or
-    ``branch_0``, ``branch_1``... with several)."""
+    ``branch_0``, ``branch_1``... with several); a branch wall's crotch blend of radius rb
+    as the ball of radius rb + (t + t_b) / 4 on the mid-surfaces."""
     d_in, d_out = wall_offsets(thickness, side)
     tubes = [JunctionTube("main", _offset(main, 0.5 * (d_in + d_out)), thickness, layout)]
     for k, wall in enumerate(branches):
         b_in, b_out = wall.offsets()
         name = "branch" if len(branches) == 1 else f"branch_{k}"
         b_layout = wall.layout or NetLayout.equal(wall.surface)
-        tubes.append(JunctionTube(name, _offset(wall.surface, 0.5 * (b_in + b_out)), wall.thickness, b_layout))
+        # a crotch blend's ball on the mid-surfaces: each half a wall farther (module docstring)
+        blend = None if wall.blend is None else wall.blend + 0.25 * (thickness + wall.thickness)
+        mid = _offset(wall.surface, 0.5 * (b_in + b_out))
+        tubes.append(JunctionTube(name, mid, wall.thickness, b_layout, blend=blend))
     return tubes
 
 
@@ -143,9 +179,10 @@ def junction_shell_mesh(
             key="surface",
         )
     size = junction_mesh_size(settings, [main, *branches])
-    tubes = _clear_of_saddles(main, branches, size)
+    blends = _blends(main, branches, tolerance)
+    tubes = _clear_of_saddles(main, branches, blends, size)
     tubes[0] = _with_pads(tubes[0], pads, size)
-    faces = _joined_faces(tubes, tolerance)
+    faces = _joined_faces(tubes, blends, tolerance)
     estimate = _area(faces) / size**2
     if estimate > settings.max_elements:
         raise ParameterError(
@@ -153,8 +190,9 @@ def junction_shell_mesh(
             f"{settings.max_elements}; choose a larger size",
             key="size",
         )
-    nodes, patches = _gmsh_mesh(faces, size, settings.order, partial(_nearest_tube, tubes))
-    return _model(tubes, pads, nodes, patches, settings, tolerance, size, length_unit)
+    surfaces = [t.surface for t in tubes] + [b.surface for b in blends]
+    nodes, patches = _gmsh_mesh(faces, size, settings.order, partial(_nearest_surface, surfaces))
+    return _model(tubes, blends, pads, nodes, patches, settings, tolerance, size, length_unit)
 
 
 def junction_mesh_size(settings: MeshSettings, tubes: Sequence[JunctionTube]) -> float:
@@ -164,22 +202,41 @@ def junction_mesh_size(settings: MeshSettings, tubes: Sequence[JunctionTube]) ->
     return min(sizes) if sizes else DEFAULT_SIZE_PER_RADIUS * min(t.radius for t in tubes)
 
 
-def _nearest_tube(tubes: list[JunctionTube], points: np.ndarray) -> np.ndarray:
-    """The index of the tube each point lies nearest to (by its gap)."""
-    return np.argmin(np.abs(np.stack([surface_coordinates(t.surface, points).gap for t in tubes])), axis=0)
+def _nearest_surface(surfaces: list[CurvatureLineSurface], points: np.ndarray) -> np.ndarray:
+    """The index of the surface (a tube's or a blend's) each point lies nearest to (by its gap)."""
+    return np.argmin(np.abs(np.stack([surface_coordinates(surface, points).gap for surface in surfaces])), axis=0)
 
 
-def _clear_of_saddles(main: JunctionTube, branches: Sequence[JunctionTube], clearance: float) -> list[JunctionTube]:
-    """The tubes with the rings and stringers that come within ``clearance`` of a saddle left
-    out of their faces (the main's round the opening, the branch's rings near its foot): a
-    net line that meets the saddle a fraction of an element from another line's meeting
-    point would leave an edge far shorter than the elements, and a sliver element on it."""
+def _blends(main: JunctionTube, branches: Sequence[JunctionTube], tolerance: float) -> list[JunctionBlend]:
+    """The crotch blends of the ``branches`` that have one: the rolling ball of their
+    ``blend`` radius on the mid-surfaces (:func:`~tubecad.junctions.blend.rolling_ball`),
+    the walls' mean thickness."""
+    from tubecad.junctions.blend import rolling_ball
+
+    out = []
+    for k, branch in enumerate(branches, start=1):
+        if branch.blend is not None:
+            ball = rolling_ball(main.surface, branch.surface, branch.blend, tolerance)
+            name = "blend" + branch.name.removeprefix("branch")
+            out.append(JunctionBlend(name, k, ball, 0.5 * (main.thickness + branch.thickness)))
+    return out
+
+
+def _clear_of_saddles(
+    main: JunctionTube, branches: Sequence[JunctionTube], blends: Sequence[JunctionBlend], clearance: float
+) -> list[JunctionTube]:
+    """The tubes with the rings and stringers that come within ``clearance`` of a saddle (a
+    blend's contact curves, where the branch has one) left out of their faces (the main's
+    round the opening, the branch's rings near its foot): a net line that meets the saddle a
+    fraction of an element from another line's meeting point would leave an edge far shorter
+    than the elements, and a sliver element on it."""
     from tubecad.junctions.saddle import saddle_curve
 
     main_rings, main_angles = list(main.layout.s_rings), list(main.layout.stringers_deg)
+    spines = {b.branch: b.ball.spine for b in blends}  # its parameters: the contact curves'
     out = []
-    for branch in branches:
-        saddle = saddle_curve(main.surface, branch.surface)
+    for k, branch in enumerate(branches, start=1):
+        saddle = spines[k] if k in spines else saddle_curve(main.surface, branch.surface)
         (s_lo, s_hi), (u_lo, u_hi) = saddle.extent(saddle.main_s), saddle.extent(saddle.main_u)
         lo, hi = s_lo - clearance, s_hi + clearance
         main_rings = [x for x in main_rings if not lo < x < hi or x in main.stiffened[0]]
@@ -217,16 +274,18 @@ def _with_pads(main: JunctionTube, pads: Sequence[PadRegion], clearance: float) 
     return replace(main, layout=layout)
 
 
-def _joined_faces(tubes: list[JunctionTube], tolerance: float) -> list[TopoDS_Face]:
-    """The faces of the union of the tubes' capped solids, less the end discs (planes)."""
+def _joined_faces(tubes: list[JunctionTube], blends: Sequence[JunctionBlend], tolerance: float) -> list[TopoDS_Face]:
+    """The faces of the union of the tubes' capped solids (and the blends' fillets), less the
+    end discs (planes): OCCT's fuse for the branches without a blend, then each blend's join
+    (:meth:`~tubecad.junctions.blend.RollingBall.join`)."""
     from OCP.BRepAdaptor import BRepAdaptor_Surface
-    from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
     from OCP.GeomAbs import GeomAbs_Plane
     from OCP.TopAbs import TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
 
+    from tubecad.brep.properties import sub_shapes
     from tubecad.brep.solids import build_tube_solid
-    from tubecad.occ_compat import ListOfShape, as_face
+    from tubecad.junctions.blend import BLEND_STRINGERS
+    from tubecad.occ_compat import as_face
 
     solids = [
         build_tube_solid(
@@ -234,25 +293,37 @@ def _joined_faces(tubes: list[JunctionTube], tolerance: float) -> list[TopoDS_Fa
         ).shape.wrapped
         for t in tubes
     ]
-    arguments, tools = ListOfShape(), ListOfShape()
-    arguments.Append(solids[0])
-    for solid in solids[1:]:
-        tools.Append(solid)
+    blended = {b.branch for b in blends}
+    shape = _fused(solids[0], [solid for k, solid in enumerate(solids) if k and k not in blended])
+    for blend in blends:
+        ball = build_tube_solid(
+            blend.surface, NetLayout.equal(blend.surface, MESH_BLEND_RINGS, BLEND_STRINGERS), tolerance
+        )
+        shape, _ = blend.ball.join(shape, tubes[0].surface, solids[blend.branch], ball.shape.wrapped, "blend")
+    faces = [as_face(face) for face in sub_shapes(shape, TopAbs_FACE)]
+    return [face for face in faces if BRepAdaptor_Surface(face).GetType() != GeomAbs_Plane]
+
+
+def _fused(base: TopoDS_Shape, tools: list[TopoDS_Shape]) -> TopoDS_Shape:
+    """``base`` fused with ``tools`` (OCCT's fuse, in parallel; ``base`` itself without tools)."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
+
+    from tubecad.occ_compat import ListOfShape
+
+    if not tools:
+        return base
+    arguments, listed = ListOfShape(), ListOfShape()
+    arguments.Append(base)
+    for tool in tools:
+        listed.Append(tool)
     fuse = BRepAlgoAPI_Fuse()
     fuse.SetArguments(arguments)
-    fuse.SetTools(tools)
+    fuse.SetTools(listed)
     fuse.SetRunParallel(True)
     fuse.Build()
     if not fuse.IsDone():
         raise TubecadError("OCCT could not join the tubes' mid-surfaces (the fuse failed)", key="branches")
-    explorer = TopExp_Explorer(fuse.Shape(), TopAbs_FACE)
-    faces = []
-    while explorer.More():
-        face = as_face(explorer.Current())
-        if BRepAdaptor_Surface(face).GetType() != GeomAbs_Plane:
-            faces.append(face)
-        explorer.Next()
-    return faces
+    return fuse.Shape()
 
 
 def _area(faces: list[TopoDS_Face]) -> float:
@@ -340,6 +411,7 @@ def _away_from_saddle(gmsh, tube_of: Callable[[np.ndarray], np.ndarray]) -> list
 
 def _model(
     tubes: list[JunctionTube],
+    blends: Sequence[JunctionBlend],
     pads: Sequence[PadRegion],
     nodes: np.ndarray,
     patches: list[tuple[int, np.ndarray]],
@@ -348,13 +420,14 @@ def _model(
     size: float,
     length_unit: str,
 ) -> FEMesh:
-    """The FEMesh of gmsh's patches: each patch given to the tube it lies on, oriented,
-    with its normals, sets and sections (module docstring)."""
-    coordinates = [surface_coordinates(t.surface, nodes) for t in tubes]
-    gaps = np.abs(np.stack([c.gap for c in coordinates]))  # (tubes, nodes)
+    """The FEMesh of gmsh's patches: each patch given to the tube (or blend) it lies on,
+    oriented, with its normals, sets and sections (module docstring)."""
+    owners = _Owners(tubes, blends)
+    coordinates = [surface_coordinates(surface, nodes) for surface in owners.surfaces]
+    gaps = np.abs(np.stack([c.gap for c in coordinates]))  # (tubes and blends, nodes)
     scale = max(float(np.abs(nodes).max()), max(t.radius for t in tubes))
     near = ON_TUBE * max(tolerance, 1e-12 * scale)
-    owner = np.full(len(nodes), -1, dtype=np.int64)  # the first tube holding each used node
+    owner = np.full(len(nodes), -1, dtype=np.int64)  # the first tube (or blend) holding each used node
     grouped: dict[tuple[str, str], list[np.ndarray]] = {}
     normals_of: dict[tuple[str, str], list[np.ndarray]] = {}
     for kind, conn in patches:
@@ -363,13 +436,13 @@ def _model(
             raise TubecadError(
                 f"a face of the joined mid-surfaces lies on none of the tubes (nearest {gaps[k, conn].max():.3g} away)"
             )
-        tube, c = tubes[k], coordinates[k]
+        c = coordinates[k]
         corners, order = GMSH_ELEMENTS[kind]
-        normal = tube.surface.normal(c.u[conn], c.s[conn])  # (m, per, 3)
+        normal = owners.sign[k] * owners.surfaces[k].normal(c.u[conn], c.s[conn])  # (m, per, 3)
         conn, normal = _oriented(conn, normal, nodes, corners)
         used = np.unique(conn)
         owner[used[owner[used] < 0]] = k
-        name = tube.name
+        name = owners.names[k]
         if k == 0 and pads:
             left = np.ones(len(conn), dtype=bool)  # the main's elements in no pad
             centre_u, centre_s = _centres(c, conn[:, :corners])
@@ -383,7 +456,33 @@ def _model(
                     _add(grouped, normals_of, part, corners, conn[rows], normal[rows])
             continue
         _add(grouped, normals_of, name, corners, conn, normal)
-    return _assemble(tubes, pads, nodes, coordinates, owner, grouped, normals_of, settings, size, length_unit)
+    return _assemble(owners, pads, nodes, coordinates, owner, grouped, normals_of, settings, size, length_unit)
+
+
+@dataclass(frozen=True)
+class _Owners:
+    """The surfaces a junction's elements lie on: the tubes', then the blends', with their
+    blocks' names and the sign that turns each surface's normal outward (a blend's away from
+    its ball's centre curve: the tube about it faces the other way)."""
+
+    tubes: list[JunctionTube]
+    blends: Sequence[JunctionBlend]
+
+    @property
+    def surfaces(self) -> list[CurvatureLineSurface]:
+        return [t.surface for t in self.tubes] + [b.surface for b in self.blends]
+
+    @property
+    def names(self) -> list[str]:
+        return [t.name for t in self.tubes] + [b.name for b in self.blends]
+
+    @property
+    def sign(self) -> list[float]:
+        return [1.0] * len(self.tubes) + [-1.0] * len(self.blends)
+
+    @property
+    def thickness(self) -> dict[str, float]:
+        return {t.name: t.thickness for t in self.tubes} | {b.name: b.thickness for b in self.blends}
 
 
 def _centres(c, corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -415,17 +514,20 @@ def _oriented(conn: np.ndarray, normal: np.ndarray, nodes: np.ndarray, corners: 
     return conn, normal
 
 
-def _assemble(tubes, pads, nodes, coordinates, owner, grouped, normals_of, settings, size, length_unit) -> FEMesh:
+def _assemble(
+    owners: _Owners, pads, nodes, coordinates, owner, grouped, normals_of, settings, size, length_unit
+) -> FEMesh:
     """The blocks (one per tube or pad and element shape), sections, sets and per-node data."""
+    tubes = owners.tubes
     main = tubes[0]
     tri = "S6" if settings.order == 2 else "S3"
     blocks, sections, element_normals = [], [], {}
     first = 0
-    thickness = {t.name: (t.thickness, 0.0) for t in tubes}
+    thickness = {name: (t, 0.0) for name, t in owners.thickness.items()}
     for pad in pads:
         total = main.thickness + pad.thickness  # the section's middle pad.thickness / 2 outside the nodes
         thickness[pad.name] = (total, -0.5 * pad.thickness / total)
-    for (name, shape), parts in sorted(grouped.items(), key=lambda item: _block_order(item[0], tubes)):
+    for (name, shape), parts in sorted(grouped.items(), key=lambda item: _block_order(item[0], owners.names)):
         block_name = name if shape == "quad" else f"{name}_tri"
         conn = np.concatenate(parts)
         blocks.append(ElementBlock(block_name, settings.element if shape == "quad" else tri, conn, first))
@@ -444,10 +546,10 @@ def _assemble(tubes, pads, nodes, coordinates, owner, grouped, normals_of, setti
     u = np.choose(owner, [c.u for c in coordinates])
     s = np.choose(owner, [c.s for c in coordinates])
     per_node = [np.zeros((len(nodes), 3)) for _ in range(3)]
-    for k, tube in enumerate(tubes):
+    for k, (surface, sign) in enumerate(zip(owners.surfaces, owners.sign)):
         rows = owner == k
-        d = tube.surface.derivatives(u[rows], s[rows])
-        per_node[0][rows] = d.normal
+        d = surface.derivatives(u[rows], s[rows])
+        per_node[0][rows] = sign * d.normal
         per_node[1][rows] = d.S_u / np.linalg.norm(d.S_u, axis=-1, keepdims=True)
         per_node[2][rows] = d.S_s / np.linalg.norm(d.S_s, axis=-1, keepdims=True)
     mesh = FEMesh(
@@ -466,27 +568,28 @@ def _assemble(tubes, pads, nodes, coordinates, owner, grouped, normals_of, setti
             "size": size,
             "thickness": main.thickness,
             "tubes": [t.name for t in tubes],
+            "blends": {b.name: {"radius": b.ball.radius, "thickness": b.thickness} for b in owners.blends},
         },
         element_normals=element_normals,
     )
-    mesh.node_sets.update(_node_sets(mesh, tubes, pads))
-    mesh.info["quality"] = _quality(mesh, coordinates, tubes)
+    mesh.node_sets.update(_node_sets(mesh, tubes, owners.blends, pads))
+    mesh.info["quality"] = _quality(mesh, coordinates, owners.names)
     return mesh
 
 
-def _quality(mesh: FEMesh, coordinates, tubes) -> dict[str, float | int]:
+def _quality(mesh: FEMesh, coordinates, names: list[str]) -> dict[str, float | int]:
     """The quads' aspect ratio and skew, and how many are curvature-line quads: each side
     on a ring (s the same at both ends) or a stringer (u the same), to NET_TOLERANCE (a pad's
-    quads on the main's coordinates, :func:`tube_index`)."""
+    quads on the main's coordinates, :func:`tube_index`; ``names``: the tubes' and the
+    blends', as ``coordinates``)."""
     from tubecad.fem.quality import corner_measures
 
-    names = [t.name for t in tubes]
     quads = [b for b in mesh.shell_blocks if b.corners == 4]
     corners = np.concatenate([b.connectivity[:, :4] for b in quads])
     aspect, skew = corner_measures(mesh.nodes, corners)
     on_net = 0
     for block in quads:
-        c = coordinates[tube_index(block.name, names)]
+        c = coordinates[tube_index(block.name, names) or 0]
         ends = block.connectivity[:, :4]
         a, b = ends, np.roll(ends, -1, axis=1)
         same_s = np.abs(c.s[a] - c.s[b]) <= NET_TOLERANCE * (1.0 + np.abs(c.s[a]))
@@ -502,22 +605,31 @@ def _quality(mesh: FEMesh, coordinates, tubes) -> dict[str, float | int]:
     }
 
 
-def _block_order(key: tuple[str, str], tubes: list[JunctionTube]) -> tuple[float, bool, str]:
-    """Blocks in the tubes' order, a pad's after the main's, triangles after quads."""
-    names = [t.name for t in tubes]
+def _block_order(key: tuple[str, str], names: list[str]) -> tuple[float, bool, str]:
+    """Blocks in the order of ``names`` (the tubes', then the blends'), a pad's after the
+    main's, triangles after quads."""
     name, shape = key
     return (names.index(name) if name in names else 0.5, shape == "tri", name)
 
 
-def _node_sets(mesh: FEMesh, tubes: list[JunctionTube], pads: Sequence[PadRegion]) -> dict[str, np.ndarray]:
-    """saddle, pad, main_start, main_end, <branch>_end: see the module."""
-    names = [t.name for t in tubes]
-    users: list[set[int]] = [set() for _ in tubes]
+def _node_sets(
+    mesh: FEMesh, tubes: list[JunctionTube], blends: Sequence[JunctionBlend], pads: Sequence[PadRegion]
+) -> dict[str, np.ndarray]:
+    """saddle, blend_main, blend_branch, crotch, pad, main_start, main_end, <branch>_end: see
+    the module."""
+    names = [t.name for t in tubes] + [b.name for b in blends]
+    users: list[set[int]] = [set() for _ in names]
     for block in mesh.shell_blocks:
-        users[tube_index(block.name, names)].update(np.unique(block.connectivity).tolist())
+        users[tube_index(block.name, names) or 0].update(np.unique(block.connectivity).tolist())
     sets: dict[str, np.ndarray] = {}
     main_nodes = users[0]
-    shared = set().union(*(main_nodes & other for other in users[1:]))
+    shared = set().union(*(main_nodes & other for other in users[1 : len(tubes)]))
+    for j, blend in enumerate(blends):  # a blended branch's saddle: the blend's contact lines
+        tag = blend.name.removeprefix("blend")
+        on_main, on_branch = users[len(tubes) + j] & main_nodes, users[len(tubes) + j] & users[blend.branch]
+        sets[f"blend_main{tag}"] = np.array(sorted(on_main), dtype=np.int64)
+        sets[f"blend_branch{tag}"] = np.array(sorted(on_branch), dtype=np.int64)
+        shared |= on_main | on_branch
     sets["saddle"] = np.array(sorted(shared), dtype=np.int64)
     sets.update(_crotch_nodes(mesh, tubes, sets["saddle"]))
     for pad in pads:  # pad (one branch), pad_0, pad_1 ... (several): each pad's elements' nodes
@@ -578,11 +690,18 @@ def ring_in_order(mesh: FEMesh, ring: np.ndarray) -> np.ndarray:
     return np.roll(ordered, -start)
 
 
-def tube_index(block: str, tubes: Sequence[str]) -> int:
+def tube_index(block: str, tubes: Sequence[str]) -> int | None:
     """The index among the tubes' names ``tubes`` of the tube a shell block lies on: its own
-    (``branch``, ``branch_tri``), or the main's (0) for a pad's block."""
+    (``branch``, ``branch_tri``), the main's (0) for a pad's block, None for a blend's."""
     base = block.removesuffix("_tri")
-    return tubes.index(base) if base in tubes else 0
+    if base in tubes:
+        return tubes.index(base)
+    return None if is_blend_block(block) else 0
+
+
+def is_blend_block(block: str) -> bool:
+    """Whether a shell block is a crotch blend's (``blend``, ``blend_1_tri``...)."""
+    return block.removesuffix("_tri").split("_")[0] == "blend"
 
 
 def radius_at(surface: CurvatureLineSurface, s: float) -> float:

@@ -177,11 +177,14 @@ def ring_means(parameters: np.ndarray, values: np.ndarray) -> np.ndarray:
 
 
 def _owners(mesh: FEMesh, tubes: Sequence[JunctionTube]) -> np.ndarray:
-    """Per node the index of the tube whose elements hold it first (the main's pad blocks are the main's)."""
+    """Per node the index of the tube whose elements hold it first (the main's pad blocks are
+    the main's; a node only a blend's elements hold: -1)."""
     names = [t.name for t in tubes]
     owner = np.full(len(mesh.nodes), -1, dtype=np.int64)
     for block in mesh.shell_blocks:
         k = tube_index(block.name, names)
+        if k is None:  # a crotch blend's shells: no tube's
+            continue
         used = np.unique(block.connectivity)
         owner[used[owner[used] < 0]] = k
     return owner

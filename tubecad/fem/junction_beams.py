@@ -115,7 +115,8 @@ def _sides_on(
     corner pairs, or (m, 3) (corner, middle node, corner) for quadratic elements."""
     found: dict[tuple[int, int], tuple[int, ...]] = {}
     for block in mesh.shell_blocks:
-        if names[tube_index(block.name, names)] != tube.name or (line.tube == 0 and _is_pad(block.name, pads)):
+        k = tube_index(block.name, names)
+        if k is None or names[k] != tube.name or (line.tube == 0 and _is_pad(block.name, pads)):
             continue
         corners = block.corners
         conn = block.connectivity

@@ -82,6 +82,19 @@ class RollingBall:
         centre = main_off.points(x[:, 0], x[:, 1])
         return centre, self.main.points(x[:, 0], x[:, 1]), self.branch.points(u, x[:, 2])
 
+    def contact_parameters(self, u_b: np.ndarray) -> np.ndarray:
+        """The contact points' parameters at the spine's parameters ``u_b``: (u_A, s_A) of the
+        contact on the main, s_B of the one on the branch (at the branch's stringer u_b); the
+        offset surfaces keep their parameters, so the spine's are theirs (exact: Newton).
+
+        Args:
+            u_b: the spine's parameters (the branch's stringer angles).
+
+        Returns:
+            (n, 3) rows (u_A, s_A, s_B).
+        """
+        return _spine_parameters(self.main.offset(self.radius), self.branch.offset(self.radius), self.spine, u_b)
+
     def join(
         self, base: TopoDS_Shape, base_surface: CurvatureLineSurface, branch: TopoDS_Shape, ball: TopoDS_Shape, key: str
     ) -> tuple[TopoDS_Shape, Pieces]:

@@ -11,7 +11,9 @@ to P, then regula falsi with the Illinois modification, Dowell & Jarratt, BIT 11
 168-174, which converges superlinearly and never leaves its bracket). Round that ring P
 has the angle chi = atan2((P - c) . r2, (P - c) . r1) from the axis' r1, the stringer
 u = Mb(s)^-1 chi (the identity on a tube), and the gap |P - c| - r (> 0 outside).
-A point in no ring's plane (beyond the ends) gets the nearer end's ring, clamped.
+A point in no ring's plane (beyond the ends) gets the nearer end's ring, clamped; on a closed
+axis a point in the closing ring's plane (h changes sign between the table's last ring and
+its first, one ring to round-off) gets s = s_0.
 """
 
 from __future__ import annotations
@@ -56,10 +58,12 @@ def surface_coordinates(surface: CurvatureLineSurface, points: FloatArray) -> Su
         centre, _, normal = surface.circle(s)
         return np.einsum("...k,...k->...", p - centre, normal)
 
-    lo, hi, f_lo, f_hi, bracketed = _brackets(table, *surface.circle(table)[::2], points)
+    centres, _, normals = surface.circle(table)
+    lo, hi, f_lo, f_hi, bracketed = _brackets(table, centres, normals, points)
     size = max(abs(s0), abs(s1), s1 - s0)
-    at_root = np.zeros(len(points), dtype=bool)
-    root = lo.copy()
+    at_root = _at_closing(surface.axis.closed, centres, normals, points, surface.circle(lo)[0], bracketed)
+    bracketed |= at_root
+    root = np.where(at_root, s0, lo)
     moved = np.zeros(len(points), dtype=int)  # +1: lo moved last step, -1: hi did
     for _ in range(STEPS):
         active = np.flatnonzero(bracketed & ~at_root & (hi - lo > 4 * np.finfo(float).eps * size))
@@ -91,6 +95,22 @@ def surface_coordinates(surface: CurvatureLineSurface, points: FloatArray) -> Su
     back = np.linalg.solve(surface.moebius_matrix(s), half[..., None])[..., 0]
     u = 2.0 * np.arctan2(back[..., 0], back[..., 1])
     return SurfaceCoordinates(u, s, np.linalg.norm(e, axis=-1) - radius)
+
+
+def _at_closing(
+    closed: bool, centre: FloatArray, normal: FloatArray, points: FloatArray, found: FloatArray, bracketed: FloatArray
+) -> FloatArray:
+    """Which points lie in the closing ring's plane of a ``closed`` axis (table rings
+    ``centre``, ``normal``): h changes sign between the table's last ring and its first (one
+    ring, to the axis' round-off, so no table interval brackets a point there, and on a
+    torus the opposite ring's plane, y = 0 too, would take it), and the closing ring's centre
+    is nearer than that of the bracket ``found`` (centres; where ``bracketed``)."""
+    if not closed:
+        return np.zeros(len(points), dtype=bool)
+    first = np.einsum("pk,k->p", points - centre[0], normal[0])
+    last = np.einsum("pk,k->p", points - centre[-1], normal[-1])
+    nearer = np.linalg.norm(points - centre[0], axis=-1) < np.linalg.norm(points - found, axis=-1)
+    return (np.signbit(first) != np.signbit(last)) & (~bracketed | nearer)
 
 
 def _brackets(

@@ -11,7 +11,10 @@ reports that largest strain along the saddle (0 on a straight branch), and a bra
 radius varies (a cone) is refused: its development is a sector, not this strip.
 
 The main tube's opening is the bore's saddle on the main surface, (R u_A, s_A - s_0): a
-closed line on the main tube's strip, exact where the main axis is straight.
+closed line on the main tube's strip, exact where the main axis is straight. A main tube whose
+radius varies (a nozzle on a conical head) has no strip: its opening is developed on the panel
+of the main's surface round it instead, :func:`tubecad.shop.hole_development.hole_development`
+(exact on a cone), and :func:`hole_template` refuses it naming that function.
 
 The drawing (1:1, the model's unit, :class:`tubecad.core.dxf.Drawing`): the saddle line on
 layer ``saddle`` (one polyline: across the girth 0 .. 2 pi rho, or closed round a hole), the strip's outline on
@@ -21,8 +24,9 @@ layer ``saddle`` (one polyline: across the girth 0 .. 2 pi rho, or closed round 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -47,12 +51,16 @@ class BranchTemplate:
     height: float
     marks: dict[str, float]
     strain: float
+    #: more lines on the strip, by layer: a crotch blend's toe (``blend_toe``), (n, 2) each
+    lines: dict[str, np.ndarray] = field(default_factory=dict)
 
     def save_dxf(self, path: str | Path, unit: str = "mm") -> Path:
-        """The template at 1:1 as a DXF drawing (layers saddle, outline, girth_marks)."""
-        drawing = Drawing(unit, {"saddle": 1, "outline": 7, "girth_marks": 3})
-        closed = bool(np.allclose(self.points[0], self.points[-1], rtol=0, atol=1e-9 * self.girth))
-        drawing.polyline(self.points[:-1] if closed else self.points, "saddle", closed=closed)
+        """The template at 1:1 as a DXF drawing (layers saddle, outline, girth_marks, and
+        one per entry of ``lines``)."""
+        drawing = Drawing(unit, {"saddle": 1, "outline": 7, "girth_marks": 3} | dict.fromkeys(self.lines, 6))
+        for layer, points in [("saddle", self.points), *self.lines.items()]:
+            closed = bool(np.allclose(points[0], points[-1], rtol=0, atol=1e-9 * self.girth))
+            drawing.polyline(points[:-1] if closed else points, layer, closed=closed)
         corners = [(0.0, 0.0), (self.girth, 0.0), (self.girth, self.height), (0.0, self.height)]
         drawing.polyline(corners, "outline", closed=True)
         mark = MARK_SHARE * self.height
@@ -60,6 +68,10 @@ class BranchTemplate:
             drawing.line((x, 0.0), (x, mark), "girth_marks")
             drawing.text(name, (x, mark), mark / 2, "girth_marks")
         return drawing.save(path)
+
+    def info(self) -> dict[str, Any]:
+        """The index's entry: ``developed`` "strip", its ``girth``, ``height`` and ``strain``."""
+        return {"developed": "strip", "girth": self.girth, "height": self.height, "strain": self.strain}
 
 
 def branch_template(
@@ -80,7 +92,8 @@ def hole_template(
     ``main``, e.g. ``saddle_inner``), unrolled onto the main tube's development as one closed
     line (R u_A, s_A - s_0), placed on the strip's girth 0 .. 2 pi R; girth marks at the
     main tube's ``stringers``. A main tube whose radius varies is refused naming
-    ``{key}.radius`` (``key``: the main tube's name for the caller, ``main`` by default)."""
+    ``{key}.radius`` (``key``: the main tube's name for the caller, ``main`` by default): its
+    opening is :func:`tubecad.shop.hole_development.hole_development`'s, on a panel."""
     u = saddle.main_u - 2 * math.pi * np.floor(np.mean(saddle.main_u) / (2 * math.pi))
     return _developed(main, u, saddle.main_s, stringers, f"{key}.radius", "a main tube")
 
@@ -90,10 +103,12 @@ def _developed(
 ) -> BranchTemplate:
     """(rho u, s - s_0) on ``surface``'s strip, with the largest |sqrt(G) - 1| along it."""
     if not surface.constant_radius:
-        raise ParameterError(
-            f"{key}: {what} whose radius varies develops to a sector, not a strip; its template is not made yet",
-            key=key,
+        made = (
+            "its opening is developed on a panel by tubecad.shop.hole_development.hole_development"
+            if what == "a main tube"
+            else "its template is not made yet"
         )
+        raise ParameterError(f"{key}: {what} whose radius varies develops to a sector, not a strip; {made}", key=key)
     if not isinstance(stringers, int) or not 1 <= stringers <= 360:
         raise ParameterError(f"stringers must be an integer in 1..360, got {stringers!r:.40}", key="stringers")
     rho = float(surface.radius_law.r(np.array([surface.span[0]]))[0])

@@ -1,6 +1,7 @@
 """The branch's cutting template (issue 25): the saddle of perpendicular cylinders unrolled,
 against its closed form y = sqrt(R^2 - r^2 sin^2(x / r)), read back from the DXF by ezdxf
-and shapely; the strain of a curved branch's development; the refusal of a cone."""
+and shapely; the strain of a curved branch's development; the refusal of a conical branch (and of
+a conical main's strip: its opening is developed on a panel, test_hole_development.py)."""
 
 from __future__ import annotations
 
@@ -66,8 +67,10 @@ def test_a_conical_branch_is_refused_naming_its_radius():
     assert info.value.key == "branch.radius"  # the library's name; the spec adds [[branches]]
 
 
-def test_a_conical_main_tubes_hole_is_refused_naming_its_key():
-    """The refusal names the main tube's radius under the caller's ``key`` (``main`` by default)."""
+def test_a_conical_main_tubes_strip_is_refused_naming_its_key_and_the_panel():
+    """The strip's template of a conical main tube's opening is refused, naming the main tube's
+    radius under the caller's ``key`` (``main`` by default) and the panel's development that
+    makes it (tests/unit/shop/test_hole_development.py; the shop package uses it)."""
     from tubecad.shop.branch_template import hole_template
 
     cone = tube_or_canal(
@@ -75,9 +78,9 @@ def test_a_conical_main_tubes_hole_is_refused_naming_its_key():
         "55 - 0.05 * s",
     )
     saddle = saddle_curve(cone, BRANCH, 65)
-    with pytest.raises(ParameterError, match="sector") as info:
+    with pytest.raises(ParameterError, match="sector, not a strip; its opening is developed on a panel by") as info:
         hole_template(cone, saddle)
-    assert info.value.key == "main.radius"
+    assert info.value.key == "main.radius" and "hole_development.hole_development" in str(info.value)
     with pytest.raises(ParameterError, match="^vessel.radius: a main tube") as info:
         hole_template(cone, saddle, key="vessel")
     assert info.value.key == "vessel.radius"
