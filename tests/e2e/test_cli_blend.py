@@ -36,6 +36,12 @@ SAMPLE = (ROOT / "samples" / "blend_tee.toml").read_text()
             "blend.radius",
             "> 0",
         ),
+        (  # the ball's centre never leaves the main's outer surface offset by 150 (R + rb = 202 > 150)
+            ["build", "{spec}", "-o", "{out}/x.step"],
+            (("blend = { radius = 6.0 }", "blend = { radius = 150.0 }"),),
+            "blend.radius",
+            "does not roll round the saddle",
+        ),
         (
             ["build", "{spec}", "-o", "{out}/x.step"],
             (("radius = 30.0", "radius = 50.0"), ("thickness = 3.0 }", "thickness = 4.0 }")),

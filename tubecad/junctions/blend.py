@@ -36,6 +36,7 @@ from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
 from tubecad.core.errors import ParameterError
 from tubecad.junctions.coordinates import surface_coordinates
 from tubecad.junctions.edges import FIRST_INTERVALS, MOST_INTERVALS, fit_periodic
+from tubecad.junctions.placement import blend_problem
 from tubecad.junctions.saddle import SaddleCurve, saddle_curve, saddle_parameters
 from tubecad.junctions.touching import Pieces, split_and_sewn
 from tubecad.surface.protocol import CurvatureLineSurface
@@ -173,13 +174,17 @@ def rolling_ball(
 
     Raises:
         ParameterError: (``blend.radius``) a radius that is not > 0, or one the surfaces'
-            offsets do not meet in one closed saddle with (too large a ball).
+            offsets do not meet in one closed saddle with inside both spans (too large a
+            ball; :func:`~tubecad.junctions.placement.blend_problem`), or an equal tee's.
     """
     from tubecad.curves.parametric import ParametricAxis
     from tubecad.surface.canal import tube_or_canal
 
     if not (radius > 0 and math.isfinite(radius)):
         raise ParameterError(f"{key}.radius must be > 0, got {radius!r:.40}", key=f"{key}.radius")
+    problem = blend_problem(main, branch, radius)
+    if problem is not None:
+        raise ParameterError(f"{key}.radius: {problem}", key=f"{key}.radius")
     main_off, branch_off = main.offset(radius), branch.offset(radius)
     try:
         spine = saddle_curve(main_off, branch_off, 2 * FIRST_INTERVALS + 1, key=f"{key}.radius")
@@ -187,7 +192,7 @@ def rolling_ball(
         raise ParameterError(
             f"{key}.radius: a ball of radius {radius:g} does not roll round the saddle ({exc})", key=f"{key}.radius"
         ) from None
-    if spine.corners:
+    if spine.corners:  # touching offsets: blend_problem's test, to its tolerance
         raise ParameterError(
             f"{key}.radius: a blend on an equal tee (the surfaces touch) is not made yet", key=f"{key}.radius"
         )

@@ -174,3 +174,64 @@ def region_clearance(main: CurvatureLineSurface, first: Polygon, second: Polygon
     s0, s1 = first.bounds[1], first.bounds[3]
     turn = 2.0 * math.pi * float(main.radius_law.r(np.array([0.5 * (s0 + s1)]))[0])
     return float(min(first.distance(translate(second, xoff=k * turn)) for k in (-1, 0, 1)))
+
+
+#: stringers of the offset branch whose crossings with the offset main the blend check finds
+BLEND_CHECK_STRINGERS = 36
+#: rings along the offset branch on which they are looked for
+BLEND_CHECK_RINGS = 129
+
+
+def blend_problem(main: CurvatureLineSurface, branch: CurvatureLineSurface, radius: float) -> str | None:
+    """Why a ball of ``radius`` cannot roll round the saddle of the outer surfaces ``main``
+    and ``branch``, or None: the one rule of the spec and the builder (issue 43).
+
+    The ball's centre curve is the saddle of the surfaces offset by the radius
+    (:mod:`~tubecad.junctions.blend`), so that saddle must exist: each stringer of the branch's
+    offset must leave the main's offset before the branch ends, and cross it within the main's
+    span (the toe on the main inside it); an equal tee's offsets touch (their saddle has
+    corners), where the blend is not made yet. Checked on BLEND_CHECK_STRINGERS stringers at
+    BLEND_CHECK_RINGS rings (the crossings to within a ring's spacing): a few hundredths of a
+    second, before anything is built.
+
+    Args:
+        main: the main's outer surface.
+        branch: the branch's outer surface (placed).
+        radius: the ball's radius (> 0).
+
+    Returns:
+        None, or what is wrong (for the caller's message, key ``blend.radius``).
+    """
+    from tubecad.junctions.coordinates import surface_coordinates
+    from tubecad.junctions.crotch import crotch
+
+    main_off, branch_off = main.offset(radius), branch.offset(radius)
+    scale = float(np.abs(main.axis.position(np.array(main.span))).max()) + float(main.radius_law.r(np.array(main.span)).max())
+    if crotch(main_off, branch_off, scale) is not None:
+        return "a blend on an equal tee (the surfaces offset by the ball's radius touch) is not made yet"
+    u = np.linspace(0.0, 2.0 * math.pi, BLEND_CHECK_STRINGERS + 1)[:-1]
+    s = np.linspace(*branch_off.span, BLEND_CHECK_RINGS)
+    end = surface_coordinates(main_off, branch_off.points(u, np.full_like(u, s[-1]))).gap
+    if (end <= 0).any():  # the end ring first: a ball far too large is told at once
+        inside = float(-end.min())
+        return (
+            f"a ball of radius {radius:g} does not roll round the saddle: its centre stays inside the main's outer "
+            f"surface offset by it to the branch's end ({inside:.4g} inside there); a smaller radius or a longer branch"
+        )
+    points = branch_off.points(np.repeat(u, len(s)), np.tile(s, len(u)))
+    gap = surface_coordinates(main_off, points).gap.reshape(len(u), len(s))
+    last_inside = np.array([np.flatnonzero(row <= 0).max(initial=0) for row in gap])
+    rows = np.arange(len(u))
+    g0, g1 = gap[rows, last_inside], gap[rows, last_inside + 1]
+    t = np.where(g1 != g0, -g0 / np.where(g1 != g0, g1 - g0, 1.0), 0.0)
+    s_cross = s[last_inside] + np.clip(t, 0.0, 1.0) * (s[1] - s[0])
+    cross = branch_off.points(u, s_cross)
+    on_main = surface_coordinates(main_off, cross).s
+    s0, s1 = main.span
+    margin = 1e-9 * (s1 - s0)
+    if on_main.min() <= s0 + margin or on_main.max() >= s1 - margin:
+        return (
+            f"a ball of radius {radius:g} does not roll round the saddle: its toe on the main reaches its end "
+            f"(the main's span [{s0:g}, {s1:g}]); a smaller radius or a longer main"
+        )
+    return None

@@ -273,9 +273,10 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
     """[[branches]]: a main [wall] to join (and no [panels]: not built on a junction yet);
     branch stiffeners with the main [stiffeners] and indices in the branch's layout; each branch placed inside the main axis' span, its tube regular, its
     surfaces starting inside the main's (:func:`tubecad.junctions.placement.branch_start_problem`,
-    the builder's rule too)."""
+    the builder's rule too), a blend's ball rolling round its saddle
+    (:func:`tubecad.junctions.placement.blend_problem`, the same)."""
     from tubecad.core.tolerance import MIN_SIZE
-    from tubecad.junctions.placement import branch_start_problem
+    from tubecad.junctions.placement import blend_problem, branch_start_problem
 
     if model.wall is None:
         raise fail("[[branches]] join the branch's wall to the main tube's: the spec needs a [wall] section", "wall")
@@ -334,6 +335,11 @@ def _check_branches(tube: CurvatureLineSurface, model: SpecModel, fail: Callable
         problem = branch_start_problem(tube, main_offsets, surface, (b_in, b_out), branch.at)
         if problem is not None:
             raise fail(f"{where} {problem[0]}", "branches.radius" if abs(branch.offset) == 0 else "branches.offset")
+        if branch.blend is not None:  # the ball rolls round the outer saddle: the builder's rule too
+            outer = tube.offset(main_offsets[1]), surface.offset(b_out)
+            rolls = blend_problem(*outer, branch.blend.radius)
+            if rolls is not None:
+                raise fail(f"{where} blend radius: {rolls}", "branches.blend.radius")
 
 
 def _check_build_sections(

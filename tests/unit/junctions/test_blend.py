@@ -92,3 +92,30 @@ def test_a_blend_on_an_equal_tee_or_of_no_radius_is_refused_naming_its_key():
     with pytest.raises(ParameterError, match="radius must be > 0") as info:
         rolling_ball(MAIN, branch_surface(MAIN, 150.0, 150.0, 30.0), 0.0, 1e-8)
     assert info.value.key == "blend.radius"
+
+
+@pytest.mark.parametrize(
+    ("length", "radius", "says"),
+    [
+        # the centre's offset surfaces: the branch's (r + rb) must leave the main's (R + rb)
+        # before its end, z = length on the square tee: R + rb = 52 + 100 > 150
+        (150.0, 100.0, "to the branch's end (2 inside there)"),
+        # the toe on the main reaches 150 +- (r + rb) along it: beyond [0, 300] for rb > 118.5
+        (400.0, 120.0, "toe on the main reaches its end"),
+    ],
+)
+def test_a_ball_that_cannot_roll_round_the_saddle_is_refused_before_anything_is_built(length, radius, says):
+    """placement.blend_problem, the rule of the spec and of rolling_ball: on the square tee
+    (outer R = 52, r = 31.5) the offsets' saddle runs z in [sqrt((R + rb)^2 - (r + rb)^2),
+    R + rb] up the branch and 150 +- (r + rb) along the main (the closed form)."""
+    from tubecad.junctions.blend import rolling_ball
+    from tubecad.junctions.placement import blend_problem
+
+    outer_main = MAIN.offset(2.0)
+    outer_branch = branch_surface(MAIN, 150.0, length, 30.0).offset(1.5)
+    assert says in (blend_problem(outer_main, outer_branch, radius) or "")
+    with pytest.raises(ParameterError, match="does not roll") as info:
+        rolling_ball(outer_main, outer_branch, radius, 1e-8)
+    assert info.value.key == "blend.radius"
+    # just inside both bounds: it rolls
+    assert blend_problem(outer_main, branch_surface(MAIN, 150.0, 400.0, 30.0).offset(1.5), 117.0) is None
