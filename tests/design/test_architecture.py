@@ -20,7 +20,7 @@ LAYERS = [
     {"surface"},
     {"fitting"},
     {"brep"},
-    {"junctions"},
+    {"junctions", "nets"},
     {"stiffeners"},
     {"export"},
     {"fem", "shop"},

@@ -1,0 +1,136 @@
+"""Principal field, umbilics and lines of curvature on a host surface (issue 44), against
+closed forms: the triaxial ellipsoid's confocal quadrics (tests/shared/ellipsoid.py), a
+torus' meridians and parallels, the monkey saddle's star, a sphere's and a plane's umbilic
+regions. None of the expected values comes from tubecad."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from shared.ellipsoid import confocal, curvature_directions, nurbs_ellipsoid, umbilics
+
+from tubecad.core.errors import ParameterError
+from tubecad.nets import HostSurface, find_umbilics, principal_field, trace_line
+
+A, B, C = 30.0, 20.0, 10.0
+
+
+@pytest.fixture(scope="module")
+def ellipsoid() -> HostSurface:
+    return HostSurface.of_surface(nurbs_ellipsoid(A, B, C))
+
+
+def _angle(d: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """The angle between lines (either sense), accurate near 0."""
+    return np.arctan2(np.linalg.norm(np.cross(d, t), axis=1), np.abs(np.einsum("nk,nk->n", d, t)))
+
+
+def test_the_principal_directions_are_the_confocal_quadrics_tangents(ellipsoid):
+    rng = np.random.default_rng(44)
+    u, v = rng.uniform(0.0, 2 * math.pi, 4000), rng.uniform(-1.45, 1.45, 4000)
+    field = principal_field(ellipsoid, u, v)
+    points = ellipsoid.jet(u, v).X
+    t1, t2 = curvature_directions(points, A, B, C)
+    error = np.minimum(_angle(field.d1, t1), _angle(field.d1, t2))
+    assert error.max() < 1e-10  # measured 1.7e-11 rad (the closed form's own round-off near the umbilics)
+    assert np.abs(_angle(field.d1, field.d2) - math.pi / 2).max() < 1e-14
+    # K = 1 / (a^2 b^2 c^2 (x^2/a^4 + y^2/b^4 + z^2/c^4)^2)
+    K = 1.0 / ((A * B * C) ** 2 * ((points**2) / np.array([A**4, B**4, C**4])).sum(axis=1) ** 2)
+    assert np.abs(field.k1 * field.k2 / K - 1.0).max() < 1e-12  # measured 1.1e-14
+
+
+def test_the_four_umbilics_are_found_two_on_the_seam_all_lemons(ellipsoid):
+    found = find_umbilics(ellipsoid)
+    assert not found.region and len(found.points) == 4
+    exact = umbilics(A, B, C)
+    for umbilic in found.points:
+        assert np.linalg.norm(exact - umbilic.point, axis=1).min() < 1e-13 * A  # measured 3.6e-16 a
+        assert (umbilic.index, umbilic.separatrices, umbilic.type) == (0.5, 1, "lemon")
+    assert found.index_sum == 2.0  # Poincare-Hopf: the sphere's Euler characteristic
+    on_seam = [p for p in found.points if min(p.u, 2 * math.pi - p.u) < 1e-9]
+    assert len(on_seam) == 2 and all(p.point[0] > 0 for p in on_seam)
+
+
+def _distance_to_line(points: np.ndarray, which: int, value: float) -> np.ndarray:
+    """Each point's distance on the ellipsoid from the line l_which = value: |l - value| over
+    the length of l's gradient in the tangent plane (l implicit in sum x_i^2 / (A_i - l) = 1)."""
+    lam = confocal(points, A, B, C)[which]
+    squares = np.array([A * A, B * B, C * C])
+    denominator = squares[None, :] - lam[:, None]
+    grad = -(2 * points / denominator) / ((points**2) / denominator**2).sum(axis=1, keepdims=True)
+    n = points / squares
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    tangential = grad - np.einsum("nk,nk->n", grad, n)[:, None] * n
+    return np.abs(lam - value) / np.linalg.norm(tangential, axis=1)
+
+
+@pytest.mark.parametrize("family", [1, 2])
+@pytest.mark.parametrize("seed", [(1.0, 0.3), (2.0, -0.9), (0.3, 1.2), (3.0, 0.1)])
+def test_a_traced_line_stays_on_its_confocal_quadric_and_closes(ellipsoid, family, seed):
+    stops = np.array([p.point for p in find_umbilics(ellipsoid).points])
+    line = trace_line(ellipsoid, seed, family, stops=stops, reach=1e-3)
+    assert line.closed
+    first = ellipsoid.jet(np.array([seed[0]]), np.array([seed[1]])).X
+    l_seed = np.array(confocal(first, A, B, C))[:, 0]
+    # the family's constant quadric: the one whose value does not change along the line
+    spread = [np.ptp(lam) for lam in confocal(line.points, A, B, C)]
+    which = int(np.argmin(spread))
+    distance = _distance_to_line(line.points, which, l_seed[which])
+    assert distance.max() < 1e-9 * A  # measured 1.9e-10 a at worst (tolerance 1e-10 a step)
+    assert line.error < 1e-9 * A  # the largest step error or the closing gap: measured 1.2e-10 a
+    assert np.linalg.norm(line.points[-1] - line.points[0]) < 1e-9 * A
+
+
+def test_on_a_torus_the_lines_are_meridians_and_parallels():
+    from OCP.Geom import Geom_ToroidalSurface
+    from OCP.gp import gp_Ax3
+
+    torus = HostSurface.of_surface(Geom_ToroidalSurface(gp_Ax3(), 40.0, 10.0))
+    for family in (1, 2):
+        line = trace_line(torus, (1.0, 0.7), family)
+        assert line.closed
+        spread_u, spread_v = np.ptp(line.uv[:, 0]), np.ptp(line.uv[:, 1])
+        assert min(spread_u, spread_v) < 1e-10  # one parameter constant: a meridian or a parallel
+        assert max(spread_u, spread_v) == pytest.approx(2 * math.pi, abs=1e-6)
+
+
+def test_the_monkey_saddle_has_one_star_umbilic():
+    """z = x^3 - 3 x y^2 = Re (x + i y)^3: its second form's trace-free part is 6 (x - i y)
+    near 0, winding once backwards: index -1/2, the three lines y = 0, y = +-sqrt(3) x its
+    separatrices (a star). The polynomial is exactly a bicubic Bezier patch."""
+    from math import comb
+
+    from OCP.Geom import Geom_BezierSurface
+
+    from tubecad.fitting.occ_arrays import points_2d
+
+    # the bicubic Bezier patch of (x, y) = (2 s - 1, 2 t - 1) over [0, 1]^2: its poles solve
+    # the Bernstein interpolation at s, t = 0, 1/3, 2/3, 1 (exact: z is in the bicubics' span)
+    nodes = np.linspace(0.0, 1.0, 4)
+    bernstein = np.array([[comb(3, k) * x**k * (1 - x) ** (3 - k) for k in range(4)] for x in nodes])
+    x, y = np.meshgrid(2 * nodes - 1, 2 * nodes - 1, indexing="ij")
+    values = np.stack([x, y, x**3 - 3 * x * y**2], axis=-1)
+    inverse = np.linalg.inv(bernstein)
+    poles = np.einsum("ki,ijc,lj->klc", inverse, values, inverse)
+    surface = Geom_BezierSurface(points_2d(poles))
+    host = HostSurface.of_surface(surface)
+    found = find_umbilics(host)
+    assert len(found.points) == 1
+    (star,) = found.points
+    assert np.linalg.norm(star.point) < 1e-12
+    assert (star.index, star.separatrices, star.type) == (-0.5, 3, "star")
+
+
+def test_a_sphere_and_a_plane_are_umbilic_regions_and_a_seed_there_is_refused():
+    from OCP.Geom import Geom_Plane, Geom_SphericalSurface
+    from OCP.gp import gp_Ax3
+
+    sphere = HostSurface.of_surface(Geom_SphericalSurface(gp_Ax3(), 5.0))
+    assert find_umbilics(sphere).region
+    plane = HostSurface.of_surface(Geom_Plane(gp_Ax3()), (0.0, 1.0, 0.0, 1.0))
+    assert find_umbilics(plane).region
+    with pytest.raises(ParameterError, match="umbilic") as info:
+        trace_line(plane, (0.5, 0.5), 1)
+    assert info.value.key == "seed"

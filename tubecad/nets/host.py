@@ -1,0 +1,148 @@
+"""The surface of a host face: any OCCT surface (B-spline, NURBS, analytic) evaluated with its
+first and second derivatives, vectorised over points (issue 44).
+
+A user's face (a build123d ``Face``, a face of a STEP file, a ``Geom_Surface``) is read as its
+underlying surface and its parameter bounds: for a trimmed face the bounds of its parameter box
+(``BRepTools::UVBounds``). OCCT evaluates the surface exactly (``Geom_Surface::D2``: the
+position X and X_u, X_v, X_uu, X_uv, X_vv; about 1 us a point), so every quantity downstream is
+the surface's own, not a mesh's. A periodic direction (a surface of revolution's u, a NURBS
+sphere's) is reported with its period: the umbilic search and the tracer wrap round it, so
+nothing stops at the seam.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from OCP.BRep import BRep_Tool
+from OCP.BRepTools import BRepTools
+from OCP.Geom import Geom_Surface
+from OCP.gp import gp_Pnt, gp_Vec
+from OCP.TopoDS import TopoDS_Face
+
+from tubecad.core.errors import ParameterError
+
+FloatArray = np.ndarray
+
+
+@dataclass(frozen=True)
+class SurfaceJet:
+    """Per point: the position ``X`` and the derivatives ``Xu``, ``Xv``, ``Xuu``, ``Xuv``,
+    ``Xvv``, each (n, 3)."""
+
+    X: FloatArray
+    Xu: FloatArray
+    Xv: FloatArray
+    Xuu: FloatArray
+    Xuv: FloatArray
+    Xvv: FloatArray
+
+
+@dataclass(frozen=True)
+class HostSurface:
+    """An OCCT ``surface`` over the parameter box ``bounds`` = (u0, u1, v0, v1), with the
+    periods of its periodic directions (``periods``: (u period or None, v period or None))."""
+
+    surface: Geom_Surface
+    bounds: tuple[float, float, float, float]
+    periods: tuple[float | None, float | None]
+
+    @classmethod
+    def of_face(cls, face: object) -> HostSurface:
+        """The host surface of a face: a build123d ``Face`` (or anything with ``.wrapped``)
+        or an OCCT ``TopoDS_Face``, over its parameter box.
+
+        Args:
+            face: the face.
+
+        Returns:
+            Its surface and bounds.
+
+        Raises:
+            ParameterError: (``face``) not a face.
+        """
+        shape = getattr(face, "wrapped", face)
+        if not isinstance(shape, TopoDS_Face):
+            raise ParameterError(
+                f"face must be a build123d Face or a TopoDS_Face, got {type(face).__name__}", key="face"
+            )
+        surface = BRep_Tool.Surface_s(shape)
+        u0, u1, v0, v1 = BRepTools.UVBounds_s(shape)
+        return cls.of_surface(surface, (u0, u1, v0, v1))
+
+    @classmethod
+    def of_surface(cls, surface: Geom_Surface, bounds: tuple[float, float, float, float] | None = None) -> HostSurface:
+        """A ``Geom_Surface`` over ``bounds`` (default: its own, which must be finite).
+
+        Args:
+            surface: the surface.
+            bounds: (u0, u1, v0, v1), or None.
+
+        Returns:
+            The host surface.
+
+        Raises:
+            ParameterError: (``bounds``) bounds not finite with u0 < u1 and v0 < v1.
+        """
+        box = tuple(float(b) for b in (bounds if bounds is not None else surface.Bounds()))
+        u0, u1, v0, v1 = box
+        if not (all(math.isfinite(b) for b in box) and u0 < u1 and v0 < v1):
+            raise ParameterError(f"bounds must be finite with u0 < u1 and v0 < v1, got {box}", key="bounds")
+        periods = (
+            surface.UPeriod() if surface.IsUPeriodic() else None,
+            surface.VPeriod() if surface.IsVPeriodic() else None,
+        )
+        return cls(surface, (u0, u1, v0, v1), periods)
+
+    @property
+    def closed(self) -> tuple[bool, bool]:
+        """Whether the box spans a whole period in u and in v (the seam is then inside the face)."""
+        u0, u1, v0, v1 = self.bounds
+        pu, pv = self.periods
+        return (pu is not None and u1 - u0 >= pu * (1 - 1e-12), pv is not None and v1 - v0 >= pv * (1 - 1e-12))
+
+    def wrapped(self, u: FloatArray, v: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """(u, v) brought into the box along a closed direction (a whole period), unchanged otherwise."""
+        u0, _, v0, _ = self.bounds
+        (cu, cv), (pu, pv) = self.closed, self.periods
+        u = np.asarray(u, dtype=float)
+        v = np.asarray(v, dtype=float)
+        if cu and pu is not None:
+            u = u0 + np.mod(u - u0, pu)
+        if cv and pv is not None:
+            v = v0 + np.mod(v - v0, pv)
+        return u, v
+
+    def inside(self, u: FloatArray, v: FloatArray) -> FloatArray:
+        """Whether the points lie in the box (a closed direction always does)."""
+        u0, u1, v0, v1 = self.bounds
+        cu, cv = self.closed
+        u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+        return (cu | ((u >= u0) & (u <= u1))) & (cv | ((v >= v0) & (v <= v1)))
+
+    def jet(self, u: FloatArray, v: FloatArray) -> SurfaceJet:
+        """The position and first and second derivatives at the points (u, v) (any shape,
+        broadcast; the results flattened to (n, 3)), by OCCT's ``D2``.
+
+        Args:
+            u: the first parameters.
+            v: the second parameters.
+
+        Returns:
+            The jet at each point.
+        """
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        out = np.empty((6, u.size, 3))
+        p, du, dv, duu, dvv, duv = gp_Pnt(), gp_Vec(), gp_Vec(), gp_Vec(), gp_Vec(), gp_Vec()
+        d2 = self.surface.D2
+        for i, (a, b) in enumerate(zip(u.ravel().tolist(), v.ravel().tolist())):
+            d2(a, b, p, du, dv, duu, dvv, duv)
+            out[0, i] = p.X(), p.Y(), p.Z()
+            out[1, i] = du.X(), du.Y(), du.Z()
+            out[2, i] = dv.X(), dv.Y(), dv.Z()
+            out[3, i] = duu.X(), duu.Y(), duu.Z()
+            out[4, i] = duv.X(), duv.Y(), duv.Z()
+            out[5, i] = dvv.X(), dvv.Y(), dvv.Z()
+        return SurfaceJet(*out)

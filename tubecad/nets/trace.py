@@ -1,0 +1,280 @@
+"""Lines of curvature traced on a host surface (issue 44; docs/MATH.md section 15).
+
+A line of curvature of family k (1: along the k1 direction, 2: along k2) through a seed is
+the solution of the ODE in the parameters
+
+    d(u, v) / dsigma = uv_k(u, v),
+
+uv_k the parameter direction of unit 3-D length along the principal direction d_k
+(:mod:`~tubecad.nets.principal`), sigma the arc length. The field is a line field (d_k and
+-d_k are one direction), so each step takes the sign that continues the step before: every
+stage of a step is turned to agree with the direction at its start. The integrator is
+Dormand & Prince's 5(4) pair (J. Comput. Appl. Math. 6 (1980) 19-26) with its embedded error
+estimate, measured in 3-D (the parameter error times |X_u|, |X_v|) and kept below
+``tolerance`` per step, the step size adapted as usual (safety 0.9, factors 0.2 .. 5).
+
+The line stops:
+
+- at the face's boundary (a direction that is not closed round a period): the last step
+  shortened by bisection until it ends on the boundary (to 1e-12 of the box);
+- near an umbilic (one of ``stops``, within ``reach``), where the field is singular;
+- on closing: crossing the plane through the seed normal to the seed's direction, moving the
+  same way, within CLOSE_SHARE of the face's size of the seed (after a tenth of its size): the
+  last step cut on the plane by bisection on its length, the gap left counted in the error;
+- after ``max_length`` (a guard, reported).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from tubecad.core.errors import ParameterError
+from tubecad.nets.host import HostSurface
+from tubecad.nets.principal import PointField, principal_field
+
+FloatArray = np.ndarray
+Family = Literal[1, 2]
+Stop = Literal["boundary", "umbilic", "closed", "length"]
+
+# Dormand-Prince 5(4): nodes, stages, 5th- and 4th-order weights
+_C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
+_A = [
+    [],
+    [1 / 5],
+    [3 / 40, 9 / 40],
+    [44 / 45, -56 / 15, 32 / 9],
+    [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729],
+    [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656],
+    [35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84],
+]
+_B5 = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0])
+_B4 = np.array([5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200, 187 / 2100, 1 / 40])
+#: closing: the line crosses its seed's plane within this share of the face's size of the seed
+CLOSE_SHARE = 1e-6
+
+
+@dataclass(frozen=True)
+class CurvatureLine:
+    """A traced line of curvature of ``family`` from its seed: its parameters ``uv`` (m, 2;
+    u unwrapped across a periodic seam), its ``points`` (m, 3), the arc length ``sigma`` at
+    each, why it ``stopped`` (at each end: forward, backward), and the largest local error
+    estimate of its steps, ``error`` (3-D length)."""
+
+    family: Family
+    uv: FloatArray
+    points: FloatArray
+    sigma: FloatArray
+    stopped: tuple[Stop, Stop]
+    error: float
+
+    @property
+    def closed(self) -> bool:
+        """Whether the line closed on itself (a loop)."""
+        return self.stopped[0] == "closed"
+
+
+def trace_line(
+    host: HostSurface,
+    seed: tuple[float, float],
+    family: Family,
+    *,
+    tolerance: float = 1e-10,
+    stops: FloatArray | None = None,
+    reach: float = 0.0,
+    max_length: float | None = None,
+) -> CurvatureLine:
+    """The line of curvature of ``family`` through the parameters ``seed`` (module docstring),
+    traced both ways until it stops (or once round, where it closes).
+
+    Args:
+        host: the surface.
+        seed: (u, v) inside its box.
+        family: 1 (along the k1 direction) or 2 (along k2).
+        tolerance: the local error per step (3-D length).
+        stops: umbilics' points (n, 3) the line stops near, or None.
+        reach: how near (3-D length).
+        max_length: the longest a line may run each way (default 100 x the face's size).
+
+    Returns:
+        The line.
+
+    Raises:
+        ParameterError: (``family``) not 1 or 2; (``seed``) outside the box or at an umbilic.
+    """
+    if family not in (1, 2):
+        raise ParameterError(f"family must be 1 or 2, got {family!r:.20}", key="family")
+    u, v = (float(x) for x in seed)
+    if not host.inside(np.array([u]), np.array([v]))[0]:
+        raise ParameterError(f"seed {seed} lies outside the face's parameter box {host.bounds}", key="seed")
+    start = principal_field(host, np.array([u]), np.array([v]))
+    if not start.umbilic_measure[0] > 0:
+        raise ParameterError(f"seed {seed} is an umbilic: every direction there is principal", key="seed")
+    size = _size(host)
+    limit = max_length if max_length is not None else 100.0 * size
+    ahead = _Tracer(host, family, tolerance, stops, reach, limit, size)
+    forward = ahead.run(np.array([u, v]), +1.0)
+    if forward.stop == "closed":
+        uv, sigma, errors = forward.uv, forward.sigma, forward.error
+        stopped: tuple[Stop, Stop] = ("closed", "closed")
+    else:
+        backward = ahead.run(np.array([u, v]), -1.0)
+        uv = np.concatenate([backward.uv[:0:-1], forward.uv])
+        sigma = np.concatenate([-backward.sigma[:0:-1], forward.sigma])
+        sigma = sigma - sigma[0]
+        errors = max(forward.error, backward.error)
+        stopped = (forward.stop, backward.stop)
+    wu, wv = host.wrapped(uv[:, 0], uv[:, 1])
+    return CurvatureLine(family, uv, host.jet(wu, wv).X, sigma, stopped, errors)
+
+
+@dataclass
+class _Run:
+    uv: FloatArray
+    sigma: FloatArray
+    stop: Stop
+    error: float
+
+
+def _size(host: HostSurface) -> float:
+    u0, u1, v0, v1 = host.bounds
+    uu, vv = np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9), indexing="ij")
+    return float(np.ptp(host.jet(uu, vv).X, axis=0).max())
+
+
+class _Tracer:
+    """One way of a line: the integrator and its stopping rules (module docstring)."""
+
+    def __init__(self, host, family, tolerance, stops, reach, limit, size) -> None:
+        self.host, self.family, self.tolerance = host, family, tolerance
+        self.stops = np.zeros((0, 3)) if stops is None else np.asarray(stops, dtype=float).reshape(-1, 3)
+        self.reach, self.limit, self.size = reach, limit, size
+        self.field = PointField(host)
+
+    def direction(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray] | None:
+        """(uv direction, 3-D direction, |X_u| and |X_v|) of the family at the point x; None
+        at a degenerate point."""
+        u, v = self.host.wrapped(x[:1], x[1:])
+        at = self.field.at(float(u[0]), float(v[0]), self.family)
+        if at is None:
+            return None
+        return np.array(at[:2]), np.array(at[2:5]), np.array(at[5:7])
+
+    def point(self, x: FloatArray) -> FloatArray:
+        u, v = self.host.wrapped(x[:1], x[1:])
+        return self.host.jet(u, v).X[0]
+
+    def run(self, x0: FloatArray, sign: float) -> _Run:
+        first = self.direction(x0)
+        assert first is not None  # the seed is checked
+        _, d0, _ = first
+        reference = sign * d0  # the way this run goes, in 3-D
+        seed_point = self.point(x0)
+        xs, sigmas = [x0.copy()], [0.0]
+        x, sigma, h, worst = x0.copy(), 0.0, 1e-3 * self.size, 0.0
+        while True:
+            step = self._step(x, h, reference)
+            if step is None:  # an umbilic's neighbourhood: the field is singular
+                return _Run(np.array(xs), np.array(sigmas), "umbilic", worst)
+            new, error, direction, _ = step
+            if error > self.tolerance:
+                h *= max(0.2, 0.9 * (self.tolerance / error) ** 0.2)
+                continue
+            inside = self.host.inside(new[:1], new[1:])[0]
+            if not inside:
+                new, taken = self._to_boundary(x, h, reference)
+                xs.append(new)
+                sigmas.append(sigma + taken)
+                return _Run(np.array(xs), np.array(sigmas), "boundary", max(worst, error))
+            worst = max(worst, error)
+            p_new = self.point(new)
+            if sigma + h > 0.1 * self.size:
+                closing = self._closing(x, h, reference, seed_point, d0 * sign)
+                if closing is not None:  # back at the seed: the loop's gap is its error
+                    end, taken, gap = closing
+                    xs.append(end)
+                    sigmas.append(sigma + taken)
+                    return _Run(np.array(xs), np.array(sigmas), "closed", max(worst, gap))
+            x, sigma = new, sigma + h
+            xs.append(x.copy())
+            sigmas.append(sigma)
+            reference = direction
+            if len(self.stops) and np.linalg.norm(self.stops - p_new, axis=1).min() < self.reach:
+                return _Run(np.array(xs), np.array(sigmas), "umbilic", worst)
+            if sigma >= self.limit:
+                return _Run(np.array(xs), np.array(sigmas), "length", worst)
+            h *= min(5.0, 0.9 * (self.tolerance / max(error, 1e-300)) ** 0.2)
+            h = min(h, 0.05 * self.size)
+
+    def _step(self, x: FloatArray, h: float, reference: FloatArray):
+        """One Dormand-Prince step of length h: (new x, error, 3-D direction at the end,
+        metric), every stage's direction turned to agree with ``reference``; None where the
+        field vanishes (an umbilic)."""
+        k = np.zeros((7, 2))
+        metric = None
+        for i in range(7):
+            xi = x + h * sum(a * k[j] for j, a in enumerate(_A[i])) if i else x
+            at = self.direction(xi)
+            if at is None or not np.all(np.isfinite(at[0])):
+                return None
+            uv, d, m = at
+            if float(d @ reference) < 0:
+                uv, d = -uv, -d
+            k[i] = uv
+            if i == 0:
+                metric = m
+            if i == 6:
+                end_direction = d
+        new = x + h * (_B5 @ k)
+        error = float(np.abs(h * ((_B5 - _B4) @ k)) @ metric)
+        return new, error, end_direction, metric
+
+    def _to_boundary(self, x: FloatArray, h: float, reference: FloatArray) -> tuple[FloatArray, float]:
+        """The step from x cut where it meets the box's boundary (bisection on its length)."""
+        lo, hi = 0.0, h
+        best = x
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            step = self._step(x, mid, reference)
+            if step is None:
+                break
+            if self.host.inside(step[0][:1], step[0][1:])[0]:
+                lo, best = mid, step[0]
+            else:
+                hi = mid
+            if hi - lo < 1e-12 * self.size:
+                break
+        u0, u1, v0, v1 = self.host.bounds
+        clipped = np.array([min(max(best[0], u0), u1), min(max(best[1], v0), v1)])
+        cu, cv = self.host.closed
+        return np.array([best[0] if cu else clipped[0], best[1] if cv else clipped[1]]), lo
+
+    def _closing(self, x: FloatArray, h: float, reference: FloatArray, seed: FloatArray, way: FloatArray):
+        """Where the step of length h from x crosses the seed's plane (normal ``way``) next to
+        the seed (within CLOSE_SHARE of the face's size), the step cut there by bisection on
+        its length: (the point's parameters, the length taken, its gap from the seed); None
+        where the step does not close the line."""
+        a = self.point(x)
+        step = self._step(x, h, reference)
+        if step is None:
+            return None
+        b = self.point(step[0])
+        da, db = float((a - seed) @ way), float((b - seed) @ way)
+        if not (da < 0.0 <= db) or np.linalg.norm(b - seed) > h + CLOSE_SHARE * self.size:
+            return None
+        lo, hi, end = 0.0, h, step[0]
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            cut = self._step(x, mid, reference)
+            if cut is None:
+                return None
+            if float((self.point(cut[0]) - seed) @ way) < 0.0:
+                lo = mid
+            else:
+                hi, end = mid, cut[0]
+            if hi - lo < 1e-14 * self.size:
+                break
+        gap = float(np.linalg.norm(self.point(end) - seed))
+        return (end, hi, gap) if gap <= CLOSE_SHARE * self.size else None
