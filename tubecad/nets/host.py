@@ -48,6 +48,10 @@ class HostSurface:
     surface: Geom_Surface
     bounds: tuple[float, float, float, float]
     periods: tuple[float | None, float | None]
+    #: the interior parameters (u's, v's) where the surface is less than C3 (a B-spline's
+    #: knots of high multiplicity): its second derivatives, and the principal field's
+    #: parameter directions, may jump there, so a line is traced in pieces between them
+    breaks: tuple[FloatArray, FloatArray] = (np.zeros(0), np.zeros(0))
 
     @classmethod
     def of_face(cls, face: object) -> HostSurface:
@@ -94,7 +98,7 @@ class HostSurface:
             surface.UPeriod() if surface.IsUPeriodic() else None,
             surface.VPeriod() if surface.IsVPeriodic() else None,
         )
-        return cls(surface, (u0, u1, v0, v1), periods)
+        return cls(surface, (u0, u1, v0, v1), periods, _breaks(surface))
 
     @property
     def closed(self) -> tuple[bool, bool]:
@@ -146,3 +150,46 @@ class HostSurface:
             out[4, i] = duv.X(), duv.Y(), duv.Z()
             out[5, i] = dvv.X(), dvv.Y(), dvv.Z()
         return SurfaceJet(*out)
+
+
+def _breaks(surface: Geom_Surface) -> tuple[FloatArray, FloatArray]:
+    """The surface's parameters inside its own bounds where it is less than C3, in u and in v
+    (OCCT's continuity intervals, ``GeomAdaptor_Surface::UIntervals``)."""
+    from OCP.GeomAbs import GeomAbs_C3
+    from OCP.GeomAdaptor import GeomAdaptor_Surface
+
+    from tubecad.occ_compat import Array1OfReal
+
+    adaptor = GeomAdaptor_Surface(surface)
+    out = []
+    for count, fill in (
+        (adaptor.NbUIntervals(GeomAbs_C3), adaptor.UIntervals),
+        (adaptor.NbVIntervals(GeomAbs_C3), adaptor.VIntervals),
+    ):
+        if count <= 1:
+            out.append(np.zeros(0))
+            continue
+        values = Array1OfReal(1, count + 1)
+        fill(values, GeomAbs_C3)
+        out.append(np.array([values.Value(i) for i in range(2, count + 1)]))
+    return out[0], out[1]
+
+
+def crossed_breaks(host: HostSurface, a: FloatArray, b: FloatArray) -> list[tuple[int, float]]:
+    """The break lines (coordinate 0 for u, 1 for v; the value, unwrapped as ``a`` is) strictly
+    between the parameter points ``a`` and ``b``, nearest ``a`` first."""
+    out = []
+    for k in (0, 1):
+        values = host.breaks[k]
+        period = host.periods[k] if host.closed[k] else None
+        if period is not None:  # the periodic seam too: a B-spline's knot, smooth or not
+            values = np.append(values, host.bounds[2 * k])
+        if not values.size or a[k] == b[k]:
+            continue
+        low, high = min(a[k], b[k]), max(a[k], b[k])
+        if period is not None:
+            turns = np.arange(math.floor((low - values.max()) / period), math.ceil((high - values.min()) / period) + 1)
+            values = (values[None, :] + period * turns[:, None]).ravel()
+        inside = values[(values > low) & (values < high)]
+        out += [(k, float(v)) for v in inside]
+    return sorted(out, key=lambda item: abs(item[1] - a[item[0]]) / max(abs(b[item[0]] - a[item[0]]), 1e-300))

@@ -32,7 +32,7 @@ from typing import Literal
 import numpy as np
 
 from tubecad.core.errors import ParameterError
-from tubecad.nets.host import HostSurface
+from tubecad.nets.host import HostSurface, crossed_breaks
 from tubecad.nets.principal import PointField, principal_field
 
 FloatArray = np.ndarray
@@ -52,6 +52,8 @@ _A = [
 ]
 _B5 = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0])
 _B4 = np.array([5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200, 187 / 2100, 1 / 40])
+#: a node on a break line is put this share of the box past it (the field's other side)
+NUDGE = 1e-12
 #: closing: the line crosses its seed's plane within this share of the face's size of the seed
 CLOSE_SHARE = 1e-6
 
@@ -69,11 +71,21 @@ class CurvatureLine:
     sigma: FloatArray
     stopped: tuple[Stop, Stop]
     error: float
+    #: per node, the parameter offsets at which the pieces ending and starting there read the
+    #: field ((m, 2) each): zero, but at a node on a break line of the surface (one is put on
+    #: each crossing) each piece reads it a hair inside its own side
+    ending: FloatArray | None = None
+    starting: FloatArray | None = None
 
     @property
     def closed(self) -> bool:
         """Whether the line closed on itself (a loop)."""
         return self.stopped[0] == "closed"
+
+    def offsets(self) -> tuple[FloatArray, FloatArray]:
+        """(``ending``, ``starting``), zeros where not given."""
+        zero = np.zeros_like(self.uv)
+        return (zero if self.ending is None else self.ending, zero if self.starting is None else self.starting)
 
 
 def trace_line(
@@ -118,6 +130,7 @@ def trace_line(
     forward = ahead.run(np.array([u, v]), +1.0)
     if forward.stop == "closed":
         uv, sigma, errors = forward.uv, forward.sigma, forward.error
+        ending, starting = forward.across, -forward.across
         stopped: tuple[Stop, Stop] = ("closed", "closed")
     else:
         backward = ahead.run(np.array([u, v]), -1.0)
@@ -126,8 +139,12 @@ def trace_line(
         sigma = sigma - sigma[0]
         errors = max(forward.error, backward.error)
         stopped = (forward.stop, backward.stop)
+        # a run's piece arriving at a break node reads ``across`` off it, the one leaving the
+        # opposite; the backward run, read forwards, swaps arriving and leaving
+        ending = np.concatenate([-backward.across[:0:-1], forward.across])
+        starting = np.concatenate([backward.across[:0:-1], -forward.across])
     wu, wv = host.wrapped(uv[:, 0], uv[:, 1])
-    return CurvatureLine(family, uv, host.jet(wu, wv).X, sigma, stopped, errors)
+    return CurvatureLine(family, uv, host.jet(wu, wv).X, sigma, stopped, errors, ending, starting)
 
 
 @dataclass
@@ -136,6 +153,7 @@ class _Run:
     sigma: FloatArray
     stop: Stop
     error: float
+    across: FloatArray  # (m, 2): from a node just past a break back across it, else 0
 
 
 def _size(host: HostSurface) -> float:
@@ -172,51 +190,72 @@ class _Tracer:
         _, d0, _ = first
         reference = sign * d0  # the way this run goes, in 3-D
         seed_point = self.point(x0)
-        xs, sigmas = [x0.copy()], [0.0]
+        xs, sigmas, across = [x0.copy()], [0.0], [np.zeros(2)]
+
+        def done(stop: Stop, error: float) -> _Run:
+            return _Run(np.array(xs), np.array(sigmas), stop, error, np.array(across))
+
         x, sigma, h, worst = x0.copy(), 0.0, 1e-3 * self.size, 0.0
+        bias: FloatArray | None = None  # on a break line: the field is read on the side ahead
         while True:
-            step = self._step(x, h, reference)
+            step = self._step(x, h, reference, bias)
             if step is None:  # an umbilic's neighbourhood: the field is singular
-                return _Run(np.array(xs), np.array(sigmas), "umbilic", worst)
+                return done("umbilic", worst)
             new, error, direction, _ = step
             if error > self.tolerance:
                 h *= max(0.2, 0.9 * (self.tolerance / error) ** 0.2)
                 continue
             inside = self.host.inside(new[:1], new[1:])[0]
             if not inside:
-                new, taken = self._to_boundary(x, h, reference)
+                new, taken = self._to_boundary(x, h, reference, bias)
                 xs.append(new)
                 sigmas.append(sigma + taken)
-                return _Run(np.array(xs), np.array(sigmas), "boundary", max(worst, error))
+                across.append(np.zeros(2))
+                return done("boundary", max(worst, error))
+            crossed = crossed_breaks(self.host, x, new)
+            if crossed:  # a node on the break; the field read on the side ahead from there
+                k, value = crossed[0]
+                at, taken, ahead = self._to_break(x, h, reference, bias, k, value)
+                xs.append(at)
+                sigma += taken
+                sigmas.append(sigma)
+                across.append(-ahead)
+                x, bias = at, ahead
+                worst = max(worst, error)
+                continue
             worst = max(worst, error)
+            bias = None
             p_new = self.point(new)
             if sigma + h > 0.1 * self.size:
-                closing = self._closing(x, h, reference, seed_point, d0 * sign)
+                closing = self._closing(x, h, reference, seed_point, d0 * sign, bias)
                 if closing is not None:  # back at the seed: the loop's gap is its error
                     end, taken, gap = closing
                     xs.append(end)
                     sigmas.append(sigma + taken)
-                    return _Run(np.array(xs), np.array(sigmas), "closed", max(worst, gap))
+                    across.append(np.zeros(2))
+                    return done("closed", max(worst, gap))
             x, sigma = new, sigma + h
             xs.append(x.copy())
             sigmas.append(sigma)
+            across.append(np.zeros(2))
             reference = direction
             if len(self.stops) and np.linalg.norm(self.stops - p_new, axis=1).min() < self.reach:
-                return _Run(np.array(xs), np.array(sigmas), "umbilic", worst)
+                return done("umbilic", worst)
             if sigma >= self.limit:
-                return _Run(np.array(xs), np.array(sigmas), "length", worst)
+                return done("length", worst)
             h *= min(5.0, 0.9 * (self.tolerance / max(error, 1e-300)) ** 0.2)
             h = min(h, 0.05 * self.size)
 
-    def _step(self, x: FloatArray, h: float, reference: FloatArray):
+    def _step(self, x: FloatArray, h: float, reference: FloatArray, bias: FloatArray | None = None):
         """One Dormand-Prince step of length h: (new x, error, 3-D direction at the end,
-        metric), every stage's direction turned to agree with ``reference``; None where the
+        metric), every stage's direction turned to agree with ``reference`` and evaluated
+        ``bias`` off (a node on a break line: the field of the side ahead); None where the
         field vanishes (an umbilic)."""
         k = np.zeros((7, 2))
         metric = None
         for i in range(7):
             xi = x + h * sum(a * k[j] for j, a in enumerate(_A[i])) if i else x
-            at = self.direction(xi)
+            at = self.direction(xi if bias is None else xi + bias)
             if at is None or not np.all(np.isfinite(at[0])):
                 return None
             uv, d, m = at
@@ -231,13 +270,42 @@ class _Tracer:
         error = float(np.abs(h * ((_B5 - _B4) @ k)) @ metric)
         return new, error, end_direction, metric
 
-    def _to_boundary(self, x: FloatArray, h: float, reference: FloatArray) -> tuple[FloatArray, float]:
+    def _to_break(
+        self, x: FloatArray, h: float, reference: FloatArray, bias: FloatArray | None, k: int, value: float
+    ) -> tuple[FloatArray, float, FloatArray]:
+        """The step from x cut where coordinate ``k`` reaches the break ``value`` (bisection on
+        its length, the node then set on it exactly); (the node, the length taken, the offset
+        NUDGE of the box ahead across the break, where the field is read from there on)."""
+        full = self._step(x, h, reference, bias)
+        sign = 1.0 if full is not None and full[0][k] > x[k] else -1.0
+        lo, hi, end = 0.0, h, x
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            step = self._step(x, mid, reference, bias)
+            if step is None:
+                break
+            if sign * (step[0][k] - value) < 0.0:
+                lo = mid
+            else:
+                hi, end = mid, step[0]
+            if hi - lo < 1e-15 * self.size:
+                break
+        u0, u1, v0, v1 = self.host.bounds
+        at = end.copy()
+        at[k] = value
+        ahead = np.zeros(2)
+        ahead[k] = sign * NUDGE * ((u1 - u0) if k == 0 else (v1 - v0))
+        return at, hi, ahead
+
+    def _to_boundary(
+        self, x: FloatArray, h: float, reference: FloatArray, bias: FloatArray | None = None
+    ) -> tuple[FloatArray, float]:
         """The step from x cut where it meets the box's boundary (bisection on its length)."""
         lo, hi = 0.0, h
         best = x
         for _ in range(60):
             mid = 0.5 * (lo + hi)
-            step = self._step(x, mid, reference)
+            step = self._step(x, mid, reference, bias)
             if step is None:
                 break
             if self.host.inside(step[0][:1], step[0][1:])[0]:
@@ -251,13 +319,15 @@ class _Tracer:
         cu, cv = self.host.closed
         return np.array([best[0] if cu else clipped[0], best[1] if cv else clipped[1]]), lo
 
-    def _closing(self, x: FloatArray, h: float, reference: FloatArray, seed: FloatArray, way: FloatArray):
+    def _closing(
+        self, x: FloatArray, h: float, reference: FloatArray, seed: FloatArray, way: FloatArray, bias=None
+    ):
         """Where the step of length h from x crosses the seed's plane (normal ``way``) next to
         the seed (within CLOSE_SHARE of the face's size), the step cut there by bisection on
         its length: (the point's parameters, the length taken, its gap from the seed); None
         where the step does not close the line."""
         a = self.point(x)
-        step = self._step(x, h, reference)
+        step = self._step(x, h, reference, bias)
         if step is None:
             return None
         b = self.point(step[0])
@@ -267,7 +337,7 @@ class _Tracer:
         lo, hi, end = 0.0, h, step[0]
         for _ in range(80):
             mid = 0.5 * (lo + hi)
-            cut = self._step(x, mid, reference)
+            cut = self._step(x, mid, reference, bias)
             if cut is None:
                 return None
             if float((self.point(cut[0]) - seed) @ way) < 0.0:
@@ -278,3 +348,4 @@ class _Tracer:
                 break
         gap = float(np.linalg.norm(self.point(end) - seed))
         return (end, hi, gap) if gap <= CLOSE_SHARE * self.size else None
+
