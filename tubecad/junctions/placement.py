@@ -206,7 +206,9 @@ def blend_problem(main: CurvatureLineSurface, branch: CurvatureLineSurface, radi
     from tubecad.junctions.crotch import crotch
 
     main_off, branch_off = main.offset(radius), branch.offset(radius)
-    scale = float(np.abs(main.axis.position(np.array(main.span))).max()) + float(main.radius_law.r(np.array(main.span)).max())
+    scale = float(np.abs(main.axis.position(np.array(main.span))).max()) + float(
+        main.radius_law.r(np.array(main.span)).max()
+    )
     if crotch(main_off, branch_off, scale) is not None:
         return "a blend on an equal tee (the surfaces offset by the ball's radius touch) is not made yet"
     u = np.linspace(0.0, 2.0 * math.pi, BLEND_CHECK_STRINGERS + 1)[:-1]

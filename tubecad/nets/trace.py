@@ -319,9 +319,7 @@ class _Tracer:
         cu, cv = self.host.closed
         return np.array([best[0] if cu else clipped[0], best[1] if cv else clipped[1]]), lo
 
-    def _closing(
-        self, x: FloatArray, h: float, reference: FloatArray, seed: FloatArray, way: FloatArray, bias=None
-    ):
+    def _closing(self, x: FloatArray, h: float, reference: FloatArray, seed: FloatArray, way: FloatArray, bias=None):
         """Where the step of length h from x crosses the seed's plane (normal ``way``) next to
         the seed (within CLOSE_SHARE of the face's size), the step cut there by bisection on
         its length: (the point's parameters, the length taken, its gap from the seed); None
@@ -348,4 +346,3 @@ class _Tracer:
                 break
         gap = float(np.linalg.norm(self.point(end) - seed))
         return (end, hi, gap) if gap <= CLOSE_SHARE * self.size else None
-
