@@ -96,26 +96,39 @@ def test_on_a_torus_the_lines_are_meridians_and_parallels():
         assert max(spread_u, spread_v) == pytest.approx(2 * math.pi, abs=1e-6)
 
 
-def test_the_monkey_saddle_has_one_star_umbilic():
-    """z = x^3 - 3 x y^2 = Re (x + i y)^3: its second form's trace-free part is 6 (x - i y)
-    near 0, winding once backwards: index -1/2, the three lines y = 0, y = +-sqrt(3) x its
-    separatrices (a star). The polynomial is exactly a bicubic Bezier patch."""
+def _monkey_saddle():
+    """z = x^3 - 3 x y^2 over [-1, 1]^2 as the bicubic Bezier patch of (x, y) = (2 s - 1, 2 t - 1):
+    its poles solve the Bernstein interpolation at s, t = 0, 1/3, 2/3, 1 (exact: z is in the
+    bicubics' span)."""
     from math import comb
 
     from OCP.Geom import Geom_BezierSurface
 
     from tubecad.fitting.occ_arrays import points_2d
 
-    # the bicubic Bezier patch of (x, y) = (2 s - 1, 2 t - 1) over [0, 1]^2: its poles solve
-    # the Bernstein interpolation at s, t = 0, 1/3, 2/3, 1 (exact: z is in the bicubics' span)
     nodes = np.linspace(0.0, 1.0, 4)
     bernstein = np.array([[comb(3, k) * x**k * (1 - x) ** (3 - k) for k in range(4)] for x in nodes])
     x, y = np.meshgrid(2 * nodes - 1, 2 * nodes - 1, indexing="ij")
     values = np.stack([x, y, x**3 - 3 * x * y**2], axis=-1)
     inverse = np.linalg.inv(bernstein)
-    poles = np.einsum("ki,ijc,lj->klc", inverse, values, inverse)
-    surface = Geom_BezierSurface(points_2d(poles))
-    host = HostSurface.of_surface(surface)
+    return HostSurface.of_surface(Geom_BezierSurface(points_2d(np.einsum("ki,ijc,lj->klc", inverse, values, inverse))))
+
+
+def test_an_open_line_stops_on_the_faces_boundary_both_ways():
+    host = _monkey_saddle()
+    for family in (1, 2):
+        line = trace_line(host, (0.7, 0.4), family)
+        assert line.stopped == ("boundary", "boundary")
+        for end in (line.uv[0], line.uv[-1]):
+            assert min(abs(end[0]), abs(end[0] - 1), abs(end[1]), abs(end[1] - 1)) < 1e-12
+        assert np.all((line.uv >= -1e-12) & (line.uv <= 1 + 1e-12))
+
+
+def test_the_monkey_saddle_has_one_star_umbilic():
+    """z = x^3 - 3 x y^2 = Re (x + i y)^3: its second form's trace-free part is 6 (x - i y)
+    near 0, winding once backwards: index -1/2, the three lines y = 0, y = +-sqrt(3) x its
+    separatrices (a star). The polynomial is exactly a bicubic Bezier patch."""
+    host = _monkey_saddle()
     found = find_umbilics(host)
     assert len(found.points) == 1
     (star,) = found.points
