@@ -173,3 +173,19 @@ def test_a_line_as_an_edge_follows_the_closed_form_directions(ellipsoid, family,
     assert np.abs((points**2 / np.array([A * A, B * B, C * C])).sum(axis=1) - 1.0).max() < 1e-10  # 1.3e-11
     assert edge.gap < 1e-9 * A and edge.angle < 2e-8
     assert BRepCheck_Analyzer(edge.edge).IsValid()
+
+
+def test_a_build123d_face_is_read_as_its_surface_and_a_non_face_is_refused():
+    """A build123d torus' face: its exact toroidal surface over its parameter box (one whole
+    turn each way), no umbilics, its lines closed round either period."""
+    import build123d as bd
+
+    face = bd.Solid.make_torus(40.0, 10.0).faces()[0]
+    host = HostSurface.of_face(face)
+    assert host.closed == (True, True)
+    assert not find_umbilics(host).points and not find_umbilics(host).region
+    line = trace_line(host, (0.5, 0.5), 2)
+    assert line.closed
+    with pytest.raises(ParameterError, match="face must be") as info:
+        HostSurface.of_face(face.edges()[0])
+    assert info.value.key == "face"
