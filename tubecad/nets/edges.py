@@ -105,10 +105,21 @@ def _fitted(host: HostSurface, line: CurvatureLine) -> tuple[LineEdge, FloatArra
     pcurve_spline = BSpline(knots, _joined(pcurve_poles), DEGREE)
     curve_spline = BSpline(knots, _joined(curve_poles), DEGREE)
     curve, pcurve = occ_curve_3d(curve_spline), occ_curve_2d(pcurve_spline)
+    smooth = [i + 1 for i in range(1, pieces) if not (np.any(ending[i]) or np.any(starting[i]))]
+    _to_c2(curve, smooth, EDGE_TOLERANCE * 1e-3)
+    _to_c2(pcurve, smooth, 1e-12)
     edge = BRepBuilderAPI_MakeEdge(curve).Edge()
     BRep_Builder().UpdateEdge(edge, pcurve, host.surface, TopLoc_Location(), EDGE_TOLERANCE)
     angles, gaps = _measured(host, line.family, sigma, curve_spline, pcurve_spline)
     return LineEdge(edge, curve, pcurve, float(angles.max()), float(gaps.max())), angles, gaps
+
+
+def _to_c2(curve: Geom_BSplineCurve | Geom2d_BSplineCurve, knots: list[int], tolerance: float) -> None:
+    """The Hermite pieces meet C2 at a node off the break lines (both take its data): their
+    knot there brought down from multiplicity 5 to 3 (OCCT's ``RemoveKnot``, exact to
+    ``tolerance``), two poles fewer a node. ``knots``: the 1-based knot indices."""
+    for index in knots:
+        curve.RemoveKnot(index, 3, tolerance)
 
 
 def _bezier(

@@ -115,11 +115,11 @@ class PointField:
 
     def at(
         self, u: float, v: float, family: int
-    ) -> tuple[float, float, float, float, float, float, float, float] | None:
-        """(du, dv, d_x, d_y, d_z, |X_u|, |X_v|, (k1 - k2) / 2) of ``family``'s direction at
-        (u, v): its parameter direction of unit 3-D length, its 3-D unit vector, the
-        derivatives' lengths and the umbilic measure; None where the parameterisation
-        degenerates."""
+    ) -> tuple[float, float, float, float, float, float, float, float, float] | None:
+        """(du, dv, d_x, d_y, d_z, |X_u|, |X_v|, (k1 - k2) / 2, max(|k1|, |k2|)) of
+        ``family``'s direction at (u, v): its parameter direction of unit 3-D length, its 3-D
+        unit vector, the derivatives' lengths, the umbilic measure and the larger principal
+        curvature's size; None where the parameterisation degenerates."""
         self.d2(u, v, self.p, self.du, self.dv, self.duu, self.dvv, self.duv)
         xu = (self.du.X(), self.du.Y(), self.du.Z())
         xv = (self.dv.X(), self.dv.Y(), self.dv.Z())
@@ -158,4 +158,5 @@ class PointField:
             r11,
             math.sqrt(G),
             math.hypot(a, b),
+            abs(0.5 * (s11 + s22)) + math.hypot(a, b),
         )

@@ -52,6 +52,9 @@ _A = [
 ]
 _B5 = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0])
 _B4 = np.array([5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200, 187 / 2100, 1 / 40])
+#: the most a step may turn (its length times the larger principal curvature's size): the
+#: edge's quintic pieces then follow the line to about 1e-9 rad (docs/MATH.md section 15)
+TURN = 0.05
 #: a node on a break line is put this share of the box past it (the field's other side)
 NUDGE = 1e-12
 #: closing: the line crosses its seed's plane within this share of the face's size of the seed
@@ -170,14 +173,16 @@ class _Tracer:
         self.stops = np.zeros((0, 3)) if stops is None else np.asarray(stops, dtype=float).reshape(-1, 3)
         self.reach, self.limit, self.size = reach, limit, size
         self.field = PointField(host)
+        self.curvature = 0.0
 
     def direction(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray] | None:
         """(uv direction, 3-D direction, |X_u| and |X_v|) of the family at the point x; None
-        at a degenerate point."""
+        at a degenerate point. Keeps the larger principal curvature's size (``curvature``)."""
         u, v = self.host.wrapped(x[:1], x[1:])
         at = self.field.at(float(u[0]), float(v[0]), self.family)
         if at is None:
             return None
+        self.curvature = at[8]
         return np.array(at[:2]), np.array(at[2:5]), np.array(at[5:7])
 
     def point(self, x: FloatArray) -> FloatArray:
@@ -226,7 +231,7 @@ class _Tracer:
             worst = max(worst, error)
             bias = None
             p_new = self.point(new)
-            if sigma + h > 0.1 * self.size:
+            if sigma + h > 0.1 * self.size and self._crosses_seed(x, p_new, seed_point, d0 * sign, h):
                 closing = self._closing(x, h, reference, seed_point, d0 * sign, bias)
                 if closing is not None:  # back at the seed: the loop's gap is its error
                     end, taken, gap = closing
@@ -244,7 +249,10 @@ class _Tracer:
             if sigma >= self.limit:
                 return done("length", worst)
             h *= min(5.0, 0.9 * (self.tolerance / max(error, 1e-300)) ** 0.2)
-            h = min(h, 0.05 * self.size)
+            # the edge's Hermite pieces follow the line to 1e-9 rad where a step turns by at
+            # most TURN (a line integrated exactly in the parameters, a torus' circle, would
+            # otherwise stride the whole face)
+            h = min(h, 0.05 * self.size, TURN / max(self.curvature, 1e-300))
 
     def _step(self, x: FloatArray, h: float, reference: FloatArray, bias: FloatArray | None = None):
         """One Dormand-Prince step of length h: (new x, error, 3-D direction at the end,
@@ -318,6 +326,12 @@ class _Tracer:
         clipped = np.array([min(max(best[0], u0), u1), min(max(best[1], v0), v1)])
         cu, cv = self.host.closed
         return np.array([best[0] if cu else clipped[0], best[1] if cv else clipped[1]]), lo
+
+    def _crosses_seed(self, x: FloatArray, end: FloatArray, seed: FloatArray, way: FloatArray, h: float) -> bool:
+        """Whether the step from x to the point ``end`` crosses the seed's plane (normal
+        ``way``) next to the seed: the cheap test before :meth:`_closing` cuts the step."""
+        da, db = float((self.point(x) - seed) @ way), float((end - seed) @ way)
+        return da < 0.0 <= db and float(np.linalg.norm(end - seed)) <= h + CLOSE_SHARE * self.size
 
     def _closing(self, x: FloatArray, h: float, reference: FloatArray, seed: FloatArray, way: FloatArray, bias=None):
         """Where the step of length h from x crosses the seed's plane (normal ``way``) next to

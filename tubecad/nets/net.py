@@ -1,0 +1,163 @@
+"""A host face's curvature-line net: lines of both families seeded evenly, as edges, and the
+face split into the net's patches (issue 44).
+
+The family-1 lines are seeded along the family-2 line through ``seed`` (and the family-2 lines
+along the family-1 line through it), evenly by arc length: ``count`` seeds at (i + 1/2) / count
+of an open line's length, at i / count round a closed one. Each line is traced
+(:func:`~tubecad.nets.trace.trace_line`, stopping near the umbilics :func:`~tubecad.nets.umbilics.find_umbilics`
+finds), made an edge (:func:`~tubecad.nets.edges.line_edge`) and named ``k1_00``, ``k1_01``...,
+``k2_00``...; the face is split by all of them (OCCT's General Fuse splitter: the edges lie on
+it) into the net's patches, one shell, its validity checked.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Splitter
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
+
+from tubecad.core.errors import ParameterError, TubecadError
+from tubecad.nets.edges import LineEdge, line_edge
+from tubecad.nets.host import HostSurface
+from tubecad.nets.trace import CurvatureLine, Family, trace_line
+from tubecad.nets.umbilics import Umbilics, find_umbilics
+from tubecad.occ_compat import ListOfShape
+
+#: lines stop this share of the face's size from an umbilic
+UMBILIC_REACH = 1e-3
+#: the most lines per family
+MOST_LINES = 200
+
+
+@dataclass(frozen=True)
+class CurvatureNet:
+    """A face's net: its ``host`` surface, its ``umbilics``, the traced ``lines`` and their
+    ``edges`` by name (``k1_00``...), and ``patches``: the face split by them (one shell)."""
+
+    host: HostSurface
+    umbilics: Umbilics
+    lines: dict[str, CurvatureLine]
+    edges: dict[str, LineEdge]
+    patches: TopoDS_Shape
+    #: the lines that run along an edge the face already has (its seam or its boundary: a
+    #: torus' meridian at u = 0): the face is not split there again
+    on_face_edges: frozenset[str] = frozenset()
+
+    @property
+    def angle(self) -> float:
+        """The largest angle (radians) between an edge's tangent and its principal direction."""
+        return max((e.angle for e in self.edges.values()), default=0.0)
+
+
+def curvature_net(
+    face: object,
+    k1_lines: int,
+    k2_lines: int,
+    *,
+    seed: tuple[float, float] | None = None,
+    tolerance: float = 1e-10,
+) -> CurvatureNet:
+    """The curvature-line net of ``face`` (module docstring).
+
+    Args:
+        face: a build123d ``Face`` or an OCCT ``TopoDS_Face`` (split as it is), or a
+            ``HostSurface`` (its face made over its box).
+        k1_lines: lines of family 1 (along the k1 direction), 1 .. MOST_LINES.
+        k2_lines: lines of family 2.
+        seed: the parameters (u, v) the seeding lines pass through (default: the box's centre).
+        tolerance: the tracer's step error (3-D length, relative to nothing: the model's unit).
+
+    Returns:
+        The net.
+
+    Raises:
+        ParameterError: (``k1_lines``, ``k2_lines``) counts out of range; (``face``) a face
+            that is an umbilic region (a plane, a sphere: every direction is principal) or
+            not a face; (``seed``) a seed outside the face or at an umbilic.
+    """
+    for key, count in (("k1_lines", k1_lines), ("k2_lines", k2_lines)):
+        if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= MOST_LINES:
+            raise ParameterError(f"{key} must be an integer in 1..{MOST_LINES}, got {count!r:.40}", key=key)
+    host, shape = _host_and_face(face)
+    umbilics = find_umbilics(host)
+    if umbilics.region:
+        raise ParameterError(
+            "face: an umbilic region (a plane or a sphere): every direction is principal, it has no curvature-line net",
+            key="face",
+        )
+    u0, u1, v0, v1 = host.bounds
+    centre = seed if seed is not None else (0.5 * (u0 + u1), 0.5 * (v0 + v1))
+    stops = np.array([p.point for p in umbilics.points]).reshape(-1, 3)
+    size = float(np.ptp(host.jet(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))).X, axis=0).max())
+    reach = UMBILIC_REACH * size
+
+    def traced(start: tuple[float, float], family: Family) -> CurvatureLine:
+        return trace_line(host, start, family, tolerance=tolerance, stops=stops, reach=reach)
+
+    lines: dict[str, CurvatureLine] = {}
+    plan: tuple[tuple[Family, int, Family], ...] = ((1, k1_lines, 2), (2, k2_lines, 1))
+    for family, count, across in plan:
+        guide = traced(centre, across)
+        for i, start in enumerate(_seeds(guide, count)):
+            lines[f"k{family}_{i:02d}"] = traced(start, family)
+    edges = {name: line_edge(host, line) for name, line in lines.items()}
+    on_edges = {name for name, line in lines.items() if _on_face_edges(shape, line.points)}
+    patches = _split(shape, [e.edge for name, e in edges.items() if name not in on_edges])
+    return CurvatureNet(host, umbilics, lines, edges, patches, frozenset(on_edges))
+
+
+def _host_and_face(face: object) -> tuple[HostSurface, TopoDS_Face]:
+    if isinstance(face, HostSurface):
+        u0, u1, v0, v1 = face.bounds
+        return face, BRepBuilderAPI_MakeFace(face.surface, u0, u1, v0, v1, 1e-7).Face()
+    host = HostSurface.of_face(face)
+    shape = getattr(face, "wrapped", face)
+    assert isinstance(shape, TopoDS_Face)  # of_face refuses anything else
+    return host, shape
+
+
+def _seeds(guide: CurvatureLine, count: int) -> list[tuple[float, float]]:
+    """``count`` parameter points evenly by arc length along ``guide`` (module docstring)."""
+    length = float(guide.sigma[-1] - guide.sigma[0])
+    share = np.arange(count) / count if guide.closed else (np.arange(count) + 0.5) / count
+    at = guide.sigma[0] + share * length
+    u, v = np.interp(at, guide.sigma, guide.uv[:, 0]), np.interp(at, guide.sigma, guide.uv[:, 1])
+    return [(float(a), float(b)) for a, b in zip(u, v)]
+
+
+def _on_face_edges(face: TopoDS_Face, points: np.ndarray) -> bool:
+    """Whether the line's ``points`` all lie on the face's own edges (to EDGE_TOLERANCE; seven
+    of them tried, ends and between)."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+    from OCP.gp import gp_Pnt
+    from OCP.TopAbs import TopAbs_EDGE
+
+    from tubecad.brep.properties import sub_shapes
+    from tubecad.core.tolerance import EDGE_TOLERANCE
+
+    edges = sub_shapes(face, TopAbs_EDGE)
+    for point in points[np.linspace(0, len(points) - 1, 7).astype(int)]:
+        vertex = BRepBuilderAPI_MakeVertex(gp_Pnt(*(float(c) for c in point))).Vertex()
+        if min(BRepExtrema_DistShapeShape(vertex, edge).Value() for edge in edges) > 10 * EDGE_TOLERANCE:
+            return False
+    return True
+
+
+def _split(face: TopoDS_Face, edges: list) -> TopoDS_Shape:
+    """``face`` split by ``edges`` lying on it (OCCT's splitter), checked valid."""
+    arguments, tools = ListOfShape(), ListOfShape()
+    arguments.Append(face)
+    for edge in edges:
+        tools.Append(edge)
+    splitter = BRepAlgoAPI_Splitter()
+    splitter.SetArguments(arguments)
+    splitter.SetTools(tools)
+    splitter.Build()
+    if not splitter.IsDone() or not BRepCheck_Analyzer(splitter.Shape()).IsValid():
+        raise TubecadError("OCCT could not split the face by its curvature lines into a valid shell", key="face")
+    return splitter.Shape()
