@@ -13,12 +13,13 @@ it) into the net's patches, one shell, its validity checked.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Splitter
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
+from OCP.TopoDS import TopoDS_Face, TopoDS_Shape, TopoDS_Vertex
 
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.nets.edges import LineEdge, line_edge
@@ -51,6 +52,48 @@ class CurvatureNet:
     def angle(self) -> float:
         """The largest angle (radians) between an edge's tangent and its principal direction."""
         return max((e.angle for e in self.edges.values()), default=0.0)
+
+    @property
+    def vertices(self) -> dict[str, TopoDS_Vertex]:
+        """The umbilics as named vertices: ``umbilic_0``, ``umbilic_1``... (their types in
+        :meth:`report`)."""
+        from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+        from OCP.gp import gp_Pnt
+
+        return {
+            f"umbilic_{i}": BRepBuilderAPI_MakeVertex(gp_Pnt(*(float(c) for c in p.point))).Vertex()
+            for i, p in enumerate(self.umbilics.points)
+        }
+
+    def report(self) -> dict[str, Any]:
+        """The net's figures: ``umbilics`` [{"name", "point", "type", "index", "separatrices"}]
+        (or ``umbilic_region``), per line its ``family``, ``length``, how it ``stopped`` and the
+        edge's ``angle`` (radians) and ``gap``, and the largest angle over the net."""
+        return {
+            "umbilic_region": self.umbilics.region,
+            "umbilics": [
+                {
+                    "name": f"umbilic_{i}",
+                    "point": [float(c) for c in p.point],
+                    "type": p.type,
+                    "index": p.index,
+                    "separatrices": p.separatrices,
+                }
+                for i, p in enumerate(self.umbilics.points)
+            ],
+            "lines": {
+                name: {
+                    "family": line.family,
+                    "length": float(line.sigma[-1] - line.sigma[0]),
+                    "stopped": list(line.stopped),
+                    "angle": self.edges[name].angle,
+                    "gap": self.edges[name].gap,
+                    "on_face_edge": name in self.on_face_edges,
+                }
+                for name, line in self.lines.items()
+            },
+            "angle": self.angle,
+        }
 
 
 def curvature_net(

@@ -273,3 +273,22 @@ def test_a_torus_face_net_is_its_parallels_and_meridians_in_eight_patches():
         constant = line.uv[:, 1] if name.startswith("k1") else line.uv[:, 0]
         assert np.ptp(constant) < 1e-10, name
     assert net.angle < 1e-10  # measured 2.5e-11 rad
+
+
+def test_the_nets_report_lists_the_umbilics_typed_and_each_line(net):
+    """The ellipsoid's report: its four lemons at the closed-form points, as named vertices
+    too, and every line with its figures (JSON as written)."""
+    import json
+
+    from OCP.BRep import BRep_Tool
+
+    report = json.loads(json.dumps(net.report()))
+    assert not report["umbilic_region"] and [u["type"] for u in report["umbilics"]] == ["lemon"] * 4
+    exact = umbilics(A, B, C)
+    for entry in report["umbilics"]:
+        assert np.linalg.norm(exact - np.array(entry["point"]), axis=1).min() < 1e-13 * A
+        vertex = BRep_Tool.Pnt_s(net.vertices[entry["name"]])
+        assert np.allclose([vertex.X(), vertex.Y(), vertex.Z()], entry["point"], rtol=0, atol=1e-12)
+    assert set(report["lines"]) == set(net.edges)
+    assert all(line["length"] > 0 and line["angle"] == net.edges[n].angle for n, line in report["lines"].items())
+    assert report["angle"] == net.angle
