@@ -52,6 +52,8 @@ class HostSurface:
     #: knots of high multiplicity): its second derivatives, and the principal field's
     #: parameter directions, may jump there, so a line is traced in pieces between them
     breaks: tuple[FloatArray, FloatArray] = (np.zeros(0), np.zeros(0))
+    #: the trimmed face the surface came from (its own boundary bounds the lines), or None
+    face: TopoDS_Face | None = None
 
     @classmethod
     def of_face(cls, face: object) -> HostSurface:
@@ -74,7 +76,9 @@ class HostSurface:
             )
         surface = BRep_Tool.Surface_s(shape)
         u0, u1, v0, v1 = BRepTools.UVBounds_s(shape)
-        return cls.of_surface(surface, (u0, u1, v0, v1))
+        from dataclasses import replace
+
+        return replace(cls.of_surface(surface, (u0, u1, v0, v1)), face=shape)
 
     @classmethod
     def of_surface(cls, surface: Geom_Surface, bounds: tuple[float, float, float, float] | None = None) -> HostSurface:
@@ -120,11 +124,35 @@ class HostSurface:
         return u, v
 
     def inside(self, u: FloatArray, v: FloatArray) -> FloatArray:
-        """Whether the points lie in the box (a closed direction always does)."""
+        """Whether the points lie on the face: in its trimmed domain where it came from a face
+        (OCCT's ``IntTools_FClass2d``: in, or on its boundary), else in the box (a
+        closed direction always is)."""
         u0, u1, v0, v1 = self.bounds
         cu, cv = self.closed
         u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
-        return (cu | ((u >= u0) & (u <= u1))) & (cv | ((v >= v0) & (v <= v1)))
+        boxed = (cu | ((u >= u0) & (u <= u1))) & (cv | ((v >= v0) & (v <= v1)))
+        if self.face is None:
+            return boxed
+        from OCP.gp import gp_Pnt2d
+        from OCP.TopAbs import TopAbs_IN, TopAbs_ON
+
+        classifier = self._classifier()
+        wu, wv = self.wrapped(u, v)
+        states = [
+            classifier.Perform(gp_Pnt2d(a, b)) in (TopAbs_IN, TopAbs_ON)
+            for a, b in zip(np.ravel(wu).tolist(), np.ravel(wv).tolist())
+        ]
+        return boxed & np.array(states, dtype=bool).reshape(np.shape(wu))
+
+    def _classifier(self):
+        """The face's 2-D classifier, made once (the face's edges' pcurves, to their tolerance)."""
+        from OCP.IntTools import IntTools_FClass2d
+
+        made = self.__dict__.get("_fclass")
+        if made is None:
+            made = IntTools_FClass2d(self.face, 1e-9)
+            object.__setattr__(self, "_fclass", made)
+        return made
 
     def jet(self, u: FloatArray, v: FloatArray) -> SurfaceJet:
         """The position and first and second derivatives at the points (u, v) (any shape,
