@@ -22,7 +22,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -31,6 +30,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
 from shared.ellipsoid import curvature_directions, nurbs_ellipsoid, umbilics  # noqa: E402
+from tee import timed  # noqa: E402
 
 from tubecad.nets import HostSurface, principal_field  # noqa: E402
 
@@ -83,15 +83,6 @@ def _angle(d: np.ndarray, points: np.ndarray) -> np.ndarray:
         return np.minimum(between(d, t1), between(d, t2))
 
 
-def _best(run, repeat: int = 3):
-    best, out = np.inf, None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        out = run()
-        best = min(best, time.perf_counter() - start)
-    return best, out
-
-
 def _version(package: str) -> str:
     from importlib.metadata import version
 
@@ -116,7 +107,7 @@ def main() -> dict:
     near |= (np.abs(nodes) < 1e-6 * A).any(axis=1)
     poles = np.abs(np.abs(uv[:, 1]) - np.pi / 2) < 1e-9  # the parameterisation's poles: no (u, v) direction
     host = HostSurface.of_surface(nurbs_ellipsoid(A, B, C))
-    t_ours, field = _best(lambda: principal_field(host, uv[:, 0], uv[:, 1]))
+    field, t_ours = timed(lambda: principal_field(host, uv[:, 0], uv[:, 1]))
     ours = _angle(field.d1, host.jet(uv[:, 0], uv[:, 1]).X)
     out: dict = {
         "surface": "NURBS ellipsoid (30, 20, 10)",
@@ -133,7 +124,7 @@ def main() -> dict:
     except ImportError:
         out["libigl"] = "not installed (pip install libigl)"
         return out
-    t_peer, result = _best(lambda: igl.principal_curvature(nodes, triangles.astype(np.int64)))
+    result, t_peer = timed(lambda: igl.principal_curvature(nodes, triangles.astype(np.int64)))
     pd1 = result[0]
     peer = _angle(pd1 / np.linalg.norm(pd1, axis=1, keepdims=True), nodes)
     out["libigl"] = {

@@ -41,7 +41,7 @@ import signal
 import tempfile
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from functools import partial
+from functools import cached_property, partial
 from pathlib import Path
 
 import numpy as np
@@ -308,19 +308,11 @@ def _fused(base: TopoDS_Shape, tools: list[TopoDS_Shape]) -> TopoDS_Shape:
     """``base`` fused with ``tools`` (OCCT's fuse, in parallel; ``base`` itself without tools)."""
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
 
-    from tubecad.occ_compat import ListOfShape
+    from tubecad.brep.operations import built
 
     if not tools:
         return base
-    arguments, listed = ListOfShape(), ListOfShape()
-    arguments.Append(base)
-    for tool in tools:
-        listed.Append(tool)
-    fuse = BRepAlgoAPI_Fuse()
-    fuse.SetArguments(arguments)
-    fuse.SetTools(listed)
-    fuse.SetRunParallel(True)
-    fuse.Build()
+    fuse = built(BRepAlgoAPI_Fuse(), [base], tools, parallel=True)
     if not fuse.IsDone():
         raise TubecadError("OCCT could not join the tubes' mid-surfaces (the fuse failed)", key="branches")
     return fuse.Shape()
@@ -468,19 +460,19 @@ class _Owners:
     tubes: list[JunctionTube]
     blends: Sequence[JunctionBlend]
 
-    @property
+    @cached_property
     def surfaces(self) -> list[CurvatureLineSurface]:
         return [t.surface for t in self.tubes] + [b.surface for b in self.blends]
 
-    @property
+    @cached_property
     def names(self) -> list[str]:
         return [t.name for t in self.tubes] + [b.name for b in self.blends]
 
-    @property
+    @cached_property
     def sign(self) -> list[float]:
         return [1.0] * len(self.tubes) + [-1.0] * len(self.blends)
 
-    @property
+    @cached_property
     def thickness(self) -> dict[str, float]:
         return {t.name: t.thickness for t in self.tubes} | {b.name: b.thickness for b in self.blends}
 

@@ -55,6 +55,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
 from tubecad.brep.layout import NetLayout
+from tubecad.brep.operations import built
 from tubecad.brep.properties import is_valid, sub_shapes
 from tubecad.brep.section_edges import refine_section_edges
 from tubecad.brep.solids import build_tube_solid
@@ -65,7 +66,7 @@ from tubecad.junctions.blend import BLEND_RINGS, BLEND_STRINGERS, RollingBall, r
 from tubecad.junctions.edges import SaddleEdge, wall_saddles
 from tubecad.junctions.saddle import SaddleCurve
 from tubecad.junctions.touching import exact_saddle_edges, touching_union
-from tubecad.occ_compat import ListOfShape, as_edge, as_face, as_wire, box_corners, shapes_in
+from tubecad.occ_compat import as_edge, as_face, as_wire, box_corners, shapes_in
 from tubecad.surface.protocol import CurvatureLineSurface
 
 #: points sampled on each edge of W to tell whether it lies on a saddle
@@ -397,14 +398,7 @@ def _boolean(operation: BRepAlgoAPI_BooleanOperation, argument: TopoDS_Shape, to
     """``argument`` fused with or cut by ``tools`` (OCCT's booleans, in parallel), and the
     history: a function from input edges to the list of their pieces in the result (the
     edge itself where the operation left it as it was, none where it deleted it)."""
-    arguments, listed = ListOfShape(), ListOfShape()
-    arguments.Append(argument)
-    for tool in tools:
-        listed.Append(tool)
-    operation.SetArguments(arguments)
-    operation.SetTools(listed)
-    operation.SetRunParallel(True)
-    operation.Build()
+    built(operation, [argument], tools, parallel=True)
     if not operation.IsDone():
         raise TubecadError(f"{key}: OCCT's boolean of the branches and the main tube failed", key=key)
 

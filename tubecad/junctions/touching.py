@@ -44,12 +44,13 @@ from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 from scipy.interpolate import make_interp_spline
 
 from tubecad.brep.assembled import closed_solid
+from tubecad.brep.operations import built
 from tubecad.brep.properties import sub_shapes
 from tubecad.core.errors import TubecadError
 from tubecad.core.tolerance import EDGE_TOLERANCE
 from tubecad.fitting.nurbs import occ_curve_2d
 from tubecad.junctions.coordinates import surface_coordinates
-from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, ListOfShape, as_edge, as_face, shapes_in
+from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, as_edge, as_face, shapes_in
 from tubecad.surface.protocol import CurvatureLineSurface
 
 #: the sewing's tolerance: the two copies of a saddle edge are the same curve, split at
@@ -158,14 +159,7 @@ def split_and_sewn(
 
 def _split(shape: TopoDS_Shape, edges: list[TopoDS_Edge], key: str) -> BRepAlgoAPI_Splitter:
     """``shape``'s faces split by ``edges`` lying on them (OCCT's General Fuse splitter)."""
-    arguments, tools = ListOfShape(), ListOfShape()
-    arguments.Append(shape)
-    for edge in edges:
-        tools.Append(edge)
-    splitter = BRepAlgoAPI_Splitter()
-    splitter.SetArguments(arguments)
-    splitter.SetTools(tools)
-    splitter.Build()
+    splitter = built(BRepAlgoAPI_Splitter(), [shape], edges)
     if not splitter.IsDone():
         raise TubecadError(f"{key}: OCCT could not split the faces by the equal tee's saddle", key=key)
     return splitter

@@ -154,6 +154,7 @@ class _Derivatives:
         self.host, self.family = host, family
         self.field = PointField(host)
         self.eps = EPSILON * max(size, 1e-300)
+        self.known: dict[tuple[float, float], tuple[FloatArray, FloatArray, FloatArray, FloatArray]] = {}
 
     def _direction(self, x: FloatArray, way: FloatArray) -> tuple[FloatArray, FloatArray]:
         u, v = self.host.wrapped(x[:1], x[1:])
@@ -164,7 +165,16 @@ class _Derivatives:
         return (d, t) if float(t @ way) >= 0 else (-d, -t)
 
     def at(self, x: FloatArray, way: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-        """(uv', uv'', X', X'') at ``x`` for a piece going ``way`` (3-D)."""
+        """(uv', uv'', X', X'') at ``x`` for a piece going ``way`` (3-D); a node shared by two
+        pieces is differenced once (turned round, the derivatives along the line are the same)."""
+        key = (float(x[0]), float(x[1]))
+        known = self.known.get(key)
+        if known is None:
+            known = self.known[key] = self._at(x, way)
+        d, dd, t, tt = known
+        return (d, dd, t, tt) if float(t @ way) >= 0 else (-d, dd, -t, tt)
+
+    def _at(self, x: FloatArray, way: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         d, t = self._direction(x, way)
         e = self.eps
         if not crossed_breaks(self.host, x - 2 * e * d, x + 2 * e * d):

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from OCP.BRep import BRep_Tool
@@ -136,7 +137,7 @@ class HostSurface:
         from OCP.gp import gp_Pnt2d
         from OCP.TopAbs import TopAbs_IN, TopAbs_ON
 
-        classifier = self._classifier()
+        classifier = self._classifier
         wu, wv = self.wrapped(u, v)
         states = [
             classifier.Perform(gp_Pnt2d(a, b)) in (TopAbs_IN, TopAbs_ON)
@@ -144,15 +145,12 @@ class HostSurface:
         ]
         return boxed & np.array(states, dtype=bool).reshape(np.shape(wu))
 
+    @cached_property
     def _classifier(self):
         """The face's 2-D classifier, made once (the face's edges' pcurves, to their tolerance)."""
         from OCP.IntTools import IntTools_FClass2d
 
-        made = self.__dict__.get("_fclass")
-        if made is None:
-            made = IntTools_FClass2d(self.face, 1e-9)
-            object.__setattr__(self, "_fclass", made)
-        return made
+        return IntTools_FClass2d(self.face, 1e-9)
 
     def jet(self, u: FloatArray, v: FloatArray) -> SurfaceJet:
         """The position and first and second derivatives at the points (u, v) (any shape,

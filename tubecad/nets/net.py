@@ -21,12 +21,12 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.TopoDS import TopoDS_Face, TopoDS_Shape, TopoDS_Vertex
 
+from tubecad.brep.operations import built
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.nets.edges import LineEdge, line_edge
 from tubecad.nets.host import HostSurface
 from tubecad.nets.trace import CurvatureLine, Family, trace_line
 from tubecad.nets.umbilics import Umbilics, find_umbilics
-from tubecad.occ_compat import ListOfShape
 
 #: lines stop this share of the face's size from an umbilic
 UMBILIC_REACH = 1e-3
@@ -193,14 +193,7 @@ def _on_face_edges(face: TopoDS_Face, points: np.ndarray) -> bool:
 
 def _split(face: TopoDS_Face, edges: list) -> TopoDS_Shape:
     """``face`` split by ``edges`` lying on it (OCCT's splitter), checked valid."""
-    arguments, tools = ListOfShape(), ListOfShape()
-    arguments.Append(face)
-    for edge in edges:
-        tools.Append(edge)
-    splitter = BRepAlgoAPI_Splitter()
-    splitter.SetArguments(arguments)
-    splitter.SetTools(tools)
-    splitter.Build()
+    splitter = built(BRepAlgoAPI_Splitter(), [face], edges)
     if not splitter.IsDone() or not BRepCheck_Analyzer(splitter.Shape()).IsValid():
         raise TubecadError("OCCT could not split the face by its curvature lines into a valid shell", key="face")
     return splitter.Shape()

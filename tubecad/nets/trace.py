@@ -232,7 +232,7 @@ class _Tracer:
             bias = None
             p_new = self.point(new)
             if sigma + h > 0.1 * self.size and self._crosses_seed(x, p_new, seed_point, d0 * sign, h):
-                closing = self._closing(x, h, reference, seed_point, d0 * sign, bias)
+                closing = self._closing(x, h, new, reference, seed_point, d0 * sign, bias)
                 if closing is not None:  # back at the seed: the loop's gap is its error
                     end, taken, gap = closing
                     xs.append(end)
@@ -333,20 +333,21 @@ class _Tracer:
         da, db = float((self.point(x) - seed) @ way), float((end - seed) @ way)
         return da < 0.0 <= db and float(np.linalg.norm(end - seed)) <= h + CLOSE_SHARE * self.size
 
-    def _closing(self, x: FloatArray, h: float, reference: FloatArray, seed: FloatArray, way: FloatArray, bias=None):
-        """Where the step of length h from x crosses the seed's plane (normal ``way``) next to
-        the seed (within CLOSE_SHARE of the face's size), the step cut there by bisection on
-        its length: (the point's parameters, the length taken, its gap from the seed); None
-        where the step does not close the line."""
-        a = self.point(x)
-        step = self._step(x, h, reference, bias)
-        if step is None:
-            return None
-        b = self.point(step[0])
-        da, db = float((a - seed) @ way), float((b - seed) @ way)
-        if not (da < 0.0 <= db) or np.linalg.norm(b - seed) > h + CLOSE_SHARE * self.size:
-            return None
-        lo, hi, end = 0.0, h, step[0]
+    def _closing(
+        self,
+        x: FloatArray,
+        h: float,
+        new: FloatArray,
+        reference: FloatArray,
+        seed: FloatArray,
+        way: FloatArray,
+        bias: FloatArray | None = None,
+    ):
+        """The step of length h from x to ``new``, which crosses the seed's plane (normal
+        ``way``) next to the seed (:meth:`_crosses_seed`), cut on that plane by bisection on its
+        length: (the point's parameters, the length taken, its gap from the seed); None where
+        the gap is over CLOSE_SHARE of the face's size (the line does not close there)."""
+        lo, hi, end = 0.0, h, new
         for _ in range(80):
             mid = 0.5 * (lo + hi)
             cut = self._step(x, mid, reference, bias)
