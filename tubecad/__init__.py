@@ -43,6 +43,7 @@ _PUBLIC = {
     "CurvatureWall": "tubecad.parts",
     "StiffenedCurvatureWall": "tubecad.parts",
     "CurvatureJunction": "tubecad.parts",
+    "CurvatureNet": "tubecad.parts",
     "Branch": "tubecad.parts",
     "NetLayout": "tubecad.brep.layout",
     "AxisLike": "tubecad.parts.axis_input",
@@ -141,6 +142,7 @@ if TYPE_CHECKING:  # the public names' own types for type checkers and IDEs (not
     from tubecad.junctions import saddle_curve as saddle_curve
     from tubecad.parts import Branch as Branch
     from tubecad.parts import CurvatureJunction as CurvatureJunction
+    from tubecad.parts import CurvatureNet as CurvatureNet
     from tubecad.parts import CurvatureTube as CurvatureTube
     from tubecad.parts import CurvatureWall as CurvatureWall
     from tubecad.parts import StiffenedCurvatureWall as StiffenedCurvatureWall

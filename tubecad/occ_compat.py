@@ -63,7 +63,16 @@ else:  # OCP 7.9
     from OCP.TopTools import TopTools_IndexedMapOfShape as IndexedMapOfShape
     from OCP.TopTools import TopTools_ListOfShape as ListOfShape
 
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Solid, TopoDS_Vertex, TopoDS_Wire
+from OCP.TopoDS import (
+    TopoDS,
+    TopoDS_Edge,
+    TopoDS_Face,
+    TopoDS_Shape,
+    TopoDS_Shell,
+    TopoDS_Solid,
+    TopoDS_Vertex,
+    TopoDS_Wire,
+)
 
 if TYPE_CHECKING:
     from OCP.Geom import Geom_Geometry
@@ -101,7 +110,7 @@ def _downcast(name: str):
 
 
 _face, _edge, _solid, _wire = _downcast("Face"), _downcast("Edge"), _downcast("Solid"), _downcast("Wire")
-_vertex = _downcast("Vertex")
+_vertex, _shell = _downcast("Vertex"), _downcast("Shell")
 
 
 def as_face(shape: TopoDS_Shape) -> TopoDS_Face:
@@ -122,6 +131,11 @@ def as_solid(shape: TopoDS_Shape) -> TopoDS_Solid:
 def as_wire(shape: TopoDS_Shape) -> TopoDS_Wire:
     """``shape`` as a TopoDS_Wire."""
     return _wire(shape)
+
+
+def as_shell(shape: TopoDS_Shape) -> TopoDS_Shell:
+    """``shape`` as a TopoDS_Shell."""
+    return _shell(shape)
 
 
 def as_vertex(shape: TopoDS_Shape) -> TopoDS_Vertex:
@@ -172,6 +186,7 @@ __all__ = [
     "ListOfShape",
     "as_edge",
     "as_face",
+    "as_shell",
     "as_solid",
     "as_vertex",
     "shapes_in",

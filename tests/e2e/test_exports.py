@@ -183,6 +183,20 @@ def test_build_command_for_every_family(sample_build, spec):
             assert pad["valid"] and pad["development_max_strain"] < 1e-12
         assert report["exports"][str(folder / "a.step")]["edge_names"] == len(junction["named_edge_sets"])
         return
+    if "net" in report:  # [host]: a face's net, its wall and webs, every line, web and umbilic named in the STEP
+        # the edges' angle to the principal directions: measured <= 1.5e-9 on the dome and the hull; on the
+        # ellipsoid 2.0e-7 on the two k2 lines that pass near its NURBS poles (z = +-c, where the parameters
+        # collapse; their 3-D curves hold 2e-10 there, their pcurves not): an open item of issue 44
+        limit = 3e-7 if spec.stem == "ellipsoid_net" else 1e-8
+        assert report["brep"]["valid"] and report["net"]["angle"] < limit
+        names = report["net"]["k1_lines"] + report["net"]["k2_lines"] + len(report["host"]["umbilics"])
+        names += len(report.get("stiffeners", {}))
+        for name in ("a.step", second):
+            back = report["exports"][str(folder / name)]
+            assert back["valid"] and back["area_relative_error"] < 1e-9
+            assert back.get("volume_relative_error", 0.0) < 1e-7  # measured 1.5e-8 (the hull panel's IGES)
+        assert report["exports"][str(folder / "a.step")]["names"] == names
+        return
     assert report["brep"]["valid"] and report["brep"]["volume_relative_error"] < 1e-6
     assert report["brep"]["fit"]["max_deviation"] < 1e-8
     assert report["brep"]["fit"]["max_orthogonality_error"] < 1e-9

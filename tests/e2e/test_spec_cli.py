@@ -16,7 +16,8 @@ from tubecad.cli.app import cli
 from tubecad.spec.parse import load_spec
 
 SAMPLES = ROOT / "samples"
-SAMPLE_SPECS = sorted(SAMPLES.glob("*.toml"))
+#: the tube samples ([axis] and [tube]; a face's net, [host], has no tube to report: test_cli_host_nets.py)
+SAMPLE_SPECS = sorted(p for p in SAMPLES.glob("*.toml") if "[host]" not in p.read_text())
 
 GOOD = PAPER_SPEC
 

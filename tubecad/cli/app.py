@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
@@ -30,6 +31,9 @@ from tubecad.core.atomic import remove_temporaries, write_text
 from tubecad.core.errors import TubecadError
 from tubecad.export.formats import FORMAT_NAMES as BATCH_FORMATS
 from tubecad.spec.grid import DEFAULT_NS, DEFAULT_NU
+
+if TYPE_CHECKING:
+    from tubecad.spec.parse import AnySpec, TubeSpec
 
 # Every command imports what it runs (numpy/scipy, OCCT and build123d, matplotlib) when it
 # runs, inside interrupts_end_at_once, so that ``tubecad --help`` starts in a fraction of a
@@ -63,7 +67,7 @@ class UserError(click.ClickException):
     exit_code = 2
 
 
-def _checked_spec(path: Path):
+def _checked_spec(path: Path) -> AnySpec:
     """SPEC read and checked before the CAD kernel is loaded (tubecad.spec.parse is light), so
     that a mistake in it is refused at once, not after the 3-6 s OCCT and build123d take."""
     from tubecad.spec.parse import load_spec
@@ -71,6 +75,16 @@ def _checked_spec(path: Path):
     try:
         with interrupts_end_at_once():  # nothing is written yet: a Ctrl-C in its imports ends here
             return load_spec(path)
+    except TubecadError as exc:
+        raise UserError(str(exc)) from None
+
+
+def _tube_spec(spec: AnySpec, command: str) -> TubeSpec:
+    """``spec`` if it is a tube's, else the one-line refusal (:func:`tubecad.spec.parse.tube_spec`)."""
+    from tubecad.spec.parse import tube_spec
+
+    try:
+        return tube_spec(spec, command)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
 
@@ -147,7 +161,7 @@ def paper(output: Path, nu: int, ns: int) -> None:
 def report(spec: Path, nu: int, ns: int) -> None:
     """Print the JSON report of the tube described by SPEC (a TOML file); with [[branches]],
     the main tube's, and the branches as given (tubecad build --report measures the junction)."""
-    checked = _checked_spec(spec)
+    checked = _tube_spec(_checked_spec(spec), "tubecad report")
     with interrupts_end_at_once():  # numpy/scipy, never OCCT
         from tubecad.spec.report import to_json, tube_report
     try:
@@ -423,7 +437,7 @@ def batch(specs, out_dir, outputs, report_path, **options) -> None:
 def flat(spec: Path, output: Path) -> None:
     """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, [units] length), NAME.svg/.png
     each, and flat.json with every web's area and edge lengths."""
-    checked = _checked_spec(spec)
+    checked = _tube_spec(_checked_spec(spec), "tubecad flat")
     from tubecad.spec.preflight import check_flat  # light: before OCCT loads
 
     try:
@@ -491,7 +505,13 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
         index = shop_from_spec(checked, output, say)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
-    if "webs" in index:
+    if "lines" in index:  # a face's net: its webs
+        webs = index["webs"]["nesting"]
+        click.echo(
+            f"webs: {webs['pieces']} pieces on {webs['plates']} plates, utilisation {100 * webs['utilisation']:.1f} %; "
+            f"{len(index['lines'])} lines of curvature for marking"
+        )
+    elif "webs" in index:
         webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
         click.echo(
             f"webs: {webs['pieces']} pieces on {webs['plates']} plates, utilisation {100 * webs['utilisation']:.1f} %; "
@@ -591,7 +611,13 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
     except TubecadError as exc:
         raise UserError(str(exc)) from None
     q = built.info["quality"]
-    if built.info.get("kind") == "junction":
+    if built.info.get("kind") == "net":
+        line = (
+            f"{built.element_count} elements ({q['quads']} quads, {q['quads_on_curvature_lines']} of them on the "
+            f"curvature lines, {q['triangles']} triangles), {len(built.nodes)} nodes, {len(built.beam_blocks)} beam "
+            f"blocks; aspect ratio <= {q['aspect_ratio_max']:.3g}"
+        )
+    elif built.info.get("kind") == "junction":
         line = (
             f"{built.element_count} elements ({q['quads']} quads, {q['quads_on_curvature_lines']} of them on the "
             f"curvature lines, {q['triangles']} triangles), {len(built.nodes)} nodes, "

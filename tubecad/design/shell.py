@@ -97,6 +97,26 @@ class JunctionShellModel:
         return junction_checks(self.mesh, self.tubes, stress, ring_stress, pressure)
 
 
+@dataclass(frozen=True)
+class NetShellModel:
+    """A host face's shell ``mesh`` (:func:`tubecad.fem.net_shell.net_shell_mesh`): shells on
+    its net's patches, webs as beams, its boundary held."""
+
+    mesh: FEMesh
+
+    def pressure_step(self, pressure: float, ends: str) -> Step:  # noqa: ARG002 - the protocol's signature
+        """:func:`tubecad.fem.net_shell.net_pressure_step`: the pressure on the shells, the
+        face's boundary fixed (the design's ends: always ``fixed``)."""
+        from tubecad.fem.net_shell import net_pressure_step
+
+        with stage("analysis"):
+            return net_pressure_step(self.mesh, pressure)
+
+    def checks(self, stress: np.ndarray, ring_stress: np.ndarray, pressure: float) -> None:  # noqa: ARG002 - the protocol's signature
+        """A face's figures are the summary's: None."""
+        return None
+
+
 # --- the end conditions a model takes -------------------------------------------------------
 def wall_ends(given: str | None, default: str) -> str:
     """A wall's ends: ``given`` (checked by its step), else the settings' ``default`` (fixed;

@@ -58,7 +58,7 @@ from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.core.units import length_unit as unit_of
 from tubecad.export.formats import cad_format
-from tubecad.occ_compat import LabelSequence, downcast
+from tubecad.occ_compat import IndexedMapOfShape, LabelSequence, downcast
 
 if TYPE_CHECKING:
     import build123d as bd
@@ -245,6 +245,76 @@ def step_names(path: str | Path) -> list[tuple[int, str]]:
     for i in range(1, roots.Length() + 1):
         visit(roots.Value(i), 0)
     return out
+
+
+def read_faces(path: str | Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> list[tuple[str, TopoDS_Shape]]:
+    """The faces of a STEP file in the file's order (OCCT's explorer over its free shapes,
+    each placed), in ``length_unit``, with their names: a face's own name where the file gives
+    one, else the name of the smallest named shape that holds it alone (a product of one face),
+    else ``""``.
+
+    Args:
+        path: the STEP file.
+        length_unit: the unit the coordinates are read into.
+
+    Returns:
+        [(name, face)], the faces as TopoDS_Shape (downcast with ``occ_compat.as_face``).
+
+    Raises:
+        ExportError: the file cannot be read.
+    """
+    from OCP.TDocStd import TDocStd_Document
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.XCAFApp import XCAFApp_Application
+
+    _quiet()
+    doc = TDocStd_Document(TCollection_ExtendedString("XmlOcaf"))
+    XCAFApp_Application.GetApplication_s().NewDocument(TCollection_ExtendedString("MDTV-XCAF"), doc)
+    reader = STEPCAFControl_Reader()
+    reader.SetNameMode(True)
+    with _static("xstep.cascade.unit", unit_of(length_unit).step):
+        if reader.ReadFile(str(path)) != IFSelect_RetDone or not reader.Transfer(doc):
+            raise ExportError(f"cannot read STEP file {str(path)!r}")
+    tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    faces = IndexedMapOfShape()
+    names: dict[int, tuple[int, str]] = {}  # face index -> (faces in the named shape, name)
+
+    def name_of(label: TDF_Label) -> str:
+        attr = TDataStd_Name()
+        return attr.Get().ToExtString() if label.FindAttribute(TDataStd_Name.GetID_s(), attr) else ""
+
+    def visit(label: TDF_Label, shape: TopoDS_Shape) -> None:
+        inside = []
+        explorer = TopExp_Explorer(shape, TopAbs_FACE)
+        while explorer.More():
+            inside.append(faces.Add(explorer.Current()))
+            explorer.Next()
+        referred = TDF_Label()
+        if XCAFDoc_ShapeTool.IsReference_s(label) and XCAFDoc_ShapeTool.GetReferredShape_s(label, referred):
+            name = name_of(label) or name_of(referred)  # an instance's name, else its product's
+            label = referred
+        else:
+            name = name_of(label)
+        for index in inside if name else ():
+            if len(set(inside)) < names.get(index, (1 << 30, ""))[0]:
+                names[index] = (len(set(inside)), name)
+        components = LabelSequence()
+        XCAFDoc_ShapeTool.GetComponents_s(label, components, False)
+        for i in range(1, components.Length() + 1):
+            component = components.Value(i)
+            visit(component, XCAFDoc_ShapeTool.GetShape_s(component).Moved(shape.Location()))
+        subs = LabelSequence()
+        if XCAFDoc_ShapeTool.GetSubShapes_s(label, subs):
+            for i in range(1, subs.Length() + 1):
+                sub = subs.Value(i)
+                visit(sub, XCAFDoc_ShapeTool.GetShape_s(sub).Located(shape.Location()))
+
+    roots = LabelSequence()
+    tool.GetFreeShapes(roots)
+    for i in range(1, roots.Length() + 1):
+        visit(roots.Value(i), XCAFDoc_ShapeTool.GetShape_s(roots.Value(i)))
+    return [(names.get(i, (0, ""))[1], faces.FindKey(i)) for i in range(1, faces.Extent() + 1)]
 
 
 def import_shape(path: str | Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> TopoDS_Shape:

@@ -64,6 +64,8 @@ class Exportable:
     mesh_angular: float | None = None  # radians; default: tubecad.export.meshing.ANGULAR_DEFLECTION
     build: Any = None  # the TubeBuild of the shape's tube or wall: meshed on its curvature-line grid
     length_unit: str = DEFAULT_LENGTH_UNIT
+    #: points marked on a picture with a label each (a net's umbilics and their types)
+    marks: tuple[tuple[tuple[float, float, float], str], ...] = ()
 
 
 def _cad(fmt: str) -> Writer:
@@ -106,7 +108,7 @@ def _picture(fmt: str) -> Writer:
         if item.build is None and fmt == "png" and item.shape is not None:  # any shape: shaded, its edges drawn
             from tubecad.export.render import render_shape_png
 
-            render_shape_png(item.shape, path, title=name)
+            render_shape_png(item.shape, path, title=name, marks=item.marks)
             return
         if item.build is None:
             raise ParameterError(f"output {path.name!r}: a {fmt.upper()} picture is drawn from a built tube or wall")

@@ -62,8 +62,10 @@ def render_shape_png(
     size_px: tuple[int, int] = (1600, 1200),
     edge_color: str = "#10203a",
     deflection: float | None = None,
+    marks: Sequence[tuple[Sequence[float], str]] = (),
 ) -> Path:
-    """Render ``shape`` to a PNG: its faces smoothly shaded, its B-rep edges on top.
+    """Render ``shape`` to a PNG: its faces smoothly shaded, its B-rep edges on top, and
+    ``marks`` (points with a label each: a net's umbilics and their types) over all.
 
     Args:
         shape: a TopoDS_Shape or an object with ``.wrapped`` (build123d).
@@ -74,6 +76,7 @@ def render_shape_png(
         edge_color: the B-rep edges' colour.
         deflection: the mesh's linear deflection in model units (default LINEAR_DEFLECTION x
             the bounding-box diagonal).
+        marks: (point (x, y, z), label) drawn as a red dot with its label.
 
     Returns:
         ``path``.
@@ -98,6 +101,10 @@ def render_shape_png(
     visible, hidden = split_visible(segs, zbuffer(parts, ZBUFFER_PX) if len(parts) else None, diag)
     ax.add_collection(LineCollection(hidden, colors=edge_color, linewidths=0.4, alpha=0.22))
     ax.add_collection(LineCollection(visible, colors=edge_color, linewidths=0.9))
+    for point, label in marks:
+        x, y, _ = np.asarray(point, dtype=float) @ basis
+        ax.plot([x], [y], "o", color="#c0282d", markersize=7, zorder=5)
+        ax.annotate(label, (x, y), xytext=(6, 6), textcoords="offset points", color="#c0282d", fontsize=10, zorder=5)
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.set_axis_off()

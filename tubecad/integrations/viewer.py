@@ -177,10 +177,10 @@ def viewer_tree(
 def spec_tree(path: str | Path) -> bd.Compound:
     """The named assembly `tubecad build` writes for a spec, with the lines on every wall surface."""
     from tubecad.spec.build import build_from_spec, panels_from_spec, stiffeners_from_spec, wall_lines
-    from tubecad.spec.parse import load_spec
+    from tubecad.spec.parse import load_spec, tube_spec
     from tubecad.stiffeners.assembly import named_assembly
 
-    spec = load_spec(path)
+    spec = tube_spec(load_spec(path), "tubecad view")
     build = build_from_spec(spec)
     stiffeners, selection = stiffeners_from_spec(spec, build)
     tree = named_assembly(

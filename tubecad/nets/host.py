@@ -21,9 +21,11 @@ from OCP.BRep import BRep_Tool
 from OCP.BRepTools import BRepTools
 from OCP.Geom import Geom_Surface
 from OCP.gp import gp_Pnt, gp_Vec
-from OCP.TopoDS import TopoDS_Face
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
 
 from tubecad.core.errors import ParameterError
+from tubecad.occ_compat import as_face
 
 FloatArray = np.ndarray
 
@@ -71,6 +73,8 @@ class HostSurface:
             ParameterError: (``face``) not a face.
         """
         shape = getattr(face, "wrapped", face)
+        if isinstance(shape, TopoDS_Shape) and not shape.IsNull() and shape.ShapeType() == TopAbs_FACE:
+            shape = as_face(shape)  # a face found by an explorer, a file's face
         if not isinstance(shape, TopoDS_Face):
             raise ParameterError(
                 f"face must be a build123d Face or a TopoDS_Face, got {type(face).__name__}", key="face"

@@ -158,9 +158,8 @@ def _host_and_face(face: object) -> tuple[HostSurface, TopoDS_Face]:
         u0, u1, v0, v1 = face.bounds
         return face, BRepBuilderAPI_MakeFace(face.surface, u0, u1, v0, v1, 1e-7).Face()
     host = HostSurface.of_face(face)
-    shape = getattr(face, "wrapped", face)
-    assert isinstance(shape, TopoDS_Face)  # of_face refuses anything else
-    return host, shape
+    assert host.face is not None  # of_face keeps the face (it refuses anything else)
+    return host, host.face
 
 
 def _seeds(guide: CurvatureLine, count: int) -> list[tuple[float, float]]:

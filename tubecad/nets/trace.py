@@ -18,6 +18,10 @@ The line stops:
 - at the face's boundary (a direction that is not closed round a period): the last step
   shortened by bisection until it ends on the boundary (to 1e-12 of the box);
 - near an umbilic (one of ``stops``, within ``reach``), where the field is singular;
+- near a pole of the parameterisation (a side of the parameter box collapsed to a point, a
+  NURBS sphere's), within ``reach`` or POLE_REACH of the face's size: the line is regular
+  there, but an edge through it would need its pcurve to run along the collapsed side while
+  its 3-D curve stays put (two edges);
 - on closing: crossing the plane through the seed normal to the seed's direction, moving the
   same way, within CLOSE_SHARE of the face's size of the seed (after a tenth of its size): the
   last step cut on the plane by bisection on its length, the gap left counted in the error;
@@ -37,7 +41,7 @@ from tubecad.nets.principal import PointField, principal_field
 
 FloatArray = np.ndarray
 Family = Literal[1, 2]
-Stop = Literal["boundary", "umbilic", "closed", "length"]
+Stop = Literal["boundary", "umbilic", "pole", "closed", "length"]
 
 # Dormand-Prince 5(4): nodes, stages, 5th- and 4th-order weights
 _C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
@@ -52,13 +56,26 @@ _A = [
 ]
 _B5 = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0])
 _B4 = np.array([5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200, 187 / 2100, 1 / 40])
-#: the most a step may turn (its length times the larger principal curvature's size): the
-#: edge's quintic pieces then follow the line to about 1e-9 rad (docs/MATH.md section 15)
+#: the most a step may turn (its length times the line's curvature in space, or the larger
+#: principal curvature's size where that is more): the edge's quintic pieces then follow the
+#: line to about 1e-9 rad (docs/MATH.md section 15). The line's own curvature counts, not only
+#: the surface's: a parallel near the crown of a flat dome (k ~ 1e-3, the circle's 7e-3) would
+#: otherwise turn 0.3 rad a step, its edge 2e-7 rad off
 TURN = 0.05
 #: a node on a break line is put this share of the box past it (the field's other side)
 NUDGE = 1e-12
 #: closing: the line crosses its seed's plane within this share of the face's size of the seed
 CLOSE_SHARE = 1e-6
+#: a line stops at least this share of the face's size from a pole of the parameterisation
+#: (``reach`` from it where that is more): round one its pcurve swings through pi in u over a
+#: 3-D length of a few times its distance, in pieces of TURN of that
+POLE_REACH = 1e-4
+#: the shortest piece between two nodes, as a share of the face's size: a node that would
+#: follow the last one closer than this (a step landing a hair short of a break line, of the
+#: seed's plane, of the boundary) takes the last one's place, and a seed this near a break line
+#: (along the line) is put on it. Far above the round-off at which the edge's knots (the arc
+#: lengths, up to 200 sizes) would merge (8 eps x 200 = 3.6e-13), far below the edges' tolerance.
+SNAP = 1e-11
 
 
 @dataclass(frozen=True)
@@ -110,7 +127,8 @@ def trace_line(
         family: 1 (along the k1 direction) or 2 (along k2).
         tolerance: the local error per step (3-D length).
         stops: umbilics' points (n, 3) the line stops near, or None.
-        reach: how near (3-D length).
+        reach: how near (3-D length); to a pole of the parameterisation too (at least
+            POLE_REACH of the face's size).
         max_length: the longest a line may run each way (default 100 x the face's size).
 
     Returns:
@@ -129,14 +147,16 @@ def trace_line(
         raise ParameterError(f"seed {seed} is an umbilic: every direction there is principal", key="seed")
     size = _size(host)
     limit = max_length if max_length is not None else 100.0 * size
+    direction = (start.uv1 if family == 1 else start.uv2)[0]
+    x0 = _snapped(host, np.array([u, v]), direction, SNAP * size)
     ahead = _Tracer(host, family, tolerance, stops, reach, limit, size)
-    forward = ahead.run(np.array([u, v]), +1.0)
+    forward = ahead.run(x0, +1.0)
     if forward.stop == "closed":
         uv, sigma, errors = forward.uv, forward.sigma, forward.error
         ending, starting = forward.across, -forward.across
         stopped: tuple[Stop, Stop] = ("closed", "closed")
     else:
-        backward = ahead.run(np.array([u, v]), -1.0)
+        backward = ahead.run(x0, -1.0)
         uv = np.concatenate([backward.uv[:0:-1], forward.uv])
         sigma = np.concatenate([-backward.sigma[:0:-1], forward.sigma])
         sigma = sigma - sigma[0]
@@ -148,6 +168,65 @@ def trace_line(
         starting = np.concatenate([backward.across[:0:-1], -forward.across])
     wu, wv = host.wrapped(uv[:, 0], uv[:, 1])
     return CurvatureLine(family, uv, host.jet(wu, wv).X, sigma, stopped, errors, ending, starting)
+
+
+def _turn(a: FloatArray, b: FloatArray) -> float:
+    """The angle between the vectors a and b (2-D or 3-D; accurate near 0)."""
+    cross = a[0] * b[1] - a[1] * b[0] if len(a) == 2 else np.linalg.norm(np.cross(a, b))
+    return float(np.arctan2(abs(cross), float(a @ b)))
+
+
+def _poles(host: HostSurface, size: float) -> FloatArray:
+    """The poles of the parameterisation: the points to which a side of the parameter box
+    collapses (a NURBS sphere's v = +-pi/2, |X_u x X_v| = 0 along it), (n, 3). A line through
+    one stops ``reach`` from it like at an umbilic (its pcurve would have to run along the
+    collapsed side, where the 3-D curve does not move: two edges, not one)."""
+    u0, u1, v0, v1 = host.bounds
+    cu, cv = host.closed
+    t = np.linspace(0.0, 1.0, 9)
+    sides = []
+    if not cv:
+        sides += [(u0 + (u1 - u0) * t, np.full(9, v0)), (u0 + (u1 - u0) * t, np.full(9, v1))]
+    if not cu:
+        sides += [(np.full(9, u0), v0 + (v1 - v0) * t), (np.full(9, u1), v0 + (v1 - v0) * t)]
+    out = []
+    for u, v in sides:
+        points = host.jet(u, v).X
+        if float(np.ptp(points, axis=0).max()) <= 1e-9 * size:
+            out.append(points.mean(axis=0))
+    return np.array(out).reshape(-1, 3)
+
+
+def _breaks_of(host: HostSurface, k: int) -> tuple[FloatArray, float | None]:
+    """The break values of coordinate ``k`` (the periodic seam's with them where the face is
+    closed that way) and the period they repeat with (None)."""
+    values = host.breaks[k]
+    period = host.periods[k] if host.closed[k] else None
+    if period is not None:
+        values = np.append(values, host.bounds[2 * k])
+    return values, period
+
+
+def _nearest_break(host: HostSurface, k: int, value: float) -> float | None:
+    """The break value of coordinate ``k`` nearest ``value`` (unwrapped as ``value`` is)."""
+    values, period = _breaks_of(host, k)
+    if not values.size:
+        return None
+    if period is not None:
+        values = values + period * np.round((value - values) / period)
+    return float(values[np.argmin(np.abs(values - value))])
+
+
+def _snapped(host: HostSurface, x: FloatArray, direction: FloatArray, reach: float) -> FloatArray:
+    """The seed ``x`` put on a break line it lies within ``reach`` of along the line's
+    parameter ``direction`` (per unit length): its node is then a break node (the field read
+    on each side), not a node a hair from one, whose piece to the break would be as short."""
+    x = x.copy()
+    for k in (0, 1):
+        value = _nearest_break(host, k, float(x[k]))
+        if value is not None and abs(value - x[k]) < reach * abs(direction[k]):
+            x[k] = value
+    return x
 
 
 @dataclass
@@ -174,6 +253,8 @@ class _Tracer:
         self.reach, self.limit, self.size = reach, limit, size
         self.field = PointField(host)
         self.curvature = 0.0
+        self.poles = _poles(host, size)
+        self.pole_reach = max(reach, POLE_REACH * size)
 
     def direction(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray] | None:
         """(uv direction, 3-D direction, |X_u| and |X_v|) of the family at the point x; None
@@ -192,67 +273,97 @@ class _Tracer:
     def run(self, x0: FloatArray, sign: float) -> _Run:
         first = self.direction(x0)
         assert first is not None  # the seed is checked
-        _, d0, _ = first
+        uv0, d0, lengths = first
         reference = sign * d0  # the way this run goes, in 3-D
         seed_point = self.point(x0)
-        xs, sigmas, across = [x0.copy()], [0.0], [np.zeros(2)]
+        # a seed on a break line the line crosses is a break node: the field read on the side
+        # this run goes to (across: the side behind, read by a piece arriving there)
+        bias: FloatArray | None = None  # on a break line: the field is read on the side ahead
+        start = np.zeros(2)
+        for k in (0, 1):
+            if _nearest_break(self.host, k, float(x0[k])) == x0[k] and abs(uv0[k]) * lengths[k] > 1e-6:
+                bias = np.zeros(2) if bias is None else bias
+                bias[k] = np.sign(sign * uv0[k]) * NUDGE * self._width(k)
+                start[k] = -bias[k]
+        xs, sigmas, across = [x0.copy()], [0.0], [start]
 
         def done(stop: Stop, error: float) -> _Run:
             return _Run(np.array(xs), np.array(sigmas), stop, error, np.array(across))
 
+        def node(at: FloatArray, length: float, off: FloatArray) -> None:
+            """A node at the arc length ``length``: in the last one's place where that one is
+            less than SNAP of the face's size behind and a plain step's end (not the seed, not
+            on a break line); else after it (a piece that short from the seed or a break node
+            stays: the seed is put on a break line that near, :func:`_snapped`)."""
+            if length - sigmas[-1] < SNAP * self.size and len(xs) > 1 and not np.any(across[-1]):
+                xs[-1], sigmas[-1], across[-1] = at.copy(), length, off
+            else:
+                xs.append(at.copy())
+                sigmas.append(length)
+                across.append(off)
+
         x, sigma, h, worst = x0.copy(), 0.0, 1e-3 * self.size, 0.0
-        bias: FloatArray | None = None  # on a break line: the field is read on the side ahead
         while True:
             step = self._step(x, h, reference, bias)
             if step is None:  # an umbilic's neighbourhood: the field is singular
                 return done("umbilic", worst)
-            new, error, direction, _ = step
+            new, error, direction, _, bent = step
             if error > self.tolerance:
                 h *= max(0.2, 0.9 * (self.tolerance / error) ** 0.2)
+                continue
+            # the step's turn in space and in the parameters (a pcurve swinging round a pole)
+            bending = max(_turn(reference, direction), bent)
+            if bending > 2 * TURN and h > 1e3 * SNAP * self.size:
+                h *= max(0.1, TURN / bending)
                 continue
             inside = self.host.inside(new[:1], new[1:])[0]
             if not inside:
                 new, taken = self._to_boundary(x, h, reference, bias)
-                xs.append(new)
-                sigmas.append(sigma + taken)
-                across.append(np.zeros(2))
+                node(new, sigma + taken, np.zeros(2))
                 return done("boundary", max(worst, error))
+            p_new = self.point(new)
             crossed = crossed_breaks(self.host, x, new)
+            if sigma + h > 0.1 * self.size and self._crosses_seed(x, p_new, seed_point, d0 * sign, h):
+                # back at the seed (checked before a break the step crosses too: the seed may
+                # lie between the two, or on the break, a node of its own)
+                closing = self._closing(x, h, new, reference, seed_point, d0 * sign, bias)
+                if closing is not None:
+                    end, taken, gap = closing
+                    if not crossed or taken <= self._to_break(x, h, reference, bias, *crossed[0])[1] + SNAP * self.size:
+                        # the loop's gap is its error; its last node is its first (the start's
+                        # side behind read by the last piece where the seed is on a break)
+                        node(end, sigma + taken, across[0].copy())
+                        return done("closed", max(worst, error, gap))
             if crossed:  # a node on the break; the field read on the side ahead from there
                 k, value = crossed[0]
                 at, taken, ahead = self._to_break(x, h, reference, bias, k, value)
-                xs.append(at)
                 sigma += taken
-                sigmas.append(sigma)
-                across.append(-ahead)
+                node(at, sigma, -ahead)
                 x, bias = at, ahead
                 worst = max(worst, error)
                 continue
             worst = max(worst, error)
             bias = None
-            p_new = self.point(new)
-            if sigma + h > 0.1 * self.size and self._crosses_seed(x, p_new, seed_point, d0 * sign, h):
-                closing = self._closing(x, h, new, reference, seed_point, d0 * sign, bias)
-                if closing is not None:  # back at the seed: the loop's gap is its error
-                    end, taken, gap = closing
-                    xs.append(end)
-                    sigmas.append(sigma + taken)
-                    across.append(np.zeros(2))
-                    return done("closed", max(worst, gap))
             x, sigma = new, sigma + h
-            xs.append(x.copy())
-            sigmas.append(sigma)
-            across.append(np.zeros(2))
+            node(x, sigma, np.zeros(2))
+            bending /= h  # the line's curvature in space (normal and geodesic) or its pcurve's
             reference = direction
             if len(self.stops) and np.linalg.norm(self.stops - p_new, axis=1).min() < self.reach:
                 return done("umbilic", worst)
+            if len(self.poles) and np.linalg.norm(self.poles - p_new, axis=1).min() < self.pole_reach:
+                return done("pole", worst)
             if sigma >= self.limit:
                 return done("length", worst)
             h *= min(5.0, 0.9 * (self.tolerance / max(error, 1e-300)) ** 0.2)
             # the edge's Hermite pieces follow the line to 1e-9 rad where a step turns by at
-            # most TURN (a line integrated exactly in the parameters, a torus' circle, would
-            # otherwise stride the whole face)
-            h = min(h, 0.05 * self.size, TURN / max(self.curvature, 1e-300))
+            # most TURN, in space and in the parameters (a line integrated exactly in the
+            # parameters, a torus' circle, would otherwise stride the whole face; a line past
+            # a pole of the parameterisation, a NURBS sphere's, swings round it in u)
+            h = min(h, 0.05 * self.size, TURN / max(self.curvature, bending, 1e-300))
+
+    def _width(self, k: int) -> float:
+        u0, u1, v0, v1 = self.host.bounds
+        return (u1 - u0) if k == 0 else (v1 - v0)
 
     def _step(self, x: FloatArray, h: float, reference: FloatArray, bias: FloatArray | None = None):
         """One Dormand-Prince step of length h: (new x, error, 3-D direction at the end,
@@ -276,7 +387,7 @@ class _Tracer:
                 end_direction = d
         new = x + h * (_B5 @ k)
         error = float(np.abs(h * ((_B5 - _B4) @ k)) @ metric)
-        return new, error, end_direction, metric
+        return new, error, end_direction, metric, _turn(k[0], k[6])
 
     def _to_break(
         self, x: FloatArray, h: float, reference: FloatArray, bias: FloatArray | None, k: int, value: float

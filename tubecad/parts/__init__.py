@@ -1,5 +1,5 @@
 """CAD-native objects over the library: build123d parts (``CurvatureTube``, ``CurvatureWall``,
-``StiffenedCurvatureWall``, ``CurvatureJunction`` with its ``Branch``)
+``StiffenedCurvatureWall``, ``CurvatureJunction`` with its ``Branch``, ``CurvatureNet``)
 and the engine the CadQuery plugin shares with them.
 
 Exports are lazy (tubecad.core.lazy): importing the package loads no OCCT."""
@@ -13,6 +13,7 @@ _PUBLIC = {
     "CurvatureWall": "tubecad.parts.build123d_parts",
     "StiffenedCurvatureWall": "tubecad.parts.build123d_parts",
     "CurvatureJunction": "tubecad.parts.junction",
+    "CurvatureNet": "tubecad.parts.net",
     "Branch": "tubecad.parts.junction",
     "as_axis": "tubecad.parts.axis_input",
 }
@@ -28,3 +29,4 @@ if TYPE_CHECKING:  # the names' types for type checkers (nothing is imported her
     from tubecad.parts.build123d_parts import StiffenedCurvatureWall as StiffenedCurvatureWall
     from tubecad.parts.junction import Branch as Branch
     from tubecad.parts.junction import CurvatureJunction as CurvatureJunction
+    from tubecad.parts.net import CurvatureNet as CurvatureNet

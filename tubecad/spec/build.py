@@ -15,7 +15,7 @@ from tubecad.design.result import BuildResult, write_outputs
 from tubecad.design.wall import WallResult
 from tubecad.spec.design import design_of, spec_errors, wall_design
 from tubecad.spec.model import StiffenerSelection
-from tubecad.spec.parse import TubeSpec
+from tubecad.spec.parse import AnySpec, TubeSpec
 from tubecad.spec.preflight import (  # light: the outputs' checks, made again here for a script's call
     MESH_OPTIONS,
     check_build_outputs,
@@ -152,7 +152,7 @@ def check_output(
 SpecBuild = WallResult
 
 
-def build_spec(spec: TubeSpec, progress: Progress | None = None, grid: tuple[int, int] = (64, 501)) -> BuildResult:
+def build_spec(spec: AnySpec, progress: Progress | None = None, grid: tuple[int, int] = (64, 501)) -> BuildResult:
     """Build what ``spec`` describes, whatever it is (its design: :func:`tubecad.spec.design.design_of`):
     the wall with [wall], else the capped tube, its [stiffeners] and [panels] (then the
     named assembly), or with [[branches]] the junction; and measure it: the report of
@@ -205,7 +205,7 @@ def export_build(
 
 
 def build_and_export(
-    spec: TubeSpec,
+    spec: AnySpec,
     outputs,
     step_schema: str = "AP214",
     report_path: Path | None = None,

@@ -17,13 +17,15 @@ from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
 from tubecad.core.errors import ParameterError, SpecError, TubecadError
-from tubecad.spec.parse import TubeSpec
+from tubecad.spec.parse import AnySpec, TubeSpec
 from tubecad.spec.sections import spec_error
 
 if TYPE_CHECKING:
     from tubecad.design.junction import JunctionDesign
     from tubecad.design.model import BranchDesign
+    from tubecad.design.net import NetDesign
     from tubecad.design.wall import WallDesign
+    from tubecad.spec.host import HostSpec
 
 #: the mesh's parameters named otherwise than the spec's keys (:func:`tubecad.fem.shell_mesh`'s)
 SHELL_MESH_KEYS = {"thickness": "wall.thickness", "wall_side": "wall.side", "panel_rings": "panels.rings"}
@@ -35,23 +37,63 @@ TEMPLATE_KEYS = {"branch.radius": "branches.radius", "main.radius": "tube.radius
 FIT_KEYS = ("tolerance", "orthogonality", "fit.tolerance")
 
 
-def design_of(spec: TubeSpec, grid: tuple[int, int] = (64, 501)) -> WallDesign | JunctionDesign:
-    """What ``spec`` builds: its wall (or tube), or with [[branches]] its junction; ``grid``
-    = (nu, ns), where the exact surface's report is measured. A SpecError names the section
-    and the key of what cannot be made."""
+def design_of(spec: AnySpec, grid: tuple[int, int] = (64, 501)) -> WallDesign | JunctionDesign | NetDesign:
+    """What ``spec`` builds: its wall (or tube), with [[branches]] its junction, or with
+    [host] the face's net; ``grid`` = (nu, ns), where a tube's exact surface is measured. A
+    SpecError names the section and the key of what cannot be made."""
+    return spec.dispatch(lambda tube: tube_design(tube, grid), net_design)
+
+
+def tube_design(spec: TubeSpec, grid: tuple[int, int] = (64, 501)) -> WallDesign | JunctionDesign:
+    """A tube spec's wall (or tube), or with [[branches]] its junction."""
     main = wall_design(spec, grid)
     if not spec.branches:
         return main
     return junction_design(spec, main)
 
 
-def design_class(spec: TubeSpec) -> type[WallDesign] | type[JunctionDesign]:
+def design_class(spec: AnySpec) -> type[WallDesign] | type[JunctionDesign] | type[NetDesign]:
     """The kind of design ``spec`` builds, known without building anything (what its
     outputs are checked against before the kernel loads)."""
     from tubecad.design.junction import JunctionDesign
+    from tubecad.design.net import NetDesign
     from tubecad.design.wall import WallDesign
 
-    return JunctionDesign if spec.branches else WallDesign
+    def of_tube(tube: TubeSpec) -> type[WallDesign] | type[JunctionDesign]:
+        return JunctionDesign if tube.branches else WallDesign
+
+    return spec.dispatch(of_tube, lambda _host: NetDesign)
+
+
+def net_design(spec: HostSpec) -> NetDesign:
+    """A [host] spec's face, its lines, its [wall] and its [stiffeners] webs, as a design."""
+    from tubecad.brep.wall import as_wall_side
+    from tubecad.design.model import WallChoice
+    from tubecad.design.net import NetDesign, NetStiffenerChoice
+    from tubecad.stiffeners.profiles import as_stiffener_side
+
+    host = spec.host
+    wall = None if spec.wall is None else WallChoice(spec.wall.thickness, as_wall_side(spec.wall.side))
+    webs = None
+    chosen = spec.stiffeners
+    if chosen is not None:
+        try:
+            profile = chosen.make_profile()
+        except ParameterError as exc:
+            raise SpecError(f"{spec.source}: [stiffeners] {exc}", key=within("stiffeners", exc)) from None
+        webs = NetStiffenerChoice(profile, chosen.k1, chosen.k2, as_stiffener_side(chosen.side), chosen.density)
+    seed = None if host.seed is None else (float(host.seed[0]), float(host.seed[1]), float(host.seed[2]))
+    return NetDesign(
+        spec.face,
+        host.lines("k1"),
+        host.lines("k2"),
+        host.k1_spacing,
+        host.k2_spacing,
+        seed,
+        wall,
+        webs,
+        spec.length_unit,
+    )
 
 
 def wall_design(spec: TubeSpec, grid: tuple[int, int] = (64, 501)) -> WallDesign:
@@ -149,7 +191,7 @@ def within(section: str, exc: TubecadError) -> str:
 
 
 @contextmanager
-def spec_errors(spec: TubeSpec) -> Iterator[None]:
+def spec_errors(spec: AnySpec) -> Iterator[None]:
     """Errors of a design's build as SpecErrors naming ``spec``'s section and key: the
     stage the error was tagged with (:func:`tubecad.design.stages.stage`) is the section."""
     from tubecad.fitting import FitError
@@ -164,13 +206,13 @@ def spec_errors(spec: TubeSpec) -> Iterator[None]:
         raise as_spec_error(spec, exc) from None
 
 
-def as_spec_error(spec: TubeSpec, exc: TubecadError) -> SpecError:
+def as_spec_error(spec: AnySpec, exc: TubecadError) -> SpecError:
     """``exc`` (raised while ``spec``'s design was built) with the spec's section and key."""
     source, stage = spec.source, exc.stage
     if stage in ("fit", "wall"):
         section = "fit" if exc.key in FIT_KEYS else "wall"
         return SpecError(f"{source}: [{section}] {exc}", key=within(section, exc))
-    if stage in ("stiffeners", "panels", "layout"):
+    if stage in ("stiffeners", "panels", "layout", "host"):
         return SpecError(f"{source}: [{stage}] {exc}", key=within(stage, exc))
     if stage == "pads":
         number = "" if exc.branch is None else f" #{exc.branch + 1}"

@@ -188,6 +188,8 @@ STIFFENER_KEYS = {
     "thickness": Key("number", help="web thickness > 0", low=0.0),
     "flange_width": Key("number", required=False, help="T and L: total flange width > thickness", low=0.0),
     "flange_thickness": Key("number", required=False, help="T and L: flange thickness in (0, height)", low=0.0),
+    "k1": Key("selection", required=False, help='a [host] net: its k1 lines\' indices, or "all" (default none)'),
+    "k2": Key("selection", required=False, help='a [host] net: its k2 lines\' indices, or "all" (default none)'),
     "side": Key("string", required=False, help=f"{' | '.join(SIDES)} (default outside)", choices=SIDES),
     "fuse": Key("bool", required=False, help="merge the stiffeners into the wall (default false)"),
     "density": Key(
@@ -463,6 +465,55 @@ BRANCH_KEYS = {
     ),
 }
 
+#: the most lines of curvature per family on a [host] face (tubecad.nets.net.MOST_LINES)
+MOST_HOST_LINES = 200
+
+
+def _lines_key(family: str) -> Key:
+    return Key(
+        "integer",
+        required=False,
+        help=f"{family} lines: how many, 1 to {MOST_HOST_LINES} (or {family}_spacing; default 8)",
+        low=1,
+        high=MOST_HOST_LINES,
+        low_open=False,
+        high_open=False,
+    )
+
+
+def _spacing_key(family: str) -> Key:
+    return Key(
+        "number",
+        required=False,
+        help=f"the distance between neighbouring {family} lines > 0, along the other family's line through "
+        f"the seed (instead of {family}_lines)",
+        low=0.0,
+    )
+
+
+#: [host]: a face the user already has, its curvature-line net (instead of [axis] and [tube])
+HOST_KEYS = {
+    "step": Key("string", help="the STEP file holding the face, relative to the spec"),
+    "face": Key(
+        "index_or_name",
+        required=False,
+        help="which face: its 0-based index in the file's order, or its name (default 0)",
+        low=0,
+        low_open=False,
+    ),
+    "k1_lines": _lines_key("k1"),
+    "k2_lines": _lines_key("k2"),
+    "k1_spacing": _spacing_key("k1"),
+    "k2_spacing": _spacing_key("k2"),
+    "seed": Key(
+        "triple",
+        required=False,
+        help="a point [x, y, z] on the face the net's first lines pass through (default the face's parameter centre)",
+    ),
+}
+#: the sections a [host] spec may have besides [host]
+HOST_SECTIONS = ("wall", "stiffeners", "units", "fabrication", "mesh", "analysis")
+
 #: sections beyond [axis] and [tube]
 EXTRA_SECTIONS: dict[str, dict[str, Key]] = {
     "layout": LAYOUT_KEYS,
@@ -482,6 +533,8 @@ SECTION_HELP = {
     "axis": "the axis: a slope curve (k(s) and an elevation angle), natural equations k(s), tau(s), a parametric "
     "curve, points, a route of lines and bends or a CAD edge",
     "tube": "the tube: the circle of radius rho moved along the axis",
+    "host": "instead of [axis] and [tube]: a face the user already has (a STEP file's), its curvature-line net "
+    "as edges, the face split into its patches; [stiffeners] k1 and k2 stand webs on its lines",
     "layout": "the B-rep's ring frames and stringers (default 11 rings, 8 stringers)",
     "wall": "a wall solid of this thickness instead of the capped tube",
     "fit": "the fit of the B-spline surfaces to the exact tube",

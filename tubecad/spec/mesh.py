@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 from tubecad.core.errors import ParameterError, SpecError
 from tubecad.design.stages import stage
 from tubecad.spec.design import design_class, design_of, spec_errors
-from tubecad.spec.parse import TubeSpec
+from tubecad.spec.parse import AnySpec, TubeSpec, tube_spec
 from tubecad.spec.sections import spec_error
 
 if TYPE_CHECKING:
@@ -36,26 +36,28 @@ def checked_outputs(outputs: list[Path]) -> list[Path]:
     return outputs
 
 
-def mesh_from_spec(spec: TubeSpec, **overrides: Any):
+def mesh_from_spec(spec: AnySpec, **overrides: Any):
     """The spec's design meshed (:func:`fe_model`): its :class:`tubecad.fem.FEMesh`."""
     return fe_model(spec, **overrides).mesh
 
 
-def fe_model(spec: TubeSpec, **overrides: Any) -> ShellModel:
+def fe_model(spec: AnySpec, **overrides: Any) -> ShellModel:
     """The spec's design (:func:`tubecad.spec.design.design_of`: a wall, a tube, a junction)
     as its shell model with the [mesh] settings (``overrides`` win: element, size, ...):
     shells on the net, [stiffeners] as beams, [panels] as sets, a junction's pads."""
     design = design_of(spec)
     settings = _mesh_settings(spec, overrides)
     if design.stiffeners is not None and settings.beams:
-        _check_reach(spec, design.stiffeners, spec.wall, spec.source)
+        _check_reach(tube_spec(spec, "tubecad mesh"), design.stiffeners, spec.wall, spec.source)
     if spec.analysis is not None:  # the ends the model takes, refused before it is meshed
-        analysis_settings(spec, type(design), closed=spec.tube.axis.closed)
+        analysis_settings(
+            spec, type(design), closed=spec.dispatch(lambda tube: bool(tube.tube.axis.closed), lambda _host: False)
+        )
     with spec_errors(spec):
         return design.shell_model(settings)
 
 
-def _mesh_settings(spec: TubeSpec, overrides: dict[str, Any]):
+def _mesh_settings(spec: AnySpec, overrides: dict[str, Any]):
     """The spec's checked [mesh] settings (``overrides`` win)."""
     from tubecad.spec.model import MeshSection
 
@@ -65,7 +67,7 @@ def _mesh_settings(spec: TubeSpec, overrides: dict[str, Any]):
         raise SpecError(f"{spec.source}: {exc}", key=exc.key or "mesh") from None
 
 
-def analysis_settings(spec: TubeSpec, kind: type[Design], closed: bool):
+def analysis_settings(spec: AnySpec, kind: type[Design], closed: bool):
     """The spec's [analysis] settings (tubecad.fem.settings.analysis_settings) with the ends
     the design's model takes (:meth:`~tubecad.design.model.Design.analysis_ends`)."""
     from tubecad.spec.model import AnalysisSection
@@ -105,7 +107,7 @@ def _check_reach(spec: TubeSpec, plan, wall, source) -> None:
         raise SpecError(f"{source}: [stiffeners] {exc}", key="stiffeners.height") from None
 
 
-def material_and_step(spec: TubeSpec, model: ShellModel, with_step: bool):
+def material_and_step(spec: AnySpec, model: ShellModel, with_step: bool):
     """The [analysis] material and, if ``with_step``, the pressure step of the design's shell
     ``model`` (its own: :meth:`~tubecad.design.shell.ShellModel.pressure_step`), and the
     analysis settings."""
@@ -124,7 +126,7 @@ def material_and_step(spec: TubeSpec, model: ShellModel, with_step: bool):
         return material, model.pressure_step(settings.pressure, settings.ends), settings
 
 
-def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[Any, list[Path]]:
+def write_mesh(spec: AnySpec, outputs: list[Path], **overrides: Any) -> tuple[Any, list[Path]]:
     """``tubecad mesh``: the mesh written to each output (by extension); a .inp gets the
     material and, when the spec has [analysis], its pressure step. A mesh a format cannot
     hold (a .inp of ``surface = 'both'``) is refused naming [mesh]."""
@@ -149,7 +151,7 @@ def write_mesh(spec: TubeSpec, outputs: list[Path], **overrides: Any) -> tuple[A
     return mesh, written
 
 
-def analyse_spec(spec: TubeSpec, output: Path, progress=None, **overrides: Any) -> dict[str, Any]:
+def analyse_spec(spec: AnySpec, output: Path, progress=None, **overrides: Any) -> dict[str, Any]:
     """``tubecad analyse``: the spec's mesh with its [analysis] pressure step solved by
     CalculiX; writes model.inp, model.frd, results.json and ring_stress.png into ``output``
     (through a staging folder, :func:`tubecad.core.atomic.staged_folder`: nothing is left

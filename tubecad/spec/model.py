@@ -277,6 +277,8 @@ class StiffenersSection:
     thickness: float
     rings: Selection = ()
     stringers: Selection = ()
+    k1: Selection = ()  # a [host] net's lines
+    k2: Selection = ()
     profile: str = "flat"
     flange_width: float = 0.0
     flange_thickness: float = 0.0
@@ -287,11 +289,18 @@ class StiffenersSection:
     def __post_init__(self) -> None:
         object.__setattr__(self, "rings", _selection(self.rings))
         object.__setattr__(self, "stringers", _selection(self.stringers))
+        object.__setattr__(self, "k1", _selection(self.k1))
+        object.__setattr__(self, "k2", _selection(self.k2))
+        object.__setattr__(self, "k1", _selection(self.k1))
+        object.__setattr__(self, "k2", _selection(self.k2))
 
     def table(self) -> dict[str, Any]:
         """The section as a spec file's table (what tubecad.stiffeners.limits reads)."""
         out = {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name) is not None}
         out["rings"], out["stringers"] = _listed(self.rings), _listed(self.stringers)
+        for key in ("k1", "k2"):  # a tube's table has none (tubecad.stiffeners.limits reads it)
+            if out.pop(key) != ():
+                out[key] = _listed(getattr(self, key))
         return out
 
     def make_profile(self) -> Profile:

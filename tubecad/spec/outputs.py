@@ -159,12 +159,31 @@ def build_summary(report: dict[str, Any]) -> list[str]:
         return junction_summary(report["junction"]) + [
             f"{path}: {export_summary(info)}" for path, info in report["exports"].items()
         ]
+    if "net" in report:
+        return net_summary(report) + [f"{path}: {export_summary(info)}" for path, info in report["exports"].items()]
     brep = report["brep"]
     lines = [
         f"{brep['kind']}: {brep['faces']} faces, {brep['edges']} edges, valid={brep['valid']}, "
         f"fit deviation {brep['fit']['max_deviation']:.2e}, orthogonality {brep['fit']['max_orthogonality_error']:.2e}"
     ]
     return lines + [f"{path}: {export_summary(info)}" for path, info in report["exports"].items()]
+
+
+def net_summary(report: dict[str, Any]) -> list[str]:
+    """A face's net: its lines and their largest angle to the principal directions, its
+    patches, its umbilics by type, its webs."""
+    net, brep, host = report["net"], report["brep"], report["host"]
+    kinds: dict[str, int] = {}
+    for point in host["umbilics"]:
+        kinds[point["type"]] = kinds.get(point["type"], 0) + 1
+    umbilics = ", ".join(f"{n} {kind}" for kind, n in sorted(kinds.items())) or "none"
+    lines = [
+        f"{brep['kind']}: {net['k1_lines']} + {net['k2_lines']} lines of curvature, within {net['angle']:.1e} rad of the "
+        f"principal directions; {brep['patches']} patches, valid={brep['valid']}; umbilics: {umbilics}"
+    ]
+    if "stiffeners" in report:
+        lines.append(f"stiffeners: {len(report['stiffeners'])} webs on the lines, each developing flat without strain")
+    return lines
 
 
 def junction_summary(junction: dict[str, Any]) -> list[str]:

@@ -95,9 +95,9 @@ def paper_spec() -> TubeSpec:
     """:data:`PAPER_SPEC`, checked like a spec file (named ``paper`` in messages)."""
     import tomllib
 
-    from tubecad.spec.parse import parse_spec
+    from tubecad.spec.parse import parse_spec, tube_spec
 
-    return parse_spec(tomllib.loads(PAPER_SPEC), "paper")
+    return tube_spec(parse_spec(tomllib.loads(PAPER_SPEC), "paper"), "tubecad paper")
 
 
 def paper_wall() -> TubeBuild:

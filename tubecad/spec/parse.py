@@ -30,11 +30,14 @@ import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar, TypeAlias, TypeVar
 
 from tubecad.core.errors import ParameterError, RegularityError, SpecError, TubecadError
 
 # the key tables live in a light module (no numpy, no OCCT) that ``tubecad schema`` reads too
+from tubecad.spec.checks import check_keys as _check_keys
+from tubecad.spec.checks import short as _short
+from tubecad.spec.checks import toml_type as _toml_type
 from tubecad.spec.keys import (  # noqa: F401
     ARRAY_SECTIONS,
     AXIS_COMMON,
@@ -61,10 +64,12 @@ from tubecad.spec.model import (
 
 if TYPE_CHECKING:  # the axis and the surface load numpy and scipy: imported once the keys are checked
     from tubecad.curves import Axis
+    from tubecad.spec.host import HostSpec
     from tubecad.surface import CanalSurface, CurvatureLineTube
     from tubecad.surface.protocol import CurvatureLineSurface
 
 MAX_SPEC_BYTES = 1_000_000
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -82,6 +87,14 @@ class TubeSpec:
     def __post_init__(self) -> None:
         if self.model is None:
             object.__setattr__(self, "model", SpecModel.from_sections(self.sections))
+
+    #: a tube spec has no [host] (tubecad.spec.host.HostSpec has)
+    host: ClassVar[None] = None
+
+    def dispatch(self, on_tube: Callable[[TubeSpec], T], on_host: Callable[[Any], T]) -> T:  # noqa: ARG002 - the specs' signature
+        """``on_tube(self)``: what a command does with a spec, chosen by its kind (a [host]
+        spec calls ``on_host``)."""
+        return on_tube(self)
 
     @property
     def axis(self) -> Axis:
@@ -147,7 +160,11 @@ class TubeSpec:
         return self.tube.radius_law.min_radius  # a tube's law is its constant radius
 
 
-def load_spec(path: str | Path) -> TubeSpec:
+#: a checked spec: a tube's ([axis] and [tube]) or a face's ([host])
+AnySpec: TypeAlias = "TubeSpec | HostSpec"
+
+
+def load_spec(path: str | Path) -> AnySpec:
     """Read and check a TOML spec file.
 
     Nothing is built in OCCT: the spec's sections are checked and its exact surface made
@@ -165,6 +182,20 @@ def load_spec(path: str | Path) -> TubeSpec:
             its message and its ``key`` (``"wall.thickness"``) name what is wrong.
     """
     return parse_spec(read_spec_data(path), str(path), Path(path).parent)
+
+
+def tube_spec(spec: AnySpec, command: str) -> TubeSpec:
+    """``spec`` if it is a tube's; a [host] spec is refused in one line naming ``host``: the
+    ``command`` (``tubecad flat``...) makes tubes only (build, shop, mesh and analyse take both)."""
+
+    def refuse(host: Any) -> TubeSpec:
+        raise SpecError(
+            f"{host.source}: [host]: {command} makes tubes ([axis] and [tube]); a face's net is built by tubecad "
+            "build, shop, mesh and analyse",
+            key="host",
+        )
+
+    return spec.dispatch(lambda tube: tube, refuse)
 
 
 def read_spec_data(path: str | Path) -> dict[str, Any]:
@@ -190,7 +221,7 @@ def read_spec_data(path: str | Path) -> dict[str, Any]:
     return data
 
 
-def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None = None) -> TubeSpec:
+def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None = None) -> AnySpec:
     """Check a parsed spec (a dict as tomllib gives), build its tube and type its sections
     (:class:`~tubecad.spec.model.SpecModel`). A :class:`SpecError` names the section and the
     key in its message and, for code, in its ``key`` (``"wall.thickness"``, ``"layout"``)."""
@@ -198,6 +229,12 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
     def fail(msg: str, key: str | None = None) -> SpecError:
         return SpecError(f"{source}: {msg}", key=key)
 
+    if "host" in data:  # a face the user has, not a tube: its own sections (tubecad.spec.host)
+        from tubecad.spec.host import parse_host_spec
+
+        if not isinstance(data["host"], dict):
+            raise fail(f"[host] must be a table (a [host] section), got {_toml_type(data['host'])}", "host")
+        return parse_host_spec(data, source, base)
     allowed_sections = {"axis": None, "tube": TUBE_KEYS, **EXTRA_SECTIONS}
     for name, value in data.items():
         if name in ARRAY_SECTIONS:
@@ -481,11 +518,6 @@ def _irregular(exc: TubecadError) -> str:
     )
 
 
-def _short(text: str, most: int = 80) -> str:
-    """``text`` cut to ``most`` characters for a one-line message (a hostile spec can hold megabytes)."""
-    return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
-
-
 def _with_section(
     name: str, fail: Callable[..., SpecError], build: Callable[[], Any], default_key: str | None = None
 ) -> Any:
@@ -495,92 +527,3 @@ def _with_section(
         return build()
     except ParameterError as exc:
         raise fail(f"[{name}] {exc}", _key(name, exc, default_key)) from None
-
-
-def _check_keys(
-    section: str, values: dict[str, Any], keys: dict[str, Key], fail: Callable[..., SpecError]
-) -> dict[str, Any]:
-    for key in values:
-        if key not in keys:
-            raise fail(f"unknown key [{section}] {_short(key)}; allowed keys are {', '.join(keys)}", section)
-    out: dict[str, Any] = {}
-    for key, spec in keys.items():
-        if key not in values:
-            if spec.required:
-                raise fail(f"[{section}] {key} is missing ({spec.help})", f"{section}.{key}")
-            continue
-        out[key] = _check_type(section, key, values[key], spec, fail)
-    return out
-
-
-def _check_type(section: str, key: str, value: Any, spec: Key, fail: Callable[..., SpecError]) -> Any:
-    where = f"[{section}] {key}"
-
-    def number(v: Any) -> bool:
-        return isinstance(v, (int, float)) and not isinstance(v, bool)
-
-    ok = {
-        "number": number(value),
-        "string": isinstance(value, str),
-        "bool": isinstance(value, bool),
-        "pair": isinstance(value, list) and len(value) == 2 and all(number(v) for v in value),
-        "triple": isinstance(value, list) and len(value) == 3 and all(number(v) for v in value),
-        "numbers": isinstance(value, list) and len(value) > 0 and all(number(v) for v in value),
-        "number_or_numbers": number(value)
-        or (isinstance(value, list) and len(value) > 0 and all(number(v) for v in value)),
-        "integer": isinstance(value, int) and not isinstance(value, bool),
-        "selection": value == "all"
-        or (isinstance(value, list) and all(isinstance(v, int) and not isinstance(v, bool) for v in value)),
-        "points": isinstance(value, list)
-        and len(value) >= 3
-        and all(isinstance(p, list) and len(p) == 3 and all(number(v) for v in p) for p in value),
-        "joints": isinstance(value, dict)
-        and all(isinstance(v, list) and v and all(number(x) for x in v) for v in value.values()),
-        "table": isinstance(value, dict),
-        "radius": number(value)
-        or isinstance(value, str)
-        or (
-            isinstance(value, list)
-            and len(value) >= 2
-            and all(isinstance(p, list) and len(p) == 2 and all(number(v) for v in p) for p in value)
-        ),
-    }[spec.kind]
-    if not ok:
-        wanted = {
-            "number": "a number",
-            "string": "a string",
-            "bool": "true or false",
-            "integer": "a whole number",
-            "pair": "a list of two numbers",
-            "triple": "a list of three numbers",
-            "numbers": "a non-empty list of numbers",
-            "number_or_numbers": "a number or a non-empty list of numbers",
-            "selection": 'a list of whole-number indices or "all"',
-            "points": "a list of three or more [x, y, z] points",
-            "joints": "a table of stiffener name = [positions]",
-            "radius": "a number, an expression in s or a table of two or more [s, r] rows",
-            "table": "an inline table { key = value, ... }",
-        }[spec.kind]
-        raise fail(f"{where} must be {wanted} ({spec.help}), got {_toml_type(value)} {value!r:.80}", f"{section}.{key}")
-    if spec.kind in ("number", "radius") and number(value) and not math.isfinite(value):
-        raise fail(f"{where} must be finite ({spec.help}), got {value}", f"{section}.{key}")
-    if spec.kind == "number_or_numbers" and not all(
-        math.isfinite(v) for v in (value if isinstance(value, list) else [value])
-    ):
-        raise fail(f"{where} must be finite ({spec.help}), got {_short(repr(value))}", f"{section}.{key}")
-    if spec.choices and value not in spec.choices:
-        raise fail(f"{where} must be one of {', '.join(spec.choices)}, got {_short(repr(value))}", f"{section}.{key}")
-    if spec.kind == "table":
-        return _check_keys(f"{section}.{key}", value, spec.keys, fail)
-    return value
-
-
-def _toml_type(value: Any) -> str:
-    return {
-        bool: "a boolean",
-        int: "an integer",
-        float: "a float",
-        str: "a string",
-        list: "an array",
-        dict: "a table",
-    }.get(type(value), type(value).__name__)

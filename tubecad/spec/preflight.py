@@ -15,7 +15,7 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from tubecad.core.errors import ParameterError, SpecError
-from tubecad.spec.parse import TubeSpec
+from tubecad.spec.parse import AnySpec
 
 __all__ = [
     "MESH_OPTIONS",
@@ -74,7 +74,7 @@ def check_mesh_options(outputs: Iterable[str | Path], mesh_tolerance: float | No
 
 
 def mesh_tolerance_for(
-    spec: TubeSpec, linear: float | None = None, angle_deg: float | None = None
+    spec: AnySpec, linear: float | None = None, angle_deg: float | None = None
 ) -> tuple[float, float]:
     """The spec's mesh tolerances, checked against its smallest tube radius.
 
@@ -104,7 +104,7 @@ def mesh_tolerance_for(
 
 
 def check_build_outputs(
-    spec: TubeSpec,
+    spec: AnySpec,
     outputs: Iterable[str | Path],
     report_path: Path | None = None,
     mesh_tolerance: float | None = None,
@@ -152,7 +152,7 @@ def check_build_outputs(
     return mesh_tolerance_for(spec, mesh_tolerance, mesh_angle)
 
 
-def check_analysis(spec: TubeSpec) -> str:
+def check_analysis(spec: AnySpec) -> str:
     """Everything ``tubecad analyse`` needs besides the spec's keys: [analysis], [wall] and
     CalculiX.
 
@@ -208,7 +208,7 @@ def check_output_folder(folder: str | Path) -> Path:
     return folder
 
 
-def check_shop(spec: TubeSpec, output: str | Path) -> None:
+def check_shop(spec: AnySpec, output: str | Path) -> None:
     """Everything ``tubecad shop`` can refuse before building: a [wall], something for the
     shop ([stiffeners] or [panels], or [[branches]]), the [fabrication] settings, the folder.
 
@@ -223,7 +223,7 @@ def check_shop(spec: TubeSpec, output: str | Path) -> None:
     from tubecad.spec.design import design_class
     from tubecad.spec.model import FabricationSection
 
-    if spec.wall is None:
+    if spec.wall is None and spec.host is None:  # a face's webs stand on the face itself
         raise SpecError(
             f"{spec.source}: has no [wall] section; the shop package is made of a wall's stiffeners and panels",
             key="wall",
@@ -239,7 +239,7 @@ def check_shop(spec: TubeSpec, output: str | Path) -> None:
     check_output_folder(output)
 
 
-def check_flat(spec: TubeSpec, output: str | Path) -> None:
+def check_flat(spec: AnySpec, output: str | Path) -> None:
     """Everything ``tubecad flat`` can refuse before building: [stiffeners] and the folder.
 
     Args:

@@ -19,7 +19,17 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from tubecad.spec.keys import ARRAY_SECTIONS, AXIS_COMMON, EXTRA_SECTIONS, FAMILY_KEYS, SECTION_HELP, TUBE_KEYS, Key
+from tubecad.spec.keys import (
+    ARRAY_SECTIONS,
+    AXIS_COMMON,
+    EXTRA_SECTIONS,
+    FAMILY_KEYS,
+    HOST_KEYS,
+    HOST_SECTIONS,
+    SECTION_HELP,
+    TUBE_KEYS,
+    Key,
+)
 
 SCHEMA_DIALECT = "https://json-schema.org/draft/2020-12/schema"
 
@@ -29,6 +39,7 @@ _KINDS: dict[str, dict[str, Any]] = {
     "string": {"type": "string"},
     "bool": {"type": "boolean"},
     "integer": {"type": "integer"},
+    "index_or_name": {"anyOf": [{"type": "integer", "minimum": 0}, {"type": "string"}]},
     "pair": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
     "triple": {"type": "array", "items": _NUMBER, "minItems": 3, "maxItems": 3},
     "numbers": {"type": "array", "items": _NUMBER, "minItems": 1},
@@ -133,7 +144,11 @@ def _types(schema: dict[str, Any]) -> list[str]:
 
 def spec_schema() -> dict[str, Any]:
     """The JSON Schema of a spec file (as TOML parses it)."""
-    sections = {"axis": axis_schema(), "tube": section_schema("tube", TUBE_KEYS)}
+    sections = {
+        "axis": axis_schema(),
+        "tube": section_schema("tube", TUBE_KEYS),
+        "host": section_schema("host", HOST_KEYS),
+    }
     sections.update({name: section_schema(name, keys) for name, keys in EXTRA_SECTIONS.items()})
     for name, keys in ARRAY_SECTIONS.items():  # [[name]]: an array of tables of these keys
         sections[name] = {
@@ -149,8 +164,14 @@ def spec_schema() -> dict[str, Any]:
         "docs/spec-files.md). Made by `tubecad schema` from the spec checker's key tables.",
         "type": "object",
         "properties": sections,
-        "required": ["axis", "tube"],
         "additionalProperties": False,
+        "oneOf": [  # a tube ([axis] and [tube]), or a face the user has ([host] and its sections)
+            {"required": ["axis", "tube"], "not": {"required": ["host"]}},
+            {
+                "required": ["host"],
+                "propertyNames": {"enum": ["host", *HOST_SECTIONS]},
+            },
+        ],
     }
 
 

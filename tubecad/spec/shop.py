@@ -11,10 +11,10 @@ from pathlib import Path
 from typing import Any
 
 from tubecad.spec.design import design_of, spec_errors
-from tubecad.spec.parse import TubeSpec
+from tubecad.spec.parse import AnySpec
 
 
-def shop_from_spec(spec: TubeSpec, output: Path, progress: Callable[[str], None] | None = None) -> dict[str, Any]:
+def shop_from_spec(spec: AnySpec, output: Path, progress: Callable[[str], None] | None = None) -> dict[str, Any]:
     """``tubecad shop``: the spec's design (a stiffened or paneled wall, a junction) made
     into its shop package with the ``[fabrication]`` settings
     (:meth:`~tubecad.design.model.Design.shop`) and written into ``output``; returns the

@@ -1,0 +1,100 @@
+"""A face the user already has, from the command line (issue 44): the [host] samples build,
+shop and mesh; their files read back with every line and web named; bad [host] input is
+refused in one line naming the key, exit code 2, no file.
+
+Independent checks: the dome's lines are its parallels and meridians (every point of a k1
+line at one height, of a k2 line at one polar angle: the closed forms of a surface of
+revolution); a web's solid has the volume of its development times its thickness (the web is
+developable, its sides symmetric: Steiner's formula with K = 0)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from conftest import ROOT
+
+from tubecad.cli.app import cli
+
+HOST = ROOT / "samples"
+
+
+def _spec(tmp_path, name: str, edits=()) -> str:
+    text = (HOST / name).read_text().replace('step = "', f'step = "{ROOT / "samples"}/')
+    for old, new in edits:
+        assert old in text
+        text = text.replace(old, new)
+    path = tmp_path / name
+    path.write_text(text)
+    return str(path)
+
+
+@pytest.mark.parametrize(
+    ("edits", "key", "says"),
+    [
+        ((("k1_lines = 6", "k1_lines = 6\nk1_spacing = 100.0"),), "host.k1_lines", "not both"),
+        ((("k1_lines = 6", "k1_lines = 0"),), "host.k1_lines", "1..200"),
+        ((("step = ", "face = 3\nstep = "),), "host.face", "[0, 0]"),
+        ((("[host]", '[host]\nface = "keel"'),), "host.face", "no face named 'keel'"),
+        ((("dome.step", "nothing.step"),), "host.step", "no file"),
+        ((("k1 = [1, 3, 5]", "k1 = [1, 9]"),), "stiffeners.k1", "[0, 5]"),
+        ((("k1 = [1, 3, 5]", "rings = [1]"),), "stiffeners.rings", "k1 and k2"),
+        ((("[wall]", "[layout]\nrings = 3\n\n[wall]"),), "layout", "is not for a [host] spec"),
+    ],
+)
+def test_bad_host_input_is_refused_in_one_line_naming_the_key(tmp_path, edits, key, says):
+    spec = _spec(tmp_path, "dome.toml", edits)
+    result = CliRunner().invoke(cli, ["build", spec, "-o", str(tmp_path / "x.step")])
+    assert result.exit_code == 2, result.output
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and says in lines[0], lines
+    assert key.split(".")[-1] in lines[0]
+    assert not (tmp_path / "x.step").exists()
+
+
+@pytest.mark.slow
+def test_the_dome_builds_with_its_parallels_meridians_and_webs(tmp_path):
+    spec = _spec(tmp_path, "dome.toml")
+    out = tmp_path / "dome.step"
+    result = CliRunner().invoke(cli, ["build", spec, "-o", str(out), "--report", str(tmp_path / "r.json")])
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert report["brep"]["valid"] and report["host"]["umbilics"] == []
+    assert report["net"]["angle"] < 1e-8  # the edges follow the principal directions
+    for web in report["stiffeners"].values():  # a developable web: volume = developed area x thickness
+        assert web["volume"] == pytest.approx(8.0 * web["developed_area"], rel=1e-8)
+    assert report["exports"][str(out)]["names"] == 6 + 8 + 3
+
+
+@pytest.mark.slow
+def test_the_dome_shop_marks_parallels_and_meridians(tmp_path):
+    spec = _spec(tmp_path, "dome.toml")
+    result = CliRunner().invoke(cli, ["shop", spec, "-o", str(tmp_path / "shop")])
+    assert result.exit_code == 0, result.output
+    index = json.loads((tmp_path / "shop" / "index.json").read_text())
+    assert index["webs"]["nesting"]["valid"]
+    rows = np.genfromtxt(
+        tmp_path / "shop" / "marking" / "net_lines.csv", delimiter=",", dtype=None, names=True, encoding="utf-8"
+    )
+    for name in sorted(set(rows["line"])):
+        at = rows[rows["line"] == name]
+        if name.startswith("k1_"):  # a parallel: one height, one distance from the axis (the CSV's 9 digits)
+            assert np.ptp(at["z"]) < 1e-6 and np.ptp(np.hypot(at["x"], at["y"])) < 2e-6
+        else:  # a meridian: one polar angle
+            angle = np.unwrap(np.arctan2(at["y"], at["x"]))
+            assert np.ptp(angle) < 1e-8
+
+
+@pytest.mark.slow
+def test_the_dome_meshes_with_its_webs_as_beams(tmp_path):
+    spec = _spec(tmp_path, "dome.toml")
+    result = CliRunner().invoke(cli, ["mesh", spec, "-o", str(tmp_path / "dome.inp"), "-o", str(tmp_path / "dome.msh")])
+    assert result.exit_code == 0, result.output
+    import meshio
+
+    mesh = meshio.read(tmp_path / "dome.msh")
+    r, z = np.hypot(mesh.points[:, 0], mesh.points[:, 1]), mesh.points[:, 2]
+    assert np.abs((r / 500.0) ** 2 + (z / 250.0) ** 2 - 1.0).max() < 1e-9  # on the elliptical head
+    assert "3 beam blocks" in result.output

@@ -1,0 +1,186 @@
+"""The shop package of a host face's net (issue 44): its webs developed flat, split where a
+plate is too small, nested and drawn 1:1, and the net's lines as marking data.
+
+Each web develops without strain (it stands along the face's normal on a line of curvature:
+:mod:`tubecad.stiffeners.net_webs`); a web that no plate holds is split into the fewest equal
+lengths of its base line that every plate holds (:func:`tubecad.shop.webs.cuttable`), the
+butt joints' root gap ``joint_gap`` taken from each side. The pieces are nested
+(:func:`tubecad.shop.nesting.nest`) and drawn (DXF for cutting, SVG, a preview picture:
+:mod:`tubecad.shop.drawings`). The marking data are the lines' 3-D polylines (CSV, a row per
+point, named ``k1_03``...) and their lengths, for marking the face before the webs are set.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from tubecad.core.atomic import write_text
+from tubecad.core.errors import ParameterError
+from tubecad.shop.webs import WebPiece, cuttable, piece_names
+
+if TYPE_CHECKING:
+    from tubecad.nets import CurvatureNet
+    from tubecad.shop.fabrication import Fabrication
+    from tubecad.shop.nesting import Plate
+    from tubecad.stiffeners.net_webs import NetWeb
+
+#: the most pieces a web is split into
+MAX_PIECES = 200
+#: points per line in the marking CSV
+MARKING_POINTS = 201
+
+
+@dataclass
+class NetShop:
+    """A net's shop package: the ``pieces`` of its webs nested on ``plates``, the ``net`` for
+    its marking lines, the fabrication settings ``fab``."""
+
+    net: CurvatureNet
+    webs: list[NetWeb]
+    pieces: list[WebPiece]
+    plates: list[Plate]
+    fab: Fabrication
+
+    def write(self, folder: Path, name: str) -> dict[str, Any]:
+        """Write webs/ (plates as DXF, SVG, PNG; the developments side by side as DXF),
+        marking/net_lines.csv and index.json into ``folder``; returns the index."""
+        from tubecad.shop.drawings import write_plate_dxf, write_plate_picture, write_plate_svg
+        from tubecad.shop.nesting import check_nesting
+        from tubecad.stiffeners.flat import write_dxf
+
+        files: list[dict[str, str]] = []
+
+        def record(path: Path, kind: str, what: str) -> None:
+            files.append({"path": path.relative_to(folder).as_posix(), "kind": kind, "what": what})
+
+        unit = self.fab.length_unit
+        for sub in ("webs", "marking"):
+            (folder / sub).mkdir(parents=True, exist_ok=True)
+        for plate in self.plates:
+            what = f"{plate.name}: {len(plate.pieces)} web pieces nested, 1:1"
+            record(
+                write_plate_dxf(plate, self.fab, folder / "webs" / f"webs_{plate.name}.dxf"),
+                "webs",
+                what + " (DXF for cutting)",
+            )
+            record(
+                write_plate_svg(plate, self.fab, folder / "webs" / f"webs_{plate.name}.svg"), "webs", what + " (SVG)"
+            )
+            record(
+                write_plate_picture(plate, self.fab, folder / "webs" / f"webs_{plate.name}.png"),
+                "webs",
+                what + " (picture)",
+            )
+        developed = write_dxf([w.pattern for w in self.webs], folder / "webs" / "webs_developed.dxf", length_unit=unit)
+        record(developed, "webs", "each web developed whole, side by side (DXF, a layer per web)")
+        marking = folder / "marking" / "net_lines.csv"
+        write_text(marking, marking_csv(self.net))
+        record(
+            marking, "marking", f"the net's lines as 3-D polylines, {MARKING_POINTS} points each (CSV: line, x, y, z)"
+        )
+        index: dict[str, Any] = {
+            "name": name,
+            "units": {"length": unit},
+            "fabrication": {
+                "plate_size": list(self.fab.plate_size),
+                "kerf": self.fab.kerf,
+                "joint_gap": self.fab.joint_gap,
+            },
+            "webs": {
+                "nesting": check_nesting(self.plates, self.fab),
+                "pieces": [_piece(p, self.plates) for p in self.pieces],
+                "webs": [
+                    {"name": w.name, "line": w.line, "base_length": w.pattern.base_length, "area": w.pattern.area}
+                    for w in self.webs
+                ],
+            },
+            "lines": {n: float(line.sigma[-1] - line.sigma[0]) for n, line in self.net.lines.items()},
+            "umbilics": self.net.report()["umbilics"],
+            "warnings": [],
+            "files": files,
+        }
+        write_text(folder / "index.json", json.dumps(index, indent=1) + "\n")
+        return index
+
+
+def net_shop(net: CurvatureNet, webs: list[NetWeb], fab: Fabrication) -> NetShop:
+    """The package of ``webs`` on ``net`` with the settings ``fab`` (module docstring).
+
+    Args:
+        net: the face's net.
+        webs: its webs (:func:`tubecad.stiffeners.net_webs.net_web`).
+        fab: the fabrication settings.
+
+    Returns:
+        The package, ready to write.
+
+    Raises:
+        ParameterError: (``plate_size``) a web no split into MAX_PIECES fits; (``joint_gap``)
+            a gap that leaves no piece.
+    """
+    from tubecad.shop.nesting import nest
+
+    pieces = [piece for web in webs for piece in web_pieces(net, web, fab)]
+    return NetShop(net, webs, pieces, nest(pieces, fab) if pieces else [], fab)
+
+
+def web_pieces(net: CurvatureNet, web: NetWeb, fab: Fabrication) -> list[WebPiece]:
+    """``web`` as the fewest equal lengths of its line that all fit a plate (module docstring)."""
+    from tubecad.stiffeners.net_webs import web_pattern
+
+    line, edge = net.lines[web.line], net.edges[web.line]
+    total = edge.curve.LastParameter() - edge.curve.FirstParameter()
+    half_gap = fab.joint_gap / 2
+    height, side, base = web.profile.height, web.side, web.base
+    for n in range(1, MAX_PIECES + 1):
+        cuts = np.linspace(0.0, total, n + 1)
+        spans = [
+            (lo + half_gap * (i > 0), hi - half_gap * (i < n - 1))
+            for i, (lo, hi) in enumerate(zip(cuts[:-1], cuts[1:]))
+        ]
+        if any(lo >= hi for lo, hi in spans):
+            raise ParameterError(f"joint_gap {fab.joint_gap:g} leaves no piece of {web.name}'s web", key="joint_gap")
+        names = piece_names(web.name, n)
+        patterns = [web_pattern(net.host, nm, line, edge, height, side, base, span) for nm, span in zip(names, spans)]
+        if all(cuttable(p.outline, fab)[0] for p in patterns):
+            return [
+                WebPiece(nm, web.name, "stringer", span, pattern, (i > 0, i < n - 1))
+                for i, (nm, span, pattern) in enumerate(zip(names, spans, patterns))
+            ]
+    raise ParameterError(
+        f"plate_size {list(fab.plate_size)} is too small for {web.name}'s web: no split into up to {MAX_PIECES} "
+        "pieces is cuttable",
+        key="plate_size",
+    )
+
+
+def marking_csv(net: CurvatureNet) -> str:
+    """The net's lines as 3-D polylines: a header, then ``line, x, y, z`` rows."""
+    rows = ["line,x,y,z"]
+    for name, edge in net.edges.items():
+        curve = edge.curve
+        for t in np.linspace(curve.FirstParameter(), curve.LastParameter(), MARKING_POINTS):
+            p = curve.Value(float(t))
+            rows.append(f"{name},{p.X():.9g},{p.Y():.9g},{p.Z():.9g}")
+    return "\n".join(rows) + "\n"
+
+
+def _piece(piece: WebPiece, plates: list[Plate]) -> dict[str, Any]:
+    plate = next((p.name for p in plates if any(q.piece is piece for q in p.pieces)), None)
+    pattern = piece.pattern
+    return {
+        "name": piece.name,
+        "stiffener": piece.stiffener,
+        "span": list(piece.span),
+        "span_of": "arc length along the line from its start",
+        "area": pattern.area,
+        "base_length": pattern.base_length,
+        "top_length": pattern.top_length,
+        "joints": {"start": bool(piece.joints[0]), "end": bool(piece.joints[1])},
+        "plate": plate,
+    }
