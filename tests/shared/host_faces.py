@@ -1,5 +1,5 @@
 """The three host faces the samples ship as STEP (issue 44), made here from their defining
-numbers so a test holds the shipped files to them (``python -m tests.shared.host_faces``
+numbers so a test holds the shipped files to them (``cd tests && python -m shared.host_faces``
 writes them again):
 
 - ``samples/ellipsoid.step``: the triaxial ellipsoid 300 x 200 x 100 mm, OCCT's sphere
@@ -89,7 +89,7 @@ def faces():
     import build123d as bd
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 
-    from tests.shared.ellipsoid import nurbs_ellipsoid
+    from shared.ellipsoid import nurbs_ellipsoid
 
     out = {}
     ellipsoid = nurbs_ellipsoid(*ELLIPSOID)
