@@ -42,6 +42,7 @@ def _spec(tmp_path, name: str, edits=()) -> str:
         ((("k1 = [1, 3, 5]", "k1 = [1, 9]"),), "stiffeners.k1", "[0, 5]"),
         ((("k1 = [1, 3, 5]", "rings = [1]"),), "stiffeners.rings", "k1 and k2"),
         ((("[wall]", "[layout]\nrings = 3\n\n[wall]"),), "layout", "is not for a [host] spec"),
+        ((("k1_lines = 6", "k1_lines = 6\nseed = [0.0, 0.0, 0.0]"),), "host.seed", "seed must be a point on the face"),
     ],
 )
 def test_bad_host_input_is_refused_in_one_line_naming_the_key(tmp_path, edits, key, says):
@@ -88,6 +89,7 @@ def test_the_dome_shop_marks_parallels_and_meridians(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.requires("gmsh")
 def test_the_dome_meshes_with_its_webs_as_beams(tmp_path):
     spec = _spec(tmp_path, "dome.toml")
     result = CliRunner().invoke(cli, ["mesh", spec, "-o", str(tmp_path / "dome.inp"), "-o", str(tmp_path / "dome.msh")])
@@ -98,3 +100,16 @@ def test_the_dome_meshes_with_its_webs_as_beams(tmp_path):
     r, z = np.hypot(mesh.points[:, 0], mesh.points[:, 1]), mesh.points[:, 2]
     assert np.abs((r / 500.0) ** 2 + (z / 250.0) ** 2 - 1.0).max() < 1e-9  # on the elliptical head
     assert "3 beam blocks" in result.output
+
+
+def test_a_tube_spec_refuses_a_nets_line_choice(tmp_path):
+    text = (
+        (ROOT / "samples" / "helix_stiffened.toml").read_text().replace("[stiffeners]\n", "[stiffeners]\nk1 = [0]\n", 1)
+    )
+    spec = tmp_path / "tube.toml"
+    spec.write_text(text)
+    result = CliRunner().invoke(cli, ["build", str(spec), "-o", str(tmp_path / "x.step")])
+    assert result.exit_code == 2
+    assert (
+        "[stiffeners] k1 chooses a [host] net's lines" in result.output and len(result.output.strip().splitlines()) == 1
+    )

@@ -522,7 +522,9 @@ def check_toml_block(block: Block, workdir: Path) -> None:
     from tubecad.spec.parse import parse_spec
 
     data = tomllib.loads(block.text)
-    parse_spec(data, block.where())
+    parse_spec(
+        data, block.where(), ROOT / "samples" if "host" in data else None
+    )  # a [host] block names a sample's face
     keys = _spec_keys()
     sections = _toml_sections(block.text)
     for section, lines in sections.items():

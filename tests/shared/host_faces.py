@@ -26,19 +26,20 @@ HULL_X = (0.0, 800.0, 1600.0, 2400.0, 3200.0, 4000.0)
 
 
 def hull_poles() -> np.ndarray:
-    """(6, 5, 3) poles: the bilge section (bottom y from 0, a turn of radius ~ 600 mm, the side
-    up to z = 1400) of half-breadth ``b(x)`` narrowing forward and a bottom rising aft."""
+    """(6, 5, 3) poles: the bilge section (the bottom from 0.45 of the half-breadth, the turn,
+    the side flaring out up to z = 1100) of half-breadth ``b(x)`` narrowing forward and a
+    bottom rising aft."""
     poles = np.empty((6, 5, 3))
     for i, x in enumerate(HULL_X):
         t = x / HULL_X[-1]
         breadth = 1500.0 - 450.0 * t * t  # narrowing forward
         rise = 120.0 * (1.0 - t) ** 2  # the bottom rising aft
-        section = [  # (y, z) from the keel side of the panel up the side
-            (0.25 * breadth, rise),
-            (0.65 * breadth, rise),
-            (breadth, rise + 80.0),
-            (breadth + 40.0, rise + 700.0),
-            (breadth + 60.0, 1400.0),
+        section = [  # (y, z) from the keel side of the panel up the flaring side
+            (0.45 * breadth, rise),
+            (0.8 * breadth, rise + 30.0),
+            (breadth, rise + 250.0),
+            (breadth + 80.0, rise + 650.0),
+            (breadth + 200.0, 1100.0),
         ]
         for j, (y, z) in enumerate(section):
             poles[i, j] = (x, y, z)

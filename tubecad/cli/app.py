@@ -555,6 +555,9 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
     click.echo(str(output / "index.json"))
 
 
+#: a net's mesh with elements more elongated than this is said to be (tubecad mesh)
+NET_ASPECT_WARNING = 20.0
+
 _MESH_OPTIONS = [
     click.option(
         "--element",
@@ -617,6 +620,12 @@ def mesh(spec: Path, outputs: tuple[Path, ...], element: str | None, size: float
             f"curvature lines, {q['triangles']} triangles), {len(built.nodes)} nodes, {len(built.beam_blocks)} beam "
             f"blocks; aspect ratio <= {q['aspect_ratio_max']:.3g}"
         )
+        if q["aspect_ratio_max"] > NET_ASPECT_WARNING:
+            click.echo(
+                f"warning: elements up to aspect ratio {q['aspect_ratio_max']:.3g}: the net's lines end close to each "
+                "other, to the face's corners or to a pole of its parameters; check the mesh before analysing it",
+                err=True,
+            )
     elif built.info.get("kind") == "junction":
         line = (
             f"{built.element_count} elements ({q['quads']} quads, {q['quads_on_curvature_lines']} of them on the "

@@ -47,6 +47,9 @@ if TYPE_CHECKING:
 LineSelection = Literal["all"] | tuple[int, ...]
 #: lines per family by default
 DEFAULT_LINES = 8
+#: a seed this share of the face's size from it is taken as its nearest point of the face
+#: (a point typed to the millimetre); farther, it is refused
+SEED_REACH = 1e-3
 
 
 @dataclass(frozen=True)
@@ -84,8 +87,8 @@ class NetDesign:
         k1_spacing: instead of a count, the distance between neighbouring k1 lines along the
             k2 line through the seed.
         k2_spacing: the same for the k2 lines.
-        seed: a point (x, y, z) on the face the net's first lines pass through (None: the
-            centre of its parameter box).
+        seed: a point (x, y, z) of the face: each family's lines are spread along the other
+            family's line through it (None: the centre of its parameter box).
         wall: the face thickened into a wall (None: the split face itself).
         webs: flat-bar webs on chosen lines.
         length_unit: the unit of the face's coordinates.
@@ -125,24 +128,26 @@ class NetDesign:
         """The net, the wall, the webs, named and measured (:func:`build_net`)."""
         return build_net(self)
 
+    def build_net(self) -> NetResult:
+        """:meth:`build`, typed as what it makes (the parts read its webs and lines)."""
+        return build_net(self)
+
     def shell_model(self, settings: MeshSettings) -> ShellModel:
         """The face's shell model (:func:`tubecad.fem.net_shell.net_shell_mesh`)."""
         from tubecad.design.shell import NetShellModel
         from tubecad.fem.net_shell import net_shell_mesh
 
-        if self.wall is None:
-            with stage("mesh"):
-                raise ParameterError("thickness: a shell model needs the wall's thickness", key="thickness")
         webs = self.web_lines()
         with stage("mesh"):
             mesh = net_shell_mesh(
                 self.net,
                 settings,
-                self.wall.thickness,
+                None if self.wall is None else self.wall.thickness,
                 webs,
                 None if self.webs is None else self.webs.profile,
                 "outside" if self.webs is None else self.webs.side,
                 self.length_unit,
+                "centered" if self.wall is None else self.wall.side,
             )
         return NetShellModel(mesh)
 
@@ -212,7 +217,7 @@ class NetDesign:
         u0, u1, v0, v1 = host.bounds
         projection = GeomAPI_ProjectPointOnSurf(gp_Pnt(*(float(c) for c in self.seed)), host.surface, u0, u1, v0, v1)
         size = float(np.ptp(host.jet(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))).X, axis=0).max())
-        if projection.NbPoints() == 0 or projection.LowerDistance() > 1e-6 * size:
+        if projection.NbPoints() == 0 or projection.LowerDistance() > SEED_REACH * size:
             far = "" if projection.NbPoints() == 0 else f" (it lies {projection.LowerDistance():.4g} from it)"
             raise ParameterError(f"seed must be a point on the face{far}, got {list(self.seed)}", key="seed")
         u, v = projection.LowerDistanceParameters()
@@ -415,10 +420,17 @@ def thickened(patches: Any, wall: WallChoice) -> Any:
 def hollow(shell: Any, d_in: float, d_out: float, thickness: float) -> Any:
     """The solid between a closed shell's offsets by ``d_in`` and ``d_out`` (OCCT's simple
     offset, ``BRepOffsetAPI_MakeOffsetShape::PerformBySimple``: face by face, no joins to make
-    on a closed shell), the inner one its hole; checked valid."""
+    on a closed shell), the inner one its hole; checked valid.
+
+    The offset faces' surfaces are made B-splines (``ShapeCustom::ConvertToBSpline``, within
+    1e-7 of the offset): a ``Geom_OffsetSurface`` of a C0 basis (a sphere or an ellipsoid
+    converted to NURBS: degree 2, double knots) is written to STEP but OCCT's reader refuses
+    it ("Offset with no C1 Surface") and drops the face, and OCCT integrates its volume
+    0.3 % off near the poles."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing
     from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepOffsetAPI import BRepOffsetAPI_MakeOffsetShape
+    from OCP.ShapeCustom import ShapeCustom
 
     from tubecad.occ_compat import as_shell
 
@@ -432,7 +444,7 @@ def hollow(shell: Any, d_in: float, d_out: float, thickness: float) -> Any:
                 f"thickness {thickness:g}: OCCT could not offset the face by {distance:g}", key="thickness"
             )
         sewing = BRepBuilderAPI_Sewing(1e-7)
-        sewing.Add(maker.Shape())
+        sewing.Add(ShapeCustom.ConvertToBSpline_s(maker.Shape(), False, False, True, False))
         sewing.Perform()
         return as_shell(sewing.SewedShape())
 

@@ -43,6 +43,7 @@ from typing import Any
 import numpy as np
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Shape
 
+from tubecad.brep.wall import wall_offsets
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.fem.beams import beam_directions, profile_rectangles, section_centre
 from tubecad.fem.inp import Step
@@ -96,11 +97,12 @@ class _Meshed:
 def net_shell_mesh(
     net: CurvatureNet,
     settings: MeshSettings,
-    thickness: float,
+    thickness: float | None,
     stiffened: Sequence[str] = (),
     profile: Profile | None = None,
     side: str = "outside",
     length_unit: str = "mm",
+    wall_side: str = "centered",
 ) -> FEMesh:
     """The shell model of ``net``'s face (module docstring).
 
@@ -109,11 +111,16 @@ def net_shell_mesh(
         settings: the element (S4, S4R, S8, S8R), the beam element, the size (gmsh takes one:
             the smaller of ``size_along`` and ``size_around``; default :func:`net_mesh_size`)
             and ``max_elements``; ``surface`` must be ``mid`` (the face is the shells' middle).
-        thickness: the shells' thickness (model units), its middle on the face.
+        thickness: the shells' thickness (model units), or None: the face alone, no shell
+            section (a surface mesh; a .inp is refused).
         stiffened: the lines (``k1_03``...) that carry stiffeners, made beams.
         profile: the stiffeners' profile (needed with ``stiffened``).
         side: ``outside`` (the stiffeners stand along +N) or ``inside``.
         length_unit: the model's length unit.
+        wall_side: where the wall lies from the face (``centered``, ``inside``, ``outside``:
+            :func:`tubecad.brep.wall.wall_offsets`): the shells' nodes stay on the face, their
+            section offset to the wall's middle (CalculiX's SHELL SECTION OFFSET), and the
+            stiffeners stand on the wall's face on their side.
 
     Returns:
         The mesh: shells ``net`` (``net_tri``), beams ``<line>_web`` (``_flange``), sets
@@ -134,13 +141,14 @@ def net_shell_mesh(
             key="size",
         )
     meshed = _compact(_gmsh_mesh(net.patches, size, settings.order))
-    mesh = _shells(net.host, meshed, settings, thickness, length_unit)
+    offsets = (0.0, 0.0) if thickness is None else wall_offsets(thickness, wall_side)
+    mesh = _shells(net.host, meshed, settings, thickness, offsets, length_unit)
     owners = _curve_owners(net, meshed.curves, _face_size(net.host))
     _line_sets(mesh, meshed.curves, owners)
     for name in stiffened:
         assert profile is not None  # _check: stiffened lines need a profile
         curves = [meshed.curves[i] for i in owners.get(name, [])]
-        _add_beams(mesh, net, name, curves, profile, side, thickness, settings.beam_type)
+        _add_beams(mesh, net, name, curves, profile, side, offsets, settings.beam_type)
     mesh.info |= {
         "kind": "net",
         "element": settings.element,
@@ -226,7 +234,7 @@ def net_pressure_step(
 def _check(
     net: CurvatureNet,
     settings: MeshSettings,
-    thickness: float,
+    thickness: float | None,
     stiffened: Sequence[str],
     profile: Profile | None,
     side: str,
@@ -242,7 +250,9 @@ def _check(
             f"beam {settings.beam_type} does not match {settings.element} shells (B31 with S4, B32 with S8)",
             key="beam",
         )
-    if isinstance(thickness, bool) or not isinstance(thickness, (int, float)) or not 0 < thickness < math.inf:
+    if thickness is not None and (
+        isinstance(thickness, bool) or not isinstance(thickness, (int, float)) or not 0 < thickness < math.inf
+    ):
         raise ParameterError(f"thickness must be a finite length > 0, got {thickness!r:.40}", key="thickness")
     missing = [name for name in stiffened if name not in net.lines]
     if missing:
@@ -430,9 +440,18 @@ def _compact(meshed: _Meshed) -> _Meshed:
     return _Meshed(meshed.nodes[used], meshed.uv[used], patches, curves)
 
 
-def _shells(host: HostSurface, meshed: _Meshed, settings: MeshSettings, thickness: float, unit: str) -> FEMesh:
+def _shells(
+    host: HostSurface,
+    meshed: _Meshed,
+    settings: MeshSettings,
+    thickness: float | None,
+    offsets: tuple[float, float],
+    unit: str,
+) -> FEMesh:
     """The shell blocks ``net`` (quads) and ``net_tri`` (triangles) oriented counter-clockwise
-    about the host's normal, with the nodes' frames (module docstring)."""
+    about the host's normal, with the nodes' frames (module docstring); their sections
+    ``thickness`` thick, offset from the nodes (on the face) to the middle of the wall's
+    ``offsets`` (d_in, d_out) along the normal; none without a thickness."""
     nodes = meshed.nodes
     uv, normals, d1, d2, gap = _node_frames(host, nodes, meshed.uv)
     grouped: dict[int, list[np.ndarray]] = {}
@@ -445,7 +464,8 @@ def _shells(host: HostSurface, meshed: _Meshed, settings: MeshSettings, thicknes
         if corners in grouped:
             block = ElementBlock(name, element, np.concatenate(grouped[corners]), first)
             blocks.append(block)
-            sections.append(ShellSection(name, float(thickness), 0.0))
+            if thickness is not None:  # the nodes at w = 0, the section's middle at (d_in + d_out) / 2
+                sections.append(ShellSection(name, float(thickness), -0.5 * (offsets[0] + offsets[1]) / thickness))
             first += len(block.connectivity)
     mesh = FEMesh(nodes, normals, d1, d2, uv, blocks, sections, [], length_unit=unit)
     mesh.element_sets["net"] = np.concatenate([b.ids for b in blocks])
@@ -515,12 +535,12 @@ def _add_beams(
     curves: list[_Curve],
     profile: Profile,
     side: str,
-    thickness: float,
+    offsets: tuple[float, float],
     beam_type: str,
 ) -> None:
     """The line ``name``'s element sides as beams (:mod:`tubecad.fem.beams`), in order along its
     edge and each along it: a block per profile rectangle (``<name>_web``, ``<name>_flange``),
-    its section's centre off the nodes by the wall's half ``thickness`` and the rectangle's
+    its section's centre off the nodes to the wall's face on its side (``offsets`` = (d_in, d_out)) and the rectangle's
     middle along +-N (``side``), its 1-direction n1 = N x T (N: the mean of the side's end
     normals, T its chord), the profile's w along n1; element set ``name``."""
     if not curves:
@@ -537,7 +557,7 @@ def _add_beams(
     normal = mesh.normals[sides[:, 0]] + mesh.normals[sides[:, -1]]
     normal /= np.linalg.norm(normal, axis=1, keepdims=True)
     n1 = beam_directions(normal, chord / np.linalg.norm(chord, axis=1, keepdims=True))
-    base = (0.5 if side == "outside" else -0.5) * thickness  # the wall's face the stiffener stands on
+    base = offsets[1] if side == "outside" else offsets[0]  # the wall's face the stiffener stands on
     members = []
     for rect in profile_rectangles(profile):
         block = ElementBlock(f"{name}_{rect.name}", beam_type, sides, mesh.element_count)

@@ -1,5 +1,5 @@
 """CadQuery Workplane plugin: ``curvatureTube``, ``curvatureWall``,
-``stiffenedCurvatureWall`` and ``curvatureJunction``, the build123d objects' twins (the same arguments, the same engine: :mod:`tubecad.parts.engine`).
+``stiffenedCurvatureWall``, ``curvatureJunction`` and ``curvatureNet``, the build123d objects' twins (the same arguments, the same engine: :mod:`tubecad.parts.engine`; a face's net: :class:`tubecad.design.net.NetDesign`).
 
     import cadquery as cq
     import tubecad.integrations.cadquery_plugin  # registers the methods
@@ -16,12 +16,19 @@ whose faces are bounded by the chosen ring frames and stringers, which it carrie
 a wall): lists of labelled ``cq.Wire`` of its own edges. ``curvatureLineTube`` and
 ``curvatureLineWall`` (a tube object in, CadQuery 2.x plugin of tubecad 0.x) are deprecated
 names of the same.
+
+``curvatureNet`` thickens a face the user already has (a ``cq.Face``, say a STEP file's) into a
+wall whose edges are its lines of curvature, as ``tubecad.CurvatureNet`` does::
+
+    dome = cq.importers.importStep("samples/dome.step").faces().val()
+    net = cq.Workplane().curvatureNet(dome, 6, 8, thickness=8.0, side="inside").val()
+    assert net.label == "wall" and [e.label for e in net.k1][:2] == ["k1_00", "k1_01"]
 """
 
 from __future__ import annotations
 
 import warnings
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 try:
@@ -34,7 +41,9 @@ except ImportError as exc:  # CadQuery is an extra: it pins OCP 7.9, build123d 0
 
 from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
 from tubecad.brep.wall import WallSide
+from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
+from tubecad.design.net import DEFAULT_LINES, LineSelection, NetResult
 from tubecad.occ_compat import as_edge
 from tubecad.parts.axis_input import AxisLike, RadiusLike
 from tubecad.parts.engine import PartArguments, build_part, edge_map_of, net_edges, stiffener_solids
@@ -239,13 +248,122 @@ def curvature_junction(
         target.junction = built.junction  # type: ignore[attr-defined,unused-ignore]
     if pads:
         pushed.pads = pads  # type: ignore[attr-defined,unused-ignore]
+    return _put(self, pushed, [wall, *pads], combine)
+
+
+def curvature_net(
+    self: cq.Workplane,
+    face: Any,
+    k1_lines: int | None = DEFAULT_LINES,
+    k2_lines: int | None = DEFAULT_LINES,
+    *,
+    thickness: float,
+    side: WallSide = "centered",
+    k1_spacing: float | None = None,
+    k2_spacing: float | None = None,
+    seed: Sequence[float] | None = None,
+    stiffened: Mapping[str, LineSelection | Sequence[int]] | None = None,
+    profile: Profile | None = None,
+    stiffener_side: StiffenerSide = "outside",
+    combine: bool = True,
+    clean: bool = True,
+) -> cq.Workplane:
+    """The face's curvature-line net as a wall of ``thickness`` (arguments:
+    tubecad.CurvatureNet's, the same design: :class:`tubecad.design.net.NetDesign` built by
+    :func:`tubecad.design.net.build_net`). ``face``: a ``cq.Face`` (or any object whose
+    ``wrapped`` is a face), a Workplane holding one face, or an OCCT ``TopoDS_Face``.
+
+    Pushes the wall, a ``cq.Solid`` labelled ``wall`` in the face's own (global) coordinates,
+    or with ``stiffened`` lines a ``cq.Compound`` of it and the webs (labelled ``cq.Solid``:
+    ``stiffener_k1_03``..., in ``stiffeners``). Both carry ``k1`` and ``k2`` (the lines as
+    labelled ``cq.Edge`` on the face: ``k1_00``...), ``umbilics`` (labelled ``cq.Vertex``:
+    ``umbilic_0``..., their types in ``report["host"]["umbilics"]``), ``report`` (what was
+    measured, as ``tubecad build``'s report.json) and ``design``. With ``combine`` and a solid
+    on the stack, the wall and the webs are fused into it (``clean``: CadQuery's union's).
+
+    Raises:
+        ParameterError: naming the argument (``face``, ``k1_lines``, ``seed``, ``thickness``,
+            ``profile``, ``k1``...).
+    """
+    if isinstance(face, cq.Workplane):  # a selection, as CadQuery's own methods take one
+        held = face.vals()
+        if len(held) != 1 or not isinstance(held[0], cq.Face):
+            what = ", ".join(type(v).__name__ for v in held[:3]) or "nothing"
+            raise ParameterError(f"face must be a Workplane holding one Face, got one holding {what}", key="face")
+        face = held[0]
+    built = _built_net(
+        face,
+        k1_lines,
+        k2_lines,
+        thickness,
+        side,
+        k1_spacing,
+        k2_spacing,
+        seed,
+        stiffened,
+        profile,
+        stiffener_side,
+    )
+    solids = []
+    for name, shape in built.solids:  # the wall, then each web
+        solid = cq.Solid(shape)
+        solid.label = name
+        solids.append(solid)
+    wall, webs = solids[0], solids[1:]
+    lines: dict[str, list[cq.Edge]] = {"k1": [], "k2": []}
+    for name, line in built.design.net.edges.items():
+        edge = cq.Edge(line.edge)
+        edge.label = name
+        lines[name[:2]].append(edge)
+    umbilics = []
+    for name, vertex in built.design.net.vertices.items():
+        point = cq.Vertex(vertex)
+        point.label = name
+        umbilics.append(point)
+    pushed: cq.Shape = wall if not webs else cq.Compound.makeCompound(solids)
+    for target in {id(wall): wall, id(pushed): pushed}.values():
+        target.k1 = lines["k1"]  # type: ignore[attr-defined,unused-ignore]
+        target.k2 = lines["k2"]  # type: ignore[attr-defined,unused-ignore]
+        target.umbilics = umbilics  # type: ignore[attr-defined,unused-ignore]
+        target.report = built.report  # type: ignore[attr-defined,unused-ignore]
+        target.design = built.design  # type: ignore[attr-defined,unused-ignore]
+    if webs:
+        pushed.stiffeners = webs  # type: ignore[attr-defined,unused-ignore]
+    return _put(self, pushed, solids, combine, clean)
+
+
+def _put(workplane: cq.Workplane, pushed: cq.Shape, solids: list, combine: bool, clean: bool = True) -> cq.Workplane:
+    """``pushed`` on a new workplane object, or with ``combine`` and a solid on the stack (or
+    its parents) ``solids`` fused into it."""
     try:
-        base = self.findSolid()
+        base = workplane.findSolid()
     except ValueError:  # nothing solid on the stack or its parents
         base = None
     if not combine or base is None:
-        return self.newObject([pushed])
-    return self.union(cq.Workplane().newObject([wall, *pads]))
+        return workplane.newObject([pushed])
+    return workplane.union(cq.Workplane().newObject(solids), clean=clean)
+
+
+def _built_net(
+    face: Any,
+    k1_lines: int | None,
+    k2_lines: int | None,
+    thickness: float,
+    side: WallSide,
+    k1_spacing: float | None,
+    k2_spacing: float | None,
+    seed: Sequence[float] | None,
+    stiffened: Mapping[str, LineSelection | Sequence[int]] | None,
+    profile: Profile | None,
+    stiffener_side: StiffenerSide,
+) -> NetResult:
+    """The NetDesign of tubecad.CurvatureNet's arguments (:func:`tubecad.parts.net_arguments.net_part_design`), built."""
+    from tubecad.parts.net_arguments import net_part_design
+
+    design = net_part_design(
+        face, k1_lines, k2_lines, thickness, side, k1_spacing, k2_spacing, seed, stiffened, profile, stiffener_side
+    )
+    return design.build_net()
 
 
 def _wire(label: str, edges: list) -> cq.Wire:
@@ -293,5 +411,6 @@ cq.Workplane.curvatureTube = curvature_tube  # type: ignore[attr-defined,unused-
 cq.Workplane.curvatureWall = curvature_wall  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.stiffenedCurvatureWall = stiffened_curvature_wall  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureJunction = curvature_junction  # type: ignore[attr-defined,unused-ignore]
+cq.Workplane.curvatureNet = curvature_net  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureLineTube = curvature_line_tube  # type: ignore[attr-defined,unused-ignore]
 cq.Workplane.curvatureLineWall = curvature_line_wall  # type: ignore[attr-defined,unused-ignore]

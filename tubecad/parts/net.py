@@ -22,15 +22,14 @@ so ``export_step(net, ...)`` names them; :meth:`CurvatureNet.assembly` adds the 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from functools import cached_property
 from typing import Any
 
 import build123d as bd
 
 from tubecad.brep.wall import WallSide
-from tubecad.design.model import WallChoice
-from tubecad.design.net import DEFAULT_LINES, LineSelection, NetDesign, NetResult, NetStiffenerChoice
+from tubecad.design.net import DEFAULT_LINES, LineSelection, NetDesign
 from tubecad.stiffeners.profiles import Profile, StiffenerSide
 
 
@@ -48,7 +47,8 @@ class CurvatureNet(bd.BasePartObject):
         k1_spacing: instead of ``k1_lines``, the distance between neighbouring k1 lines along
             the k2 line through the seed.
         k2_spacing: the same for the k2 lines.
-        seed: a point (x, y, z) on the face the first lines pass through.
+        seed: a point (x, y, z) of the face: each family's lines are spread along the other
+            family's line through it.
         stiffened: webs on the net's lines: ``{"k1": [1, 3], "k2": "all"}``.
         profile: the webs' flat-bar profile (``Profile("flat", height, thickness)``).
         stiffener_side: ``outside`` (along the face's normal) or ``inside``.
@@ -74,38 +74,19 @@ class CurvatureNet(bd.BasePartObject):
         k1_spacing: float | None = None,
         k2_spacing: float | None = None,
         seed: Sequence[float] | None = None,
-        stiffened: dict[str, LineSelection | Sequence[int]] | None = None,
+        stiffened: Mapping[str, LineSelection | Sequence[int]] | None = None,
         profile: Profile | None = None,
         stiffener_side: StiffenerSide = "outside",
         rotation: bd.RotationLike = (0, 0, 0),
         align: Any = None,
         mode: bd.Mode = bd.Mode.ADD,
     ) -> None:
-        from tubecad.core.errors import ParameterError
+        from tubecad.parts.net_arguments import net_part_design
 
-        webs = None
-        if stiffened is not None:
-            if profile is None:
-                raise ParameterError("profile: stiffened lines need the webs' profile", key="profile")
-
-            def picked(family: str) -> LineSelection:
-                chosen = stiffened.get(family, ())
-                return "all" if chosen == "all" else tuple(int(i) for i in chosen)
-
-            webs = NetStiffenerChoice(profile, picked("k1"), picked("k2"), stiffener_side)
-        point = None if seed is None else (float(seed[0]), float(seed[1]), float(seed[2]))
-        design = NetDesign(
-            face,
-            None if k1_spacing is not None else k1_lines,
-            None if k2_spacing is not None else k2_lines,
-            k1_spacing,
-            k2_spacing,
-            point,
-            WallChoice(thickness, side),
-            webs,
+        design = net_part_design(
+            face, k1_lines, k2_lines, thickness, side, k1_spacing, k2_spacing, seed, stiffened, profile, stiffener_side
         )
-        built = design.build()
-        assert isinstance(built, NetResult)  # a NetDesign builds a NetResult
+        built = design.build_net()
         self._built = built
         solids = [bd.Solid(solid) for _, solid in built.solids]
         for solid, (name, _) in zip(solids, built.solids):

@@ -508,7 +508,8 @@ HOST_KEYS = {
     "seed": Key(
         "triple",
         required=False,
-        help="a point [x, y, z] on the face the net's first lines pass through (default the face's parameter centre)",
+        help="a point [x, y, z] of the face: each family's lines are spread along the other family's line through it "
+        "(default the face's parameter centre)",
     ),
 }
 #: the sections a [host] spec may have besides [host]

@@ -288,6 +288,13 @@ def parse_spec(data: dict[str, Any], source: str = "<spec>", base: Path | None =
     for count, listed in (("rings", "s_rings"), ("stringers", "u_stringers_deg")):
         if getattr(layout, count) is not None and getattr(layout, listed) is not None:
             raise fail(f"[layout] give either {count} or {listed}, not both", f"layout.{count}")
+    if model.stiffeners is not None:
+        for key in ("k1", "k2"):  # a [host] net's lines, not a tube's
+            if getattr(model.stiffeners, key) != ():
+                raise fail(
+                    f"[stiffeners] {key} chooses a [host] net's lines; a tube's are its rings and stringers",
+                    f"stiffeners.{key}",
+                )
     _check_build_sections(tube, model, fail, source)
     if model.branches:
         _check_branches(tube, model, fail)

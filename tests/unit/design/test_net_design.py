@@ -167,3 +167,23 @@ def test_the_shipped_host_faces_are_the_generators():
         else:  # the dome: a surface of revolution, compared on points
             for u, v in ((0.3, 0.2), (2.0, 1.0), (5.0, 0.7)):
                 assert ours.Value(u, v).Distance(theirs.Value(u, v)) < 1e-9
+
+
+@pytest.mark.parametrize(
+    ("arguments", "key", "says"),
+    [
+        ({"thickness": -1.0}, "thickness", "thickness"),
+        ({"thickness": 2.0, "side": "middle"}, "side", "side must be one of"),
+        ({"thickness": 2.0, "stiffened": {"K1": [0]}}, "stiffened", "k1 and k2"),
+        ({"thickness": 2.0, "stiffened": {"k1": "some"}}, "stiffened", '"all" or line indices'),
+        ({"thickness": 2.0, "stiffened": {"k1": [0]}}, "profile", "profile"),
+        ({"thickness": 2.0, "seed": (1.0, 2.0)}, "seed", "(x, y, z)"),
+    ],
+)
+def test_the_parts_arguments_are_refused_naming_them(dome_face, arguments, key, says):
+    """Checked once for the build123d part and the CadQuery plugin, before anything is traced."""
+    from tubecad.parts.net_arguments import net_part_design
+
+    with pytest.raises(ParameterError, match=r".*") as refused:
+        net_part_design(dome_face, 3, 3, **arguments)
+    assert refused.value.key == key and says in str(refused.value)
