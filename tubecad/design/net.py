@@ -423,14 +423,15 @@ def hollow(shell: Any, d_in: float, d_out: float, thickness: float) -> Any:
     on a closed shell), the inner one its hole; checked valid.
 
     The offset faces' surfaces are made B-splines (``ShapeCustom::ConvertToBSpline``, within
-    1e-7 of the offset): a ``Geom_OffsetSurface`` of a C0 basis (a sphere or an ellipsoid
-    converted to NURBS: degree 2, double knots) is written to STEP but OCCT's reader refuses
+    1e-7 of the offset, then ``ShapeFix_Shape``): a ``Geom_OffsetSurface`` of a C0 basis (a
+    sphere or an ellipsoid converted to NURBS: degree 2, double knots) is written to STEP but OCCT's reader refuses
     it ("Offset with no C1 Surface") and drops the face, and OCCT integrates its volume
     0.3 % off near the poles."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing
     from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepOffsetAPI import BRepOffsetAPI_MakeOffsetShape
     from OCP.ShapeCustom import ShapeCustom
+    from OCP.ShapeFix import ShapeFix_Shape
 
     from tubecad.occ_compat import as_shell
 
@@ -443,8 +444,12 @@ def hollow(shell: Any, d_in: float, d_out: float, thickness: float) -> Any:
             raise ParameterError(
                 f"thickness {thickness:g}: OCCT could not offset the face by {distance:g}", key="thickness"
             )
+        fix = ShapeFix_Shape(ShapeCustom.ConvertToBSpline_s(maker.Shape(), False, False, True, False))
+        fix.SetPrecision(1e-7)
+        fix.SetMaxTolerance(1e-5)
+        fix.Perform()  # a converted face by a pole can come out invalid: its edges retoleranced
         sewing = BRepBuilderAPI_Sewing(1e-7)
-        sewing.Add(ShapeCustom.ConvertToBSpline_s(maker.Shape(), False, False, True, False))
+        sewing.Add(fix.Shape())
         sewing.Perform()
         return as_shell(sewing.SewedShape())
 

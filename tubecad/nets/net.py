@@ -145,8 +145,12 @@ def curvature_net(
     plan: tuple[tuple[Family, int, Family], ...] = ((1, k1_lines, 2), (2, k2_lines, 1))
     for family, count, across in plan:
         guide = traced(centre, across)
-        for i, start in enumerate(_seeds(guide, count)):
-            lines[f"k{family}_{i:02d}"] = traced(start, family)
+        traced_lines = [traced(start, family) for start in _seeds(guide, count)]
+        folds = _folds(guide, traced_lines, count)
+        if folds is not None:  # the guide meets each line twice: seed along one half of it
+            traced_lines = [traced(start, family) for start in _seeds(guide, count, folds)]
+        for i, line in enumerate(traced_lines):
+            lines[f"k{family}_{i:02d}"] = line
     edges = {name: line_edge(host, line) for name, line in lines.items()}
     on_edges = {name for name, line in lines.items() if _on_face_edges(shape, line.points)}
     patches = _split(shape, [e.edge for name, e in edges.items() if name not in on_edges])
@@ -162,13 +166,81 @@ def _host_and_face(face: object) -> tuple[HostSurface, TopoDS_Face]:
     return host, host.face
 
 
-def _seeds(guide: CurvatureLine, count: int) -> list[tuple[float, float]]:
-    """``count`` parameter points evenly by arc length along ``guide`` (module docstring)."""
+def _seeds(guide: CurvatureLine, count: int, folds: tuple[float, float] | None = None) -> list[tuple[float, float]]:
+    """``count`` parameter points evenly by arc length along ``guide`` (module docstring), or
+    along its arc from ``folds[0]`` to ``folds[1]`` (arc lengths from a closed guide's start)
+    as along an open line."""
     length = float(guide.sigma[-1] - guide.sigma[0])
-    share = np.arange(count) / count if guide.closed else (np.arange(count) + 0.5) / count
-    at = guide.sigma[0] + share * length
+    if folds is not None:
+        span = (folds[1] - folds[0]) % length
+        at = guide.sigma[0] + (folds[0] + (np.arange(count) + 0.5) / count * span) % length
+    else:
+        share = np.arange(count) / count if guide.closed else (np.arange(count) + 0.5) / count
+        at = guide.sigma[0] + share * length
     u, v = np.interp(at, guide.sigma, guide.uv[:, 0]), np.interp(at, guide.sigma, guide.uv[:, 1])
     return [(float(a), float(b)) for a, b in zip(u, v)]
+
+
+def _folds(guide: CurvatureLine, lines: list[CurvatureLine], count: int) -> tuple[float, float] | None:
+    """Where a closed ``guide`` folds, if each closed line of the other family seeded on it
+    crosses it twice (an ellipsoid's: its k2 loops cross the k1 loop at (x, +-y, 0)): seeds
+    evenly round it would trace each line twice (two edges 1e-5 .. 1e-3 apart, and OCCT's
+    splitter leaves invalid slivers between them). The crossings pair the guide's points
+    (s, p(s)), an involution reversing the guide whose two fixed points are the folds (where
+    the line ends at umbilics: an ellipsoid's umbilic arcs); a fold is taken as the middle of
+    the shortest arc between a pair (the second on the other side of the first, or half the
+    guide from it).
+
+    Returns the folds' arc lengths from the guide's start (the arc from the first to the
+    second, forward, meets each line once), or None: an open guide, or lines that cross it
+    once (a torus' meridians) or end elsewhere than at umbilics and poles (a dome's at its
+    rim), or more than twice."""
+    if not guide.closed or count < 2:
+        return None
+    if any(not line.closed and not {"umbilic", "pole"}.issuperset(line.stopped) for line in lines):
+        return None
+    from scipy.spatial import cKDTree
+
+    length = float(guide.sigma[-1] - guide.sigma[0])
+    h = length / (40 * count)  # the crossings found to this arc length, far finer than the seeds
+
+    def resampled(line: CurvatureLine) -> tuple[np.ndarray, np.ndarray]:
+        at = np.arange(line.sigma[0], line.sigma[-1], h)
+        return at - line.sigma[0], np.stack([np.interp(at, line.sigma, line.points[:, k]) for k in range(3)], axis=1)
+
+    along, points = resampled(guide)
+    tree = cKDTree(points)
+    arcs: list[tuple[float, float]] = []  # (middle, length) of the shorter arc between a pair
+    for line in lines:
+        distance, nearest = tree.query(resampled(line)[1])
+        if line.stopped == ("umbilic", "umbilic"):  # it crosses the guide at a fold
+            arcs.append((float(along[nearest[np.argmin(distance)]]), 0.0))
+            continue
+        if not line.closed:  # stopped at a pole of the parameterisation: half a line
+            continue
+        near = distance < length / (4 * count)
+        runs = np.flatnonzero(np.diff(np.concatenate([[0], near.astype(int), [0]])))
+        starts, ends = runs[::2], runs[1::2]
+        if len(starts) > 1 and near[0] and near[-1]:  # the last run goes on into the first
+            starts, ends = starts[:-1], ends[:-1]
+        crossings = [float(along[nearest[a + np.argmin(distance[a:b])]]) for a, b in zip(starts, ends)]
+        if len(crossings) > 2:
+            return None
+        if len(crossings) < 2:  # once (or twice, merged near a fold)
+            continue
+        gap = (crossings[1] - crossings[0]) % length
+        if gap > length / 2:
+            crossings, gap = crossings[::-1], length - gap
+        arcs.append(((crossings[0] + gap / 2) % length, gap))
+    if all(short == 0.0 for _, short in arcs):  # no line met it twice
+        return None
+    arcs.sort(key=lambda arc: arc[1])
+    first = arcs[0][0]
+    others = [
+        middle for middle, short in arcs if abs((first - middle + length / 2) % length - length / 2) > short / 2 + h
+    ]
+    second = others[0] if others else (first + length / 2) % length
+    return (first, second) if first < second else (second, first)
 
 
 def _on_face_edges(face: TopoDS_Face, points: np.ndarray) -> bool:

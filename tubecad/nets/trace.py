@@ -30,6 +30,7 @@ The line stops:
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Literal
 
@@ -171,9 +172,14 @@ def trace_line(
 
 
 def _turn(a: FloatArray, b: FloatArray) -> float:
-    """The angle between the vectors a and b (2-D or 3-D; accurate near 0)."""
-    cross = a[0] * b[1] - a[1] * b[0] if len(a) == 2 else np.linalg.norm(np.cross(a, b))
-    return float(np.arctan2(abs(cross), float(a @ b)))
+    """The angle between the vectors a and b (2-D or 3-D; accurate near 0): atan2(|a x b|, a.b),
+    in Python floats (numpy's cross of two 3-vectors costs 50 us, this 2)."""
+    if len(a) == 2:
+        (a0, a1), (b0, b1) = a.tolist(), b.tolist()
+        return math.atan2(abs(a0 * b1 - a1 * b0), a0 * b0 + a1 * b1)
+    (a0, a1, a2), (b0, b1, b2) = a.tolist(), b.tolist()
+    c0, c1, c2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+    return math.atan2(math.sqrt(c0 * c0 + c1 * c1 + c2 * c2), a0 * b0 + a1 * b1 + a2 * b2)
 
 
 def _poles(host: HostSurface, size: float) -> FloatArray:
