@@ -132,6 +132,15 @@ def curvature_net(
             "face: an umbilic region (a plane or a sphere): every direction is principal, it has no curvature-line net",
             key="face",
         )
+    if umbilics.parts:  # lines would wander across it: refused until they stop on its border
+        part = max(umbilics.parts, key=len)
+        where = ", ".join(f"{c:.6g}" for c in part.mean(axis=0))
+        raise ParameterError(
+            f"face: a part of it is umbilic (flat or spherical, (k1 - k2) / 2 = 0) round ({where}): lines of "
+            "curvature are not defined there, and tracing round such a part is not made yet; split the face "
+            "off it",
+            key="face",
+        )
     u0, u1, v0, v1 = host.bounds
     centre = seed if seed is not None else (0.5 * (u0 + u1), 0.5 * (v0 + v1))
     stops = np.array([p.point for p in umbilics.points]).reshape(-1, 3)

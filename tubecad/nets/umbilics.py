@@ -21,7 +21,9 @@ the angle arg(w) / 2 from e1, turns by 2 pi times the umbilic's index as one goe
    D1, D2, D3; Berry & Hannay, J. Phys. A 10 (1977) 1809).
 
 A face whose umbilic measure (k1 - k2) / 2 vanishes (to REGION of its largest curvature) at
-every grid point is an umbilic region (a plane, a sphere): reported as such, not as points.
+every grid point is an umbilic region (a plane, a sphere): reported as such, not as points. A
+part of a face where it vanishes (to PART) over whole grid cells (a hull's flat bottom) is an
+umbilic part: reported with its points, its cells left out of the search.
 """
 
 from __future__ import annotations
@@ -47,6 +49,9 @@ RING_SHARE = 1e-4
 RING_POINTS = 720
 #: a face is an umbilic region where (k1 - k2) / 2 is below this times its largest |k| everywhere
 REGION = 1e-9
+#: a part of the face is umbilic (a flat bottom, a spherical cap) where (k1 - k2) / 2 is below
+#: this times the face's largest |k| over a whole cell of the search grid or more
+PART = 1e-6
 #: Newton's root is an umbilic where (a, b) / max |k| is below this
 CONVERGED = 1e-12
 #: the search grid's shift off the box's symmetric places, in cells
@@ -77,6 +82,10 @@ class Umbilics:
 
     points: list[Umbilic]
     region: bool
+    #: parts of the face that are umbilic (a flat bottom, a spherical cap) where the rest is
+    #: not: each the 3-D points of the search grid inside it, (n, 3); the search finds no
+    #: isolated umbilic there
+    parts: tuple[FloatArray, ...] = ()
 
     @property
     def index_sum(self) -> float:
@@ -106,9 +115,15 @@ def find_umbilics(host: HostSurface, grid: int = GRID) -> Umbilics:
     if np.all(measure[np.isfinite(measure)] <= REGION * max(k_max, 1e-300)):
         return Umbilics([], True)
     degenerate = ~(field.area.reshape(uu.shape) > 1e-12 * np.nanmax(field.area))
-    turn = np.angle(w[1:, :-1] / w[:-1, :-1]) + np.angle(w[1:, 1:] / w[1:, :-1])
-    turn += np.angle(w[:-1, 1:] / w[1:, 1:]) + np.angle(w[:-1, :-1] / w[:-1, 1:])
-    winding = np.rint(turn / (2 * math.pi))
+    regular = np.abs(np.stack([field.k1, field.k2])).max(axis=0).reshape(uu.shape)[~degenerate]
+    k_regular = float(np.nanmax(regular)) if regular.size else k_max  # not a pole row's
+    flat = ~(measure.reshape(uu.shape) > PART * k_regular)  # (k1 - k2) / 2 this small: umbilic (or undefined)
+    parts = _parts(flat & ~degenerate, host, uu, vv)
+    degenerate |= flat
+    with np.errstate(divide="ignore", invalid="ignore"):  # w = 0 in an umbilic part: its cells are skipped
+        turn = np.angle(w[1:, :-1] / w[:-1, :-1]) + np.angle(w[1:, 1:] / w[1:, :-1])
+        turn += np.angle(w[:-1, 1:] / w[1:, 1:]) + np.angle(w[:-1, :-1] / w[:-1, 1:])
+        winding = np.rint(np.nan_to_num(turn) / (2 * math.pi))
     bad = degenerate[1:, :-1] | degenerate[:-1, :-1] | degenerate[1:, 1:] | degenerate[:-1, 1:]
     cells = np.argwhere((winding != 0) & ~bad)
     found: list[Umbilic] = []
@@ -123,7 +138,24 @@ def find_umbilics(host: HostSurface, grid: int = GRID) -> Umbilics:
             continue
         if all(np.linalg.norm(umbilic.point - p.point) > SAME * scale for p in found):
             found.append(umbilic)
-    return Umbilics(found, False)
+    return Umbilics(found, False, parts)
+
+
+def _parts(flat: np.ndarray, host: HostSurface, uu: FloatArray, vv: FloatArray) -> tuple[FloatArray, ...]:
+    """The umbilic parts of the face: the connected sets of search-grid nodes where
+    (k1 - k2) / 2 <= PART max|k| (scipy's ``ndimage.label``, 4-connected) that hold a whole
+    grid cell (its four corners: an area, not a line of flat points such as an inflection
+    line along the boundary), each as its nodes' 3-D points. An isolated umbilic, where the
+    measure grows linearly from 0, puts no such cell on the grid."""
+    from scipy.ndimage import label
+
+    labels, count = label(flat)
+    cells = flat[:-1, :-1] & flat[1:, :-1] & flat[:-1, 1:] & flat[1:, 1:]
+    out = []
+    for k in sorted(set(labels[:-1, :-1][cells].tolist())):
+        inside = labels == k
+        out.append(host.jet(uu[inside], vv[inside]).X)
+    return tuple(out)
 
 
 def _nodes(lo: float, hi: float, closed: bool, cells: int) -> FloatArray:
