@@ -189,13 +189,10 @@ class JunctionResult:
         stiffeners, their volume and area those written, a STEP file's edge names all there; a
         mesh's triangles; a picture's pixels. Raises if not, so it is never moved into place."""
         from tubecad.export.cad import step_names
-        from tubecad.export.readback import FileAccuracyError, mesh_report, readback_report
+        from tubecad.export.readback import FileAccuracyError, mesh_report, picture_pixels, readback_report
 
         if fmt.kind == "picture":
-            from matplotlib.image import imread
-
-            height, width = imread(tmp, format="png").shape[:2]
-            return {"bytes": tmp.stat().st_size, "picture": f"PNG {width} x {height}"}
+            return picture_pixels(tmp, fmt.name)
         if fmt.kind == "mesh":
             return mesh_report(tmp, fmt.name, None, deflection, target, None, self.length_unit, angular)
         info = readback_report(tmp, reference, None, target, None, self.length_unit)

@@ -233,6 +233,17 @@ def _first_solids(shape: TopoDS_Shape, n: int) -> TopoDS_Compound:
 
 
 def picture_report(path: Path, fmt: str, build: Any) -> dict[str, Any]:
+    """A just-written picture of a tube's ``build`` read back (:func:`picture_pixels`), with
+    the rings and stringers it draws."""
+    layout, closed = build.layout, int(bool(build.surfaces[0].tube.axis.closed))  # a loop's last ring is its first
+    return {
+        **picture_pixels(path, fmt),
+        "rings": len(layout.s_rings) - closed,
+        "stringers": len(layout.stringers_deg),
+    }
+
+
+def picture_pixels(path: Path, fmt: str) -> dict[str, Any]:
     """A just-written picture read back: a PNG decoded to its pixels (width x height), an SVG
     parsed as XML with an <svg> root; raises if it is neither, so it is never moved into place."""
     path = Path(path)
@@ -248,10 +259,4 @@ def picture_report(path: Path, fmt: str, build: Any) -> dict[str, Any]:
         if not root.tag.endswith("svg"):
             raise ExportError(f"{path.name}: not an SVG picture (root <{root.tag}>)")
         picture = f"SVG {root.get('width')} x {root.get('height')}"
-    layout, closed = build.layout, int(bool(build.surfaces[0].tube.axis.closed))  # a loop's last ring is its first
-    return {
-        "bytes": path.stat().st_size,
-        "picture": picture,
-        "rings": len(layout.s_rings) - closed,
-        "stringers": len(layout.stringers_deg),
-    }
+    return {"bytes": path.stat().st_size, "picture": picture}

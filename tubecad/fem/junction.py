@@ -37,7 +37,6 @@ which are added to the main's faces so that its boundary is a line of elements.
 from __future__ import annotations
 
 import math
-import signal
 import tempfile
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
@@ -330,36 +329,15 @@ def _gmsh_mesh(
     """gmsh's mesh of the faces (module docstring): nodes (n, 3) and per face and element
     type (gmsh's type number, connectivity (m, k) 0-based in gmsh's node order);
     ``tube_of``: the tube each of some points (n, 3) lies on."""
-    try:
-        import gmsh
-    except ImportError:
-        raise TubecadError("meshing a junction needs gmsh: pip install gmsh (or tubecad[fem])") from None
     import build123d as bd
+
+    from tubecad.fem.gmsh_model import gmsh_model, quad_options
 
     with tempfile.TemporaryDirectory(prefix="tubecad-gmsh-") as tmp:
         step = Path(tmp) / "junction.step"
         bd.export_step(bd.Shell([bd.Face(f) for f in faces]), step)
-        started = gmsh.isInitialized()
-        if not started:
-            pipe = signal.getsignal(signal.SIGPIPE)
-            gmsh.initialize(readConfigFiles=False, interruptible=False)
-            signal.signal(signal.SIGPIPE, pipe)  # gmsh sets its default (end the process on a closed pipe)
-        try:
-            gmsh.option.setNumber("General.Terminal", 0)
-            gmsh.model.add("tubecad-junction")
-            gmsh.model.occ.importShapes(str(step))
-            gmsh.model.occ.synchronize()
-            for name, value in (
-                ("Mesh.MeshSizeMax", size),
-                ("Mesh.MeshSizeMin", 0.0),
-                ("Mesh.MeshSizeFromCurvature", 0),
-                ("Mesh.MeshSizeExtendFromBoundary", 1),
-                ("Mesh.Algorithm", 6),  # frontal-Delaunay: measured the best quads after recombination
-                ("Mesh.RecombineAll", 1),
-                ("Mesh.RecombinationAlgorithm", 1),  # Blossom
-            ):
-                gmsh.option.setNumber(name, value)
-
+        with gmsh_model(step, "tubecad-junction", "a junction") as gmsh:
+            quad_options(gmsh, size)
             gmsh.model.mesh.setTransfiniteAutomatic(_away_from_saddle(gmsh, tube_of), recombine=True)
             gmsh.model.mesh.generate(2)
             if order == 2:
@@ -376,10 +354,6 @@ def _gmsh_mesh(
                         raise TubecadError(f"gmsh made elements of type {int(kind)} on a junction face")
                     per = gmsh.model.mesh.getElementProperties(int(kind))[3]
                     patches.append((int(kind), index[np.asarray(conn, dtype=np.int64)].reshape(-1, per)))
-            gmsh.model.remove()
-        finally:
-            if not started:
-                gmsh.finalize()
     return np.asarray(coords, dtype=float).reshape(-1, 3), patches
 
 

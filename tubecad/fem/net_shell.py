@@ -33,7 +33,6 @@ In a CalculiX deck the block ``net`` is the element set ``net``: with triangles 
 from __future__ import annotations
 
 import math
-import signal
 import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -281,44 +280,22 @@ def _area(shape: TopoDS_Shape) -> float:
 
 def _gmsh_mesh(patches: TopoDS_Shape, size: float, order: int) -> _Meshed:
     """gmsh's mesh of the net's patches (module docstring), read from an OCCT BREP file."""
-    try:
-        import gmsh
-    except ImportError:
-        raise TubecadError("meshing a net needs gmsh: pip install gmsh (or tubecad[fem])") from None
     from OCP.BRepTools import BRepTools
+
+    from tubecad.fem.gmsh_model import gmsh_model
 
     with tempfile.TemporaryDirectory(prefix="tubecad-gmsh-") as tmp:
         path = Path(tmp) / "net.brep"
         BRepTools.Write_s(patches, str(path))
-        started = gmsh.isInitialized()
-        if not started:
-            pipe = signal.getsignal(signal.SIGPIPE)
-            gmsh.initialize(readConfigFiles=False, interruptible=False)
-            signal.signal(signal.SIGPIPE, pipe)  # gmsh sets its default (end the process on a closed pipe)
-        try:
-            gmsh.option.setNumber("General.Terminal", 0)
-            gmsh.model.add("tubecad-net")
-            gmsh.model.occ.importShapes(str(path))
-            gmsh.model.occ.synchronize()
+        with gmsh_model(path, "tubecad-net", "a net") as gmsh:
             return _generated(gmsh, size, order)
-        finally:
-            gmsh.model.remove()
-            if not started:
-                gmsh.finalize()
 
 
 def _generated(gmsh: Any, size: float, order: int) -> _Meshed:
     """Mesh gmsh's current model (transfinite where four-sided, recombined) and read it."""
-    for name, value in (
-        ("Mesh.MeshSizeMax", size),
-        ("Mesh.MeshSizeMin", 0.0),
-        ("Mesh.MeshSizeFromCurvature", 0),
-        ("Mesh.MeshSizeExtendFromBoundary", 1),
-        ("Mesh.Algorithm", 6),  # frontal-Delaunay, as the junction's
-        ("Mesh.RecombineAll", 1),
-        ("Mesh.RecombinationAlgorithm", 1),  # Blossom
-    ):
-        gmsh.option.setNumber(name, value)
+    from tubecad.fem.gmsh_model import quad_options
+
+    quad_options(gmsh, size)
     gmsh.model.mesh.setTransfiniteAutomatic(_square_patches(gmsh), recombine=True)
     gmsh.model.mesh.generate(2)
     if order == 2:

@@ -38,6 +38,7 @@ from tubecad.spec.model import (
     AnalysisSection,
     FabricationSection,
     MeshSection,
+    SpecSections,
     StiffenersSection,
     UnitsSection,
     WallSection,
@@ -88,7 +89,7 @@ class HostModel:
 
 
 @dataclass(frozen=True)
-class HostSpec:
+class HostSpec(SpecSections):
     """A checked [host] spec: the ``face`` read from its STEP file, its checked tables
     (``sections``), ``source`` and typed ``model``."""
 
@@ -105,34 +106,6 @@ class HostSpec:
     @property
     def host(self) -> HostSection:
         return self.model.host
-
-    @property
-    def length_unit(self) -> str:
-        return self.model.units.length
-
-    @property
-    def units(self) -> UnitsSection:
-        return self.model.units
-
-    @property
-    def wall(self) -> WallSection | None:
-        return self.model.wall
-
-    @property
-    def stiffeners(self) -> StiffenersSection | None:
-        return self.model.stiffeners
-
-    @property
-    def fabrication(self) -> FabricationSection | None:
-        return self.model.fabrication
-
-    @property
-    def mesh(self) -> MeshSection | None:
-        return self.model.mesh
-
-    @property
-    def analysis(self) -> AnalysisSection | None:
-        return self.model.analysis
 
     @property
     def min_radius(self) -> float:

@@ -486,3 +486,39 @@ def _keyed(key: str, build: Any) -> Any:
         if exc.key is None:
             exc.key = key
         raise
+
+
+class SpecSections:
+    """The sections every checked spec has (a tube's, :class:`~tubecad.spec.parse.TubeSpec`; a
+    face's, :class:`~tubecad.spec.host.HostSpec`), read from its typed ``model``."""
+
+    model: Any
+
+    @property
+    def length_unit(self) -> str:
+        """The unit of every length in the spec and in the files written from it ([units] length)."""
+        return str(self.model.units.length)
+
+    @property
+    def units(self) -> UnitsSection:
+        return self.model.units
+
+    @property
+    def wall(self) -> WallSection | None:
+        return self.model.wall
+
+    @property
+    def stiffeners(self) -> StiffenersSection | None:
+        return self.model.stiffeners
+
+    @property
+    def fabrication(self) -> FabricationSection | None:
+        return self.model.fabrication
+
+    @property
+    def mesh(self) -> MeshSection | None:
+        return self.model.mesh
+
+    @property
+    def analysis(self) -> AnalysisSection | None:
+        return self.model.analysis

@@ -48,18 +48,13 @@ from tubecad.spec.keys import (  # noqa: F401
     Key,
 )
 from tubecad.spec.model import (
-    AnalysisSection,
     BatchSection,
     BranchSection,
-    FabricationSection,
     FitSection,
     LayoutSection,
-    MeshSection,
     PanelsSection,
     SpecModel,
-    StiffenersSection,
-    UnitsSection,
-    WallSection,
+    SpecSections,
 )
 
 if TYPE_CHECKING:  # the axis and the surface load numpy and scipy: imported once the keys are checked
@@ -73,7 +68,7 @@ T = TypeVar("T")
 
 
 @dataclass(frozen=True)
-class TubeSpec:
+class TubeSpec(SpecSections):
     """A checked spec: the tube it describes, its sections typed (``model``, a
     :class:`~tubecad.spec.model.SpecModel`, also reached as ``spec.wall``, ``spec.stiffeners``,
     ...) and the checked tables as the file gives them (``sections``, for a script that reads
@@ -101,45 +96,16 @@ class TubeSpec:
         return self.tube.axis
 
     @property
-    def length_unit(self) -> str:
-        """The unit of every length in the spec and in the files written from it ([units] length)."""
-        return self.model.units.length
-
-    @property
     def layout(self) -> LayoutSection:
         return self.model.layout
-
-    @property
-    def wall(self) -> WallSection | None:
-        return self.model.wall
 
     @property
     def fit(self) -> FitSection:
         return self.model.fit
 
     @property
-    def stiffeners(self) -> StiffenersSection | None:
-        return self.model.stiffeners
-
-    @property
     def panels(self) -> PanelsSection | None:
         return self.model.panels
-
-    @property
-    def fabrication(self) -> FabricationSection | None:
-        return self.model.fabrication
-
-    @property
-    def mesh(self) -> MeshSection | None:
-        return self.model.mesh
-
-    @property
-    def analysis(self) -> AnalysisSection | None:
-        return self.model.analysis
-
-    @property
-    def units(self) -> UnitsSection:
-        return self.model.units
 
     @property
     def batch(self) -> BatchSection | None:
