@@ -67,6 +67,14 @@ def test_the_dome_builds_with_its_parallels_meridians_and_webs(tmp_path):
     for web in report["stiffeners"].values():  # a developable web: volume = developed area x thickness
         assert web["volume"] == pytest.approx(8.0 * web["developed_area"], rel=1e-8)
     assert report["exports"][str(out)]["names"] == 6 + 8 + 3
+    # the wall as a user reads it passes OCCT's whole pre-boolean check (its offset edges were
+    # 1e-5 off and read back InvalidCurveOnSurface 420 times: tubecad.brep.offset_edges)
+    import build123d as bd
+
+    from tubecad.brep.analyzer import analyzer_findings
+
+    wall = next(child for child in bd.import_step(out).children if child.label == "wall")
+    assert analyzer_findings(wall.wrapped, prefilter=False) == {}
 
 
 @pytest.mark.slow

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 
+from tubecad.brep.offset_edges import tighten_offset_edges
 from tubecad.core.errors import ParameterError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.design.model import WallChoice
@@ -378,7 +379,9 @@ def build_net(design: NetDesign) -> NetResult:
 def thickened(patches: Any, wall: WallChoice) -> Any:
     """The split face as a wall of ``wall.thickness`` on its side of the face: offset by the
     wall's inner offset (centered: half the thickness against the normal), then thickened
-    (``BRepOffset_MakeOffset`` by join, build123d's ``Solid.thicken``); a ParameterError
+    (``BRepOffset_MakeOffset`` by join, build123d's ``Solid.thicken``), its offset edges'
+    curves made again to 1e-9 (:func:`~tubecad.brep.offset_edges.tighten_offset_edges`: OCCT's
+    1e-5 reads back from STEP failing the pre-boolean check); a ParameterError
     naming ``thickness`` if OCCT cannot make it valid (a wall thicker than a radius of
     curvature folds)."""
     import build123d as bd
@@ -406,6 +409,7 @@ def thickened(patches: Any, wall: WallChoice) -> Any:
         raise ParameterError(
             f"thickness {wall.thickness:g}: OCCT could not thicken the face ({exc})", key="thickness"
         ) from None
+    tighten_offset_edges(solid.wrapped)  # its edges exact enough to survive a STEP file
     if not BRepCheck_Analyzer(solid.wrapped).IsValid():
         raise ParameterError(
             f"thickness {wall.thickness:g}: the wall fails OCCT's validity check (thicker than a radius of curvature?)",

@@ -15,7 +15,7 @@ exactly where it starts (a period along where it runs round a seam).
 Nodes are the tracer's, which puts one on every line where the surface is less than C3 (a
 B-spline's knot lines, the periodic seam): there the parameter direction jumps, so each piece
 reads the field on its own side of the node and the pcurve is only C0 there (the 3-D curve
-stays smooth: its data are geometric). Its quality is measured where the interpolation is
+stays C1, its knot there of multiplicity 4: its tangent is geometric, the same from both sides). Its quality is measured where the interpolation is
 least held, inside each piece: the angle between the 3-D curve's tangent and the principal
 direction of its family at the surface point of its pcurve (``angle``, radians), and the
 distance between the 3-D curve and that point (``gap``). Halving pieces does not lower the
@@ -108,6 +108,7 @@ def _fitted(host: HostSurface, line: CurvatureLine) -> tuple[LineEdge, FloatArra
     smooth = [i + 1 for i in range(1, pieces) if not (np.any(ending[i]) or np.any(starting[i]))]
     _to_c2(curve, smooth, EDGE_TOLERANCE * 1e-3)
     _to_c2(pcurve, smooth, 1e-12)
+    _to_c1(curve, [i + 1 for i in range(1, pieces) if i + 1 not in smooth], EDGE_TOLERANCE * 1e-3)
     edge = BRepBuilderAPI_MakeEdge(curve).Edge()
     BRep_Builder().UpdateEdge(edge, pcurve, host.surface, TopLoc_Location(), EDGE_TOLERANCE)
     angles, gaps = _measured(host, line.family, sigma, curve_spline, pcurve_spline)
@@ -120,6 +121,16 @@ def _to_c2(curve: Geom_BSplineCurve | Geom2d_BSplineCurve, knots: list[int], tol
     ``tolerance``), two poles fewer a node. ``knots``: the 1-based knot indices."""
     for index in knots:
         curve.RemoveKnot(index, 3, tolerance)
+
+
+def _to_c1(curve: Geom_BSplineCurve, knots: list[int], tolerance: float) -> None:
+    """At a node on a break line the 3-D pieces share the line's unit tangent (geometric
+    data, the same from both sides) but not the second derivative (it takes the field's
+    derivative on each side): their knot there brought down from multiplicity 5 to 4, a C1
+    curve (OCCT's ``RemoveKnot``, exact to ``tolerance``; OCCT's pre-boolean check reports a
+    C0 curve). A node where the tangents differ (none on a line of curvature) stays C0."""
+    for index in knots:
+        curve.RemoveKnot(index, 4, tolerance)
 
 
 def _bezier(
