@@ -89,7 +89,7 @@ def _fitted(host: HostSurface, line: CurvatureLine) -> tuple[LineEdge, FloatArra
             if period is not None:
                 shift[k] = period * round((uv[-1, k] - uv[0, k]) / period)
         uv[-1] = uv[0] + shift
-    points = host.jet(*host.wrapped(uv[:, 0], uv[:, 1])).X
+    points = host.points(*host.wrapped(uv[:, 0], uv[:, 1]))
     data = _Derivatives(host, line.family, float(np.ptp(points, axis=0).max()))
     pieces = len(sigma) - 1
     pcurve_poles = np.empty((pieces, 6, 2))
@@ -209,5 +209,5 @@ def _measured(
     direction = field.d1 if family == 1 else field.d2
     cross = np.linalg.norm(np.cross(tangent, direction), axis=1)
     angle = np.arctan2(cross, np.abs(np.einsum("nk,nk->n", tangent, direction)))
-    gap = np.linalg.norm(host.jet(wu, wv).X - x, axis=1)
+    gap = np.linalg.norm(host.points(wu, wv) - x, axis=1)
     return angle.reshape(-1, CHECKS).max(axis=1), gap.reshape(-1, CHECKS).max(axis=1)

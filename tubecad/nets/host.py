@@ -128,6 +128,21 @@ class HostSurface:
             v = v0 + np.mod(v - v0, pv)
         return u, v
 
+    def wrapped_point(self, u: float, v: float) -> tuple[float, float]:
+        """:meth:`wrapped` for one point in Python floats (the tracer's inner loop)."""
+        (cu, cv), (pu, pv) = self._closed_periods
+        if cu:
+            u = self.bounds[0] + (u - self.bounds[0]) % pu
+        if cv:
+            v = self.bounds[2] + (v - self.bounds[2]) % pv
+        return u, v
+
+    @cached_property
+    def _closed_periods(self) -> tuple[tuple[bool, bool], tuple[float, float]]:
+        """(whether closed, the period or 1.0) in u and in v, computed once."""
+        (cu, cv), (pu, pv) = self.closed, self.periods
+        return (cu and pu is not None, cv and pv is not None), (pu or 1.0, pv or 1.0)
+
     def inside(self, u: FloatArray, v: FloatArray) -> FloatArray:
         """Whether the points lie on the face: in its trimmed domain where it came from a face
         (OCCT's ``IntTools_FClass2d``: in, or on its boundary), else in the box (a
@@ -136,7 +151,7 @@ class HostSurface:
         cu, cv = self.closed
         u, v = np.asarray(u, dtype=float), np.asarray(v, dtype=float)
         boxed = (cu | ((u >= u0) & (u <= u1))) & (cv | ((v >= v0) & (v <= v1)))
-        if self.face is None:
+        if self.face is None or self._whole_box:
             return boxed
         from OCP.gp import gp_Pnt2d
         from OCP.TopAbs import TopAbs_IN, TopAbs_ON
@@ -150,11 +165,47 @@ class HostSurface:
         return boxed & np.array(states, dtype=bool).reshape(np.shape(wu))
 
     @cached_property
+    def _whole_box(self) -> bool:
+        """Whether the face is its surface's whole parameter box (a B-spline patch as a STEP
+        file gives it): its area the box's to 1e-12 (the same integration: 0 on the samples),
+        so the box alone classifies its points."""
+        from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+        from OCP.BRepGProp import BRepGProp
+        from OCP.GProp import GProp_GProps
+
+        def area(face) -> float:
+            props = GProp_GProps()
+            BRepGProp.SurfaceProperties_s(face, props)
+            return props.Mass()
+
+        u0, u1, v0, v1 = self.bounds
+        box = BRepBuilderAPI_MakeFace(self.surface, u0, u1, v0, v1, 1e-7).Face()
+        whole = area(box)
+        return whole > 0.0 and abs(area(self.face) - whole) <= 1e-12 * whole
+
+    @cached_property
     def _classifier(self):
         """The face's 2-D classifier, made once (the face's edges' pcurves, to their tolerance)."""
         from OCP.IntTools import IntTools_FClass2d
 
         return IntTools_FClass2d(self.face, 1e-9)
+
+    def points(self, u: FloatArray, v: FloatArray) -> FloatArray:
+        """The positions at the points (u, v) (broadcast; (n, 3)), by OCCT's ``Value``: the
+        jet's ``X`` without its derivatives.
+
+        Args:
+            u: the first parameters.
+            v: the second parameters.
+
+        Returns:
+            The points, (n, 3).
+        """
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
+        value = self.surface.Value
+        return np.array(
+            [value(a, b).Coord() for a, b in zip(u.ravel().tolist(), v.ravel().tolist())], dtype=float
+        ).reshape(-1, 3)
 
     def jet(self, u: FloatArray, v: FloatArray) -> SurfaceJet:
         """The position and first and second derivatives at the points (u, v) (any shape,

@@ -144,7 +144,7 @@ def curvature_net(
     u0, u1, v0, v1 = host.bounds
     centre = seed if seed is not None else (0.5 * (u0 + u1), 0.5 * (v0 + v1))
     stops = np.array([p.point for p in umbilics.points]).reshape(-1, 3)
-    size = float(np.ptp(host.jet(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))).X, axis=0).max())
+    size = float(np.ptp(host.points(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))), axis=0).max())
     reach = UMBILIC_REACH * size
 
     def traced(start: tuple[float, float], family: Family) -> CurvatureLine:
@@ -273,7 +273,7 @@ def _on_face_edges(face: TopoDS_Face, points: np.ndarray) -> bool:
 
 def _split(face: TopoDS_Face, edges: list) -> TopoDS_Shape:
     """``face`` split by ``edges`` lying on it (OCCT's splitter), checked valid."""
-    splitter = built(BRepAlgoAPI_Splitter(), [face], edges)
+    splitter = built(BRepAlgoAPI_Splitter(), [face], edges, parallel=True)
     if not splitter.IsDone() or not BRepCheck_Analyzer(splitter.Shape()).IsValid():
         raise TubecadError("OCCT could not split the face by its curvature lines into a valid shell", key="face")
     return splitter.Shape()

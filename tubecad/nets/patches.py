@@ -230,7 +230,7 @@ def curvature_patch(
 
 def _size(host: HostSurface) -> float:
     u0, u1, v0, v1 = host.bounds
-    return float(np.ptp(host.jet(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))).X, axis=0).max())
+    return float(np.ptp(host.points(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))), axis=0).max())
 
 
 def _spline_of(pcurve: Geom2d_BSplineCurve) -> BSpline:
@@ -401,7 +401,7 @@ class _Cell:
         rows, columns = samples
         st, uv, shares_u, shares_v = self.grid(rows, columns)
         host = self.host
-        grid = host.jet(*host.wrapped(uv[..., 0].ravel(), uv[..., 1].ravel())).X.reshape(columns, rows, 3)
+        grid = host.points(*host.wrapped(uv[..., 0].ravel(), uv[..., 1].ravel())).reshape(columns, rows, 3)
         us, vs = shares_u * self.length_u, shares_v * self.length_v
         k = self.degree
         along_v = make_interp_spline(vs, grid, k=k, axis=1)  # c: (rows' poles, columns, 3)

@@ -57,6 +57,8 @@ _A = [
 ]
 _B5 = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0])
 _B4 = np.array([5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200, 187 / 2100, 1 / 40])
+#: the error estimate's weights, b5 - b4 (plain floats: the step's loop)
+_E = (_B5 - _B4).tolist()
 #: the most a step may turn (its length times the line's curvature in space, or the larger
 #: principal curvature's size where that is more): the edge's quintic pieces then follow the
 #: line to about 1e-9 rad (docs/MATH.md section 15). The line's own curvature counts, not only
@@ -168,7 +170,7 @@ def trace_line(
         ending = np.concatenate([-backward.across[:0:-1], forward.across])
         starting = np.concatenate([backward.across[:0:-1], -forward.across])
     wu, wv = host.wrapped(uv[:, 0], uv[:, 1])
-    return CurvatureLine(family, uv, host.jet(wu, wv).X, sigma, stopped, errors, ending, starting)
+    return CurvatureLine(family, uv, host.points(wu, wv), sigma, stopped, errors, ending, starting)
 
 
 def _turn(a: FloatArray, b: FloatArray) -> float:
@@ -197,7 +199,7 @@ def _poles(host: HostSurface, size: float) -> FloatArray:
         sides += [(np.full(9, u0), v0 + (v1 - v0) * t), (np.full(9, u1), v0 + (v1 - v0) * t)]
     out = []
     for u, v in sides:
-        points = host.jet(u, v).X
+        points = host.points(u, v)
         if float(np.ptp(points, axis=0).max()) <= 1e-9 * size:
             out.append(points.mean(axis=0))
     return np.array(out).reshape(-1, 3)
@@ -247,7 +249,7 @@ class _Run:
 def _size(host: HostSurface) -> float:
     u0, u1, v0, v1 = host.bounds
     uu, vv = np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9), indexing="ij")
-    return float(np.ptp(host.jet(uu, vv).X, axis=0).max())
+    return float(np.ptp(host.points(uu, vv), axis=0).max())
 
 
 class _Tracer:
@@ -259,6 +261,7 @@ class _Tracer:
         self.reach, self.limit, self.size = reach, limit, size
         self.field = PointField(host)
         self.curvature = 0.0
+        self._last: tuple[float, float, tuple[float, ...] | None] | None = None
         self.poles = _poles(host, size)
         self.pole_reach = max(reach, POLE_REACH * size)
 
@@ -274,7 +277,7 @@ class _Tracer:
 
     def point(self, x: FloatArray) -> FloatArray:
         u, v = self.host.wrapped(x[:1], x[1:])
-        return self.host.jet(u, v).X[0]
+        return self.host.points(u, v)[0]
 
     def run(self, x0: FloatArray, sign: float) -> _Run:
         first = self.direction(x0)
@@ -375,25 +378,50 @@ class _Tracer:
         """One Dormand-Prince step of length h: (new x, error, 3-D direction at the end,
         metric), every stage's direction turned to agree with ``reference`` and evaluated
         ``bias`` off (a node on a break line: the field of the side ahead); None where the
-        field vanishes (an umbilic)."""
-        k = np.zeros((7, 2))
-        metric = None
-        for i in range(7):
-            xi = x + h * sum(a * k[j] for j, a in enumerate(_A[i])) if i else x
-            at = self.direction(xi if bias is None else xi + bias)
-            if at is None or not np.all(np.isfinite(at[0])):
+        field vanishes (an umbilic).
+
+        In Python floats (numpy's small-array calls cost more than the arithmetic here), the
+        field at the point of the last stage kept: it is the next step's first stage where the
+        step is taken (Dormand-Prince's "first same as last"), and a step tried again shorter
+        starts from the same point."""
+        x0, x1 = float(x[0]), float(x[1])
+        b0, b1 = (0.0, 0.0) if bias is None else (float(bias[0]), float(bias[1]))
+        r0, r1, r2 = (float(c) for c in reference)
+        ku: list[float] = []
+        kv: list[float] = []
+        metric = end = (0.0, 0.0, 0.0)
+        for i, row in enumerate(_A):
+            pu = x0 + h * sum(a * ku[j] for j, a in enumerate(row)) if i else x0
+            pv = x1 + h * sum(a * kv[j] for j, a in enumerate(row)) if i else x1
+            at = self._field_at(pu + b0, pv + b1)
+            if at is None or not (math.isfinite(at[0]) and math.isfinite(at[1])):
                 return None
-            uv, d, m = at
-            if float(d @ reference) < 0:
-                uv, d = -uv, -d
-            k[i] = uv
+            flip = -1.0 if at[2] * r0 + at[3] * r1 + at[4] * r2 < 0 else 1.0
+            ku.append(flip * at[0])
+            kv.append(flip * at[1])
             if i == 0:
-                metric = m
+                metric = (at[5], at[6], 0.0)
             if i == 6:
-                end_direction = d
-        new = x + h * (_B5 @ k)
-        error = float(np.abs(h * ((_B5 - _B4) @ k)) @ metric)
-        return new, error, end_direction, metric, _turn(k[0], k[6])
+                end = (flip * at[2], flip * at[3], flip * at[4])
+        new = np.array([pu, pv])  # the last stage's point: x + h sum(b5_j k_j) (its row is _B5)
+        eu = h * sum(e * k for e, k in zip(_E, ku))
+        ev = h * sum(e * k for e, k in zip(_E, kv))
+        error = abs(eu) * metric[0] + abs(ev) * metric[1]
+        turn = math.atan2(abs(ku[0] * kv[6] - kv[0] * ku[6]), ku[0] * ku[6] + kv[0] * kv[6])
+        return new, error, np.array(end), np.array(metric[:2]), turn
+
+    def _field_at(self, u: float, v: float) -> tuple[float, ...] | None:
+        """The field's data at (u, v) (:meth:`PointField.at`, wrapped into the box), the last
+        point's kept; sets ``curvature``."""
+        if self._last is not None and self._last[0] == u and self._last[1] == v:
+            at = self._last[2]
+        else:
+            wu, wv = self.host.wrapped_point(u, v)
+            at = self.field.at(wu, wv, self.family)
+            self._last = (u, v, at)
+        if at is not None:
+            self.curvature = at[8]
+        return at
 
     def _to_break(
         self, x: FloatArray, h: float, reference: FloatArray, bias: FloatArray | None, k: int, value: float

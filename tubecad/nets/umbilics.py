@@ -128,7 +128,7 @@ def find_umbilics(host: HostSurface, grid: int = GRID) -> Umbilics:
     cells = np.argwhere((winding != 0) & ~bad)
     found: list[Umbilic] = []
     size = min(u1 - u0, v1 - v0)
-    points = host.jet(uu[::8, ::8], vv[::8, ::8]).X
+    points = host.points(uu[::8, ::8], vv[::8, ::8])
     scale = float(np.ptp(points, axis=0).max())
     for i, j in cells:
         start = np.array([0.5 * (us[i] + us[i + 1]), 0.5 * (vs[j] + vs[j + 1])])
