@@ -40,6 +40,7 @@ from OCP.TopExp import TopExp
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
+from tubecad.core.errors import TubecadError
 from tubecad.core.tolerance import EDGE_TOLERANCE
 from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfShape, as_edge, as_face, copy_of, downcast
 
@@ -47,6 +48,8 @@ from tubecad.occ_compat import IndexedDataMapOfShapeListOfShape, IndexedMapOfSha
 ACCURACY = 1e-9
 #: the highest degree and the most spans of a rebuilt curve (BRepLib::BuildCurve3d's limits)
 MAX_DEGREE, MAX_SPANS = 14, 0  # 0: as many as the accuracy needs
+#: knots of a ruled face and of its new edge curve closer than this share of the span are one
+KNOT_MERGE = 1e-12
 
 
 def tighten_offset_edges(shape: TopoDS_Shape) -> int:
@@ -103,7 +106,7 @@ def _rebuild_curve(edge: TopoDS_Edge) -> None:
     # the old one removed (None: OCCT's null handle, which OCP takes and its stubs do not type)
     BRep_Builder().UpdateEdge(edge, None, TopLoc_Location(), EDGE_TOLERANCE)  # type: ignore[call-overload]
     if not BRepLib.BuildCurve3d_s(edge, ACCURACY, GeomAbs_C2, MAX_DEGREE, MAX_SPANS):
-        raise RuntimeError("OCCT could not rebuild an offset edge's 3-D curve")
+        raise TubecadError("OCCT could not rebuild an offset edge's 3-D curve")
 
 
 def _ruled_row(edge: TopoDS_Edge, face: TopoDS_Face) -> int | None:
@@ -139,11 +142,15 @@ def _replace_row(face: TopoDS_Face, row: int, edge: TopoDS_Edge) -> None:
     degree = max(surface.UDegree(), curve.Degree())
     surface.IncreaseDegree(degree, 1)
     curve.IncreaseDegree(degree)
-    for index in range(1, curve.NbKnots() + 1):
-        surface.InsertUKnot(curve.Knot(index), curve.Multiplicity(index), 0.0, False)
-    for index in range(1, surface.NbUKnots() + 1):
-        curve.InsertKnot(surface.UKnot(index), surface.UMultiplicity(index), 0.0, False)
+    # the interior knots of each into the other (the ends are the same parameters: a hair
+    # apart in round-off they would be out of the other's range); knots closer than
+    # KNOT_MERGE of the span taken as one
+    merge = KNOT_MERGE * (high - low)
+    for index in range(2, curve.NbKnots()):
+        surface.InsertUKnot(curve.Knot(index), curve.Multiplicity(index), merge, False)
+    for index in range(2, surface.NbUKnots()):
+        curve.InsertKnot(surface.UKnot(index), surface.UMultiplicity(index), merge, False)
     if curve.NbPoles() != surface.NbUPoles():
-        raise RuntimeError("a ruled lateral face and its new edge curve could not be made compatible")
+        raise TubecadError("a ruled side face of the wall and its new edge curve could not be made compatible")
     for index in range(1, curve.NbPoles() + 1):
         surface.SetPole(index, row, curve.Pole(index), curve.Weight(index))

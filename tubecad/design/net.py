@@ -4,7 +4,7 @@
 :class:`NetDesign` holds the face, the lines per family (a count, or a spacing measured along
 the other family's line through the seed), the seed, an optional wall (the split face
 thickened: OCCT's ``BRepOffset_MakeOffset``, by join, as build123d's ``Solid.thicken``) and
-flat-bar webs on chosen lines (:mod:`tubecad.stiffeners.net_webs`). It builds through the
+flat-bar, T or L stiffeners on chosen lines (:mod:`tubecad.stiffeners.net_webs`). It builds through the
 same :class:`~tubecad.design.model.Design` protocol as tubes and junctions: ``build`` (the
 named assembly: ``net`` or ``wall``, ``stiffener_k1_03``..., the lines as edges ``k1_03``...,
 the umbilics as vertices ``umbilic_0``...), ``shell_model`` (gmsh's shells on the patches,
@@ -55,7 +55,7 @@ SEED_REACH = 1e-3
 
 @dataclass(frozen=True)
 class NetStiffenerChoice:
-    """Flat-bar webs of ``profile`` on the net's lines ``k1`` and ``k2`` (indices, or
+    """Stiffeners (flat bar, T or L) of ``profile`` on the net's lines ``k1`` and ``k2`` (indices, or
     ``"all"``), standing ``side`` of the face (or of the wall)."""
 
     profile: Profile
@@ -91,7 +91,7 @@ class NetDesign:
         seed: a point (x, y, z) of the face: each family's lines are spread along the other
             family's line through it (None: the centre of its parameter box).
         wall: the face thickened into a wall (None: the split face itself).
-        webs: flat-bar webs on chosen lines.
+        webs: stiffeners on chosen lines.
         length_unit: the unit of the face's coordinates.
     """
 

@@ -79,6 +79,13 @@ POLE_REACH = 1e-4
 #: (along the line) is put on it. Far above the round-off at which the edge's knots (the arc
 #: lengths, up to 200 sizes) would merge (8 eps x 200 = 3.6e-13), far below the edges' tolerance.
 SNAP = 1e-11
+#: the shortest piece a plain step's node leaves before the next node (a step landing short of
+#: a break line, of the seed's plane, of the boundary), as a share of the face's size: a closer
+#: node takes its place, the piece before reaching it. On a piece of length h the edge's
+#: tangent holds round-off of its end data over h (positions to 1e-13 of a 4 m panel: 6e-9 rad
+#: on a 1.7e-4 mm piece before the hull sample's knot line), so none is left shorter than this
+#: (0.4 um on that panel), a share of a step the tolerance allows, its piece's turn unchanged.
+SHORTEST = 1e-7
 
 
 @dataclass(frozen=True)
@@ -301,10 +308,10 @@ class _Tracer:
 
         def node(at: FloatArray, length: float, off: FloatArray) -> None:
             """A node at the arc length ``length``: in the last one's place where that one is
-            less than SNAP of the face's size behind and a plain step's end (not the seed, not
+            less than SHORTEST of the face's size behind and a plain step's end (not the seed, not
             on a break line); else after it (a piece that short from the seed or a break node
             stays: the seed is put on a break line that near, :func:`_snapped`)."""
-            if length - sigmas[-1] < SNAP * self.size and len(xs) > 1 and not np.any(across[-1]):
+            if length - sigmas[-1] < SHORTEST * self.size and len(xs) > 1 and not np.any(across[-1]):
                 xs[-1], sigmas[-1], across[-1] = at.copy(), length, off
             else:
                 xs.append(at.copy())

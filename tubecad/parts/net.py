@@ -50,7 +50,7 @@ class CurvatureNet(bd.BasePartObject):
         seed: a point (x, y, z) of the face: each family's lines are spread along the other
             family's line through it.
         stiffened: webs on the net's lines: ``{"k1": [1, 3], "k2": "all"}``.
-        profile: the webs' flat-bar profile (``Profile("flat", height, thickness)``).
+        profile: the stiffeners' profile (``Profile("flat", height, thickness)``, a T or an L).
         stiffener_side: ``outside`` (along the face's normal) or ``inside``.
         rotation: build123d's part rotation.
         align: build123d's part alignment.

@@ -42,7 +42,7 @@ def net_part_design(
         k2_spacing: the k2 lines' spacing.
         seed: a point (x, y, z) of the face the guide lines pass through.
         stiffened: ``{"k1": [indices] or "all", "k2": ...}``: the lines that carry webs.
-        profile: the webs' flat-bar profile.
+        profile: the stiffeners' profile (flat bar, T or L).
         stiffener_side: ``outside`` or ``inside``.
 
     Returns:

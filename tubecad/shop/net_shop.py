@@ -1,10 +1,13 @@
-"""The shop package of a host face's net (issue 44): its webs developed flat, split where a
-plate is too small, nested and drawn 1:1, and the net's lines as marking data.
+"""The shop package of a host face's net (issue 44): its webs and a T's or L's flanges
+developed flat, split where a plate is too small, nested and drawn 1:1, and the net's lines
+as marking data.
 
 Each web develops without strain (it stands along the face's normal on a line of curvature:
 :mod:`tubecad.stiffeners.net_webs`); a web that no plate holds is split into the fewest equal
 lengths of its base line that every plate holds (:func:`tubecad.shop.webs.cuttable`), the
-butt joints' root gap ``joint_gap`` taken from each side. The pieces are nested
+butt joints' root gap ``joint_gap`` taken from each side; a flange lies in the tangent planes
+of the offset surface along its line (developable: :mod:`tubecad.stiffeners.net_webs`) and is
+split with its web (:func:`flange_pattern`). The pieces are nested
 (:func:`tubecad.shop.nesting.nest`) and drawn (DXF for cutting, SVG, a preview picture:
 :mod:`tubecad.shop.drawings`). The marking data are the lines' 3-D polylines (CSV, a row per
 point, named ``k1_03``...) and their lengths, for marking the face before the webs are set.
@@ -26,8 +29,10 @@ from tubecad.shop.webs import WebPiece, cuttable, piece_names
 if TYPE_CHECKING:
     from tubecad.nets import CurvatureNet
     from tubecad.shop.fabrication import Fabrication
+    from tubecad.shop.flanges import FlangePattern
     from tubecad.shop.nesting import Plate
     from tubecad.stiffeners.net_webs import NetWeb
+    from tubecad.stiffeners.profiles import Profile
 
 #: the most pieces a web is split into
 MAX_PIECES = 200
@@ -130,13 +135,15 @@ def net_shop(net: CurvatureNet, webs: list[NetWeb], fab: Fabrication) -> NetShop
 
 
 def web_pieces(net: CurvatureNet, web: NetWeb, fab: Fabrication) -> list[WebPiece]:
-    """``web`` as the fewest equal lengths of its line that all fit a plate (module docstring)."""
-    from tubecad.stiffeners.net_webs import web_pattern
+    """``web`` as the fewest equal lengths of its line that all fit a plate, with its flange's
+    pieces (a T or L profile: the same spans, named ``<piece>_flange``) fitting too (module
+    docstring)."""
+    from tubecad.stiffeners.net_webs import web_height, web_pattern
 
     line, edge = net.lines[web.line], net.edges[web.line]
     total = edge.curve.LastParameter() - edge.curve.FirstParameter()
     half_gap = fab.joint_gap / 2
-    height, side, base = web.profile.height, web.side, web.base
+    height, side, base = web_height(web.profile), web.side, web.base
     for n in range(1, MAX_PIECES + 1):
         cuts = np.linspace(0.0, total, n + 1)
         spans = [
@@ -147,16 +154,90 @@ def web_pieces(net: CurvatureNet, web: NetWeb, fab: Fabrication) -> list[WebPiec
             raise ParameterError(f"joint_gap {fab.joint_gap:g} leaves no piece of {web.name}'s web", key="joint_gap")
         names = piece_names(web.name, n)
         patterns = [web_pattern(net.host, nm, line, edge, height, side, base, span) for nm, span in zip(names, spans)]
-        if all(cuttable(p.outline, fab)[0] for p in patterns):
-            return [
+        flanges = (
+            []
+            if web.profile.kind == "flat"
+            else [flange_pattern(net, nm, web.line, web.profile, side, base, span) for nm, span in zip(names, spans)]
+        )
+        if all(cuttable(p.outline, fab)[0] for p in patterns + flanges):
+            pieces = [
                 WebPiece(nm, web.name, "stringer", span, pattern, (i > 0, i < n - 1))
                 for i, (nm, span, pattern) in enumerate(zip(names, spans, patterns))
+            ]
+            return pieces + [
+                WebPiece(flange.name, web.name, "flange", piece.span, flange, piece.joints)
+                for piece, flange in zip(pieces, flanges)
             ]
     raise ParameterError(
         f"plate_size {list(fab.plate_size)} is too small for {web.name}'s web: no split into up to {MAX_PIECES} "
         "pieces is cuttable",
         key="plate_size",
     )
+
+
+def flange_pattern(
+    net: CurvatureNet,
+    name: str,
+    line_name: str,
+    profile: Profile,
+    side: str,
+    base: float = 0.0,
+    span: tuple[float, float] | None = None,
+) -> FlangePattern:
+    """The development of a T or L ``profile``'s flange on ``side`` of the line (the flange of
+    :mod:`tubecad.stiffeners.net_webs`' stiffener), its web's base
+    ``base`` along the normal from the face, over ``span`` (arc lengths from the line's start;
+    None: all of it): the strip X + d n + s b at the flange's mid-thickness level
+    d = base +- (h - tf / 2), s across its width (module docstring), with speed 1 - d k and
+    turn g = b . X'' per unit arc length of the line.
+
+    Args:
+        net: the face's net.
+        name: the web's pattern name (the flange's is ``<name>_flange``).
+        line_name: the line's name (``k1_03``).
+        profile: a T or L profile.
+        side: ``outside`` or ``inside``.
+        base: the web's base's offset along the normal.
+        span: (start, end) arc lengths from the line's start.
+
+    Returns:
+        The flange's flat pattern.
+
+    Raises:
+        ParameterError: (``profile``) not T or L; (``flange_width``) an edge folding over.
+    """
+    from tubecad.shop.flanges import developed_band, flange_level, flange_widths
+    from tubecad.stiffeners.net_webs import geodesic_curvature, line_curvature, line_kinks
+
+    host, line, edge = net.host, net.lines[line_name], net.edges[line_name]
+    level = base + flange_level(profile, side)
+    s0 = edge.curve.FirstParameter()
+    a, b = (0.0, edge.curve.LastParameter() - s0) if span is None else (float(span[0]), float(span[1]))
+
+    def speed(s: np.ndarray) -> np.ndarray:
+        return 1.0 - level * line_curvature(host, edge, line.family, s0 + a + np.asarray(s, dtype=float))
+
+    def turn(s: np.ndarray) -> np.ndarray:
+        return geodesic_curvature(host, edge, s0 + a + np.asarray(s, dtype=float))
+
+    return developed_band(
+        turn,
+        speed,
+        (0.0, b - a),
+        flange_widths(profile),
+        f"{name}_flange",
+        breaks=_with_knots(line_kinks(line, a, b), edge.curve, s0 + a),
+        level=level,
+    )
+
+
+def _with_knots(breaks: np.ndarray, curve: Any, start: float) -> np.ndarray:
+    """``breaks`` (from 0, on a span starting at arc length ``start`` of the curve) with the
+    curve's knots inside them: g = b . X'' is read from the edge's quintic pieces, whose second
+    derivative is polynomial between knots and may jump at one (a break node's)."""
+    knots = np.array([curve.Knot(i) for i in range(1, curve.NbKnots() + 1)]) - start
+    inside = knots[(knots > breaks[0]) & (knots < breaks[-1])]
+    return np.unique(np.concatenate([breaks, inside]))
 
 
 def marking_csv(net: CurvatureNet) -> str:

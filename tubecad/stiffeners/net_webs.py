@@ -1,5 +1,6 @@
-"""Webs standing on a host face's lines of curvature (issue 44): the solid of a flat-bar
-stiffener whose web follows the face's normal along a net line, and its flat development.
+"""Stiffeners standing on a host face's lines of curvature (issue 44): the solid of a flat-bar,
+T or L stiffener whose web follows the face's normal along a net line, its web's flat
+development and its flange's.
 
 Along a line of curvature X(sigma) (arc length sigma) the normals n(sigma) rule a developable
 strip (Rodrigues: dn/dsigma = -k dX/dsigma, k the line's principal curvature; docs/MATH.md
@@ -8,12 +9,27 @@ without strain. Its development (:func:`tubecad.stiffeners.flat.developed_strip`
 speed 1 and turn k(sigma) = the normal curvature along the line (the line's own principal
 curvature), evaluated exactly on the host surface (:mod:`tubecad.nets.principal`).
 
-The solid: the strip's unit normal b = T x n is constant along each ruling, so its sides
-X + w n +- (thickness / 2) b are ruled too; each of the four long faces is the ruled face
-between two of the curves X + w n + s b (w the base or the top, s +- half the thickness),
-each interpolated through SAMPLES_PER_PIECE points per piece of the line (scipy's C2 cubic),
-and the two ends are planar. Its volume is the development's area times the thickness
-(Steiner: the strip is developable, K = 0, and the sides are symmetric about it).
+The frame T (the tangent), n (the normal), b = T x n moves as dT/dsigma = k n + g b,
+dn/dsigma = -k T, db/dsigma = -g T, with g = b . X'' the line's geodesic curvature towards b
+(no b-component in dn: the geodesic torsion of a line of curvature is 0). So every point
+X + w n + s b of the profile's cross-section moves along T at the rate 1 - w k - s g: the
+stiffener is the profile's outline (:meth:`Profile.outline`, s across along b, w up along n)
+carried along the line, each side of it a ruled surface, and its volume is
+
+    V = Int (A - k(sigma) A_w - g(sigma) A_s) dsigma,   A_w = Int w dA,  A_s = Int s dA
+
+(Pappus' theorem where the line is a circle round an axis). A T or L flange lies in the
+tangent-plane strip X + d n + s b at its mid-thickness level d, developable (its rulings b
+move along T): its edge s runs at the rate (1 - d k) - s g, so it develops
+(:func:`tubecad.shop.net_shop.flange_pattern`) with speed 1 - d k and turn g. g is read from
+the line's edge, b . X'' of its 3-D curve (quintic Hermite pieces whose nodes hold the
+line's exact direction and its differenced derivative, :mod:`tubecad.nets.edges`).
+
+The solid: each side of the outline is the ruled face between the curves of its two corners,
+X + w n + s b, each interpolated through SAMPLES_PER_PIECE points per piece of the line
+(scipy's C2 cubic); the two ends are planar (the outline at the line's ends). A flat web's
+volume is the development's area times the thickness (Steiner: the strip is developable,
+K = 0, and the sides are symmetric about it).
 """
 
 from __future__ import annotations
@@ -44,9 +60,10 @@ SAMPLES_PER_PIECE = 2
 
 @dataclass(frozen=True)
 class NetWeb:
-    """A web on the net's line ``line`` (its name): its ``solid`` (a TopoDS_Solid), its
+    """A stiffener on the net's line ``line`` (its name): its ``solid`` (a TopoDS_Solid), its
     ``profile`` and ``side``, where its base stands (``base``: along the normal from the host
-    face) and its developed flat ``pattern``."""
+    face) and its web's developed flat ``pattern`` (a T or L profile's flange is developed by
+    the shop: :func:`tubecad.shop.net_shop.flange_pattern`)."""
 
     line: str
     solid: TopoDS_Solid
@@ -92,34 +109,62 @@ def net_web(
     side: StiffenerSide = "outside",
     base: float = 0.0,
 ) -> NetWeb:
-    """The flat-bar web of ``profile`` on the net line ``name`` (module docstring).
+    """The stiffener of ``profile`` (flat bar, T or L) on the net line ``name`` (module docstring).
 
     Args:
         host: the face's surface.
         name: the line's name (``k1_03``).
         line: the traced line.
         edge: its edge on the face.
-        profile: a flat profile (its height and thickness).
+        profile: its cross-section.
         side: ``outside`` (along the face's normal) or ``inside``.
         base: where the web's base stands, along the normal from the face (a wall's surface).
 
     Returns:
-        The web's solid and development.
+        The stiffener's solid and developments.
 
     Raises:
-        ParameterError: (``profile``) a T or L profile (a net's webs are flat bars);
-            (``side``) not outside or inside.
+        ParameterError: (``side``) not outside or inside.
     """
-    if profile.kind != "flat":
-        raise ParameterError(
-            f"profile must be flat on a host face's net (its webs are flat bars), got {profile.kind!r}", key="profile"
-        )
     if side not in ("outside", "inside"):
         raise ParameterError(f"side must be one of outside, inside, got {side!r:.40}", key="side")
     sign = 1.0 if side == "outside" else -1.0
-    solid = _web_solid(host, line, edge, base, base + sign * profile.height, profile.thickness)
-    pattern = web_pattern(host, name, line, edge, profile.height, side, base)
+    outline = [(s, base + sign * w) for s, w in profile.outline()]
+    solid = _stiffener_solid(host, line, edge, outline)
+    pattern = web_pattern(host, name, line, edge, web_height(profile), side, base)
     return NetWeb(name, solid, profile, side, base, pattern)
+
+
+def web_height(profile: Profile) -> float:
+    """The web's height developed: the whole height of a flat bar, up to the flange of a T or L."""
+    return profile.height if profile.kind == "flat" else profile.height - profile.flange_thickness
+
+
+def geodesic_curvature(host: HostSurface, edge: LineEdge, sigma: FloatArray) -> FloatArray:
+    """g = b . X'' at arc lengths ``sigma`` (any shape) along the line's edge: its curvature
+    towards b = T x n in the tangent plane (n the face's outward normal), from its 3-D curve's
+    second derivative (the edge's parameter is the arc length)."""
+    from OCP.gp import gp_Pnt, gp_Vec
+
+    at = np.asarray(sigma, dtype=float)
+    flat = at.ravel()
+    uv = np.array([[p.X(), p.Y()] for p in (edge.pcurve.Value(float(x)) for x in flat)]).reshape(-1, 2)
+    normals = unit_normals(host, uv)
+    first, second = np.empty((len(flat), 3)), np.empty((len(flat), 3))
+    p, d1, d2 = gp_Pnt(), gp_Vec(), gp_Vec()
+    for i, x in enumerate(flat):
+        edge.curve.D2(float(x), p, d1, d2)
+        first[i], second[i] = d1.Coord(), d2.Coord()
+    across = np.cross(first / np.linalg.norm(first, axis=1, keepdims=True), normals)
+    return np.einsum("ij,ij->i", across, second).reshape(at.shape)
+
+
+def line_kinks(line: CurvatureLine, a: float, b: float) -> FloatArray:
+    """The span (0, b - a)'s ends and the nodes inside it where the line crosses a break of
+    the surface (its curvatures kink there): the Chebyshev panels' ends."""
+    ending, starting = line.offsets()
+    kinks = line.sigma[np.any(ending != 0, axis=1) | np.any(starting != 0, axis=1)] - line.sigma[0] - a
+    return np.unique(np.concatenate([[0.0, b - a], kinks[(kinks > 0) & (kinks < b - a)]]))
 
 
 def web_pattern(
@@ -160,17 +205,14 @@ def web_pattern(
     def speed(s: FloatArray) -> FloatArray:
         return 1.0 - base * turn(s)
 
-    ending, starting = line.offsets()
-    kinks = line.sigma[np.any(ending != 0, axis=1) | np.any(starting != 0, axis=1)] - line.sigma[0] - a
-    breaks = np.unique(np.concatenate([[0.0, b - a], kinks[(kinks > 0) & (kinks < b - a)]]))
-    return developed_strip(turn, speed, (0.0, b - a), height, side, name, breaks=breaks)
+    return developed_strip(turn, speed, (0.0, b - a), height, side, name, breaks=line_kinks(line, a, b))
 
 
-def _web_solid(host: HostSurface, line: CurvatureLine, edge: LineEdge, low: float, high: float, thickness: float):
-    """The web between ``low`` and ``high`` along the normal, ``thickness`` thick about the
-    strip: the strip X + w n is ruled and developable, its unit normal b = T x n constant along
-    each ruling, so the solid's sides are the ruled faces X + w n +- (thickness / 2) b, its base
-    and top the ruled faces across them, its ends planar (module docstring); sewn, checked valid."""
+def _stiffener_solid(host: HostSurface, line: CurvatureLine, edge: LineEdge, outline: list[tuple[float, float]]):
+    """The profile's ``outline`` ((s, w) corners: s across along b = T x n, w along the normal
+    from the face; a flat bar's four, a T's eight) carried along the line: each side the ruled
+    face between its two corners' curves X + w n + s b (module docstring: every ruling moves
+    along T), the ends planar (a closed line's stiffener is a ring: none); sewn, checked valid."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace as MakeFace
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakePolygon, BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing
     from OCP.gp import gp_Pnt
@@ -186,24 +228,23 @@ def _web_solid(host: HostSurface, line: CurvatureLine, edge: LineEdge, low: floa
     normals = unit_normals(host, uv)
     across = np.cross(tangents, normals)
     across /= np.linalg.norm(across, axis=1, keepdims=True)
-    corners = [(w, side * thickness / 2) for w in (low, high) for side in (-1.0, 1.0)]
     closed = line.closed
-    curve = {c: _fitted_edge(points + c[0] * normals + c[1] * across, t, closed) for c in corners}
-    (a, b), (c, d) = corners[:2], corners[2:]
-    sewing = BRepBuilderAPI_Sewing(1e-6 * max(abs(high - low), 1.0))
-    for one, two in ((a, c), (b, d), (a, b), (c, d)):  # the two sides, the base, the top
-        sewing.Add(BRepFill.Face_s(curve[one], curve[two]))
-    for end in () if closed else (0, -1):  # a closed line's web is a band: no ends
+    curves = [_fitted_edge(points + w * normals + s * across, t, closed) for s, w in outline]
+    size = max(max(abs(w) for _, w in outline), max(abs(s) for s, _ in outline), 1.0)
+    sewing = BRepBuilderAPI_Sewing(1e-6 * size)
+    for i in range(len(outline)):  # each side, the base (last corner to first) included
+        sewing.Add(BRepFill.Face_s(curves[i], curves[(i + 1) % len(outline)]))
+    for end in () if closed else (0, -1):
         polygon = BRepBuilderAPI_MakePolygon()
-        for w, off in (a, b, d, c):
-            polygon.Add(gp_Pnt(*(float(x) for x in points[end] + w * normals[end] + off * across[end])))
+        for s, w in outline:
+            polygon.Add(gp_Pnt(*(float(x) for x in points[end] + w * normals[end] + s * across[end])))
         polygon.Close()
         sewing.Add(MakeFace(polygon.Wire(), True).Face())
     sewing.Perform()
     maker = BRepBuilderAPI_MakeSolid(as_shell(sewing.SewedShape()))
     solid = _outward(maker.Solid())
     if not BRepCheck_Analyzer(solid).IsValid():
-        raise TubecadError("a web's solid fails OCCT's validity check", key="height")
+        raise TubecadError("a stiffener's solid fails OCCT's validity check", key="height")
     return solid
 
 

@@ -144,7 +144,8 @@ def test_the_equal_tees_templates_are_the_closed_forms(tmp_path):
     hole = hole_template(MAIN, saddle)
     u = saddle.branch_u
     chi = np.arctan2(R * np.abs(np.cos(u)), R * np.sin(u))
-    assert np.abs(hole.points - np.column_stack([R * chi, R * np.cos(u) + 100.0])).max() < 1e-11
+    # measured 1.02e-11 = 2e-13 R (round-off of the arc lengths R chi; below 1e-11 on earlier installs)
+    assert np.abs(hole.points - np.column_stack([R * chi, R * np.cos(u) + 100.0])).max() < 2e-11
     doc = ezdxf.readfile(hole.save_dxf(tmp_path / "hole.dxf"))
     (outline,) = doc.modelspace().query('LWPOLYLINE[layer=="saddle"]')
     area = Polygon([(x, y) for x, y, *_ in outline.get_points()]).area
