@@ -94,6 +94,15 @@ def test_the_dome_shop_marks_parallels_and_meridians(tmp_path):
         else:  # a meridian: one polar angle
             angle = np.unwrap(np.arctan2(at["y"], at["x"]))
             assert np.ptp(angle) < 1e-8
+    # a pin-jig table per panel (7 rings of 8), its pins on the dome's outer surface (the wall
+    # and the webs inside: the face itself), each listed in the index and printed
+    panels = index["panels"]
+    assert len(panels) == 7 * 8 and f"panels: {len(panels)} pin-jig tables" in result.output
+    table = tmp_path / "shop" / "panels" / f"{panels[0]['name']}_pin_jig.csv"
+    pins = np.genfromtxt(table, delimiter=",", names=True, skip_header=2)  # after the units and the lines
+    assert len(pins) == panels[0]["pins"] and pins["height"].min() >= 0.0
+    a, b = 500.0, 250.0
+    assert np.abs((pins["px"] ** 2 + pins["py"] ** 2) / a**2 + pins["pz"] ** 2 / b**2 - 1).max() < 1e-12
 
 
 @pytest.mark.slow

@@ -511,6 +511,12 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
             f"webs: {webs['pieces']} pieces on {webs['plates']} plates, utilisation {100 * webs['utilisation']:.1f} %; "
             f"{len(index['lines'])} lines of curvature for marking"
         )
+        jigs = index["panels"]
+        if jigs:
+            click.echo(
+                f"panels: {len(jigs)} pin-jig tables, {sum(j['pins'] for j in jigs)} pins, "
+                f"heights {min(j['heights'][0] for j in jigs):.4g} to {max(j['heights'][1] for j in jigs):.4g}"
+            )
     elif "webs" in index:
         webs, flanges = index["webs"]["nesting"], index["flanges"]["nesting"]
         click.echo(
@@ -541,7 +547,7 @@ def shop(spec: Path, output: Path, quiet: bool) -> None:
         if "files" not in index:
             click.echo(str(output / "index.json"))
             return
-    if index.get("panels"):
+    if index.get("panels") and "lines" not in index:  # a tube's panels, developed
         worst = max(index["panels"], key=lambda p: p["max_strain"])
         flagged = sum(p["exceeds_max_strain"] for p in index["panels"])
         click.echo(

@@ -153,15 +153,16 @@ class NetDesign:
         return NetShellModel(mesh)
 
     def shop(self, fab: Fabrication, progress: Callable[[str], None] | None = None) -> ShopPackage:
-        """The webs developed flat and nested on plates, the net's marking lines
-        (:func:`tubecad.shop.net_shop.net_shop`)."""
+        """The webs developed flat and nested on plates, the net's marking lines and a pin
+        jig per panel (:func:`tubecad.shop.net_shop.net_shop`)."""
         from tubecad.shop.net_shop import net_shop
 
         if progress is not None:
             progress("tracing the net and its webs")
         webs = self.built_webs()
+        levels = (0.0, 0.0) if self.wall is None else self.wall.offsets()
         with stage("fabrication"):
-            return net_shop(self.net, webs, fab)
+            return net_shop(self.net, webs, fab, levels)
 
     @classmethod
     def analysis_ends(cls, given: str | None, default: str) -> str:  # noqa: ARG003 - the protocol's signature

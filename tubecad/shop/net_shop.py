@@ -1,6 +1,7 @@
 """The shop package of a host face's net (issue 44): its webs and a T's or L's flanges
 developed flat, split where a plate is too small, nested and drawn 1:1, and the net's lines
-as marking data.
+as marking data, and a pin-jig table per panel (a cell of the net:
+:mod:`tubecad.shop.net_pin_jigs`).
 
 Each web develops without strain (it stands along the face's normal on a line of curvature:
 :mod:`tubecad.stiffeners.net_webs`); a web that no plate holds is split into the fewest equal
@@ -16,7 +17,7 @@ point, named ``k1_03``...) and their lengths, for marking the face before the we
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -24,6 +25,7 @@ import numpy as np
 
 from tubecad.core.atomic import write_text
 from tubecad.core.errors import ParameterError
+from tubecad.shop.net_pin_jigs import CellPinJig, net_pin_jigs
 from tubecad.shop.webs import WebPiece, cuttable, piece_names
 
 if TYPE_CHECKING:
@@ -50,12 +52,16 @@ class NetShop:
     pieces: list[WebPiece]
     plates: list[Plate]
     fab: Fabrication
+    pin_jigs: list[CellPinJig] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
 
     def write(self, folder: Path, name: str) -> dict[str, Any]:
         """Write webs/ (plates as DXF, SVG, PNG; the developments side by side as DXF),
         marking/net_lines.csv and index.json into ``folder``; returns the index."""
         from tubecad.shop.drawings import write_plate_dxf, write_plate_picture, write_plate_svg
         from tubecad.shop.nesting import check_nesting
+        from tubecad.shop.net_pin_jigs import write_cell_pin_jig_csv
+        from tubecad.shop.pin_jig import write_pin_jig_picture
         from tubecad.stiffeners.flat import write_dxf
 
         files: list[dict[str, str]] = []
@@ -83,6 +89,14 @@ class NetShop:
             )
         developed = write_dxf([w.pattern for w in self.webs], folder / "webs" / "webs_developed.dxf", length_unit=unit)
         record(developed, "webs", "each web developed whole, side by side (DXF, a layer per web)")
+        for jig in self.pin_jigs:
+            (folder / "panels").mkdir(exist_ok=True)
+            bounded = f"between {', '.join(jig.lines)}" if jig.lines else "on the boundary"
+            what = f"{jig.name} ({bounded}): {len(jig.heights)} pins every {jig.spacing:g}"
+            table = write_cell_pin_jig_csv(jig, folder / "panels" / f"{jig.name}_pin_jig.csv", unit)
+            record(table, "panels", what + " (CSV)")
+            for picture in write_pin_jig_picture(jig, folder / "panels", ("png",)):
+                record(picture, "panels", what + " (picture)")
         marking = folder / "marking" / "net_lines.csv"
         write_text(marking, marking_csv(self.net))
         record(
@@ -104,22 +118,37 @@ class NetShop:
                     for w in self.webs
                 ],
             },
+            "panels": [
+                {
+                    "name": jig.name,
+                    "lines": list(jig.lines),
+                    "pins": len(jig.heights),
+                    "spacing": jig.spacing,
+                    "heights": [float(jig.heights.min()), float(jig.heights.max())],
+                    "up": jig.up.tolist(),
+                }
+                for jig in self.pin_jigs
+            ],
             "lines": {n: float(line.sigma[-1] - line.sigma[0]) for n, line in self.net.lines.items()},
             "umbilics": self.net.report()["umbilics"],
-            "warnings": [],
+            "warnings": list(self.warnings),
             "files": files,
         }
         write_text(folder / "index.json", json.dumps(index, indent=1) + "\n")
         return index
 
 
-def net_shop(net: CurvatureNet, webs: list[NetWeb], fab: Fabrication) -> NetShop:
-    """The package of ``webs`` on ``net`` with the settings ``fab`` (module docstring).
+def net_shop(
+    net: CurvatureNet, webs: list[NetWeb], fab: Fabrication, levels: tuple[float, float] = (0.0, 0.0)
+) -> NetShop:
+    """The package of ``webs`` on ``net`` with the settings ``fab`` (module docstring), and a
+    pin jig per panel (:func:`tubecad.shop.net_pin_jigs.net_pin_jigs`).
 
     Args:
         net: the face's net.
         webs: its webs (:func:`tubecad.stiffeners.net_webs.net_web`).
         fab: the fabrication settings.
+        levels: the wall's inner and outer offsets from the face (its plating's surfaces).
 
     Returns:
         The package, ready to write.
@@ -131,7 +160,10 @@ def net_shop(net: CurvatureNet, webs: list[NetWeb], fab: Fabrication) -> NetShop
     from tubecad.shop.nesting import nest
 
     pieces = [piece for web in webs for piece in web_pieces(net, web, fab)]
-    return NetShop(net, webs, pieces, nest(pieces, fab) if pieces else [], fab)
+    warnings: list[str] = []
+    side = webs[0].side if webs else "outside"
+    jigs = net_pin_jigs(net, levels, side, fab.pin_spacing, fab.pin_clearance, warnings)
+    return NetShop(net, webs, pieces, nest(pieces, fab) if pieces else [], fab, jigs, warnings)
 
 
 def web_pieces(net: CurvatureNet, web: NetWeb, fab: Fabrication) -> list[WebPiece]:

@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -42,6 +42,22 @@ from tubecad.shop.panel_development import WallSurface, _panel_name, _s_breaks, 
 MAX_SAMPLES = 257
 #: Newton iterations at most
 MAX_ITERATIONS = 40
+
+
+class JigTable(Protocol):
+    """What a pin-jig picture shows: a tube panel's :class:`PinJig` or a net panel's
+    (:class:`tubecad.shop.net_pin_jigs.CellPinJig`)."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def spacing(self) -> float: ...
+    @property
+    def xy(self) -> np.ndarray: ...
+    @property
+    def heights(self) -> np.ndarray: ...
+    @property
+    def outline(self) -> np.ndarray: ...
 
 
 @dataclass(frozen=True)
@@ -281,7 +297,7 @@ def write_pin_jig_csv(jig: PinJig, path: str | Path, length_unit: str = DEFAULT_
 MAX_LABELLED_PINS = 150
 
 
-def write_pin_jig_picture(jig: PinJig, folder: str | Path, formats: tuple[str, ...] = ("png", "svg")) -> list[Path]:
+def write_pin_jig_picture(jig: JigTable, folder: str | Path, formats: tuple[str, ...] = ("png", "svg")) -> list[Path]:
     """``NAME_pin_jig.png`` and ``.svg`` (``formats``): the pins coloured by height, each height written at its
     pin, the panel's projected outline, equal aspect."""
     from matplotlib.figure import Figure  # no pyplot: the user's backend is left alone
