@@ -137,6 +137,7 @@ def main() -> dict:
         "angle_rad": _stats(peer[~near & ~poles]),
     }
     out["nets"] = {name: _net(name, *counts, t_peer) for name, counts in NETS.items()}
+    out["patches"] = {name: _patch(name, *cell) for name, cell in PATCHES.items()}
     return out
 
 
@@ -195,6 +196,30 @@ def _net(name: str, k1: int, k2: int, t_peer: float) -> dict:
         error = max(float(np.linalg.norm(exact - f, axis=1).min()) for f in found) / 300.0
         out["umbilics"] = {"count": len(found), "relative_position_error": error}
     return out
+
+
+#: one interior cell of each sample's net refitted in curvature-line coordinates: the net's
+#: lines per family and the cell's two lines of each family
+PATCHES = {
+    "dome": ((4, 6), ("k1_01", "k1_02"), ("k2_01", "k2_02")),
+    "hull_panel": ((6, 5), ("k1_02", "k1_03"), ("k2_01", "k2_02")),
+}
+
+
+def _patch(name: str, counts: tuple[int, int], k1: tuple[str, str], k2: tuple[str, str]) -> dict:
+    """The cell refitted (:func:`tubecad.nets.patches.curvature_patch`, the grid chosen by its
+    default target, bicubic), its figures measured on a grid four times finer than the fit's:
+    the distance from the host (OCCT's projection), the isolines' angle to the principal
+    directions, the poles, the time (once: the grids are traced anew each call)."""
+    from tubecad.export.cad import read_faces
+    from tubecad.nets import curvature_net
+    from tubecad.nets.patches import curvature_patch
+    from tubecad.occ_compat import as_face
+
+    face = as_face(read_faces(ROOT / "samples" / f"{name}.step")[0][1])
+    net = curvature_net(face, *counts)
+    report = curvature_patch(net, k1, k2).report()
+    return {"net": list(counts), "cell": [*k1, *k2], **report}
 
 
 def _faces(shape) -> int:

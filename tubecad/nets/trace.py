@@ -398,8 +398,11 @@ class _Tracer:
         kv: list[float] = []
         metric = end = (0.0, 0.0, 0.0)
         for i, row in enumerate(_A):
-            pu = x0 + h * sum(a * ku[j] for j, a in enumerate(row)) if i else x0
-            pv = x1 + h * sum(a * kv[j] for j, a in enumerate(row)) if i else x1
+            su = sv = 0.0
+            for a, ka, kb in zip(row, ku, kv):
+                su += a * ka
+                sv += a * kb
+            pu, pv = x0 + h * su, x1 + h * sv
             at = self._field_at(pu + b0, pv + b1)
             if at is None or not (math.isfinite(at[0]) and math.isfinite(at[1])):
                 return None
@@ -411,8 +414,11 @@ class _Tracer:
             if i == 6:
                 end = (flip * at[2], flip * at[3], flip * at[4])
         new = np.array([pu, pv])  # the last stage's point: x + h sum(b5_j k_j) (its row is _B5)
-        eu = h * sum(e * k for e, k in zip(_E, ku))
-        ev = h * sum(e * k for e, k in zip(_E, kv))
+        eu = ev = 0.0
+        for e, ka, kb in zip(_E, ku, kv):
+            eu += e * ka
+            ev += e * kb
+        eu, ev = h * eu, h * ev
         error = abs(eu) * metric[0] + abs(ev) * metric[1]
         turn = math.atan2(abs(ku[0] * kv[6] - kv[0] * ku[6]), ku[0] * ku[6] + kv[0] * kv[6])
         return new, error, np.array(end), np.array(metric[:2]), turn
