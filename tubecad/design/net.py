@@ -26,7 +26,6 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 
-from tubecad.brep.offset_edges import tighten_offset_edges
 from tubecad.core.errors import ParameterError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.design.model import WallChoice
@@ -389,6 +388,8 @@ def thickened(patches: Any, wall: WallChoice) -> Any:
     from OCP.BRep import BRep_Tool
     from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepOffsetAPI import BRepOffsetAPI_MakeOffsetShape
+
+    from tubecad.brep.offset_edges import tighten_offset_edges
 
     d_in, d_out = wall.offsets()
     shell = bd.Shell(bd.Shape.cast(patches).faces())
