@@ -108,11 +108,17 @@ def _fitted(host: HostSurface, line: CurvatureLine) -> tuple[LineEdge, FloatArra
     smooth = [i + 1 for i in range(1, pieces) if not (np.any(ending[i]) or np.any(starting[i]))]
     _to_c2(curve, smooth, EDGE_TOLERANCE * 1e-3)
     _to_c2(pcurve, smooth, 1e-12)
-    _to_c1(curve, [i + 1 for i in range(1, pieces) if i + 1 not in smooth], EDGE_TOLERANCE * 1e-3)
+    _to_c1(curve, [i + 1 for i in range(1, pieces) if i + 1 not in smooth], C1_TOLERANCE)
     edge = BRepBuilderAPI_MakeEdge(curve).Edge()
     BRep_Builder().UpdateEdge(edge, pcurve, host.surface, TopLoc_Location(), EDGE_TOLERANCE)
     angles, gaps = _measured(host, line.family, sigma, curve_spline, pcurve_spline)
     return LineEdge(edge, curve, pcurve, float(angles.max()), float(gaps.max())), angles, gaps
+
+
+#: how far (model units) the 3-D curve may move where a break node's knot is brought down to
+#: C1: a tenth of the edges' tolerance (a tangent round-off of 1e-9 over a piece of 10 mm
+#: moves it 1e-8)
+C1_TOLERANCE = 0.1 * EDGE_TOLERANCE
 
 
 def _to_c2(curve: Geom_BSplineCurve | Geom2d_BSplineCurve, knots: list[int], tolerance: float) -> None:
@@ -125,10 +131,11 @@ def _to_c2(curve: Geom_BSplineCurve | Geom2d_BSplineCurve, knots: list[int], tol
 
 def _to_c1(curve: Geom_BSplineCurve, knots: list[int], tolerance: float) -> None:
     """At a node on a break line the 3-D pieces share the line's unit tangent (geometric
-    data, the same from both sides) but not the second derivative (it takes the field's
-    derivative on each side): their knot there brought down from multiplicity 5 to 4, a C1
-    curve (OCCT's ``RemoveKnot``, exact to ``tolerance``; OCCT's pre-boolean check reports a
-    C0 curve). A node where the tangents differ (none on a line of curvature) stays C0."""
+    data: the same from both sides, to the principal direction's round-off, 1.4e-9 rad where
+    the hull sample's curvatures come close) but not the second derivative (it takes the
+    field's derivative on each side): their knot there brought down from multiplicity 5 to 4,
+    a C1 curve (OCCT's ``RemoveKnot`` within ``tolerance``, C1_TOLERANCE; OCCT's pre-boolean
+    check reports a C0 curve). A node where the tangents differ more stays C0."""
     for index in knots:
         curve.RemoveKnot(index, 4, tolerance)
 

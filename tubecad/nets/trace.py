@@ -81,11 +81,14 @@ POLE_REACH = 1e-4
 SNAP = 1e-11
 #: the shortest piece a plain step's node leaves before the next node (a step landing short of
 #: a break line, of the seed's plane, of the boundary), as a share of the face's size: a closer
-#: node takes its place, the piece before reaching it. On a piece of length h the edge's
+#: node takes its place, the piece before reaching it; a plain step that short after a break
+#: node leaves no node (the next piece starts at the break). On a piece of length h the edge's
 #: tangent holds round-off of its end data over h (positions to 1e-13 of a 4 m panel: 6e-9 rad
-#: on a 1.7e-4 mm piece before the hull sample's knot line), so none is left shorter than this
-#: (0.4 um on that panel), a share of a step the tolerance allows, its piece's turn unchanged.
-SHORTEST = 1e-7
+#: on a 1.7e-4 mm piece before the hull sample's knot line; a 5.1e-4 mm piece after one left
+#: its neighbours' knot C0, OCCT's knot removal amplifying round-off by their lengths' ratio),
+#: so none is left shorter than this (4 um on that panel), a share of a step the tolerance
+#: allows, its piece's turn unchanged.
+SHORTEST = 1e-6
 
 
 @dataclass(frozen=True)
@@ -361,7 +364,9 @@ class _Tracer:
             worst = max(worst, error)
             bias = None
             x, sigma = new, sigma + h
-            node(x, sigma, np.zeros(2))
+            if not (np.any(across[-1]) and sigma - sigmas[-1] < SHORTEST * self.size):
+                node(x, sigma, np.zeros(2))  # (a step that short after a break node leaves none:
+                # its piece would be too short to join the next one C2 in round-off)
             bending /= h  # the line's curvature in space (normal and geodesic) or its pcurve's
             reference = direction
             if len(self.stops) and np.linalg.norm(self.stops - p_new, axis=1).min() < self.reach:
