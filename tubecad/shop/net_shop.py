@@ -216,12 +216,12 @@ def flange_pattern(
     base: float = 0.0,
     span: tuple[float, float] | None = None,
 ) -> FlangePattern:
-    """The development of a T or L ``profile``'s flange on ``side`` of the line (the flange of
-    :mod:`tubecad.stiffeners.net_webs`' stiffener), its web's base
-    ``base`` along the normal from the face, over ``span`` (arc lengths from the line's start;
-    None: all of it): the strip X + d n + s b at the flange's mid-thickness level
-    d = base +- (h - tf / 2), s across its width (module docstring), with speed 1 - d k and
-    turn g = b . X'' per unit arc length of the line.
+    """The development of the flange of a T or L ``profile``'s stiffener on ``side`` of the
+    line (:mod:`tubecad.stiffeners.net_webs`), its web's base ``base`` along the normal from
+    the face, over ``span`` (arc lengths from the line's start; None: all of it): the strip
+    X + d n + s b at the flange's mid-thickness level d = base +- (h - tf / 2), s across its
+    width, developable (its rulings b move along T), with speed 1 - d k and turn g = b . X''
+    per unit arc length of the line (:func:`tubecad.shop.flanges.developed_band`).
 
     Args:
         net: the face's net.
