@@ -13,6 +13,7 @@ nothing stops at the seam.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -153,16 +154,8 @@ class HostSurface:
         boxed = (cu | ((u >= u0) & (u <= u1))) & (cv | ((v >= v0) & (v <= v1)))
         if self.face is None or self._whole_box:
             return boxed
-        from OCP.gp import gp_Pnt2d
-        from OCP.TopAbs import TopAbs_IN, TopAbs_ON
-
-        classifier = self._classifier
         wu, wv = self.wrapped(u, v)
-        states = [
-            classifier.Perform(gp_Pnt2d(a, b)) in (TopAbs_IN, TopAbs_ON)
-            for a, b in zip(np.ravel(wu).tolist(), np.ravel(wv).tolist())
-        ]
-        return boxed & np.array(states, dtype=bool).reshape(np.shape(wu))
+        return boxed & self._classifier(wu, wv).reshape(np.shape(wu))
 
     @cached_property
     def _whole_box(self) -> bool:
@@ -184,11 +177,10 @@ class HostSurface:
         return whole > 0.0 and abs(area(self.face) - whole) <= 1e-12 * whole
 
     @cached_property
-    def _classifier(self):
-        """The face's 2-D classifier, made once (the face's edges' pcurves, to their tolerance)."""
-        from OCP.IntTools import IntTools_FClass2d
-
-        return IntTools_FClass2d(self.face, 1e-9)
+    def _classifier(self) -> Callable[[FloatArray, FloatArray], FloatArray]:
+        """The face's 2-D classifier, made once (:func:`face_classifier`)."""
+        assert self.face is not None  # inside() asks only where the host came from a face
+        return face_classifier(self.face)
 
     def points(self, u: FloatArray, v: FloatArray) -> FloatArray:
         """The positions at the points (u, v) (broadcast; (n, 3)), by OCCT's ``Value``: the
@@ -231,6 +223,32 @@ class HostSurface:
             out[4, i] = duv.X(), duv.Y(), duv.Z()
             out[5, i] = dvv.X(), dvv.Y(), dvv.Z()
         return SurfaceJet(*out)
+
+
+def face_classifier(face: TopoDS_Face) -> Callable[[FloatArray, FloatArray], FloatArray]:
+    """(u, v) arrays -> whether each point lies on ``face`` in its surface's parameters, in or
+    on its boundary (OCCT's ``IntTools_FClass2d``, made once, its edges' pcurves to 1e-9).
+
+    Args:
+        face: the face.
+
+    Returns:
+        The classifier: (u, v) of any shape -> a flat bool array.
+    """
+    from OCP.gp import gp_Pnt2d
+    from OCP.IntTools import IntTools_FClass2d
+    from OCP.TopAbs import TopAbs_IN, TopAbs_ON
+
+    classifier = IntTools_FClass2d(face, 1e-9)
+
+    def inside(u: FloatArray, v: FloatArray) -> FloatArray:
+        states = [
+            classifier.Perform(gp_Pnt2d(a, b)) in (TopAbs_IN, TopAbs_ON)
+            for a, b in zip(np.ravel(u).tolist(), np.ravel(v).tolist())
+        ]
+        return np.array(states, dtype=bool)
+
+    return inside
 
 
 def _breaks(surface: Geom_Surface) -> tuple[FloatArray, FloatArray]:

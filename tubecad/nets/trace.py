@@ -278,11 +278,9 @@ class _Tracer:
     def direction(self, x: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray] | None:
         """(uv direction, 3-D direction, |X_u| and |X_v|) of the family at the point x; None
         at a degenerate point. Keeps the larger principal curvature's size (``curvature``)."""
-        u, v = self.host.wrapped(x[:1], x[1:])
-        at = self.field.at(float(u[0]), float(v[0]), self.family)
+        at = self._field_at(float(x[0]), float(x[1]))
         if at is None:
             return None
-        self.curvature = at[8]
         return np.array(at[:2]), np.array(at[2:5]), np.array(at[5:7])
 
     def point(self, x: FloatArray) -> FloatArray:
@@ -401,7 +399,7 @@ class _Tracer:
         r0, r1, r2 = (float(c) for c in reference)
         ku: list[float] = []
         kv: list[float] = []
-        metric = end = (0.0, 0.0, 0.0)
+        metric, end = (0.0, 0.0), (0.0, 0.0, 0.0)
         for i, row in enumerate(_A):
             su = sv = 0.0
             for a, ka, kb in zip(row, ku, kv):
@@ -415,7 +413,7 @@ class _Tracer:
             ku.append(flip * at[0])
             kv.append(flip * at[1])
             if i == 0:
-                metric = (at[5], at[6], 0.0)
+                metric = (at[5], at[6])
             if i == 6:
                 end = (flip * at[2], flip * at[3], flip * at[4])
         new = np.array([pu, pv])  # the last stage's point: x + h sum(b5_j k_j) (its row is _B5)
@@ -426,7 +424,7 @@ class _Tracer:
         eu, ev = h * eu, h * ev
         error = abs(eu) * metric[0] + abs(ev) * metric[1]
         turn = math.atan2(abs(ku[0] * kv[6] - kv[0] * ku[6]), ku[0] * ku[6] + kv[0] * kv[6])
-        return new, error, np.array(end), np.array(metric[:2]), turn
+        return new, error, np.array(end), np.array(metric), turn
 
     def _field_at(self, u: float, v: float) -> tuple[float, ...] | None:
         """The field's data at (u, v) (:meth:`PointField.at`, wrapped into the box), the last

@@ -32,6 +32,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from OCP.TopoDS import TopoDS_Face
@@ -40,8 +41,12 @@ from tubecad.core.atomic import write_text
 from tubecad.core.errors import ParameterError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
 from tubecad.core.units import length_unit as length_unit_of
-from tubecad.nets.host import HostSurface
+from tubecad.nets.host import HostSurface, face_classifier
 from tubecad.nets.principal import principal_field
+from tubecad.shop.pin_jig import round_spacing
+
+if TYPE_CHECKING:
+    from tubecad.nets import CurvatureNet
 
 FloatArray = np.ndarray
 #: samples of the cell's parameter box along each direction (at least, at most)
@@ -139,7 +144,7 @@ def cell_pin_jig(
         raise ParameterError(f"pin_spacing must be > 0, got {spacing!r:.40}", key="pin_spacing")
     h = float(spacing)
     surface = _Surface(host, level)
-    inside = _classifier(cell)
+    inside = face_classifier(cell)
     u0, u1, v0, v1 = BRepTools.UVBounds_s(cell)
     # samples of the parameter box, those on the cell kept
     X, Xu, Xv = surface.d1(np.array([u0, u1, u0, u1]), np.array([v0, v0, v1, v1]))
@@ -203,24 +208,6 @@ def cell_pin_jig(
     outline = (boundary - origin) @ np.stack([x_dir, y_dir]).T
     xy = np.stack([(ii - i0) * h, (jj - j0) * h], axis=1).astype(float)
     return CellPinJig(name, h, origin, x_dir, y_dir, up, xy, heights, np.stack([u, v], axis=1), outline, lines)
-
-
-def _classifier(cell: TopoDS_Face):
-    """(u, v) arrays -> whether each lies on the cell (in or on its boundary)."""
-    from OCP.gp import gp_Pnt2d
-    from OCP.IntTools import IntTools_FClass2d
-    from OCP.TopAbs import TopAbs_IN, TopAbs_ON
-
-    classifier = IntTools_FClass2d(cell, 1e-9)
-
-    def inside(u: FloatArray, v: FloatArray) -> FloatArray:
-        states = [
-            classifier.Perform(gp_Pnt2d(a, b)) in (TopAbs_IN, TopAbs_ON)
-            for a, b in zip(np.ravel(u).tolist(), np.ravel(v).tolist())
-        ]
-        return np.array(states, dtype=bool)
-
-    return inside
 
 
 def _lowest(surface: _Surface, up, ref, height, us, vs, bounds, inside) -> float:
@@ -301,7 +288,12 @@ def write_cell_pin_jig_csv(jig: CellPinJig, path: str | Path, length_unit: str =
 
 
 def net_pin_jigs(
-    net, levels: tuple[float, float], side: str, spacing: float | None, clearance: float, warnings: list[str]
+    net: CurvatureNet,
+    levels: tuple[float, float],
+    side: str,
+    spacing: float | None,
+    clearance: float,
+    warnings: list[str],
 ) -> list[CellPinJig]:
     """A pin jig per cell of ``net`` (``panel_01``... in the split face's order), on the
     plating's surface opposite its stiffeners (``levels`` = the wall's (inner, outer) offsets
@@ -331,12 +323,14 @@ def net_pin_jigs(
     while walk.More():
         cells.append(as_face(walk.Current()))
         walk.Next()
+    size = float(np.ptp(np.concatenate([line.points for line in net.lines.values()]), axis=0).max())
     out = []
     for k, cell in enumerate(cells, 1):
         name = f"panel_{k:02d}"
         try:
             h = spacing if spacing is not None else _round_spacing(cell)
-            out.append(cell_pin_jig(net.host, cell, h, level, up_sign, clearance, name, bounding_lines(net, cell)))
+            lines = bounding_lines(net, cell, 1e-6 * size)
+            out.append(cell_pin_jig(net.host, cell, h, level, up_sign, clearance, name, lines))
         except ParameterError as exc:
             warnings.append(f"{name}: no pin jig ({exc})")
     return out
@@ -349,14 +343,12 @@ def _round_spacing(cell: TopoDS_Face) -> float:
 
     corners = box_corners(cell)
     assert corners is not None  # a cell of the split face is not empty
-    target = sorted(np.subtract(corners[1], corners[0]).tolist())[1] / 6
-    k = math.floor(math.log10(target))
-    return float(max(m * 10.0**k for m in (1, 2, 5) if m * 10.0**k <= target))
+    return round_spacing(sorted(np.subtract(corners[1], corners[0]).tolist())[1])
 
 
-def bounding_lines(net, cell: TopoDS_Face) -> tuple[str, ...]:
-    """The names of the net's lines a cell's edges lie on (each edge's middle within 1e-6 of
-    the face's size of the line's curve; OCCT's ``GeomAPI_ProjectPointOnCurve``), sorted."""
+def bounding_lines(net: CurvatureNet, cell: TopoDS_Face, reach: float) -> tuple[str, ...]:
+    """The names of the net's lines a cell's edges lie on (each edge's middle within ``reach``
+    of the line's curve; OCCT's ``GeomAPI_ProjectPointOnCurve``), sorted."""
     from OCP.BRep import BRep_Tool
     from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
     from OCP.TopAbs import TopAbs_EDGE
@@ -364,7 +356,6 @@ def bounding_lines(net, cell: TopoDS_Face) -> tuple[str, ...]:
 
     from tubecad.occ_compat import as_edge
 
-    size = float(np.ptp(np.concatenate([line.points for line in net.lines.values()]), axis=0).max())
     names: set[str] = set()
     walk = TopExp_Explorer(cell, TopAbs_EDGE)
     while walk.More():
@@ -377,7 +368,7 @@ def bounding_lines(net, cell: TopoDS_Face) -> tuple[str, ...]:
         middle = curve.Value(0.5 * (first + last))
         for name, line_edge in net.edges.items():
             projection = GeomAPI_ProjectPointOnCurve(middle, line_edge.curve)
-            if projection.NbPoints() and projection.LowerDistance() <= 1e-6 * size:
+            if projection.NbPoints() and projection.LowerDistance() <= reach:
                 names.add(name)
                 break
     return tuple(sorted(names))

@@ -89,8 +89,9 @@ class NetShop:
             )
         developed = write_dxf([w.pattern for w in self.webs], folder / "webs" / "webs_developed.dxf", length_unit=unit)
         record(developed, "webs", "each web developed whole, side by side (DXF, a layer per web)")
-        for jig in self.pin_jigs:
+        if self.pin_jigs:
             (folder / "panels").mkdir(exist_ok=True)
+        for jig in self.pin_jigs:
             bounded = f"between {', '.join(jig.lines)}" if jig.lines else "on the boundary"
             what = f"{jig.name} ({bounded}): {len(jig.heights)} pins every {jig.spacing:g}"
             table = write_cell_pin_jig_csv(jig, folder / "panels" / f"{jig.name}_pin_jig.csv", unit)

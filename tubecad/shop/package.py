@@ -204,6 +204,6 @@ def default_pin_spacing(surface, panel: Panel) -> float:
     s_mid = 0.5 * (s_a + s_b)
     ring = np.linalg.norm(np.diff(surface.points(np.linspace(a, b, 65), s_mid), axis=0), axis=1).sum()
     stringer = np.linalg.norm(np.diff(surface.points(0.5 * (a + b), np.linspace(s_a, s_b, 65)), axis=0), axis=1).sum()
-    target = min(ring, stringer) / 6
-    k = math.floor(math.log10(target))
-    return float(max(m * 10.0**k for m in (1, 2, 5) if m * 10.0**k <= target))
+    from tubecad.shop.pin_jig import round_spacing
+
+    return round_spacing(min(ring, stringer))

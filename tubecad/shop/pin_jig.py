@@ -87,6 +87,14 @@ class PinJig:
         return self.origin + self.xy[:, :1] * self.x_dir + self.xy[:, 1:] * self.y_dir + self.heights[:, None] * self.up
 
 
+def round_spacing(length: float, pins: int = 6) -> float:
+    """A round pin spacing (1, 2 or 5 x 10^k) putting about ``pins`` pins along ``length``
+    (the panel's shorter extent): the largest such value <= length / pins."""
+    target = length / pins
+    k = math.floor(math.log10(target))
+    return float(max(m * 10.0**k for m in (1, 2, 5) if m * 10.0**k <= target))
+
+
 def _spacing(value: Any) -> float:
     try:
         h = finite_number("pin_spacing", value)
