@@ -47,6 +47,7 @@ class PiecewiseChebyshev:
         max_panels: int = 2048,
         breaks: np.ndarray | None = None,
         parts: Sequence[tuple[int, float]] | None = None,
+        floor: float = 0.0,
     ) -> PiecewiseChebyshev:
         """Resolve ``f`` on [a, b] adaptively, starting from the panels between ``breaks``
         (e.g. a spline's knots; default [a, b]). ``f`` takes an array of x (panels, nodes),
@@ -57,7 +58,9 @@ class PiecewiseChebyshev:
         on its own: a panel is resolved when, for every part, its last four coefficients are
         below 10 tol scale, scale = the part's largest |value| so far (values of different
         sizes stacked in one fit: a position, a unit frame, curvatures). Default: all values
-        one part, with ``tol``."""
+        one part, with ``tol``. ``floor``: the least scale (values that stay far below it, a
+        nearly straight line's curvature, are resolved to ``tol`` of it, not of themselves,
+        whose round-off they would have to resolve)."""
         nodes = np.cos(np.pi * np.arange(degree + 1) / degree)[::-1]  # Lobatto, ascending
         edges = np.asarray([a, b] if breaks is None else breaks, dtype=float)
         todo = list(zip(edges[:-1], edges[1:]))
@@ -78,7 +81,7 @@ class PiecewiseChebyshev:
             counts, tols = _parts(parts, int(np.prod(value_shape)), tol)
             starts = [sum(counts[:i]) for i in range(len(counts))]  # each part's first value
             largest = np.maximum.reduceat(np.abs(y).reshape(-1, sum(counts)).max(axis=0), starts)
-            scales = np.maximum(largest if scales is None else np.maximum(scales, largest), 1e-300)
+            scales = np.maximum(largest if scales is None else np.maximum(scales, largest), max(floor, 1e-300))
             flat = np.moveaxis(y, 1, 0).reshape(degree + 1, -1)  # nodes x (panels * values)
             coeffs = np.moveaxis(C.chebfit(nodes, flat, degree).reshape(degree + 1, len(todo), *value_shape), 0, 1)
             tails = np.maximum.reduceat(np.abs(coeffs[:, -4:]).max(axis=1).reshape(len(todo), -1), starts, axis=1)

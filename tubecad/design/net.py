@@ -537,6 +537,7 @@ def net_report(result: NetResult) -> dict[str, Any]:
             "smallest_radius": smallest_radius(net.host),
             "umbilics": lines["umbilics"],
             "umbilic_region": lines["umbilic_region"],
+            "umbilic_parts": lines["umbilic_parts"],
         },
         "net": {
             "k1_lines": counts[0],

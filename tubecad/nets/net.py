@@ -7,7 +7,9 @@ of an open line's length, at i / count round a closed one. Each line is traced
 (:func:`~tubecad.nets.trace.trace_line`, stopping near the umbilics :func:`~tubecad.nets.umbilics.find_umbilics`
 finds), made an edge (:func:`~tubecad.nets.edges.line_edge`) and named ``k1_00``, ``k1_01``...,
 ``k2_00``...; the face is split by all of them (OCCT's General Fuse splitter: the edges lie on
-it) into the net's patches, one shell, its validity checked.
+it) into the net's patches, one shell, its validity checked. On a face with an umbilic part (a
+flat bottom, :class:`~tubecad.nets.umbilics.UmbilicPart`) the lines stop on its border and the
+default seed is the point nearest the box's centre off it.
 """
 
 from __future__ import annotations
@@ -71,10 +73,11 @@ class CurvatureNet:
 
     def report(self) -> dict[str, Any]:
         """The net's figures: ``umbilics`` [{"name", "point", "type", "index", "separatrices"}]
-        (or ``umbilic_region``), per line its ``family``, ``length``, how it ``stopped`` and the
+        (or ``umbilic_region``), ``umbilic_parts`` (:meth:`UmbilicPart.report`), per line its ``family``, ``length``, how it ``stopped`` and the
         edge's ``angle`` (radians) and ``gap``, and the largest angle over the net."""
         return {
             "umbilic_region": self.umbilics.region,
+            "umbilic_parts": [part.report() for part in self.umbilics.parts],
             "umbilics": [
                 {
                     "name": f"umbilic_{i}",
@@ -136,23 +139,14 @@ def curvature_net(
             "face: an umbilic region (a plane or a sphere): every direction is principal, it has no curvature-line net",
             key="face",
         )
-    if umbilics.parts:  # lines would wander across it: refused until they stop on its border
-        part = max(umbilics.parts, key=len)
-        where = ", ".join(f"{c:.6g}" for c in part.mean(axis=0))
-        raise ParameterError(
-            f"face: a part of it is umbilic (flat or spherical, (k1 - k2) / 2 = 0) round ({where}): lines of "
-            "curvature are not defined there, and tracing round such a part is not made yet; split the face "
-            "off it",
-            key="face",
-        )
     u0, u1, v0, v1 = host.bounds
-    centre = seed if seed is not None else (0.5 * (u0 + u1), 0.5 * (v0 + v1))
+    centre = seed if seed is not None else _centre(host, umbilics.part_level)
     stops = np.array([p.point for p in umbilics.points]).reshape(-1, 3)
     size = float(np.ptp(host.points(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))), axis=0).max())
     reach = UMBILIC_REACH * size
 
     def traced(start: tuple[float, float], family: Family, step_error: float = tolerance) -> CurvatureLine:
-        return trace_line(host, start, family, tolerance=step_error, stops=stops, reach=reach)
+        return trace_line(host, start, family, tolerance=step_error, stops=stops, reach=reach, flat=umbilics.part_level)
 
     lines: dict[str, CurvatureLine] = {}
     plan: tuple[tuple[Family, int, Family], ...] = ((1, k1_lines, 2), (2, k2_lines, 1))
@@ -168,6 +162,31 @@ def curvature_net(
     on_edges = {name for name, line in lines.items() if _on_face_edges(shape, line.points)}
     patches = _split(shape, [e.edge for name, e in edges.items() if name not in on_edges])
     return CurvatureNet(host, umbilics, lines, edges, patches, frozenset(on_edges))
+
+
+def _centre(host: HostSurface, level: float) -> tuple[float, float]:
+    """The default seed: the parameter box's centre, or where that lies in an umbilic part
+    (umbilic measure at most ``level``), the node of a 33 x 33 grid over the box nearest it
+    whose measure is over 100 times ``level`` (well off the part's border)."""
+    u0, u1, v0, v1 = host.bounds
+    centre = (0.5 * (u0 + u1), 0.5 * (v0 + v1))
+    if level == 0.0:
+        return centre
+    from tubecad.nets.principal import principal_field
+
+    at = principal_field(host, np.array([centre[0]]), np.array([centre[1]]))
+    if at.umbilic_measure[0] > 100.0 * level:
+        return centre
+    uu, vv = np.meshgrid(np.linspace(u0, u1, 35)[1:-1], np.linspace(v0, v1, 35)[1:-1], indexing="ij")
+    field = principal_field(host, uu.ravel(), vv.ravel())
+    good = np.flatnonzero(field.umbilic_measure > 100.0 * level)
+    if not good.size:
+        raise ParameterError(
+            "face: it is umbilic (flat or spherical) nearly everywhere; it has no curvature-line net", key="face"
+        )
+    distance = np.hypot((uu.ravel()[good] - centre[0]) / (u1 - u0), (vv.ravel()[good] - centre[1]) / (v1 - v0))
+    best = int(good[np.argmin(distance)])
+    return float(uu.ravel()[best]), float(vv.ravel()[best])
 
 
 def _host_and_face(face: object) -> tuple[HostSurface, TopoDS_Face]:

@@ -260,6 +260,7 @@ class _Cell:
         self.size = _size(self.host)
         self.stops = np.array([p.point for p in net.umbilics.points]).reshape(-1, 3)
         self.reach = UMBILIC_REACH * self.size
+        self.flat = net.umbilics.part_level
         sides = {
             name: _Line(
                 net.lines[name].uv, net.lines[name].sigma, _spline_of(net.edges[name].pcurve), net.edges[name].curve
@@ -354,6 +355,7 @@ class _Cell:
                 stops=self.stops,
                 reach=self.reach,
                 max_length=self.max_length,
+                flat=self.flat,
             )
             edge = line_edge(self.host, line)
             self.traced[key] = _Line(line.uv, line.sigma, _spline_of(edge.pcurve), edge.curve)

@@ -18,6 +18,10 @@ The line stops:
 - at the face's boundary (a direction that is not closed round a period): the last step
   shortened by bisection until it ends on the boundary (to 1e-12 of the box);
 - near an umbilic (one of ``stops``, within ``reach``), where the field is singular;
+- on the border of an umbilic part (a hull's flat side, a spherical cap: where the umbilic
+  measure (k1 - k2) / 2 is at most ``flat``, the directions are not defined): a step with a
+  stage there is halved until its length is FLOOR of the face's size, so the line ends on the
+  border to that length (``"umbilic_part"``);
 - near a pole of the parameterisation (a side of the parameter box collapsed to a point, a
   NURBS sphere's), within ``reach`` or POLE_REACH of the face's size: the line is regular
   there, but an edge through it would need its pcurve to run along the collapsed side while
@@ -42,7 +46,7 @@ from tubecad.nets.principal import PointField, principal_field
 
 FloatArray = np.ndarray
 Family = Literal[1, 2]
-Stop = Literal["boundary", "umbilic", "pole", "closed", "length"]
+Stop = Literal["boundary", "umbilic", "umbilic_part", "pole", "closed", "length"]
 
 # Dormand-Prince 5(4): nodes, stages, 5th- and 4th-order weights
 _C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
@@ -89,6 +93,9 @@ SNAP = 1e-11
 #: so none is left shorter than this (4 um on that panel), a share of a step the tolerance
 #: allows, its piece's turn unchanged.
 SHORTEST = 1e-6
+#: a line stops on an umbilic part's border when a step into it this share of the face's size
+#: long still reaches it (the border found to this length)
+FLOOR = 1e-10
 
 
 @dataclass(frozen=True)
@@ -130,6 +137,7 @@ def trace_line(
     stops: FloatArray | None = None,
     reach: float = 0.0,
     max_length: float | None = None,
+    flat: float = 0.0,
 ) -> CurvatureLine:
     """The line of curvature of ``family`` through the parameters ``seed`` (module docstring),
     traced both ways until it stops (or once round, where it closes).
@@ -143,12 +151,16 @@ def trace_line(
         reach: how near (3-D length); to a pole of the parameterisation too (at least
             POLE_REACH of the face's size).
         max_length: the longest a line may run each way (default 100 x the face's size).
+        flat: the umbilic measure (k1 - k2) / 2 (1 / length) at or below which a point lies in
+            an umbilic part (:attr:`~tubecad.nets.umbilics.Umbilics.part_level`): the line
+            stops on its border; 0, none.
 
     Returns:
         The line.
 
     Raises:
-        ParameterError: (``family``) not 1 or 2; (``seed``) outside the box or at an umbilic.
+        ParameterError: (``family``) not 1 or 2; (``seed``) outside the box, at an umbilic or
+            in an umbilic part.
     """
     if family not in (1, 2):
         raise ParameterError(f"family must be 1 or 2, got {family!r:.20}", key="family")
@@ -156,13 +168,14 @@ def trace_line(
     if not host.inside(np.array([u]), np.array([v]))[0]:
         raise ParameterError(f"seed {seed} lies outside the face's parameter box {host.bounds}", key="seed")
     start = principal_field(host, np.array([u]), np.array([v]))
-    if not start.umbilic_measure[0] > 0:
-        raise ParameterError(f"seed {seed} is an umbilic: every direction there is principal", key="seed")
+    if not start.umbilic_measure[0] > flat:
+        where = "an umbilic" if flat == 0.0 else "in an umbilic part (flat or spherical)"
+        raise ParameterError(f"seed {seed} is {where}: every direction there is principal", key="seed")
     size = _size(host)
     limit = max_length if max_length is not None else 100.0 * size
     direction = (start.uv1 if family == 1 else start.uv2)[0]
     x0 = _snapped(host, np.array([u, v]), direction, SNAP * size)
-    ahead = _Tracer(host, family, tolerance, stops, reach, limit, size)
+    ahead = _Tracer(host, family, tolerance, stops, reach, limit, size, flat)
     forward = ahead.run(x0, +1.0)
     if forward.stop == "closed":
         uv, sigma, errors = forward.uv, forward.sigma, forward.error
@@ -265,13 +278,15 @@ def _size(host: HostSurface) -> float:
 class _Tracer:
     """One way of a line: the integrator and its stopping rules (module docstring)."""
 
-    def __init__(self, host, family, tolerance, stops, reach, limit, size) -> None:
+    def __init__(self, host, family, tolerance, stops, reach, limit, size, flat=0.0) -> None:
         self.host, self.family, self.tolerance = host, family, tolerance
+        self.flat = flat
+        self.in_part = False  # the last field read was inside an umbilic part
         self.stops = np.zeros((0, 3)) if stops is None else np.asarray(stops, dtype=float).reshape(-1, 3)
         self.reach, self.limit, self.size = reach, limit, size
         self.field = PointField(host)
         self.curvature = 0.0
-        self._last: tuple[float, float, tuple[float, ...] | None] | None = None
+        self._last: tuple[float, float, tuple[float, ...] | None, bool] | None = None
         self.poles = _poles(host, size)
         self.pole_reach = max(reach, POLE_REACH * size)
 
@@ -322,8 +337,11 @@ class _Tracer:
         x, sigma, h, worst = x0.copy(), 0.0, 1e-3 * self.size, 0.0
         while True:
             step = self._step(x, h, reference, bias)
-            if step is None:  # an umbilic's neighbourhood: the field is singular
-                return done("umbilic", worst)
+            if step is None and self.in_part and h > FLOOR * self.size:
+                h *= 0.5  # a stage inside an umbilic part: closer to its border
+                continue
+            if step is None:  # an umbilic's neighbourhood (or part): the field is singular
+                return done("umbilic_part" if self.in_part else "umbilic", worst)
             new, error, direction, _, bent = step
             if error > self.tolerance:
                 h *= max(0.2, 0.9 * (self.tolerance / error) ** 0.2)
@@ -428,13 +446,17 @@ class _Tracer:
 
     def _field_at(self, u: float, v: float) -> tuple[float, ...] | None:
         """The field's data at (u, v) (:meth:`PointField.at`, wrapped into the box), the last
-        point's kept; sets ``curvature``."""
+        point's kept; None at a degenerate point and inside an umbilic part (``in_part`` then
+        set); sets ``curvature``."""
         if self._last is not None and self._last[0] == u and self._last[1] == v:
-            at = self._last[2]
+            at, self.in_part = self._last[2], self._last[3]
         else:
             wu, wv = self.host.wrapped_point(u, v)
             at = self.field.at(wu, wv, self.family)
-            self._last = (u, v, at)
+            self.in_part = self.flat > 0.0 and at is not None and at[7] <= self.flat
+            if self.in_part:
+                at = None
+            self._last = (u, v, at, self.in_part)
         if at is not None:
             self.curvature = at[8]
         return at

@@ -23,7 +23,9 @@ the angle arg(w) / 2 from e1, turns by 2 pi times the umbilic's index as one goe
 A face whose umbilic measure (k1 - k2) / 2 vanishes (to REGION of its largest curvature) at
 every grid point is an umbilic region (a plane, a sphere): reported as such, not as points. A
 part of a face where it vanishes (to PART) over whole grid cells (a hull's flat bottom) is an
-umbilic part: reported with its points, its cells left out of the search.
+umbilic part (:class:`UmbilicPart`): reported as a region (its type, centre, bounding box and
+area to a grid cell), its cells left out of the search; lines of curvature stop on its border
+(:func:`~tubecad.nets.trace.trace_line`'s ``flat``).
 """
 
 from __future__ import annotations
@@ -40,6 +42,7 @@ from tubecad.nets.principal import principal_field
 
 FloatArray = np.ndarray
 UmbilicType = Literal["lemon", "monstar", "star"]
+PartType = Literal["flat", "spherical"]
 
 #: grid cells along each parameter of the search
 GRID = 96
@@ -76,6 +79,35 @@ class Umbilic:
 
 
 @dataclass(frozen=True)
+class UmbilicPart:
+    """A part of a face where (k1 - k2) / 2 vanishes (to PART of the face's largest |k|): a
+    region, not points. ``type``: ``"flat"`` where the curvatures vanish too (a hull's flat
+    side), ``"spherical"`` where they do not (a spherical cap)."""
+
+    type: PartType
+    #: the search grid's nodes inside it, (n, 3)
+    points: FloatArray
+    #: their parameters, (n, 2)
+    uv: FloatArray
+    #: its area: the search grid's cells with all four corners in it (so to about a cell)
+    area: float
+
+    @property
+    def centre(self) -> FloatArray:
+        """The mean of its grid nodes (3,)."""
+        return self.points.mean(axis=0)
+
+    def report(self) -> dict[str, object]:
+        """``type``, ``centre``, ``box`` (its nodes' [[min x, y, z], [max x, y, z]]), ``area``."""
+        return {
+            "type": self.type,
+            "centre": [float(c) for c in self.centre],
+            "box": [[float(c) for c in self.points.min(axis=0)], [float(c) for c in self.points.max(axis=0)]],
+            "area": self.area,
+        }
+
+
+@dataclass(frozen=True)
 class Umbilics:
     """A face's umbilics: the isolated ``points`` (:class:`Umbilic`), or ``region`` True where
     the whole face is umbilic (a plane or a sphere: every direction is principal)."""
@@ -83,9 +115,11 @@ class Umbilics:
     points: list[Umbilic]
     region: bool
     #: parts of the face that are umbilic (a flat bottom, a spherical cap) where the rest is
-    #: not: each the 3-D points of the search grid inside it, (n, 3); the search finds no
-    #: isolated umbilic there
-    parts: tuple[FloatArray, ...] = ()
+    #: not (:class:`UmbilicPart`); the search finds no isolated umbilic there
+    parts: tuple[UmbilicPart, ...] = ()
+    #: the umbilic measure (k1 - k2) / 2 (1 / length) at or below which a point lies in a part
+    #: (PART times the face's largest |k|); 0 without parts
+    part_level: float = 0.0
 
     @property
     def index_sum(self) -> float:
@@ -118,7 +152,9 @@ def find_umbilics(host: HostSurface, grid: int = GRID) -> Umbilics:
     regular = np.abs(np.stack([field.k1, field.k2])).max(axis=0).reshape(uu.shape)[~degenerate]
     k_regular = float(np.nanmax(regular)) if regular.size else k_max  # not a pole row's
     flat = ~(measure.reshape(uu.shape) > PART * k_regular)  # (k1 - k2) / 2 this small: umbilic (or undefined)
-    parts = _parts(flat & ~degenerate, host, uu, vv)
+    curvature = np.abs(np.stack([field.k1, field.k2])).max(axis=0).reshape(uu.shape)
+    cell_area = np.outer(np.diff(us), np.diff(vs)) * _corners_mean(field.area.reshape(uu.shape))
+    parts = _parts(flat & ~degenerate, host, uu, vv, curvature <= PART * k_regular, cell_area)
     degenerate |= flat
     with np.errstate(divide="ignore", invalid="ignore"):  # w = 0 in an umbilic part: its cells are skipped
         turn = np.angle(w[1:, :-1] / w[:-1, :-1]) + np.angle(w[1:, 1:] / w[1:, :-1])
@@ -138,15 +174,18 @@ def find_umbilics(host: HostSurface, grid: int = GRID) -> Umbilics:
             continue
         if all(np.linalg.norm(umbilic.point - p.point) > SAME * scale for p in found):
             found.append(umbilic)
-    return Umbilics(found, False, parts)
+    return Umbilics(found, False, parts, PART * k_regular if parts else 0.0)
 
 
-def _parts(flat: np.ndarray, host: HostSurface, uu: FloatArray, vv: FloatArray) -> tuple[FloatArray, ...]:
+def _parts(
+    flat: np.ndarray, host: HostSurface, uu: FloatArray, vv: FloatArray, plane: np.ndarray, cell_area: FloatArray
+) -> tuple[UmbilicPart, ...]:
     """The umbilic parts of the face: the connected sets of search-grid nodes where
     (k1 - k2) / 2 <= PART max|k| (scipy's ``ndimage.label``, 4-connected) that hold a whole
     grid cell (its four corners: an area, not a line of flat points such as an inflection
-    line along the boundary), each as its nodes' 3-D points. An isolated umbilic, where the
-    measure grows linearly from 0, puts no such cell on the grid."""
+    line along the boundary). An isolated umbilic, where the measure grows linearly from 0,
+    puts no such cell on the grid. ``plane``: the nodes where the curvatures vanish too (a
+    part all of them is flat); ``cell_area``: the grid cells' areas."""
     from scipy.ndimage import label
 
     labels, count = label(flat)
@@ -154,8 +193,16 @@ def _parts(flat: np.ndarray, host: HostSurface, uu: FloatArray, vv: FloatArray) 
     out = []
     for k in sorted(set(labels[:-1, :-1][cells].tolist())):
         inside = labels == k
-        out.append(host.jet(uu[inside], vv[inside]).X)
+        kind: PartType = "flat" if bool(plane[inside].all()) else "spherical"
+        mine = cells & inside[:-1, :-1]
+        uv = np.stack([uu[inside], vv[inside]], axis=1)
+        out.append(UmbilicPart(kind, host.jet(uu[inside], vv[inside]).X, uv, float(cell_area[mine].sum())))
     return tuple(out)
+
+
+def _corners_mean(values: FloatArray) -> FloatArray:
+    """The mean of a grid's values at each cell's four corners (one less each way)."""
+    return 0.25 * (values[:-1, :-1] + values[1:, :-1] + values[:-1, 1:] + values[1:, 1:])
 
 
 def _nodes(lo: float, hi: float, closed: bool, cells: int) -> FloatArray:

@@ -177,6 +177,8 @@ def net_summary(report: dict[str, Any]) -> list[str]:
     for point in host["umbilics"]:
         kinds[point["type"]] = kinds.get(point["type"], 0) + 1
     umbilics = ", ".join(f"{n} {kind}" for kind, n in sorted(kinds.items())) or "none"
+    for part in host.get("umbilic_parts", ()):
+        umbilics += f"; a {part['type']} umbilic part of {part['area']:.4g} (the lines stop on its border)"
     lines = [
         f"{brep['kind']}: {net['k1_lines']} + {net['k2_lines']} lines of curvature, within {net['angle']:.1e} rad of the "
         f"principal directions; {brep['patches']} patches, valid={brep['valid']}; umbilics: {umbilics}"

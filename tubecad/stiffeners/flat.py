@@ -75,22 +75,25 @@ def developed_strip(
     name: str = "stringer",
     samples: int = 2001,
     breaks: np.ndarray | None = None,
+    turn_floor: float = 0.0,
 ) -> FlatPattern:
     """The development of the normal strip X + v n, v from 0 to +-``height`` (``side``), along a
     curvature line X(s), s in ``span``, with speed(s) = |X_s| = sqrt(G) and turn(s) = kappa_n
     sqrt(G) (kappa_n = N / G, outward normal): the base edge is the plane curve turning by
     +-turn per unit s (alpha' = +-turn, gamma' = speed (cos alpha, sin alpha)), the top edge its
     offset by ``height`` to the left (the rulings develop to the curve's normals). ``breaks``
-    (the span's ends and any kinks of turn or speed) start the Chebyshev panels."""
+    (the span's ends and any kinks of turn or speed) start the Chebyshev panels; ``turn_floor``:
+    the least turn the fit of turn is resolved against (a nearly straight line's turn is then
+    resolved in radians over the span, not against its own round-off)."""
     sign = _side_sign(side)
     h = float(height)
     s0, s1 = span
     edges = np.array([s0, s1]) if breaks is None else np.asarray(breaks, dtype=float)
 
-    def fit(f: RateFunction, label: str) -> PiecewiseChebyshev:
-        return PiecewiseChebyshev.fit(f, s0, s1, name=label, breaks=edges).antiderivative()
+    def fit(f: RateFunction, label: str, floor: float = 0.0) -> PiecewiseChebyshev:
+        return PiecewiseChebyshev.fit(f, s0, s1, name=label, breaks=edges, floor=floor).antiderivative()
 
-    alpha = fit(lambda s: sign * turn(s), "the stringer's normal curvature")
+    alpha = fit(lambda s: sign * turn(s), "the stringer's normal curvature", turn_floor)
     x = fit(lambda s: speed(s) * np.cos(alpha(s)), "flat x")
     y = fit(lambda s: speed(s) * np.sin(alpha(s)), "flat y")
     s = np.linspace(s0, s1, samples)

@@ -205,7 +205,11 @@ def web_pattern(
     def speed(s: FloatArray) -> FloatArray:
         return 1.0 - base * turn(s)
 
-    return developed_strip(turn, speed, (0.0, b - a), height, side, name, breaks=line_kinks(line, a, b))
+    # the turn resolved to round-off of a radian over the span (a nearly straight line's
+    # curvature, 1e-6 of the face's, would else be resolved against its own round-off)
+    return developed_strip(
+        turn, speed, (0.0, b - a), height, side, name, breaks=line_kinks(line, a, b), turn_floor=1.0 / (b - a)
+    )
 
 
 def _stiffener_solid(host: HostSurface, line: CurvatureLine, edge: LineEdge, outline: list[tuple[float, float]]):
