@@ -119,6 +119,36 @@ def test_the_dome_meshes_with_its_webs_as_beams(tmp_path):
     assert "3 beam blocks" in result.output
 
 
+@pytest.mark.slow
+def test_the_dome_reports_and_develops_its_ring_webs_as_the_closed_form_cones(tmp_path):
+    """`tubecad report` and `tubecad flat` on a [host] spec. The dome is the 2:1 ellipse
+    x^2 / a^2 + z^2 / c^2 = 1 (a = 500, c = 250) turned about z; a parallel of radius r (its
+    length 2 pi r in the report) has the outward normal's radial part
+    n_r = (r / a^2) / |(r / a^2, z / c^2)|. A web standing on the normal inside the 8 mm wall
+    develops to an annulus sector whose arcs are the circles it stands on: base
+    2 pi (r - 8 n_r), top 2 pi (r - (8 + 60) n_r)."""
+    spec = _spec(tmp_path, "dome.toml")
+    shown = CliRunner().invoke(cli, ["report", spec])
+    assert shown.exit_code == 0, shown.output
+    report = json.loads(shown.output)
+    assert report["brep"]["valid"] and report["host"]["umbilics"] == [] and report["host"]["umbilic_parts"] == []
+    assert sorted(report["stiffeners"]) == ["stiffener_k1_01", "stiffener_k1_03", "stiffener_k1_05"]
+    made = CliRunner().invoke(cli, ["flat", spec, "-o", str(tmp_path / "flat")])
+    assert made.exit_code == 0, made.output
+    flat = json.loads((tmp_path / "flat" / "flat.json").read_text())
+    webs = {web["name"]: web for web in flat["webs"]}
+    assert sorted(webs) == ["k1_01", "k1_03", "k1_05"]
+    a, c = 500.0, 250.0
+    for name, web in webs.items():
+        r = report["net"]["lines"][name]["length"] / (2 * np.pi)
+        z = c * np.sqrt(1 - (r / a) ** 2)
+        n_r = (r / a**2) / np.hypot(r / a**2, z / c**2)
+        assert web["base_length"] == pytest.approx(2 * np.pi * (r - 8.0 * n_r), rel=1e-13)  # measured 3e-15
+        assert web["top_length"] == pytest.approx(2 * np.pi * (r - 68.0 * n_r), rel=1e-13)  # measured 2.7e-14
+        assert not web["crosses_itself"]
+    assert (tmp_path / "flat" / "webs.dxf").is_file() and (tmp_path / "flat" / "k1_03.svg").is_file()
+
+
 def test_a_tube_spec_refuses_a_nets_line_choice(tmp_path):
     text = (
         (ROOT / "samples" / "helix_stiffened.toml").read_text().replace("[stiffeners]\n", "[stiffeners]\nk1 = [0]\n", 1)

@@ -79,16 +79,6 @@ def _checked_spec(path: Path) -> AnySpec:
         raise UserError(str(exc)) from None
 
 
-def _tube_spec(spec: AnySpec, command: str) -> TubeSpec:
-    """``spec`` if it is a tube's, else the one-line refusal (:func:`tubecad.spec.parse.tube_spec`)."""
-    from tubecad.spec.parse import tube_spec
-
-    try:
-        return tube_spec(spec, command)
-    except TubecadError as exc:
-        raise UserError(str(exc)) from None
-
-
 grid_options = [
     click.option(
         "--nu",
@@ -160,18 +150,32 @@ def paper(output: Path, nu: int, ns: int) -> None:
 @with_grid_options
 def report(spec: Path, nu: int, ns: int) -> None:
     """Print the JSON report of the tube described by SPEC (a TOML file); with [[branches]],
-    the main tube's, and the branches as given (tubecad build --report measures the junction)."""
-    checked = _tube_spec(_checked_spec(spec), "tubecad report")
-    with interrupts_end_at_once():  # numpy/scipy, never OCCT
-        from tubecad.spec.report import to_json, tube_report
-    try:
-        measured = tube_report(checked.tube, nu, ns, checked.length_unit)
-        if checked.branches:
-            measured["branches"] = checked.sections["branches"]
+    the main tube's, and the branches as given (tubecad build --report measures the junction);
+    with [host], the face's net built and measured (its umbilics, lines, patches, webs)."""
+    checked = _checked_spec(spec)
+
+    def of_tube(tube: TubeSpec) -> dict:
+        with interrupts_end_at_once():  # numpy/scipy, never OCCT
+            from tubecad.spec.report import tube_report
+        measured = tube_report(tube.tube, nu, ns, tube.length_unit)
+        if tube.branches:
+            measured["branches"] = tube.sections["branches"]
             measured["junction"] = "not built here: tubecad build SPEC -o x.step --report r.json measures it"
-        click.echo(to_json(measured), nl=False)
+        return measured
+
+    def of_host(host) -> dict:
+        _load()
+        with interrupts_end_at_once():
+            from tubecad.spec.outputs import net_report_from_spec
+        return net_report_from_spec(host)
+
+    try:
+        measured = checked.dispatch(of_tube, of_host)
     except TubecadError as exc:
         raise UserError(str(exc)) from None
+    from tubecad.spec.report import to_json
+
+    click.echo(to_json(measured), nl=False)
 
 
 @cli.command()
@@ -436,8 +440,9 @@ def batch(specs, out_dir, outputs, report_path, **options) -> None:
 )
 def flat(spec: Path, output: Path) -> None:
     """Flat patterns of the webs of SPEC's [stiffeners]: webs.dxf (all, [units] length), NAME.svg/.png
-    each, and flat.json with every web's area and edge lengths."""
-    checked = _tube_spec(_checked_spec(spec), "tubecad flat")
+    each, and flat.json with every web's area and edge lengths (a tube's, or on a [host] face's
+    net the webs on its lines)."""
+    checked = _checked_spec(spec)
     from tubecad.spec.preflight import check_flat  # light: before OCCT loads
 
     try:

@@ -89,10 +89,14 @@ class Shown:
         38 curvature lines sent to the viewer on 127.0.0.1:3939``."""
         names = self.names
         count = lambda prefix: sum(n.startswith(prefix) for n in names)  # noqa: E731
-        parts = [f"{count('panel_')} panels" if count("panel_") else "wall"]
+        parts = [f"{count('panel_')} panels" if count("panel_") else ("net" if "net" in names else "wall")]
         if count("ring_") or count("stringer_"):
             parts.append(f"{count('ring_')} ring and {count('stringer_')} stringer stiffeners")
-        parts.append(f"{count('line_')} curvature lines")
+        if count("stiffener_"):  # a face's net: its webs on its lines
+            parts.append(f"{count('stiffener_')} stiffeners")
+        parts.append(f"{count('line_') + count('k1_') + count('k2_')} curvature lines")
+        if count("umbilic_"):
+            parts.append(f"{count('umbilic_')} umbilics")
         done = "recorded, not sent (OCP_VSCODE_PYTEST=1), for" if self.recorded else "sent to"
         labels = ", ".join(t.label for t in self.trees)
         return f"{labels}: {', '.join(parts)} {done} the viewer on {self.host}:{self.port}"
@@ -175,23 +179,36 @@ def viewer_tree(
 
 
 def spec_tree(path: str | Path) -> bd.Compound:
-    """The named assembly `tubecad build` writes for a spec, with the lines on every wall surface."""
+    """The named assembly `tubecad build` writes for a spec: a tube's with the lines on every
+    wall surface; a [host] face's net with its lines, webs and umbilics."""
+    from tubecad.spec.parse import load_spec
+
+    tree = load_spec(path).dispatch(_tube_tree, _net_tree)
+    tree.label = Path(path).stem
+    return tree
+
+
+def _tube_tree(spec: Any) -> bd.Compound:
     from tubecad.spec.build import build_from_spec, panels_from_spec, stiffeners_from_spec, wall_lines
-    from tubecad.spec.parse import load_spec, tube_spec
     from tubecad.stiffeners.assembly import named_assembly
 
-    spec = tube_spec(load_spec(path), "tubecad view")
     build = build_from_spec(spec)
     stiffeners, selection = stiffeners_from_spec(spec, build)
-    tree = named_assembly(
+    return named_assembly(
         build,
         stiffeners,
         wall_lines(build),
         fuse=bool(selection and selection.fuse),
         panels=panels_from_spec(spec, build),
     )
-    tree.label = Path(path).stem
-    return tree
+
+
+def _net_tree(spec: Any) -> bd.Compound:
+    from tubecad.spec.design import net_design, spec_errors
+
+    design = net_design(spec)
+    with spec_errors(spec):
+        return design.build_net().shape
 
 
 def paper_tree() -> bd.Compound:
@@ -207,20 +224,20 @@ def paper_tree() -> bd.Compound:
 
 
 def style(tree: bd.Compound, wall_alpha: float = WALL_ALPHA) -> bd.Compound:
-    """Viewer colours on a named assembly, in place: the wall (and every panel) at
-    ``wall_alpha``, ring and stringer lines in colours of their own."""
+    """Viewer colours on a named assembly, in place: the wall (and every panel; a face's net)
+    at ``wall_alpha``, ring and stringer lines (k1 and k2 lines) in colours of their own."""
     import build123d as bd
 
     from tubecad.stiffeners.assembly import WALL_COLOUR
 
     for child in tree.children:
-        if child.label == "wall":
+        if child.label in ("wall", "net"):  # a tube's wall, a face's net or its wall
             for node in (child, *child.children):  # the panels, if any
                 red, green, blue = tuple(node.color or WALL_COLOUR)[:3]
                 node.color = bd.Color(red, green, blue, wall_alpha)
-        elif child.label == "curvature_lines":
+        elif child.label in ("curvature_lines", "lines"):  # a tube's lines, a face's net's
             for edge in child.children:
-                rgb = LINE_RING_RGB if edge.label.startswith("line_ring_") else LINE_STRINGER_RGB
+                rgb = LINE_RING_RGB if edge.label.startswith(("line_ring_", "k1_")) else LINE_STRINGER_RGB
                 edge.color = bd.Color(*rgb)
     return tree
 

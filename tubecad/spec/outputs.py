@@ -1,15 +1,19 @@
 """What a spec's build writes besides its solids, as library code a script calls: the flat
-patterns of its stiffener webs (``tubecad flat``), a picture of a STEP file as read back,
+patterns of its stiffener webs (``tubecad flat``, a tube's or a face's net's), the report of
+a face's net (``tubecad report`` on a [host] spec), a picture of a STEP file as read back,
 and the one-line summary of a written file that ``tubecad build`` prints."""
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from tubecad.core.errors import ParameterError
 from tubecad.core.units import DEFAULT_LENGTH_UNIT
-from tubecad.spec.parse import TubeSpec
+from tubecad.spec.parse import AnySpec, TubeSpec
+
+if TYPE_CHECKING:
+    from tubecad.spec.host import HostSpec
 
 
 def output_folder(folder: str | Path) -> Path:
@@ -22,15 +26,21 @@ def output_folder(folder: str | Path) -> Path:
     return folder
 
 
-def flat_from_spec(spec: TubeSpec, output: str | Path) -> list[Path]:
-    """``tubecad flat``: the flat patterns of the webs of ``spec``'s [stiffeners] (built on
-    its wall) into ``output``: webs.dxf, NAME.svg/.png per web and flat.json (lengths in
-    the spec's [units] length). Returns the files written."""
-    from tubecad.spec.build import build_from_spec, stiffener_selection
+def flat_from_spec(spec: AnySpec, output: str | Path) -> list[Path]:
+    """``tubecad flat``: the flat patterns of the webs of ``spec``'s [stiffeners] into
+    ``output``: webs.dxf, NAME.svg/.png per web and flat.json (lengths in the spec's [units]
+    length). A tube's webs are built on its wall, a face's net's on its lines (each web plate
+    up to its flange, as the shop cuts it). Returns the files written."""
     from tubecad.spec.preflight import check_flat
-    from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
 
     check_flat(spec, output)
+    return spec.dispatch(lambda tube: _tube_flat(tube, output), lambda host: _net_flat(host, output))
+
+
+def _tube_flat(spec: TubeSpec, output: str | Path) -> list[Path]:
+    from tubecad.spec.build import build_from_spec, stiffener_selection
+    from tubecad.stiffeners.flat import ring_web_flat_pattern, stringer_flat_pattern
+
     result = build_from_spec(spec)
     chosen = stiffener_selection(spec, result)
     assert chosen is not None  # the spec has [stiffeners]
@@ -43,6 +53,25 @@ def flat_from_spec(spec: TubeSpec, output: str | Path) -> list[Path]:
         for j in chosen.stringers
     ]
     return write_patterns(patterns, folder, spec.length_unit)
+
+
+def _net_flat(spec: HostSpec, output: str | Path) -> list[Path]:
+    from tubecad.spec.design import net_design, spec_errors
+
+    design = net_design(spec)
+    with spec_errors(spec):
+        webs = design.built_webs()
+    return write_patterns([web.pattern for web in webs], output_folder(output), spec.length_unit)
+
+
+def net_report_from_spec(spec: HostSpec) -> dict[str, Any]:
+    """``tubecad report`` on a [host] spec: the net built (its [wall] and [stiffeners] with
+    it) and its report, as ``tubecad build --report`` writes it (without the files' part)."""
+    from tubecad.spec.design import net_design, spec_errors
+
+    design = net_design(spec)
+    with spec_errors(spec):
+        return design.build_net().report
 
 
 def write_flat_patterns(stiffeners, folder: Path, length_unit: str = DEFAULT_LENGTH_UNIT) -> list[Path]:

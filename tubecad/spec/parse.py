@@ -152,12 +152,13 @@ def load_spec(path: str | Path) -> AnySpec:
 
 def tube_spec(spec: AnySpec, command: str) -> TubeSpec:
     """``spec`` if it is a tube's; a [host] spec is refused in one line naming ``host``: the
-    ``command`` (``tubecad flat``...) makes tubes only (build, shop, mesh and analyse take both)."""
+    ``command`` (``tubecad paper``...) makes tubes only (build, report, flat, view, shop, mesh and analyse
+    take both)."""
 
     def refuse(host: Any) -> TubeSpec:
         raise SpecError(
             f"{host.source}: [host]: {command} makes tubes ([axis] and [tube]); a face's net is built by tubecad "
-            "build, shop, mesh and analyse",
+            "build, report, flat, view, shop, mesh and analyse",
             key="host",
         )
 

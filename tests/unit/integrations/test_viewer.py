@@ -188,3 +188,32 @@ def test_show_refuses_what_it_cannot_show(monkeypatch):
     monkeypatch.setenv("OCP_PORT", "abc")
     with pytest.raises(ParameterError, match="OCP_PORT must be a port number"):
         tubecad.show("paper")
+
+
+@pytest.mark.slow
+def test_show_of_a_host_spec_sends_the_nets_wall_lines_webs_and_umbilics(monkeypatch, tmp_path):
+    """A [host] spec: the face's net as `tubecad build` writes it, the wall translucent, the
+    lines coloured by family; everything inside the dome's box (the 2:1 ellipse a = 500,
+    c = 250 turned about z: |x|, |y| <= a, 0 <= z <= c)."""
+    from conftest import ROOT
+
+    import tubecad
+    from tubecad.integrations.viewer import LINE_RING_RGB, LINE_STRINGER_RGB
+
+    text = (ROOT / "samples" / "dome.toml").read_text().replace('step = "', f'step = "{ROOT / "samples"}/')
+    spec = tmp_path / "dome.toml"
+    spec.write_text(text)
+    monkeypatch.setenv("OCP_VSCODE_PYTEST", "1")
+    shown = tubecad.show(spec)
+    parts = sent_parts(shown)
+    assert shown.trees[0].label == "dome" and parts["wall"]["alpha"] == 0.4
+    assert sorted(n for n in parts if n.startswith("stiffener_")) == [f"stiffener_k1_0{i}" for i in (1, 3, 5)]
+    assert parts["k1_02"]["color"] == hex_colour(LINE_RING_RGB)
+    assert parts["k2_05"]["color"] == hex_colour(LINE_STRINGER_RGB)
+    assert sum(n.startswith(("k1_", "k2_")) for n in parts) == 6 + 8
+    for name, part in parts.items():
+        if "bbox" in part:
+            low, high = part["bbox"]
+            assert np.all(np.abs(low[:2]) <= 500 + 1e-6) and np.all(np.abs(high[:2]) <= 500 + 1e-6), name
+            assert low[2] >= -1e-6 and high[2] <= 250 + 1e-6, name
+    assert shown.summary().startswith("dome: wall, 3 stiffeners, 14 curvature lines")
