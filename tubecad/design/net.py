@@ -45,6 +45,10 @@ if TYPE_CHECKING:
 
 #: a choice of one family's lines: "all", or their indices
 LineSelection = Literal["all"] | tuple[int, ...]
+#: the surfaces of the net's cells: the host's own (the face split by the lines, exact), or
+#: each four-sided cell refitted in curvature-line coordinates (:mod:`tubecad.nets.patch_shell`)
+PatchSurfaces = Literal["host", "curvature"]
+PATCH_SURFACES: tuple[PatchSurfaces, ...] = ("host", "curvature")
 #: lines per family by default
 DEFAULT_LINES = 8
 #: a seed this share of the face's size from it is taken as its nearest point of the face
@@ -92,6 +96,9 @@ class NetDesign:
         wall: the face thickened into a wall (None: the split face itself).
         webs: stiffeners on chosen lines.
         length_unit: the unit of the face's coordinates.
+        patches: the cells' surfaces: ``host`` (the face split by the lines) or
+            ``curvature`` (each four-sided cell on its curvature-line patch,
+            :func:`tubecad.nets.patch_shell.patch_shell`; the others stay on the host).
     """
 
     face: Any
@@ -103,6 +110,7 @@ class NetDesign:
     wall: WallChoice | None = None
     webs: NetStiffenerChoice | None = None
     length_unit: str = DEFAULT_LENGTH_UNIT
+    patches: PatchSurfaces = "host"
 
     WRITTEN_AS: ClassVar[frozenset[str]] = frozenset({"cad", "mesh", "png"})
     WHAT: ClassVar[str] = "a face's curvature-line net"
@@ -364,15 +372,23 @@ def build_net(design: NetDesign) -> NetResult:
     from tubecad.brep.segments import segmented
 
     net = design.net
-    segmented(net.patches)  # each piece of a split line on its own part of the curve: files 6x smaller
-    body = net.patches
+    refit = None
+    if design.patches == "curvature":  # before the edges' curves are cut: the cells find their lines by them
+        from tubecad.nets.patch_shell import patch_shell
+
+        with stage("host"):
+            refit = patch_shell(net)
+    body = net.patches if refit is None else refit.shell
+    segmented(body)  # each piece of a split line on its own part of the curve: files 6x smaller
     if design.wall is not None:
         with stage("wall"):
-            body = thickened(net.patches, design.wall)
+            body = thickened(body, design.wall)
     webs = design.built_webs()
     result = NetResult(design, body, webs)
     result.shape = net_assembly(result)
     result.report = net_report(result)
+    if refit is not None:
+        result.report["patches"] = refit.report()
     return result
 
 

@@ -43,7 +43,7 @@ from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
 from tubecad.brep.wall import WallSide
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
-from tubecad.design.net import DEFAULT_LINES, LineSelection, NetResult
+from tubecad.design.net import DEFAULT_LINES, LineSelection, NetResult, PatchSurfaces
 from tubecad.occ_compat import as_edge
 from tubecad.parts.axis_input import AxisLike, RadiusLike
 from tubecad.parts.engine import PartArguments, build_part, edge_map_of, net_edges, stiffener_solids
@@ -265,6 +265,7 @@ def curvature_net(
     stiffened: Mapping[str, LineSelection | Sequence[int]] | None = None,
     profile: Profile | None = None,
     stiffener_side: StiffenerSide = "outside",
+    patches: PatchSurfaces = "host",
     combine: bool = True,
     clean: bool = True,
 ) -> cq.Workplane:
@@ -303,6 +304,7 @@ def curvature_net(
         stiffened,
         profile,
         stiffener_side,
+        patches,
     )
     solids = []
     for name, shape in built.solids:  # the wall, then each web
@@ -356,12 +358,24 @@ def _built_net(
     stiffened: Mapping[str, LineSelection | Sequence[int]] | None,
     profile: Profile | None,
     stiffener_side: StiffenerSide,
+    patches: PatchSurfaces = "host",
 ) -> NetResult:
     """The NetDesign of tubecad.CurvatureNet's arguments (:func:`tubecad.parts.net_arguments.net_part_design`), built."""
     from tubecad.parts.net_arguments import net_part_design
 
     design = net_part_design(
-        face, k1_lines, k2_lines, thickness, side, k1_spacing, k2_spacing, seed, stiffened, profile, stiffener_side
+        face,
+        k1_lines,
+        k2_lines,
+        thickness,
+        side,
+        k1_spacing,
+        k2_spacing,
+        seed,
+        stiffened,
+        profile,
+        stiffener_side,
+        patches,
     )
     return design.build_net()
 

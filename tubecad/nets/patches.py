@@ -111,7 +111,8 @@ class CurvaturePatch:
     [0, L_u] x [0, L_v] (the sides k1[0] and k2[0]'s arc lengths)."""
 
     surface: Geom_BSplineSurface
-    face: TopoDS_Face
+    #: None where the patch was made without its face (``bounded=False``)
+    face: TopoDS_Face | None
     #: (lines of family 1, lines of family 2) in the grid, the cell's own included
     samples: tuple[int, int]
     #: the grid points on the host (n, m, 3): [a, b] on the a-th family-2 line and b-th family-1
@@ -127,7 +128,8 @@ class CurvaturePatch:
     #: the largest |M| / (sqrt(E G) max(|k1|, |k2|)) on the patch
     M: float
     #: the largest distance between the boundary edges' 3-D curves and the patch (along their
-    #: pcurves): the edges' tolerance on the patch is the larger of twice it and 1e-7
+    #: pcurves): the edges' tolerance on the patch is the larger of twice it and 1e-7 (0 without
+    #: the face)
     edge_gap: float
     #: the surface's poles (along u, along v)
     poles: tuple[int, int]
@@ -165,6 +167,19 @@ class _Line:
     sigma: FloatArray
     pcurve: BSpline
     curve: Geom_BSplineCurve
+    #: a closed line's length (its arc length then counts round it), else None
+    period: float | None = None
+
+    def at(self, s: Any) -> FloatArray:
+        """The pcurve at arc lengths ``s``, taken round a closed line."""
+        if self.period is not None:
+            s = self.sigma[0] + np.mod(np.asarray(s, dtype=float) - self.sigma[0], self.period)
+        return self.pcurve(s)
+
+    def apart(self, a: Any, b: Any) -> Any:
+        """a - b along the line: the shorter way round a closed one."""
+        d = np.asarray(a, dtype=float) - b
+        return d if self.period is None else (d + 0.5 * self.period) % self.period - 0.5 * self.period
 
 
 def curvature_patch(
@@ -177,6 +192,7 @@ def curvature_patch(
     degree: int = 3,
     tolerance: float = 1e-10,
     near: tuple[float, float] | None = None,
+    bounded: bool = True,
 ) -> CurvaturePatch:
     """The cell of ``net`` between the lines ``k1`` and ``k2`` as a patch in curvature-line
     coordinates (module docstring).
@@ -195,6 +211,9 @@ def curvature_patch(
             1e-10 unless it was made otherwise).
         near: host parameters (u, v) near the corner k1[0] x k2[0], where those lines cross
             more than once (closed lines); default the crossing first along k1[0].
+        bounded: make the face on the patch bounded by the cell's lines (step 4); False: the
+            surface and its measures only (:mod:`~tubecad.nets.patch_shell` puts the net's
+            own edges on it).
 
     Returns:
         The patch.
@@ -216,11 +235,13 @@ def curvature_patch(
     start = time.perf_counter()
     cell = _Cell(net, k1, k2, tolerance, near, degree)
     if samples is not None:
-        return cell.patch(samples, start)
+        return cell.patch(samples, start, bounded=bounded)
     tried: list[dict[str, Any]] = []
     patch = None
     for count in GRIDS:
-        patch = cell.patch((count, count), start, tuple(tried))
+        if count <= degree:
+            continue
+        patch = cell.patch((count, count), start, tuple(tried), bounded)
         if patch.distance <= target[0] * cell.size and patch.angle <= target[1]:
             break
         tried.append(patch.report())
@@ -231,6 +252,12 @@ def curvature_patch(
 def _size(host: HostSurface) -> float:
     u0, u1, v0, v1 = host.bounds
     return float(np.ptp(host.points(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))), axis=0).max())
+
+
+def _line_of(line: Any, edge: Any) -> _Line:
+    """A traced line (:class:`~tubecad.nets.trace.CurvatureLine`) and its edge as a grid line."""
+    period = float(line.sigma[-1] - line.sigma[0]) if line.closed else None
+    return _Line(line.uv, line.sigma, _spline_of(edge.pcurve), edge.curve, period)
 
 
 def _spline_of(pcurve: Geom2d_BSplineCurve) -> BSpline:
@@ -261,12 +288,7 @@ class _Cell:
         self.stops = np.array([p.point for p in net.umbilics.points]).reshape(-1, 3)
         self.reach = UMBILIC_REACH * self.size
         self.flat = net.umbilics.part_level
-        sides = {
-            name: _Line(
-                net.lines[name].uv, net.lines[name].sigma, _spline_of(net.edges[name].pcurve), net.edges[name].curve
-            )
-            for name in (*k1, *k2)
-        }
+        sides = {name: _line_of(net.lines[name], net.edges[name]) for name in (*k1, *k2)}
         self.bottom, self.top = sides[k1[0]], sides[k1[1]]
         self.left, self.right = sides[k2[0]], sides[k2[1]]
         # the corners, as (arc length on the family-1 line, on the family-2 line)
@@ -274,15 +296,21 @@ class _Cell:
         if not len(first):
             raise ParameterError(f"the lines {k1[0]} and {k2[0]} do not cross", key="net")
         if near is not None and len(first) > 1:
-            at = np.array([self.bottom.pcurve(s) for s in first[:, 0]])
+            at = np.array([self.bottom.at(s) for s in first[:, 0]])
             first = first[[int(np.argmin(np.linalg.norm(self._wrap(at - np.asarray(near, dtype=float)), axis=1)))]]
         c00 = first[0]
-        c10 = self._nearest(self._crossings(self.bottom, self.right), 0, c00[0], (k1[0], k2[1]))
-        c01 = self._nearest(self._crossings(self.top, self.left), 1, c00[1], (k1[1], k2[0]))
-        c11 = self._nearest(self._crossings(self.top, self.right), 0, c01[0], (k1[1], k2[1]))
+        # each corner's arc length on the line it shares with the one before counted from that
+        # one's (the shorter way round a closed line): the sides' spans are then differences
+        c10 = self._nearest(self._crossings(self.bottom, self.right), 0, c00[0], (k1[0], k2[1]), self.bottom)
+        c01 = self._nearest(self._crossings(self.top, self.left), 1, c00[1], (k1[1], k2[0]), self.left)
+        c11 = self._nearest(self._crossings(self.top, self.right), 0, c01[0], (k1[1], k2[1]), self.top)
+        c10[0] = c00[0] + self.bottom.apart(c10[0], c00[0])
+        c01[1] = c00[1] + self.left.apart(c01[1], c00[1])
         self.corners = {"00": c00, "10": c10, "01": c01, "11": c11}
         self.length_u, self.length_v = abs(c10[0] - c00[0]), abs(c01[1] - c00[1])
-        longest = max(self.length_u, self.length_v, abs(c11[0] - c01[0]), abs(c11[1] - c10[1]))
+        longest = max(
+            self.length_u, self.length_v, abs(self.top.apart(c11[0], c01[0])), abs(self.right.apart(c11[1], c10[1]))
+        )
         self.max_length = REACH * longest
         self.traced: dict[tuple[int, float], _Line] = {}
 
@@ -295,10 +323,11 @@ class _Cell:
                 d[..., k] -= period * np.round(d[..., k] / period)
         return d
 
-    def _nearest(self, found: FloatArray, k: int, value: float, names: tuple[str, str]) -> FloatArray:
+    def _nearest(self, found: FloatArray, k: int, value: float, names: tuple[str, str], line: _Line) -> FloatArray:
+        """The crossing in ``found`` whose arc length ``k`` is nearest ``value`` along ``line``."""
         if not len(found):
             raise ParameterError(f"the lines {names[0]} and {names[1]} do not cross: no four-sided cell", key="net")
-        return found[int(np.argmin(np.abs(found[:, k] - value)))]
+        return found[int(np.argmin(np.abs(line.apart(found[:, k], value))))].copy()
 
     def _crossings(self, p: _Line, q: _Line) -> FloatArray:
         """Every crossing of the lines p and q, (k, 2): the arc length on each (module
@@ -346,7 +375,7 @@ class _Cell:
             at = self.corners["00"][k] + share * (
                 (self.corners["10"] if family == 2 else self.corners["01"])[k] - self.corners["00"][k]
             )
-            seed = side.pcurve(at)
+            seed = side.at(at)
             line = trace_line(
                 self.host,
                 (float(seed[0]), float(seed[1])),
@@ -357,8 +386,7 @@ class _Cell:
                 max_length=self.max_length,
                 flat=self.flat,
             )
-            edge = line_edge(self.host, line)
-            self.traced[key] = _Line(line.uv, line.sigma, _spline_of(edge.pcurve), edge.curve)
+            self.traced[key] = _line_of(line, line_edge(self.host, line))
         return self.traced[key]
 
     def grid(self, rows: int, columns: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -384,12 +412,12 @@ class _Cell:
                     )
                 if reference is None:  # an interior column at the bottom: its seed on k1[0]
                     seed_s = self.corners["00"][0] + shares_u[a] * (self.corners["10"][0] - self.corners["00"][0])
-                    pick = int(np.argmin(np.abs(found[:, 0] - seed_s)))
+                    pick = int(np.argmin(np.abs(row.apart(found[:, 0], seed_s))))
                 else:
-                    pick = int(np.argmin(np.abs(found[:, 1] - reference)))
+                    pick = int(np.argmin(np.abs(col.apart(found[:, 1], reference))))
                 st[a, b] = found[pick, 1], found[pick, 0]
                 reference = st[a, b, 0]
-        uv = np.array([[cols[a].pcurve(st[a, b, 0]) for b in range(rows)] for a in range(columns)])
+        uv = np.array([[cols[a].at(st[a, b, 0]) for b in range(rows)] for a in range(columns)])
         # one unwrapping across a closed seam: along the first column, then along each row
         for k in (0, 1):
             period = self.host.periods[k]
@@ -398,7 +426,9 @@ class _Cell:
                 uv[:, :, k] = np.unwrap(uv[:, :, k], period=period, axis=0)
         return st, uv, shares_u, shares_v
 
-    def patch(self, samples: tuple[int, int], start: float, tried: tuple[dict[str, Any], ...] = ()) -> CurvaturePatch:
+    def patch(
+        self, samples: tuple[int, int], start: float, tried: tuple[dict[str, Any], ...] = (), bounded: bool = True
+    ) -> CurvaturePatch:
         """The patch on a grid of ``samples`` = (family-1 lines, family-2 lines)."""
         rows, columns = samples
         st, uv, shares_u, shares_v = self.grid(rows, columns)
@@ -415,7 +445,7 @@ class _Cell:
             points_2d(poles), reals(u_knots), reals(v_knots), integers(u_mults), integers(v_mults), k, k
         )
         distance, angle, f, m, same = self._measured(surface, us, vs, uv)
-        face, gap = self._face(surface, st, us, vs, grid, same)
+        face, gap = self._face(surface, st, us, vs, grid, same) if bounded else (None, 0.0)
         return CurvaturePatch(
             surface,
             face,

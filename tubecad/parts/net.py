@@ -29,7 +29,7 @@ from typing import Any
 import build123d as bd
 
 from tubecad.brep.wall import WallSide
-from tubecad.design.net import DEFAULT_LINES, LineSelection, NetDesign
+from tubecad.design.net import DEFAULT_LINES, LineSelection, NetDesign, PatchSurfaces
 from tubecad.stiffeners.profiles import Profile, StiffenerSide
 
 
@@ -52,6 +52,10 @@ class CurvatureNet(bd.BasePartObject):
         stiffened: webs on the net's lines: ``{"k1": [1, 3], "k2": "all"}``.
         profile: the stiffeners' profile (``Profile("flat", height, thickness)``, a T or an L).
         stiffener_side: ``outside`` (along the face's normal) or ``inside``.
+        patches: the cells' surfaces: ``host`` (the face's own, split by the lines) or
+            ``curvature`` (each four-sided cell refitted as a patch whose isolines are its
+            lines of curvature; ``report["patches"]`` gives each patch's figures and the
+            cells kept on the face).
         rotation: build123d's part rotation.
         align: build123d's part alignment.
         mode: build123d's combine mode in builder mode.
@@ -77,6 +81,7 @@ class CurvatureNet(bd.BasePartObject):
         stiffened: Mapping[str, LineSelection | Sequence[int]] | None = None,
         profile: Profile | None = None,
         stiffener_side: StiffenerSide = "outside",
+        patches: PatchSurfaces = "host",
         rotation: bd.RotationLike = (0, 0, 0),
         align: Any = None,
         mode: bd.Mode = bd.Mode.ADD,
@@ -84,7 +89,18 @@ class CurvatureNet(bd.BasePartObject):
         from tubecad.parts.net_arguments import net_part_design
 
         design = net_part_design(
-            face, k1_lines, k2_lines, thickness, side, k1_spacing, k2_spacing, seed, stiffened, profile, stiffener_side
+            face,
+            k1_lines,
+            k2_lines,
+            thickness,
+            side,
+            k1_spacing,
+            k2_spacing,
+            seed,
+            stiffened,
+            profile,
+            stiffener_side,
+            patches,
         )
         built = design.build_net()
         self._built = built

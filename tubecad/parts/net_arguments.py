@@ -10,7 +10,7 @@ from typing import Any
 from tubecad.brep.wall import WallSide
 from tubecad.core.errors import ParameterError
 from tubecad.design.model import WallChoice
-from tubecad.design.net import LineSelection, NetDesign, NetStiffenerChoice
+from tubecad.design.net import PATCH_SURFACES, LineSelection, NetDesign, NetStiffenerChoice, PatchSurfaces
 from tubecad.stiffeners.profiles import Profile, StiffenerSide
 
 #: the families ``stiffened`` may name
@@ -29,6 +29,7 @@ def net_part_design(
     stiffened: Mapping[str, LineSelection | Sequence[int]] | None = None,
     profile: Profile | None = None,
     stiffener_side: StiffenerSide = "outside",
+    patches: PatchSurfaces = "host",
 ) -> NetDesign:
     """The design of a net part's arguments (:class:`~tubecad.parts.net.CurvatureNet`'s).
 
@@ -44,14 +45,17 @@ def net_part_design(
         stiffened: ``{"k1": [indices] or "all", "k2": ...}``: the lines that carry webs.
         profile: the stiffeners' profile (flat bar, T or L).
         stiffener_side: ``outside`` or ``inside``.
+        patches: the cells' surfaces, ``host`` or ``curvature``.
 
     Returns:
         The design, not built.
 
     Raises:
         ParameterError: naming the argument (``thickness``, ``side``, ``stiffened``,
-            ``profile``, ``seed``).
+            ``profile``, ``seed``, ``patches``).
     """
+    if patches not in PATCH_SURFACES:
+        raise ParameterError(f"patches must be one of {', '.join(PATCH_SURFACES)}, got {patches!r:.40}", key="patches")
     wall = WallChoice(thickness, side)
     try:
         wall.offsets()
@@ -80,6 +84,7 @@ def net_part_design(
         point,
         wall,
         webs,
+        patches=patches,
     )
 
 

@@ -93,6 +93,7 @@ def net_design(spec: HostSpec) -> NetDesign:
         wall,
         webs,
         spec.length_unit,
+        "curvature" if host.patches == "curvature" else "host",
     )
 
 

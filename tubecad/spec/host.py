@@ -7,6 +7,7 @@
     k1_lines = 8               # or k1_spacing = 400.0
     k2_lines = 6               # or k2_spacing
     seed = [2000.0, 1400.0, 300.0]   # optional: a point the first lines pass through
+    patches = "curvature"      # optional: the cells refitted in curvature-line coordinates
 
     [wall]                     # optional: the face thickened into a wall solid
     thickness = 12.0
@@ -59,7 +60,8 @@ STEP_SUFFIXES = next(f.extensions for f in FORMATS if f.name == "step")
 @dataclass(frozen=True)
 class HostSection:
     """[host]: the STEP ``step`` (relative to the spec), which ``face`` of it, the lines per
-    family (``k1_lines``, ``k2_lines``) or their spacing, and a ``seed`` point."""
+    family (``k1_lines``, ``k2_lines``) or their spacing, a ``seed`` point, and the cells'
+    surfaces (``patches``: ``host`` or ``curvature``)."""
 
     step: str
     face: int | str = 0
@@ -68,6 +70,7 @@ class HostSection:
     k1_spacing: float | None = None
     k2_spacing: float | None = None
     seed: list[float] | None = None
+    patches: str = "host"
 
     def lines(self, family: str) -> int | None:
         """The family's (``k1``, ``k2``) count: given, or DEFAULT_LINES without a spacing."""

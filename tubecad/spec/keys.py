@@ -511,6 +511,15 @@ HOST_KEYS = {
         help="a point [x, y, z] of the face: each family's lines are spread along the other family's line through it "
         "(default the face's parameter centre)",
     ),
+    "patches": Key(
+        "string",
+        required=False,
+        help="host | curvature: the cells on the face's own surface (default), or each four-sided cell refitted "
+        "as a B-spline patch whose isolines are its lines of curvature (those missing the fit's target stay on "
+        "the face; the report's patches section says which)",
+        choices=("host", "curvature"),
+        default="host",
+    ),
 }
 #: the sections a [host] spec may have besides [host]
 HOST_SECTIONS = ("wall", "stiffeners", "units", "fabrication", "mesh", "analysis")

@@ -212,6 +212,13 @@ def net_summary(report: dict[str, Any]) -> list[str]:
         f"{brep['kind']}: {net['k1_lines']} + {net['k2_lines']} lines of curvature, within {net['angle']:.1e} rad of the "
         f"principal directions; {brep['patches']} patches, valid={brep['valid']}; umbilics: {umbilics}"
     ]
+    if "patches" in report:
+        refit = report["patches"]
+        lines.append(
+            f"patches: {len(refit['refitted'])} cells refitted in curvature-line coordinates (within "
+            f"{refit['distance']:.1e} of the face, isolines within {refit['angle']:.1e} rad of the principal "
+            f"directions), {len(refit['kept'])} kept on the face"
+        )
     if "stiffeners" in report:
         lines.append(f"stiffeners: {len(report['stiffeners'])} webs on the lines, each developing flat without strain")
     return lines
