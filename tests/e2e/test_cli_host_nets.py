@@ -149,6 +149,34 @@ def test_the_dome_reports_and_develops_its_ring_webs_as_the_closed_form_cones(tm
     assert (tmp_path / "flat" / "webs.dxf").is_file() and (tmp_path / "flat" / "k1_03.svg").is_file()
 
 
+@pytest.mark.slow
+def test_the_dome_with_curvature_patches_builds_and_develops_its_panels(tmp_path):
+    """`[host] patches = "curvature"`: the 2 x 4 inner cells of a 3 + 4 net on their
+    curvature-line patches in the wall read back from STEP (valid, every patch a B-spline whose
+    isolines meet the target), and the shop develops each as a panel (panel_NN_development.dxf):
+    its flat area more than its surface's (K > 0 on the dome: Jacobi), its ring edges arcs."""
+    import ezdxf
+
+    edits = (("k1_lines = 6", "k1_lines = 3"), ("k2_lines = 8", 'k2_lines = 4\npatches = "curvature"'))
+    edits += (("k1 = [1, 3, 5]", "k1 = [1]"),)
+    spec = _spec(tmp_path, "dome.toml", edits)
+    out = tmp_path / "dome.step"
+    built = CliRunner().invoke(cli, ["build", spec, "-o", str(out), "--report", str(tmp_path / "r.json")])
+    assert built.exit_code == 0, built.output
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert len(report["patches"]["refitted"]) == 2 * 4 and report["brep"]["valid"]
+    assert report["patches"]["angle"] < 1e-6 and "8 cells refitted" in built.output
+    shop = CliRunner().invoke(cli, ["shop", spec, "-o", str(tmp_path / "shop")])
+    assert shop.exit_code == 0, shop.output
+    index = json.loads((tmp_path / "shop" / "index.json").read_text())
+    assert len(index["developments"]) == 2 * 4
+    for dev in index["developments"]:
+        assert dev["flat_area"] > dev["surface_area"] and dev["max_strain"] > 0  # a quarter of the dome a panel
+        drawing = ezdxf.readfile(tmp_path / "shop" / "panels" / f"{dev['name']}_development.dxf")
+        (outline,) = drawing.modelspace().query("LWPOLYLINE[layer=='OUTLINE']")
+        assert outline.closed and len(outline) > 4
+
+
 def test_a_tube_spec_refuses_a_nets_line_choice(tmp_path):
     text = (
         (ROOT / "samples" / "helix_stiffened.toml").read_text().replace("[stiffeners]\n", "[stiffeners]\nk1 = [0]\n", 1)

@@ -39,6 +39,7 @@ if TYPE_CHECKING:
     from tubecad.export.registry import Exportable, OutputFormat
     from tubecad.fem.settings import MeshSettings
     from tubecad.nets import CurvatureNet
+    from tubecad.nets.patch_shell import PatchShell
     from tubecad.shop.fabrication import Fabrication
     from tubecad.stiffeners.net_webs import NetWeb
     from tubecad.stiffeners.profiles import Profile, StiffenerSide
@@ -132,6 +133,17 @@ class NetDesign:
             counts = self._counts(uv)
             return curvature_net(self.face, counts[0], counts[1], seed=uv)
 
+    @cached_property
+    def refit(self) -> PatchShell | None:
+        """With ``patches = "curvature"``, the net's cells on their curvature-line patches
+        (:func:`tubecad.nets.patch_shell.patch_shell`), made once; else None."""
+        if self.patches != "curvature":
+            return None
+        from tubecad.nets.patch_shell import patch_shell
+
+        with stage("host"):
+            return patch_shell(self.net)
+
     def build(self, progress: Progress | None = None) -> BuildResult:  # noqa: ARG002 - the protocol's signature
         """The net, the wall, the webs, named and measured (:func:`build_net`)."""
         return build_net(self)
@@ -160,16 +172,20 @@ class NetDesign:
         return NetShellModel(mesh)
 
     def shop(self, fab: Fabrication, progress: Callable[[str], None] | None = None) -> ShopPackage:
-        """The webs developed flat and nested on plates, the net's marking lines and a pin
-        jig per panel (:func:`tubecad.shop.net_shop.net_shop`)."""
+        """The webs developed flat and nested on plates, the net's marking lines, a pin jig per
+        panel and, with ``patches = "curvature"``, each refitted panel's development
+        (:func:`tubecad.shop.net_shop.net_shop`)."""
         from tubecad.shop.net_shop import net_shop
 
         if progress is not None:
             progress("tracing the net and its webs")
         webs = self.built_webs()
+        refit = self.refit
         levels = (0.0, 0.0) if self.wall is None else self.wall.offsets()
+        if refit is not None and progress is not None:
+            progress("developing the refitted panels")
         with stage("fabrication"):
-            return net_shop(self.net, webs, fab, levels)
+            return net_shop(self.net, webs, fab, levels, refit)
 
     @classmethod
     def analysis_ends(cls, given: str | None, default: str) -> str:  # noqa: ARG003 - the protocol's signature
@@ -372,12 +388,7 @@ def build_net(design: NetDesign) -> NetResult:
     from tubecad.brep.segments import segmented
 
     net = design.net
-    refit = None
-    if design.patches == "curvature":  # before the edges' curves are cut: the cells find their lines by them
-        from tubecad.nets.patch_shell import patch_shell
-
-        with stage("host"):
-            refit = patch_shell(net)
+    refit = design.refit  # before the edges' curves are cut: the cells find their lines by them
     body = net.patches if refit is None else refit.shell
     segmented(body)  # each piece of a split line on its own part of the curve: files 6x smaller
     if design.wall is not None:

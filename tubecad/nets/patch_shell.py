@@ -63,6 +63,9 @@ class PatchShell:
     kept: dict[str, str] = field(default_factory=dict)
     #: the largest tolerance given to an edge on a patch (twice its gap, at least 1e-7)
     edge_tolerance: float = 0.0
+    #: each refitted cell's place among the split face's faces (1-based, in OCCT's order: the
+    #: shop's ``panel_NN``)
+    panels: dict[str, int] = field(default_factory=dict)
 
     def report(self) -> dict[str, Any]:
         """``refitted`` (per cell its patch's figures), ``kept`` (per cell the reason), the
@@ -110,6 +113,7 @@ def patch_shell(
     size = _size(net)
     patches: dict[str, CurvaturePatch] = {}
     kept: dict[str, str] = {}
+    panels: dict[str, int] = {}
     reshape = BRepTools_ReShape()
     worst_tolerance = 0.0
     faces = TopExp_Explorer(net.patches, TopAbs_FACE)
@@ -156,10 +160,11 @@ def patch_shell(
         worst_tolerance = max(worst_tolerance, tolerance)
         reshape.Replace(face, new_face)
         patches[name] = patch
+        panels[name] = index
     shell = reshape.Apply(net.patches)
     if not BRepCheck_Analyzer(shell).IsValid():
         raise TubecadError("the net's shell is not valid with its cells on their curvature-line patches")
-    return PatchShell(shell, patches, kept, worst_tolerance)
+    return PatchShell(shell, patches, kept, worst_tolerance, panels)
 
 
 def _area(face: TopoDS_Face) -> float:

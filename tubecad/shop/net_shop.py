@@ -12,6 +12,10 @@ split with its web (:func:`flange_pattern`). The pieces are nested
 (:func:`tubecad.shop.nesting.nest`) and drawn (DXF for cutting, SVG, a preview picture:
 :mod:`tubecad.shop.drawings`). The marking data are the lines' 3-D polylines (CSV, a row per
 point, named ``k1_03``...) and their lengths, for marking the face before the webs are set.
+A panel refitted in curvature-line coordinates (``[host] patches = "curvature"``:
+:mod:`tubecad.nets.patch_shell`) is developed as a tube's panel is
+(:func:`tubecad.shop.panel_development.develop_cell`: its middle k2 line and every k1 line kept
+isometric, the strain measured at every node), 1:1 in DXF with a picture of the strain.
 """
 
 from __future__ import annotations
@@ -30,9 +34,11 @@ from tubecad.shop.webs import WebPiece, cuttable, piece_names
 
 if TYPE_CHECKING:
     from tubecad.nets import CurvatureNet
+    from tubecad.nets.patch_shell import PatchShell
     from tubecad.shop.fabrication import Fabrication
     from tubecad.shop.flanges import FlangePattern
     from tubecad.shop.nesting import Plate
+    from tubecad.shop.panel_development import PanelDevelopment
     from tubecad.stiffeners.net_webs import NetWeb
     from tubecad.stiffeners.profiles import Profile
 
@@ -40,6 +46,8 @@ if TYPE_CHECKING:
 MAX_PIECES = 200
 #: points per line in the marking CSV
 MARKING_POINTS = 201
+#: a refitted panel's development grid (nodes along k1, along k2)
+DEVELOPMENT_SAMPLES = (17, 17)
 
 
 @dataclass
@@ -54,6 +62,9 @@ class NetShop:
     fab: Fabrication
     pin_jigs: list[CellPinJig] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    #: the refitted panels' developments (``panel_NN``, with ``patches = "curvature"``) and
+    #: the lines round each
+    developments: list[tuple[PanelDevelopment, str]] = field(default_factory=list)
 
     def write(self, folder: Path, name: str) -> dict[str, Any]:
         """Write webs/ (plates as DXF, SVG, PNG; the developments side by side as DXF),
@@ -61,6 +72,7 @@ class NetShop:
         from tubecad.shop.drawings import write_plate_dxf, write_plate_picture, write_plate_svg
         from tubecad.shop.nesting import check_nesting
         from tubecad.shop.net_pin_jigs import write_cell_pin_jig_csv
+        from tubecad.shop.panel_development import write_panel_dxf, write_panel_picture
         from tubecad.shop.pin_jig import write_pin_jig_picture
         from tubecad.stiffeners.flat import write_dxf
 
@@ -98,6 +110,14 @@ class NetShop:
             record(table, "panels", what + " (CSV)")
             for picture in write_pin_jig_picture(jig, folder / "panels", ("png",)):
                 record(picture, "panels", what + " (picture)")
+        if self.developments:
+            (folder / "panels").mkdir(exist_ok=True)
+        for dev, cell in self.developments:
+            what = f"{dev.name} ({cell}) developed, largest strain {dev.max_strain:.2e}"
+            (dxf,) = write_panel_dxf([dev], {}, folder / "panels", unit)
+            record(dxf, "panels", what + " (DXF, 1:1)")
+            for picture in write_panel_picture(dev, [], folder / "panels", ("png",)):
+                record(picture, "panels", what + " (picture of the strain)")
         marking = folder / "marking" / "net_lines.csv"
         write_text(marking, marking_csv(self.net))
         record(
@@ -130,6 +150,16 @@ class NetShop:
                 }
                 for jig in self.pin_jigs
             ],
+            "developments": [
+                {
+                    "name": dev.name,
+                    "cell": cell,
+                    "max_strain": dev.max_strain,
+                    "surface_area": dev.surface_area,
+                    "flat_area": dev.flat_area,
+                }
+                for dev, cell in self.developments
+            ],
             "lines": {n: float(line.sigma[-1] - line.sigma[0]) for n, line in self.net.lines.items()},
             "umbilics": self.net.report()["umbilics"],
             "warnings": list(self.warnings),
@@ -140,16 +170,22 @@ class NetShop:
 
 
 def net_shop(
-    net: CurvatureNet, webs: list[NetWeb], fab: Fabrication, levels: tuple[float, float] = (0.0, 0.0)
+    net: CurvatureNet,
+    webs: list[NetWeb],
+    fab: Fabrication,
+    levels: tuple[float, float] = (0.0, 0.0),
+    refit: PatchShell | None = None,
 ) -> NetShop:
-    """The package of ``webs`` on ``net`` with the settings ``fab`` (module docstring), and a
-    pin jig per panel (:func:`tubecad.shop.net_pin_jigs.net_pin_jigs`).
+    """The package of ``webs`` on ``net`` with the settings ``fab`` (module docstring), a
+    pin jig per panel (:func:`tubecad.shop.net_pin_jigs.net_pin_jigs`) and each refitted
+    panel's development.
 
     Args:
         net: the face's net.
         webs: its webs (:func:`tubecad.stiffeners.net_webs.net_web`).
         fab: the fabrication settings.
         levels: the wall's inner and outer offsets from the face (its plating's surfaces).
+        refit: the net's cells on their curvature-line patches, or None.
 
     Returns:
         The package, ready to write.
@@ -164,7 +200,22 @@ def net_shop(
     warnings: list[str] = []
     side = webs[0].side if webs else "outside"
     jigs = net_pin_jigs(net, levels, side, fab.pin_spacing, fab.pin_clearance, warnings)
-    return NetShop(net, webs, pieces, nest(pieces, fab) if pieces else [], fab, jigs, warnings)
+    developments = [] if refit is None else refitted_developments(refit)
+    return NetShop(net, webs, pieces, nest(pieces, fab) if pieces else [], fab, jigs, warnings, developments)
+
+
+def refitted_developments(refit: PatchShell) -> list[tuple[PanelDevelopment, str]]:
+    """Each refitted cell developed (module docstring), named ``panel_NN`` by its place among
+    the split face's faces (the pin jigs' names), with its cell's name."""
+    from tubecad.nets.patch_surface import PatchSurface
+    from tubecad.shop.panel_development import develop_cell
+
+    out = []
+    for cell, patch in sorted(refit.patches.items(), key=lambda item: refit.panels[item[0]]):
+        base = PatchSurface(patch.surface)
+        name = f"panel_{refit.panels[cell]:02d}"
+        out.append((develop_cell(base, base.u_range, base.span, name, DEVELOPMENT_SAMPLES), cell))
+    return out
 
 
 def web_pieces(net: CurvatureNet, web: NetWeb, fab: Fabrication) -> list[WebPiece]:

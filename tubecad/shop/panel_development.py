@@ -72,6 +72,8 @@ FloatArray = np.ndarray
 WallSurface = CurvatureLineSurface  # a tube or a canal surface
 #: most grid samples along either direction
 MAX_SAMPLES = 4097
+#: the relative tolerance of a refitted net cell's fits (:func:`develop_cell`)
+CELL_TOLERANCE = 1e-13
 #: the development DXF's layers, name -> DXF colour index
 PANEL_LAYERS = {"OUTLINE": 7, "MARKING": 1, "TEXT": 3, "STRAIN": 5}
 
@@ -132,8 +134,9 @@ class _Primitive:
         floor: float,
         name: str,
         breaks: FloatArray | None = None,
+        tol: float = 1e-15,
     ) -> None:
-        fit = PiecewiseChebyshev.fit(lambda x: f(x) + floor, lo, hi, name=name, breaks=breaks)
+        fit = PiecewiseChebyshev.fit(lambda x: f(x) + floor, lo, hi, name=name, breaks=breaks, tol=tol)
         self.series = fit.antiderivative()
         self.floor, self.x0 = floor, x0
         self.start = self.series(np.array(x0))
@@ -165,14 +168,29 @@ class _Rings:
 class PanelConstruction:
     """The development map P(u, s) of one panel (module docstring); u in radians."""
 
-    def __init__(self, base: WallSurface, u_range: tuple[float, float], s_range: tuple[float, float]) -> None:
+    def __init__(
+        self,
+        base: WallSurface,
+        u_range: tuple[float, float],
+        s_range: tuple[float, float],
+        u_breaks: FloatArray | None = None,
+        length_scale: float | None = None,
+        tol: float = 1e-15,
+    ) -> None:
+        self.tol = tol  # the fits' relative tolerance: a tube's analytic derivatives hold 1e-15
         self.base = base
         self.u_a, self.u_b = u_range
         self.u_m = 0.5 * (self.u_a + self.u_b)
         self.s_a, self.s_b = s_range
         self.breaks = _s_breaks(base, s_range)
+        # the fits across the rings start panels at these u (a B-spline cell's knots, where it is
+        # C^(p-1) only), the middle stringer's u among them
+        inner = [] if u_breaks is None else [u for u in np.asarray(u_breaks, dtype=float) if self.u_a < u < self.u_b]
+        self.u_breaks = np.unique(np.concatenate([[self.u_a, self.u_b], inner]))
+        # the fits' absolute scale: a tube's radius (sqrt(E) per radian), or given (a net's cell,
+        # whose u is a length: its size)
         mid = base.derivatives(self.u_m, 0.5 * (self.s_a + self.s_b))
-        self.length_scale = float(np.linalg.norm(mid.S_u))  # sqrt(E): the radius
+        self.length_scale = float(np.linalg.norm(mid.S_u)) if length_scale is None else float(length_scale)
         turn = lambda s: _turns(base.derivatives(self.u_m, s))[1]  # noqa: E731
         self.alpha = _Primitive(
             turn,
@@ -182,6 +200,7 @@ class PanelConstruction:
             1.0 / self.length_scale,
             "the middle stringer's geodesic curvature",
             self.breaks,
+            tol=self.tol,
         )
         trial = self._gamma(0.5 * math.pi)
         chord = trial(np.array(self.s_b))
@@ -196,7 +215,9 @@ class PanelConstruction:
             a = alpha0 + self.alpha(s)
             return speed[..., None] * np.stack([np.cos(a), np.sin(a)], axis=-1)
 
-        return _Primitive(velocity, self.s_a, self.s_b, self.s_a, 0.0, "the middle stringer's development", self.breaks)
+        return _Primitive(
+            velocity, self.s_a, self.s_b, self.s_a, 0.0, "the middle stringer's development", self.breaks, tol=self.tol
+        )
 
     def rings(self, s: FloatArray, derivatives: bool = False) -> _Rings:
         """The developed rings at the arc lengths ``s`` (shape (K,))."""
@@ -206,13 +227,16 @@ class PanelConstruction:
         def at(u: FloatArray) -> SurfaceDerivatives:
             return base.derivatives(u[..., None], s)
 
-        theta = _Primitive(lambda u: _turns(at(u))[0], lo, hi, um, 1.0, "the rings' geodesic curvature")
+        breaks = self.u_breaks
+        theta = _Primitive(
+            lambda u: _turns(at(u))[0], lo, hi, um, 1.0, "the rings' geodesic curvature", breaks, tol=self.tol
+        )
 
         def velocity(u: FloatArray) -> FloatArray:
             speed, th = np.linalg.norm(at(u).S_u, axis=-1), theta(u)
             return speed[..., None] * np.stack([np.cos(th), np.sin(th)], axis=-1)
 
-        q = _Primitive(velocity, lo, hi, um, 0.0, "the rings' development")
+        q = _Primitive(velocity, lo, hi, um, 0.0, "the rings' development", breaks, tol=self.tol)
         if not derivatives:
             return _Rings(theta, q, None)
         gauss = _Primitive(
@@ -222,6 +246,8 @@ class PanelConstruction:
             um,
             1.0 / self.length_scale,
             "the Gaussian curvature across the rings",
+            breaks,
+            tol=self.tol,
         )
         kappa_m = _turns(base.derivatives(um, s))[1]
 
@@ -234,7 +260,9 @@ class PanelConstruction:
             c, sn = np.cos(th), np.sin(th)
             return np.stack([speed_s * c - speed * theta_s * sn, speed_s * sn + speed * theta_s * c], axis=-1)
 
-        return _Rings(theta, q, _Primitive(d_velocity, lo, hi, um, 1.0, "the rings' development, d/ds"))
+        return _Rings(
+            theta, q, _Primitive(d_velocity, lo, hi, um, 1.0, "the rings' development, d/ds", breaks, tol=self.tol)
+        )
 
     @overload
     def evaluate(self, u: FloatArray, s: FloatArray, derivatives: Literal[False] = False) -> FloatArray: ...
@@ -278,9 +306,11 @@ class PanelConstruction:
                 E, F, G = _dot(d.S_u, d.S_u), _dot(d.S_u, d.S_s), _dot(d.S_s, d.S_s)
                 return np.sqrt(E * G - F * F)
 
-            return _Primitive(density, lo, hi, lo, 0.0, "the panel's area density")(np.array(hi)).reshape(s.shape)
+            return _Primitive(density, lo, hi, lo, 0.0, "the panel's area density", self.u_breaks, tol=self.tol)(
+                np.array(hi)
+            ).reshape(s.shape)
 
-        total = _Primitive(across, self.s_a, self.s_b, self.s_a, 0.0, "the panel's area", self.breaks)
+        total = _Primitive(across, self.s_a, self.s_b, self.s_a, 0.0, "the panel's area", self.breaks, tol=self.tol)
         return float(total(np.array(self.s_b)))
 
     def flat_area(self) -> float:
@@ -303,10 +333,12 @@ class PanelConstruction:
             p, _, p_s = self.evaluate(uu, ss, derivatives=True)
             return cross(p, p_s).reshape(s.shape + (2,))
 
-        rings = _Primitive(ring_edges, self.u_a, self.u_b, self.u_a, floor, "the outline's rings")(np.array(self.u_b))
-        seams = _Primitive(seam_edges, self.s_a, self.s_b, self.s_a, floor, "the outline's seams", self.breaks)(
-            np.array(self.s_b)
-        )
+        rings = _Primitive(
+            ring_edges, self.u_a, self.u_b, self.u_a, floor, "the outline's rings", self.u_breaks, tol=self.tol
+        )(np.array(self.u_b))
+        seams = _Primitive(
+            seam_edges, self.s_a, self.s_b, self.s_a, floor, "the outline's seams", self.breaks, tol=self.tol
+        )(np.array(self.s_b))
         return 0.5 * float(rings[0] - rings[1] + seams[1] - seams[0])
 
 
@@ -357,6 +389,11 @@ class PanelDevelopment:
     surface_area: float  # of the 3-D patch, Int Int sqrt(EG - F^2) du ds
     flat_area: float  # enclosed by the developed outline (Green's theorem on its exact edges)
     construction: PanelConstruction = field(repr=False, compare=False)
+    #: the construction's u per unit of the grid's u (``angles_deg``): pi / 180 on a tube (the
+    #: grid in degrees, the construction in radians), 1 on a net's cell (both its arc length)
+    u_per_unit: float = math.pi / 180.0
+    #: the grid's u unit in the texts ("deg"; "" on a net's cell: a length)
+    u_unit: str = "deg"
 
     @property
     def angle_range(self) -> tuple[float, float]:
@@ -387,12 +424,13 @@ class PanelDevelopment:
         """Developed positions of (u_deg, s) inside the panel, broadcast: shape (..., 2). The
         construction itself is evaluated (no interpolation of the grid)."""
         u, s = self._checked(u_deg, s)
-        return self.construction.evaluate(np.radians(u), s).reshape(u.shape + (2,))
+        return self.construction.evaluate(u * self.u_per_unit, s).reshape(u.shape + (2,))
 
     def tangents(self, u_deg: Any, s: Any) -> tuple[np.ndarray, np.ndarray]:
-        """(P_u, P_s), the developed map's derivatives per radian and per unit s, shape (..., 2)."""
+        """(P_u, P_s), the developed map's derivatives per radian (per unit u on a net's cell)
+        and per unit s, shape (..., 2)."""
         u, s = self._checked(u_deg, s)
-        _, p_u, p_s = self.construction.evaluate(np.radians(u), s, derivatives=True)
+        _, p_u, p_s = self.construction.evaluate(u * self.u_per_unit, s, derivatives=True)
         return p_u.reshape(u.shape + (2,)), p_s.reshape(u.shape + (2,))
 
     def ring_line(self, s: float, points: int = 65) -> np.ndarray:
@@ -452,9 +490,48 @@ def develop_panel(
         raise ParameterError(f"samples must be a pair (n_u, n_s), got {samples!r:.60}") from None
     n_u, n_s = _count("samples n_u", n_u), _count("samples n_s", n_s)
     construction = PanelConstruction(base, (math.radians(u_a), math.radians(u_b)), (s_a, s_b))
-    angles = np.linspace(u_a, u_b, n_u)
-    s = np.linspace(s_a, s_b, n_s)
-    uu, ss = np.repeat(np.radians(angles), n_s), np.tile(s, n_u)
+    return _developed(construction, np.linspace(u_a, u_b, n_u), np.linspace(s_a, s_b, n_s), name)
+
+
+def develop_cell(
+    base: Any,
+    u_range: tuple[float, float],
+    s_range: tuple[float, float],
+    name: str = "panel",
+    samples: tuple[int, int] = (33, 33),
+) -> PanelDevelopment:
+    """Develop a net's cell refitted in curvature-line coordinates (``base``: its
+    :class:`~tubecad.nets.patch_surface.PatchSurface`, u along the k1 lines and s along the k2
+    lines, both arc lengths of its sides) over ``u_range`` x ``s_range`` on a grid of
+    ``samples`` nodes, as a tube's panel (module docstring: the middle k2 line and every k1
+    line isometric); the strain measured at every node."""
+    name = _panel_name(name)
+    try:
+        n_u, n_s = samples
+    except (TypeError, ValueError):
+        raise ParameterError(f"samples must be a pair (n_u, n_s), got {samples!r:.60}") from None
+    n_u, n_s = _count("samples n_u", n_u), _count("samples n_s", n_s)
+    (u_a, u_b), (s_a, s_b) = span_pair("u_range", u_range), span_pair("s_range", s_range)
+    size = max(u_b - u_a, s_b - s_a)
+    # a B-spline's derivatives hold round-off of its poles over a knot span (about 1e-14 of
+    # them): its fits are resolved to CELL_TOLERANCE, not the tube's 1e-15
+    construction = PanelConstruction(base, (u_a, u_b), (s_a, s_b), base.u_breaks(), size, CELL_TOLERANCE)
+    return _developed(construction, np.linspace(u_a, u_b, n_u), np.linspace(s_a, s_b, n_s), name, 1.0, "")
+
+
+def _developed(
+    construction: PanelConstruction,
+    u: FloatArray,
+    s: FloatArray,
+    name: str,
+    u_per_unit: float = math.pi / 180.0,
+    u_unit: str = "deg",
+) -> PanelDevelopment:
+    """The development on the grid ``u`` x ``s`` (u in the grid's units, ``u_per_unit`` of
+    the construction's each) and the strain at every node."""
+    base = construction.base
+    n_u, n_s = len(u), len(s)
+    uu, ss = np.repeat(u * u_per_unit, n_s), np.tile(s, n_u)
     p, p_u, p_s = construction.evaluate(uu, ss, derivatives=True)
     d = base.derivatives(uu, ss)
     first, second = principal_strains(
@@ -466,16 +543,18 @@ def develop_panel(
     i, j = np.unravel_index(int(np.argmax(strain >= top * (1.0 - 1e-12))), strain.shape)
     return PanelDevelopment(
         name,
-        angles,
+        u,
         s,
         p.reshape(n_u, n_s, 2),
         strain,
         top,
-        (float(angles[i]), float(s[j])),
-        base.points(math.radians(angles[i]), s[j]),
+        (float(u[i]), float(s[j])),
+        base.points(float(u[i] * u_per_unit), s[j]),
         construction.surface_area(),
         construction.flat_area(),
         construction,
+        u_per_unit,
+        u_unit,
     )
 
 
@@ -488,7 +567,7 @@ def _polyline_points(key: str, points: Any) -> np.ndarray:
 
 def _strain_text(dev: PanelDevelopment) -> str:
     u, s = dev.max_strain_at
-    return f"max strain {dev.max_strain:.3e} at u = {u:.6g} deg, s = {s:.6g}"
+    return f"max strain {dev.max_strain:.3e} at u = {u:.6g}{' ' + dev.u_unit if dev.u_unit else ''}, s = {s:.6g}"
 
 
 def write_panel_dxf(
