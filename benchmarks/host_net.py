@@ -138,6 +138,7 @@ def main() -> dict:
     }
     out["nets"] = {name: _net(name, *counts, t_peer) for name, counts in NETS.items()}
     out["patches"] = {name: _patch(name, *cell) for name, cell in PATCHES.items()}
+    out["patch_shells"] = {name: _patch_shell(name, *counts) for name, counts in SHELLS.items()}
     return out
 
 
@@ -208,7 +209,7 @@ PATCHES = {
 
 def _patch(name: str, counts: tuple[int, int], k1: tuple[str, str], k2: tuple[str, str]) -> dict:
     """The cell refitted (:func:`tubecad.nets.patches.curvature_patch`, the grid chosen by its
-    default target, bicubic), its figures measured on a grid four times finer than the fit's:
+    default target, degree 5), its figures measured on a grid four times finer than the fit's:
     the distance from the host (OCCT's projection), the isolines' angle to the principal
     directions, the poles, the time (once: the grids are traced anew each call)."""
     from tubecad.export.cad import read_faces
@@ -218,8 +219,39 @@ def _patch(name: str, counts: tuple[int, int], k1: tuple[str, str], k2: tuple[st
 
     face = as_face(read_faces(ROOT / "samples" / f"{name}.step")[0][1])
     net = curvature_net(face, *counts)
-    report = curvature_patch(net, k1, k2).report()
+    report = curvature_patch(net, k1, k2, degree=5).report()
     return {"net": list(counts), "cell": [*k1, *k2], **report}
+
+
+#: the samples' nets made one shell of curvature-line patches (the nets of samples/*.toml)
+SHELLS = {"dome": (6, 8), "hull_panel": (6, 5)}
+
+
+def _patch_shell(name: str, k1: int, k2: int) -> dict:
+    """The net's four-sided cells refitted and put in one shell
+    (:func:`tubecad.nets.patch_shell.patch_shell`, its default target: 1e-8 of the face's size
+    and 1e-6 rad): the time (once), how many cells were refitted and why the others were kept,
+    the worst figures over the refitted ones, the poles."""
+    from tubecad.export.cad import read_faces
+    from tubecad.nets import curvature_net
+    from tubecad.nets.patch_shell import patch_shell
+    from tubecad.occ_compat import as_face
+
+    face = as_face(read_faces(ROOT / "samples" / f"{name}.step")[0][1])
+    net = curvature_net(face, k1, k2)
+    shell, seconds = timed(lambda: patch_shell(net), repeats=1)
+    report = shell.report()
+    kept: dict[str, int] = {}
+    for reason in report["kept"].values():
+        kept[reason.split(":")[0]] = kept.get(reason.split(":")[0], 0) + 1
+    return {
+        "net": [k1, k2],
+        "seconds": seconds,
+        "refitted": len(report["refitted"]),
+        "kept": kept,
+        "worst": {key: report[key] for key in ("distance", "angle", "F", "M", "edge_tolerance")},
+        "poles": sorted({tuple(f["poles"]) for f in report["refitted"].values()}),
+    }
 
 
 def _faces(shape) -> int:

@@ -56,7 +56,8 @@ class PatchShell:
     """The net's split face with its four-sided cells on curvature-line patches (module
     docstring): ``shell`` (the same topology as the net's), ``patches`` (cell name ->
     :class:`~tubecad.nets.patches.CurvaturePatch`) and ``kept`` (cell name -> why its face
-    stays on the host). A cell is named by its lines: ``k1_02:k1_03/k2_01:k2_02``."""
+    stays on the host). A four-sided cell is named by its lines (``k1_02:k1_03/k2_01:k2_02``), any
+    other by its place among the split face's faces (``panel_07``, the shop's name)."""
 
     shell: TopoDS_Shape
     patches: dict[str, CurvaturePatch] = field(default_factory=dict)
@@ -124,7 +125,7 @@ def patch_shell(
         index += 1
         lines = _lines_round(face, names)
         if lines is None:
-            kept[f"cell_{index:03d}"] = "not four-sided: the face's boundary, an umbilic or three lines bound it"
+            kept[f"panel_{index:02d}"] = "not four-sided: the face's boundary, an umbilic or three lines bound it"
             continue
         k1, k2 = lines
         name = f"{k1[0]}:{k1[1]}/{k2[0]}:{k2[1]}"
