@@ -222,12 +222,12 @@ def web_pieces(net: CurvatureNet, web: NetWeb, fab: Fabrication) -> list[WebPiec
     """``web`` as the fewest equal lengths of its line that all fit a plate, with its flange's
     pieces (a T or L profile: the same spans, named ``<piece>_flange``) fitting too (module
     docstring)."""
-    from tubecad.stiffeners.net_webs import web_height, web_pattern
+    from tubecad.stiffeners.net_webs import web_pattern
 
     line, edge = net.lines[web.line], net.edges[web.line]
     total = edge.curve.LastParameter() - edge.curve.FirstParameter()
     half_gap = fab.joint_gap / 2
-    height, side, base = web_height(web.profile), web.side, web.base
+    height, side, base = web.profile.web_height, web.side, web.base
     for n in range(1, MAX_PIECES + 1):
         cuts = np.linspace(0.0, total, n + 1)
         spans = [

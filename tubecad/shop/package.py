@@ -139,16 +139,14 @@ def bending_tables(stiffeners: list[Stiffener], by_stiffener: dict[str, list[Web
     """Bending tables of each stringer piece's base line and flange centre line, and of
     each ring's base circle and flange circle in arcs of at most 180 deg."""
     from tubecad.shop.bending import bending_table, ring_arcs, stringer_line
+    from tubecad.shop.flanges import flange_level
 
     tables = []
     tol = fab.bend_back_tolerance
     for st in stiffeners:
-        sign = 1.0 if st.side == "outside" else -1.0
         levels = [(0.0, "web base on the wall", "")]
         if st.profile.kind != "flat":
-            levels.append(
-                (sign * (st.profile.height - st.profile.flange_thickness / 2), "flange centre line", "_flange")
-            )
+            levels.append((flange_level(st.profile, st.side), "flange centre line", "_flange"))
         for level, line, suffix in levels:
             if st.kind == "stringer":
                 for piece in by_stiffener[st.name]:

@@ -106,7 +106,7 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
     (``fab.joints[st.name]``, s strictly inside its span), then each part into the fewest
     equal base-line lengths that are all cuttable; a ParameterError naming
     ``plate_size`` (its key) if even MAX_PIECES pieces are not."""
-    base, h, side = st.base, st.profile.height, st.side
+    base, h, side = st.base, st.profile.web_height, st.side
     s0, s1 = base.span
     _check_height(st, fab)
     turn, speed, breaks = stringer_rates(base, st.value)
@@ -178,7 +178,7 @@ def stringer_pieces(st: Stiffener, fab: Fabrication) -> list[WebPiece]:
 def _check_height(st: Stiffener, fab: Fabrication) -> None:
     """No piece of the web (or of a T or L stringer's flange) can be narrower than its
     height (its flange's width): refused at once if that exceeds the usable plate."""
-    widths = [("web", "height", st.profile.height)]
+    widths = [("web", "height", st.profile.web_height)]
     if st.profile.kind != "flat" and st.kind == "stringer":
         widths.append(("flange", "width", st.profile.flange_width))
     for part, what, size in widths:
@@ -202,7 +202,7 @@ def ring_pieces(st: Stiffener, fab: Fabrication, stringers_deg: tuple[float, ...
     stringers at ``stringers_deg``. A ring cut at a branch's opening (``st.arc_deg``) is the
     sector of its arc, or equal sectors of it (:func:`_arc_pieces`)."""
     _check_height(st, fab)
-    whole = ring_web_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
+    whole = ring_web_flat_pattern(st.base, st.value, st.profile.web_height, st.side, st.name)
     chosen = sorted(fab.joints.get(st.name, ()))
     for angle in chosen:
         if not 0.0 <= angle < 360.0:

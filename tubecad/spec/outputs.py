@@ -44,7 +44,7 @@ def _tube_flat(spec: TubeSpec, output: str | Path) -> list[Path]:
     result = build_from_spec(spec)
     chosen = stiffener_selection(spec, result)
     assert chosen is not None  # the spec has [stiffeners]
-    base, height, side = chosen.base(result), chosen.profile.height, chosen.side
+    base, height, side = chosen.base(result), chosen.profile.web_height, chosen.side
     layout = result.layout
     folder = output_folder(output)
     patterns = [ring_web_flat_pattern(base, layout.s_rings[i], height, side, f"ring_{i:02d}") for i in chosen.rings]
@@ -82,9 +82,9 @@ def write_flat_patterns(stiffeners, folder: Path, length_unit: str = DEFAULT_LEN
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     patterns = [
-        ring_web_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
+        ring_web_flat_pattern(st.base, st.value, st.profile.web_height, st.side, st.name)
         if st.kind == "ring"
-        else stringer_flat_pattern(st.base, st.value, st.profile.height, st.side, st.name)
+        else stringer_flat_pattern(st.base, st.value, st.profile.web_height, st.side, st.name)
         for st in stiffeners
     ]
     return write_patterns(patterns, folder, length_unit)

@@ -131,13 +131,8 @@ def net_web(
     sign = 1.0 if side == "outside" else -1.0
     outline = [(s, base + sign * w) for s, w in profile.outline()]
     solid = _stiffener_solid(host, line, edge, outline)
-    pattern = web_pattern(host, name, line, edge, web_height(profile), side, base)
+    pattern = web_pattern(host, name, line, edge, profile.web_height, side, base)
     return NetWeb(name, solid, profile, side, base, pattern)
-
-
-def web_height(profile: Profile) -> float:
-    """The web's height developed: the whole height of a flat bar, up to the flange of a T or L."""
-    return profile.height if profile.kind == "flat" else profile.height - profile.flange_thickness
 
 
 def geodesic_curvature(host: HostSurface, edge: LineEdge, sigma: FloatArray) -> FloatArray:

@@ -63,6 +63,12 @@ class Profile:
                     f"got {self.flange_width:g}"
                 )
 
+    @property
+    def web_height(self) -> float:
+        """The web plate's height: a flat bar's whole height, a T's or L's up to its flange
+        (the flange plate, ``flange_thickness``, sits on it)."""
+        return self.height if self.kind == "flat" else self.height - self.flange_thickness
+
     def outline(self) -> list[tuple[float, float]]:
         """(w, h) corners from the base's +w corner round to its -w corner (the base itself,
         which follows the wall, closes the outline)."""

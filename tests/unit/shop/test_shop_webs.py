@@ -125,6 +125,19 @@ def test_a_ring_too_large_for_the_plate_is_cut_into_sectors_in_2d_and_3d(paper):
     assert sum(volume(s.solid) for s in solids) == pytest.approx(volume(st.solid), rel=1e-9)
 
 
+def test_a_t_rings_web_plate_is_cut_up_to_its_flange(paper):
+    """A T profile is two plates: the web up to the flange (h - tf) and the flange on it. The
+    ring's web plate is the annulus from the wall's radius R to R - (h - tf) (inside), not to
+    R - h, where it would overlap the flange plate by tf all round."""
+    build, _ = paper
+    h, tw, bf, tf = 6.0, 0.8, 4.0, 1.0
+    (st,) = build_stiffeners(build, [3], [], Profile("T", h, tw, bf, tf), "inside")
+    pieces = ring_pieces(st, fabrication_settings({}), tuple(build.layout.stringers_deg))
+    r_out = st.base.radius
+    r_in = r_out - (h - tf)
+    assert sum(p.area for p in pieces) == pytest.approx(math.pi * (r_out**2 - r_in**2), rel=1e-14)
+
+
 def dxf_parts(path):
     """The PARTS layer of a plate DXF as shapely polygons (circles as 720-gons), by ezdxf."""
     import ezdxf
