@@ -48,10 +48,10 @@ forms and curvatures: the cosine of the isolines' angle and the shape operator's
 relative to the larger curvature), and the pole count.
 
 Without ``samples`` the grid is chosen by the ``target`` distance and angle: 9, 17, 33 lines a
-family (the coarser grids' lines traced once), the first whose measures meet it; a finer grid is
-not tried where even the interpolant's ideal rate (the angle falling as h^degree, the distance
-as h^(degree + 1)) would leave it off the target (a cell across a host's C2 knot line, where the
-curvature-line map is only C1 and the error falls as h).
+family (the coarser grids' lines traced once), the first whose measures meet it; the finer
+grids are not tried where even the finest, at the interpolant's ideal rate (the angle falling
+as h^degree, the distance as h^(degree + 1)), would leave it off the target (a cell across a
+host's C2 knot line, where the curvature-line map is only C1 and the error falls as h).
 """
 
 from __future__ import annotations
@@ -248,9 +248,11 @@ def curvature_patch(
         if patch.distance <= target[0] * cell.size and patch.angle <= target[1]:
             break
         tried.append(patch.report())
-        # the next grid halves the step: at best the angle falls by 2^degree (the distance by
-        # 2^(degree + 1)); where even that misses the target, its lines are not traced
-        if patch.angle > target[1] * 2.0**degree or patch.distance > target[0] * cell.size * 2.0 ** (degree + 1):
+        # each finer grid halves the step: at best the angle falls by 2^degree a grid (the
+        # distance by 2^(degree + 1)); where even the finest left would miss the target, no
+        # finer grid's lines are traced
+        finer = (GRIDS[-1] - 1) / (count - 1)  # the finest grid's step is this many times smaller
+        if patch.angle > target[1] * finer**degree or patch.distance > target[0] * cell.size * finer ** (degree + 1):
             break
     assert patch is not None
     return patch
