@@ -28,9 +28,9 @@ from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools_ReShape
 from OCP.Geom import Geom_BSplineSurface
-from OCP.GeomAPI import GeomAPI_ProjectPointOnSurf
+from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve, GeomAPI_ProjectPointOnSurf
 from OCP.gp import gp_Pnt
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_VERTEX, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
@@ -193,8 +193,6 @@ class _LineNames:
         self.along = {name: net.edges[name].curve for name in net.on_face_edges}
 
     def get(self, edge: Any) -> str | None:
-        from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
-
         curve = BRep_Tool.Curve_s(edge, TopLoc_Location(), 0.0, 0.0)
         if curve is None:
             return None
@@ -238,8 +236,6 @@ def _lines_round(face: TopoDS_Face, names: _LineNames) -> tuple[tuple[str, str],
 def _corner(face: TopoDS_Face, net: CurvatureNet, k1: tuple[str, str], k2: tuple[str, str]) -> tuple[float, float]:
     """The host parameters of the face's corner on the lines k1[0] and k2[0] (the patch's
     C00 where those lines cross more than once): the face's vertex nearest both."""
-    from OCP.TopAbs import TopAbs_VERTEX
-
     a, b = net.lines[k1[0]].points, net.lines[k2[0]].points
     best, at = np.inf, np.zeros(3)
     vertices = TopExp_Explorer(face, TopAbs_VERTEX)
