@@ -504,7 +504,22 @@ def develop_cell(
     :class:`~tubecad.nets.patch_surface.PatchSurface`, u along the k1 lines and s along the k2
     lines, both arc lengths of its sides) over ``u_range`` x ``s_range`` on a grid of
     ``samples`` nodes, as a tube's panel (module docstring: the middle k2 line and every k1
-    line isometric); the strain measured at every node."""
+    line isometric); the strain measured at every node.
+
+    Args:
+        base: the cell's surface: ``derivatives(u, s)``, ``points(u, s)``, ``s_breaks()`` and
+            ``u_breaks()`` (its knots).
+        u_range: the span of u developed (along the k1 lines).
+        s_range: the span of s developed (along the k2 lines).
+        name: the panel's name (the files').
+        samples: the grid's nodes (along u, along s), 2 .. MAX_SAMPLES each.
+
+    Returns:
+        The development: the grid's developed points, the strain at each, the areas.
+
+    Raises:
+        ParameterError: (``name``, ``samples``, ``u_range``, ``s_range``) out of range.
+    """
     name = _panel_name(name)
     try:
         n_u, n_s = samples

@@ -66,7 +66,17 @@ def _net_flat(spec: HostSpec, output: str | Path) -> list[Path]:
 
 def net_report_from_spec(spec: HostSpec) -> dict[str, Any]:
     """``tubecad report`` on a [host] spec: the net built (its [wall] and [stiffeners] with
-    it) and its report, as ``tubecad build --report`` writes it (without the files' part)."""
+    it) and its report, as ``tubecad build --report`` writes it (without the files' part).
+
+    Args:
+        spec: the checked [host] spec.
+
+    Returns:
+        The report (plain JSON values).
+
+    Raises:
+        SpecError: a build error, naming the section and key.
+    """
     from tubecad.spec.design import net_design, spec_errors
 
     design = net_design(spec)
