@@ -43,7 +43,7 @@ from tubecad.brep.layout import DEFAULT_RINGS, DEFAULT_STRINGERS
 from tubecad.brep.wall import WallSide
 from tubecad.core.errors import ParameterError
 from tubecad.core.tolerance import DEFAULT_TOLERANCE
-from tubecad.design.net import DEFAULT_LINES, LineSelection, NetResult, PatchSurfaces
+from tubecad.design.net import DEFAULT_LINES, LineSelection, PatchSurfaces
 from tubecad.occ_compat import as_edge
 from tubecad.parts.axis_input import AxisLike, RadiusLike
 from tubecad.parts.engine import PartArguments, build_part, edge_map_of, net_edges, stiffener_solids
@@ -292,7 +292,9 @@ def curvature_net(
             what = ", ".join(type(v).__name__ for v in held[:3]) or "nothing"
             raise ParameterError(f"face must be a Workplane holding one Face, got one holding {what}", key="face")
         face = held[0]
-    built = _built_net(
+    from tubecad.parts.net_arguments import net_part_design
+
+    built = net_part_design(
         face,
         k1_lines,
         k2_lines,
@@ -305,7 +307,7 @@ def curvature_net(
         profile,
         stiffener_side,
         patches,
-    )
+    ).build_net()
     solids = []
     for name, shape in built.solids:  # the wall, then each web
         solid = cq.Solid(shape)
@@ -344,40 +346,6 @@ def _put(workplane: cq.Workplane, pushed: cq.Shape, solids: list, combine: bool,
     if not combine or base is None:
         return workplane.newObject([pushed])
     return workplane.union(cq.Workplane().newObject(solids), clean=clean)
-
-
-def _built_net(
-    face: Any,
-    k1_lines: int | None,
-    k2_lines: int | None,
-    thickness: float,
-    side: WallSide,
-    k1_spacing: float | None,
-    k2_spacing: float | None,
-    seed: Sequence[float] | None,
-    stiffened: Mapping[str, LineSelection | Sequence[int]] | None,
-    profile: Profile | None,
-    stiffener_side: StiffenerSide,
-    patches: PatchSurfaces = "host",
-) -> NetResult:
-    """The NetDesign of tubecad.CurvatureNet's arguments (:func:`tubecad.parts.net_arguments.net_part_design`), built."""
-    from tubecad.parts.net_arguments import net_part_design
-
-    design = net_part_design(
-        face,
-        k1_lines,
-        k2_lines,
-        thickness,
-        side,
-        k1_spacing,
-        k2_spacing,
-        seed,
-        stiffened,
-        profile,
-        stiffener_side,
-        patches,
-    )
-    return design.build_net()
 
 
 def _wire(label: str, edges: list) -> cq.Wire:

@@ -158,18 +158,21 @@ class HostSurface:
         return boxed & self._classifier(wu, wv).reshape(np.shape(wu))
 
     @cached_property
+    def size(self) -> float:
+        """The face's size: the largest extent of the points of a 9 x 9 grid over its
+        parameter box (what the nets' relative tolerances are shares of)."""
+        u0, u1, v0, v1 = self.bounds
+        uu, vv = np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9), indexing="ij")
+        return float(np.ptp(self.points(uu, vv), axis=0).max())
+
+    @cached_property
     def _whole_box(self) -> bool:
         """Whether the face is its surface's whole parameter box (a B-spline patch as a STEP
         file gives it): its area the box's to 1e-12 (the same integration: 0 on the samples),
         so the box alone classifies its points."""
         from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
-        from OCP.BRepGProp import BRepGProp
-        from OCP.GProp import GProp_GProps
 
-        def area(face) -> float:
-            props = GProp_GProps()
-            BRepGProp.SurfaceProperties_s(face, props)
-            return props.Mass()
+        from tubecad.brep.properties import area
 
         u0, u1, v0, v1 = self.bounds
         box = BRepBuilderAPI_MakeFace(self.surface, u0, u1, v0, v1, 1e-7).Face()

@@ -139,11 +139,9 @@ def curvature_net(
             "face: an umbilic region (a plane or a sphere): every direction is principal, it has no curvature-line net",
             key="face",
         )
-    u0, u1, v0, v1 = host.bounds
     centre = seed if seed is not None else _centre(host, umbilics.part_level)
     stops = np.array([p.point for p in umbilics.points]).reshape(-1, 3)
-    size = float(np.ptp(host.points(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))), axis=0).max())
-    reach = UMBILIC_REACH * size
+    reach = UMBILIC_REACH * host.size
 
     def traced(start: tuple[float, float], family: Family, step_error: float = tolerance) -> CurvatureLine:
         return trace_line(host, start, family, tolerance=step_error, stops=stops, reach=reach, flat=umbilics.part_level)
@@ -151,7 +149,7 @@ def curvature_net(
     lines: dict[str, CurvatureLine] = {}
     plan: tuple[tuple[Family, int, Family], ...] = ((1, k1_lines, 2), (2, k2_lines, 1))
     for family, count, across in plan:
-        guide = traced(centre, across, max(tolerance, GUIDE_SHARE * size))
+        guide = traced(centre, across, max(tolerance, GUIDE_SHARE * host.size))
         traced_lines = [traced(start, family) for start in _seeds(guide, count)]
         folds = _folds(guide, traced_lines, count)
         if folds is not None:  # the guide meets each line twice: seed along one half of it

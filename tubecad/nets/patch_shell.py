@@ -36,6 +36,7 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
 from scipy.interpolate import make_interp_spline
 
+from tubecad.brep.properties import area as _area
 from tubecad.core.errors import ParameterError, TubecadError
 from tubecad.core.tolerance import EDGE_TOLERANCE
 from tubecad.fitting.nurbs import occ_curve_2d
@@ -111,7 +112,7 @@ def patch_shell(
     if not all(isinstance(t, float | int) and t > 0 for t in target) or len(target) != 2:
         raise ParameterError(f"target must be two positive numbers, got {target!r:.60}", key="target")
     names = _LineNames(net)
-    size = _size(net)
+    size = net.host.size
     patches: dict[str, CurvaturePatch] = {}
     kept: dict[str, str] = {}
     panels: dict[str, int] = {}
@@ -166,21 +167,6 @@ def patch_shell(
     if not BRepCheck_Analyzer(shell).IsValid():
         raise TubecadError("the net's shell is not valid with its cells on their curvature-line patches")
     return PatchShell(shell, patches, kept, worst_tolerance, panels)
-
-
-def _area(face: TopoDS_Face) -> float:
-    from OCP.BRepGProp import BRepGProp
-    from OCP.GProp import GProp_GProps
-
-    props = GProp_GProps()
-    BRepGProp.SurfaceProperties_s(face, props)
-    return props.Mass()
-
-
-def _size(net: CurvatureNet) -> float:
-    u0, u1, v0, v1 = net.host.bounds
-    grid = np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))
-    return float(np.ptp(net.host.points(*grid), axis=0).max())
 
 
 class _LineNames:

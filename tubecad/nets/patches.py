@@ -258,11 +258,6 @@ def curvature_patch(
     return patch
 
 
-def _size(host: HostSurface) -> float:
-    u0, u1, v0, v1 = host.bounds
-    return float(np.ptp(host.points(*np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9))), axis=0).max())
-
-
 def _line_of(line: Any, edge: Any) -> _Line:
     """A traced line (:class:`~tubecad.nets.trace.CurvatureLine`) and its edge as a grid line."""
     period = float(line.sigma[-1] - line.sigma[0]) if line.closed else None
@@ -293,7 +288,7 @@ class _Cell:
         degree: int = 3,
     ) -> None:
         self.host, self.tolerance, self.degree = net.host, tolerance, degree
-        self.size = _size(self.host)
+        self.size = self.host.size
         self.stops = np.array([p.point for p in net.umbilics.points]).reshape(-1, 3)
         self.reach = UMBILIC_REACH * self.size
         self.flat = net.umbilics.part_level

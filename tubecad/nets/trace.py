@@ -171,7 +171,7 @@ def trace_line(
     if not start.umbilic_measure[0] > flat:
         where = "an umbilic" if flat == 0.0 else "in an umbilic part (flat or spherical)"
         raise ParameterError(f"seed {seed} is {where}: every direction there is principal", key="seed")
-    size = _size(host)
+    size = host.size
     limit = max_length if max_length is not None else 100.0 * size
     direction = (start.uv1 if family == 1 else start.uv2)[0]
     x0 = _snapped(host, np.array([u, v]), direction, SNAP * size)
@@ -267,12 +267,6 @@ class _Run:
     stop: Stop
     error: float
     across: FloatArray  # (m, 2): from a node just past a break back across it, else 0
-
-
-def _size(host: HostSurface) -> float:
-    u0, u1, v0, v1 = host.bounds
-    uu, vv = np.meshgrid(np.linspace(u0, u1, 9), np.linspace(v0, v1, 9), indexing="ij")
-    return float(np.ptp(host.points(uu, vv), axis=0).max())
 
 
 class _Tracer:

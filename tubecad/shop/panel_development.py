@@ -448,6 +448,15 @@ def _count(key: str, value: Any, low: int = 2) -> int:
     return int(value)
 
 
+def _samples(samples: Any) -> tuple[int, int]:
+    """A development grid's (n_u, n_s), each checked (:func:`_count`)."""
+    try:
+        n_u, n_s = samples
+    except (TypeError, ValueError):
+        raise ParameterError(f"samples must be a pair (n_u, n_s), got {samples!r:.60}") from None
+    return _count("samples n_u", n_u), _count("samples n_s", n_s)
+
+
 def _panel_name(name: Any) -> str:
     if not isinstance(name, str) or not name or any(c in name for c in "/\\\0"):
         raise ParameterError(f"name must be a non-empty string without path separators, got {name!r:.60}")
@@ -484,11 +493,7 @@ def develop_panel(
     ``samples`` = (n_u, n_s) nodes; the strain is measured at every node."""
     (s_a, s_b), (u_a, u_b) = check_panel(base, s_range, angles_deg)
     name = _panel_name(name)
-    try:
-        n_u, n_s = samples
-    except (TypeError, ValueError):
-        raise ParameterError(f"samples must be a pair (n_u, n_s), got {samples!r:.60}") from None
-    n_u, n_s = _count("samples n_u", n_u), _count("samples n_s", n_s)
+    n_u, n_s = _samples(samples)
     construction = PanelConstruction(base, (math.radians(u_a), math.radians(u_b)), (s_a, s_b))
     return _developed(construction, np.linspace(u_a, u_b, n_u), np.linspace(s_a, s_b, n_s), name)
 
@@ -521,11 +526,7 @@ def develop_cell(
         ParameterError: (``name``, ``samples``, ``u_range``, ``s_range``) out of range.
     """
     name = _panel_name(name)
-    try:
-        n_u, n_s = samples
-    except (TypeError, ValueError):
-        raise ParameterError(f"samples must be a pair (n_u, n_s), got {samples!r:.60}") from None
-    n_u, n_s = _count("samples n_u", n_u), _count("samples n_s", n_s)
+    n_u, n_s = _samples(samples)
     (u_a, u_b), (s_a, s_b) = span_pair("u_range", u_range), span_pair("s_range", s_range)
     size = max(u_b - u_a, s_b - s_a)
     # a B-spline's derivatives hold round-off of its poles over a knot span (about 1e-14 of
